@@ -1,0 +1,40 @@
+"""Shared hypothesis strategies and settings for the twolink tests."""
+
+import os
+
+import matplotlib
+import numpy as np
+from hypothesis import HealthCheck, settings
+from hypothesis import strategies as st
+
+matplotlib.use("Agg")
+
+settings.register_profile(
+    "course",
+    max_examples=200,
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow],
+    derandomize=bool(os.environ.get("CI")),
+)
+settings.load_profile("course")
+
+lengths = st.floats(min_value=0.05, max_value=20.0, allow_nan=False, allow_infinity=False)
+angles = st.floats(min_value=-np.pi, max_value=np.pi, allow_nan=False, allow_infinity=False)
+unit = st.floats(min_value=0.0, max_value=1.0, allow_nan=False, allow_infinity=False)
+
+
+@st.composite
+def arms(draw, ratio_max=20.0):
+    """Arms with link lengths 0.05..20 m and a length ratio of at most ``ratio_max``."""
+    from twolink import TwoLinkArm
+
+    l1 = draw(lengths)
+    l2 = draw(st.floats(min_value=max(0.05, l1 / ratio_max), max_value=min(20.0, l1 * ratio_max)))
+    m1 = draw(st.floats(min_value=0.0, max_value=10.0))
+    m2 = draw(st.floats(min_value=0.0, max_value=10.0))
+    return TwoLinkArm(l1=l1, l2=l2, m1=m1, m2=m2)
+
+
+@st.composite
+def configurations(draw):
+    return np.array([draw(angles), draw(angles)])

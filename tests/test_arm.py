@@ -1,0 +1,83 @@
+"""TwoLinkArm construction, validation and presets."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+import twolink
+from twolink import TwoLinkArm, arms
+
+
+def test_defaults_and_fields():
+    arm = TwoLinkArm(1.5, 0.5)
+    assert (arm.m1, arm.m2, arm.g, arm.d) == (1.0, 1.0, 9.81, 0.0)
+    assert arm.q_min is None and arm.q_max is None and not arm.has_limits
+    assert arm.reach == (1.0, 2.0)
+
+
+def test_frozen():
+    arm = TwoLinkArm(1.0, 1.0)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        arm.l1 = 2.0
+
+
+def test_uniform_rod_inertias_and_override():
+    arm = TwoLinkArm(2.0, 1.0, m1=3.0, m2=6.0)
+    assert arm.inertias == pytest.approx((3.0 * 4.0 / 12.0, 6.0 / 12.0))
+    assert TwoLinkArm(2.0, 1.0, I1=0.7, I2=0.2).inertias == (0.7, 0.2)
+    # replace() recomputes the rod inertia from the new length
+    assert dataclasses.replace(arm, l1=4.0).inertias[0] == pytest.approx(3.0 * 16.0 / 12.0)
+
+
+@pytest.mark.parametrize(
+    "kwargs, fragment",
+    [
+        ({"l1": 0.0, "l2": 1.0}, "l1 (link 1 length, m) must be > 0"),
+        ({"l1": 1.0, "l2": -2.0}, "l2 (link 2 length, m) must be > 0"),
+        ({"l1": float("nan"), "l2": 1.0}, "must be finite"),
+        ({"l1": 1.0, "l2": 1.0, "m1": -1.0}, "m1 (link 1 mass, kg) must be >= 0"),
+        ({"l1": 1.0, "l2": 1.0, "m2": float("inf")}, "must be finite"),
+        ({"l1": 1.0, "l2": 1.0, "g": float("nan")}, "g (m/s^2) must be finite"),
+        ({"l1": 1.0, "l2": 1.0, "q_min": (0.0, 0.0)}, "given together"),
+        ({"l1": 1.0, "l2": 1.0, "q_min": (1.0, 0.0), "q_max": (0.0, 1.0)}, "q_min must be <= q_max"),
+        ({"l1": 1.0, "l2": 1.0, "q_min": (0.0,), "q_max": (1.0, 1.0)}, "two angles"),
+        ({"l1": 1.0, "l2": 1.0, "q_min": (0.0, float("nan")), "q_max": (1.0, 1.0)}, "finite"),
+        ({"l1": 1.0, "l2": 1.0, "I1": -0.1}, "I1 (inertia, kg m^2) must be >= 0"),
+        ({"l1": 1.0, "l2": 1.0, "limits": "degrees"}, "limits must be one of"),
+        ({"l1": "one", "l2": 1.0}, "must be a real number"),
+    ],
+)
+def test_invalid_parameters_raise_value_error(kwargs, fragment):
+    with pytest.raises(ValueError, match=fragment.replace("(", r"\(").replace(")", r"\)").replace("^", r"\^")):
+        TwoLinkArm(**kwargs)
+
+
+def test_presets_match_the_sources():
+    assert (arms.two_metre.l1, arms.two_metre.l2) == (2.0, 2.0)
+    assert (arms.ten.l1, arms.ten.l2) == (10.0, 10.0)
+    assert np.allclose(np.degrees(arms.ten.q_min), [0.0, -90.0])
+    assert np.allclose(np.degrees(arms.ten.q_max), [90.0, 90.0])
+    assert (arms.osake.l1, arms.osake.l2, arms.osake.d) == (0.10, 0.115, 0.065)
+    assert arms.two_metre_limited.limits == "absolute"
+    assert np.allclose(np.degrees(arms.two_metre_limited.q_min), [35.0, 35.0])
+    assert np.allclose(np.degrees(arms.two_metre_limited.q_max), [145.0, 145.0])
+
+
+def test_within_limits_relative_and_absolute():
+    inside, outside = np.radians([45.0, -45.0]), np.radians([45.0, -100.0])
+    assert arms.ten.within_limits([inside, outside]).tolist() == [True, False]
+    # Absolute limits bound q1 and q1 + q2: q = (40, 100) deg has q1 + q2 = 140 (inside),
+    # q = (40, 110) deg has 150 (outside), q = (30, 40) deg has q1 = 30 (outside).
+    q = np.radians([[40.0, 100.0], [40.0, 110.0], [30.0, 40.0]])
+    assert arms.two_metre_limited.within_limits(q).tolist() == [True, False, False]
+    assert TwoLinkArm(1.0, 1.0).within_limits(np.zeros((4, 2))).all()
+
+
+def test_public_api_names():
+    for name in ["TwoLinkArm", "arms", "ik", "to_absolute", "to_relative", "UnreachableError", "SingularityError"]:
+        assert hasattr(twolink, name), name
+    assert issubclass(twolink.UnreachableError, ValueError)
+    assert issubclass(twolink.SingularityError, ValueError)
+    for name in ["closed_form", "newton", "minimize", "brute_force", "IKResult"]:
+        assert hasattr(twolink.ik, name), name

@@ -1,0 +1,33 @@
+"""twolink: the planar two-link (2R) robot arm, for teaching and for use.
+
+Conventions: DH / relative joint angles (``q2`` measured from link 1),
+radians, SI units.  Start with :class:`TwoLinkArm` and the presets in
+:mod:`twolink.arms`; inverse kinematics lives in :mod:`twolink.ik`.
+
+Examples
+--------
+>>> import numpy as np
+>>> import twolink
+>>> arm = twolink.TwoLinkArm(l1=2.0, l2=2.0)
+>>> q = twolink.ik.closed_form(arm, [3.0, 1.0], elbow="down")
+>>> arm.fk(q).round(12)
+array([3., 1.])
+"""
+
+from . import arms, ik
+from .arm import TwoLinkArm
+from .conventions import to_absolute, to_relative, wrap_angle
+from .errors import SingularityError, UnreachableError
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "TwoLinkArm",
+    "arms",
+    "ik",
+    "to_absolute",
+    "to_relative",
+    "wrap_angle",
+    "UnreachableError",
+    "SingularityError",
+]

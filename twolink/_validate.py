@@ -1,0 +1,94 @@
+"""Input checks shared by the package (private).
+
+Every public function funnels its array arguments through these helpers so
+that bad input fails early with a message that says what was wrong and what
+is allowed, instead of propagating NaN.
+"""
+
+import numpy as np
+
+__all__ = ["as_pairs", "as_finite_scalar"]
+
+
+def as_pairs(values, name):
+    """Return ``values`` as a float array of shape ``(..., 2)``.
+
+    Parameters
+    ----------
+    values : array_like
+        Anything numpy can turn into floats, with a last axis of length 2.
+    name : str
+        The argument's name, used in error messages.
+
+    Returns
+    -------
+    numpy.ndarray
+        A float64 array (not copied when it already is one).
+
+    Raises
+    ------
+    ValueError
+        If the last axis is not of length 2 or any entry is NaN or infinite.
+
+    Examples
+    --------
+    >>> as_pairs([1, 2], "q")
+    array([1., 2.])
+    >>> as_pairs([1, 2, 3], "q")
+    Traceback (most recent call last):
+    ...
+    ValueError: q must have shape (..., 2) (two joint angles or an x, y pair per row); got shape (3,)
+    """
+    try:
+        array = np.asarray(values, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be numbers of shape (..., 2); got {values!r}") from exc
+    if array.ndim == 0 or array.shape[-1] != 2:
+        raise ValueError(
+            f"{name} must have shape (..., 2) (two joint angles or an x, y pair per row); "
+            f"got shape {array.shape}"
+        )
+    if not np.isfinite(array).all():
+        bad = np.argwhere(~np.isfinite(array))[0]
+        raise ValueError(
+            f"{name} must be finite numbers; entry {tuple(int(i) for i in bad)} "
+            f"is {array[tuple(bad)]}"
+        )
+    return array
+
+
+def as_finite_scalar(value, name, *, minimum=None, strictly=False):
+    """Return ``value`` as a finite float, optionally bounded below.
+
+    Parameters
+    ----------
+    value : float
+        The number to check.
+    name : str
+        The argument's name, used in error messages.
+    minimum : float, optional
+        Lower bound; ``None`` for no bound.
+    strictly : bool
+        If true the bound is strict (``value > minimum``).
+
+    Examples
+    --------
+    >>> as_finite_scalar(2, "l1", minimum=0.0, strictly=True)
+    2.0
+    >>> as_finite_scalar(0, "l1", minimum=0.0, strictly=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: l1 must be > 0.0; got 0.0
+    """
+    try:
+        number = float(value)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a real number; got {value!r}") from exc
+    if not np.isfinite(number):
+        raise ValueError(f"{name} must be finite; got {number}")
+    if minimum is not None:
+        if strictly and not number > minimum:
+            raise ValueError(f"{name} must be > {minimum}; got {number}")
+        if not strictly and not number >= minimum:
+            raise ValueError(f"{name} must be >= {minimum}; got {number}")
+    return number

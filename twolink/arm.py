@@ -1,0 +1,209 @@
+"""The :class:`TwoLinkArm` model: parameters, checks and kinematics methods.
+
+The class holds the physical parameters and checks them once, at construction.
+The computations live in small modules (:mod:`twolink.kinematics`,
+:mod:`twolink.dh`, ...); the methods here are thin, documented entry points.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from . import dh, kinematics
+from ._validate import as_finite_scalar, as_pairs
+from .conventions import to_absolute
+
+__all__ = ["TwoLinkArm"]
+
+_LIMIT_CONVENTIONS = ("relative", "absolute")
+
+
+def _as_limit_pair(value, name):
+    if value is None:
+        return None
+    try:
+        pair = tuple(float(v) for v in value)
+    except TypeError as exc:
+        raise ValueError(f"{name} must be None or two angles in radians; got {value!r}") from exc
+    if len(pair) != 2:
+        raise ValueError(f"{name} must be None or two angles in radians; got {value!r}")
+    if not all(np.isfinite(pair)):
+        raise ValueError(f"{name} must be finite angles in radians; got {pair}")
+    return pair
+
+
+@dataclass(frozen=True)
+class TwoLinkArm:
+    """A planar two-link (2R) arm with uniform-rod links.
+
+    Angles follow the DH / relative convention: ``q1`` is link 1 from the
+    x-axis, ``q2`` is link 2 relative to link 1, both in radians.  Lengths are
+    in metres, masses in kg.
+
+    Parameters
+    ----------
+    l1, l2 : float
+        Link lengths (> 0), metres.
+    m1, m2 : float
+        Link masses (>= 0), kg.  Each link is a uniform rod with its centre of
+        mass at mid-link.
+    g : float
+        Gravitational acceleration (m/s^2) along -y in the arm's plane
+        (a vertical arm); ``g=0`` models a horizontal arm.
+    d : float
+        Base offset along z (the first DH row's ``d``), metres.
+    q_min, q_max : pair of float, optional
+        Joint limits in radians, ``q_min <= q_max`` component-wise; ``None``
+        for no limits.  Read in the convention named by ``limits``.
+    I1, I2 : float, optional
+        Link inertias about their centres of mass (kg m^2); ``None`` gives the
+        uniform rod value ``m l^2 / 12``.
+    limits : {"relative", "absolute"}
+        Whether ``q_min``/``q_max`` bound the relative angles ``(q1, q2)`` or
+        the absolute link angles ``(q1, q1 + q2)`` (a belt-driven arm).
+
+    Raises
+    ------
+    ValueError
+        For non-positive or non-finite lengths, negative or non-finite masses
+        or inertias, non-finite ``g`` or ``d``, limits given on one side only,
+        ``q_min > q_max``, or an unknown ``limits`` convention.
+
+    Examples
+    --------
+    >>> arm = TwoLinkArm(l1=2.0, l2=2.0)
+    >>> arm.fk([np.pi / 2, -np.pi / 2]).round(12)
+    array([2., 2.])
+    >>> arm.reach
+    (0.0, 4.0)
+    >>> TwoLinkArm(l1=-1.0, l2=1.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: l1 (link 1 length, m) must be > 0.0; got -1.0
+    """
+
+    l1: float
+    l2: float
+    m1: float = 1.0
+    m2: float = 1.0
+    g: float = 9.81
+    d: float = 0.0
+    q_min: tuple | None = None
+    q_max: tuple | None = None
+    I1: float | None = None
+    I2: float | None = None
+    limits: str = "relative"
+
+    def __post_init__(self):
+        checked = {
+            "l1": as_finite_scalar(self.l1, "l1 (link 1 length, m)", minimum=0.0, strictly=True),
+            "l2": as_finite_scalar(self.l2, "l2 (link 2 length, m)", minimum=0.0, strictly=True),
+            "m1": as_finite_scalar(self.m1, "m1 (link 1 mass, kg)", minimum=0.0),
+            "m2": as_finite_scalar(self.m2, "m2 (link 2 mass, kg)", minimum=0.0),
+            "g": as_finite_scalar(self.g, "g (m/s^2)"),
+            "d": as_finite_scalar(self.d, "d (base offset, m)"),
+            "q_min": _as_limit_pair(self.q_min, "q_min"),
+            "q_max": _as_limit_pair(self.q_max, "q_max"),
+        }
+        for name in ("I1", "I2"):
+            value = getattr(self, name)
+            if value is not None:
+                checked[name] = as_finite_scalar(value, f"{name} (inertia, kg m^2)", minimum=0.0)
+        if (checked["q_min"] is None) != (checked["q_max"] is None):
+            raise ValueError("q_min and q_max must be given together (or both None)")
+        if checked["q_min"] is not None:
+            low, high = np.array(checked["q_min"]), np.array(checked["q_max"])
+            if np.any(low > high):
+                raise ValueError(
+                    f"q_min must be <= q_max component-wise; got q_min={checked['q_min']}, "
+                    f"q_max={checked['q_max']} (radians)"
+                )
+        if self.limits not in _LIMIT_CONVENTIONS:
+            raise ValueError(f"limits must be one of {_LIMIT_CONVENTIONS}; got {self.limits!r}")
+        for name, value in checked.items():
+            object.__setattr__(self, name, value)
+
+    # ------------------------------------------------------------------ parameters
+    @property
+    def reach(self):
+        """Reach interval ``(r_min, r_max) = (|l1 - l2|, l1 + l2)`` in metres."""
+        return kinematics.reach(self)
+
+    @property
+    def inertias(self):
+        """Link inertias about their centres of mass, ``(I1, I2)`` in kg m^2.
+
+        Uniform rods (``m l^2 / 12``) unless ``I1``/``I2`` were given.
+
+        Examples
+        --------
+        >>> TwoLinkArm(1.0, 2.0, m1=12.0, m2=3.0).inertias
+        (1.0, 1.0)
+        """
+        inertia_1 = self.m1 * self.l1**2 / 12.0 if self.I1 is None else self.I1
+        inertia_2 = self.m2 * self.l2**2 / 12.0 if self.I2 is None else self.I2
+        return (inertia_1, inertia_2)
+
+    @property
+    def has_limits(self):
+        """True when the arm has joint limits."""
+        return self.q_min is not None
+
+    def within_limits(self, q, tol=1e-12):
+        """Whether configurations respect the joint limits.
+
+        Parameters
+        ----------
+        q : array_like, shape (..., 2)
+            Relative joint angles in radians (converted to absolute link
+            angles first when ``limits == "absolute"``).
+        tol : float
+            Slack in radians, so that a configuration exactly on a limit
+            counts as inside.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (...)
+            All true when the arm has no limits.
+
+        Examples
+        --------
+        >>> from twolink import arms
+        >>> arms.ten.within_limits([[0.5, 1.0], [-0.5, 1.0]])
+        array([ True, False])
+        """
+        q = as_pairs(q, "q")
+        if not self.has_limits:
+            return np.ones(q.shape[:-1], dtype=bool)
+        angles = to_absolute(q) if self.limits == "absolute" else q
+        low, high = np.asarray(self.q_min), np.asarray(self.q_max)
+        return np.all((angles >= low - tol) & (angles <= high + tol), axis=-1)
+
+    # ------------------------------------------------------------------ kinematics
+    def fk(self, q):
+        """Tip position ``(..., 2)`` for joint angles ``q`` ``(..., 2)``; see :func:`twolink.kinematics.fk`."""
+        return kinematics.fk(self, q)
+
+    def joint_positions(self, q):
+        """Base, elbow and tip ``(..., 3, 2)``; see :func:`twolink.kinematics.joint_positions`."""
+        return kinematics.joint_positions(self, q)
+
+    def jacobian(self, q):
+        """Analytic Jacobian ``(..., 2, 2)``; see :func:`twolink.kinematics.jacobian`."""
+        return kinematics.jacobian(self, q)
+
+    def joint_torques(self, q, force):
+        """Static torques ``tau = J^T F`` for the force ``F`` the tip exerts; see :func:`twolink.kinematics.joint_torques`."""
+        return kinematics.joint_torques(self, q, force)
+
+    def dh_table(self):
+        """The DH table as two rows; see :func:`twolink.dh.dh_table`."""
+        return dh.dh_table(self)
+
+    def transforms(self, q):
+        """``(T_01, T_02)`` homogeneous transforms; see :func:`twolink.dh.transforms`."""
+        return dh.transforms(self, q)
+
+    def geometric_jacobian(self, q):
+        """The 6x2 geometric Jacobian; see :func:`twolink.dh.geometric_jacobian`."""
+        return dh.geometric_jacobian(self, q)

@@ -1,0 +1,163 @@
+"""Inverse kinematics by exhaustive search over a joint-space grid."""
+
+import numpy as np
+
+from .._validate import as_finite_scalar
+from ..kinematics import fk
+from .iterative import distance_outside_reach
+from .result import IKResult
+from .targets import check_reachable
+
+__all__ = ["brute_force", "grid_axis", "GRID_CHUNK"]
+
+#: Grid points evaluated at once: bounds memory (a few MB) however fine the step.
+GRID_CHUNK = 1 << 17
+
+
+def grid_axis(low, high, step):
+    """Grid values ``low, low + step, ...`` up to ``high`` (inclusive within round-off).
+
+    Examples
+    --------
+    >>> np.degrees(grid_axis(0.0, np.radians(90.0), np.radians(30.0))).round(9)
+    array([ 0., 30., 60., 90.])
+    """
+    count = int(np.floor((high - low) / step + 1e-9)) + 1
+    return low + step * np.arange(count)
+
+
+def _joint_ranges(arm, q1_range, q2_range):
+    ranges = []
+    for joint, given in enumerate((q1_range, q2_range)):
+        low, high = (-np.pi, np.pi) if given is None else given
+        low = as_finite_scalar(low, f"q{joint + 1}_range[0]")
+        high = as_finite_scalar(high, f"q{joint + 1}_range[1]")
+        if arm.has_limits and arm.limits == "relative":
+            low, high = max(low, arm.q_min[joint]), min(high, arm.q_max[joint])
+        elif arm.has_limits and joint == 0:
+            low, high = max(low, arm.q_min[0]), min(high, arm.q_max[0])
+        if low > high:
+            raise ValueError(
+                f"q{joint + 1} range [{low:.6g}, {high:.6g}] rad is empty "
+                "(after intersecting with the arm's joint limits)"
+            )
+        ranges.append((low, high))
+    return ranges
+
+
+def _best_on_grid(arm, p_target, q1_axis, q2_axis, absolute_limits):
+    """Index pair of the grid point nearest the target, by rows of q1 in chunks.
+
+    With ``a = elbow - p`` the squared distance is
+    ``|a|^2 + l2^2 + 2 l2 (cos q2 (c1 ax + s1 ay) + sin q2 (c1 ay - s1 ax))``,
+    so each chunk costs two outer products and no trigonometry.
+    """
+    c1, s1 = np.cos(q1_axis), np.sin(q1_axis)
+    c2, s2 = np.cos(q2_axis), np.sin(q2_axis)
+    a_x = arm.l1 * c1 - p_target[0]
+    a_y = arm.l1 * s1 - p_target[1]
+    alpha = c1 * a_x + s1 * a_y
+    beta = c1 * a_y - s1 * a_x
+    offset = (a_x**2 + a_y**2 + arm.l2**2) / (2.0 * arm.l2)
+    rows_per_chunk = max(1, GRID_CHUNK // len(q2_axis))
+    best = (np.inf, 0, 0)
+    for start in range(0, len(q1_axis), rows_per_chunk):
+        rows = slice(start, start + rows_per_chunk)
+        score = np.multiply.outer(alpha[rows], c2)
+        score += np.multiply.outer(beta[rows], s2)
+        score += offset[rows, None]
+        if absolute_limits is not None:
+            q2_abs = np.add.outer(q1_axis[rows], q2_axis)
+            low, high = absolute_limits
+            score[(q2_abs < low - 1e-12) | (q2_abs > high + 1e-12)] = np.inf
+        flat = int(np.argmin(score))
+        row, column = divmod(flat, len(q2_axis))
+        if score[row, column] < best[0]:
+            best = (score[row, column], start + row, column)
+    return best[1], best[2]
+
+
+def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
+    """The grid point ``(q1, q2)`` whose tip lies nearest each target.
+
+    The grid covers ``q1_range`` x ``q2_range`` (radians, inclusive) with
+    spacing ``step``, intersected with the arm's joint limits (absolute-angle
+    limits mask grid points instead).  The search works in chunks of
+    ``GRID_CHUNK`` points, so memory stays bounded however fine the step; time
+    grows as ``1 / step^2``.
+
+    A grid point lies within ``step / 2`` of the exact solution in each joint,
+    so the tip error is at most ``(l1 + 2 l2) * step / 2``: ``success`` is
+    true when the residual is within that bound (the exact solution lies in
+    the grid's range), false when the best grid point is further (the target
+    needs angles outside the range or the limits).
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    p : array_like, shape (..., 2)
+        Target tip positions in metres.
+    q1_range, q2_range : pair of float, optional
+        Search ranges in radians; default ``(-pi, pi)`` within the limits.
+    step : float
+        Grid spacing in radians (> 0).
+
+    Returns
+    -------
+    IKResult
+        ``method="brute-force"``; ``iterations`` is the number of grid points.
+
+    Raises
+    ------
+    twolink.UnreachableError
+        For targets outside the reach annulus.
+    ValueError
+        For NaN/inf targets, an empty range or a non-positive step.
+
+    Examples
+    --------
+    >>> from twolink import arms, ik
+    >>> result = ik.brute_force(arms.ten, [10.0, 10.0], step=np.radians(1.0))
+    >>> np.degrees(result.q).round(6), bool(result.success)
+    (array([ 0., 90.]), True)
+    >>> int(result.iterations)
+    16471
+    """
+    p = check_reachable(arm, p)
+    step = as_finite_scalar(step, "step (radians)", minimum=0.0, strictly=True)
+    (q1_low, q1_high), (q2_low, q2_high) = _joint_ranges(arm, q1_range, q2_range)
+    q1_axis = grid_axis(q1_low, q1_high, step)
+    q2_axis = grid_axis(q2_low, q2_high, step)
+    absolute_limits = None
+    if arm.has_limits and arm.limits == "absolute":
+        absolute_limits = (arm.q_min[1], arm.q_max[1])
+
+    p_flat = p.reshape(-1, 2)
+    q = np.empty_like(p_flat)
+    for index, p_target in enumerate(p_flat):
+        row, column = _best_on_grid(arm, p_target, q1_axis, q2_axis, absolute_limits)
+        q[index] = (q1_axis[row], q2_axis[column])
+
+    residual = np.hypot(*(fk(arm, q) - p_flat).T)
+    bound = (arm.l1 + 2.0 * arm.l2) * step / 2.0
+    success = residual <= bound + distance_outside_reach(arm, p_flat)
+    grid_points = len(q1_axis) * len(q2_axis)
+    failures = int(np.count_nonzero(~success))
+    if failures:
+        first = int(np.flatnonzero(~success)[0])
+        message = (
+            f"no grid point within the resolution bound {bound:.3g} m for {failures} of "
+            f"{success.size} targets (first: flat index {first}, best residual "
+            f"{residual[first]:.3g} m): the solution lies outside the searched range or limits"
+        )
+    else:
+        message = f"all {success.size} targets within the grid bound {bound:.3g} m ({grid_points} points)"
+    shape = p.shape[:-1]
+    return IKResult(
+        q=q.reshape(p.shape),
+        success=success.reshape(shape),
+        iterations=np.full(shape, grid_points),
+        residual=residual.reshape(shape),
+        method="brute-force",
+        message=message,
+    )

@@ -1,0 +1,236 @@
+"""Drawing the arm with matplotlib: still figures and animations.
+
+Every function draws on an axes you pass (or a new one) and returns what it
+made, so notebooks compose figures without global state.
+"""
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib import animation
+from matplotlib.patches import Circle
+
+from ._validate import as_pairs
+
+__all__ = [
+    "setup_axes",
+    "draw_reach",
+    "draw_arm",
+    "draw_strobe",
+    "animate_arm",
+    "animation_html",
+]
+
+LINK_COLOR = "#1f4e79"
+JOINT_COLOR = "#f2a900"
+PATH_COLOR = "#c0392b"
+
+
+def setup_axes(arm, ax=None, margin=0.15, size=(4.0, 4.0), title=None):
+    """Square axes sized to the arm's reach, with a light grid.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    ax : matplotlib.axes.Axes, optional
+        Axes to set up; a new figure of ``size`` inches is made if omitted.
+    margin : float
+        Extra room around the reach circle, as a fraction of the reach.
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.axes.Axes
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> ax = setup_axes(arms.two_metre)
+    >>> [float(v) for v in ax.get_xlim()]
+    [-4.6, 4.6]
+    >>> plt.close(ax.figure)
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=size, dpi=80)
+    limit = arm.reach[1] * (1.0 + margin)
+    ax.set_xlim(-limit, limit)
+    ax.set_ylim(-limit, limit)
+    ax.set_aspect("equal")
+    ax.grid(True, alpha=0.3)
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    if title:
+        ax.set_title(title)
+    return ax
+
+
+def draw_reach(arm, ax, **style):
+    """Draw the reach annulus' two circles (``r_min`` and ``r_max``) on ``ax``."""
+    options = {"fill": False, "linestyle": "--", "color": "0.6", "linewidth": 1.0}
+    options.update(style)
+    circles = []
+    for radius in arm.reach:
+        if radius > 0:
+            circles.append(ax.add_patch(Circle((0.0, 0.0), radius, **options)))
+    return circles
+
+
+def draw_arm(arm, q, ax, color=LINK_COLOR, label=None, alpha=1.0, linewidth=4.0):
+    """Draw the arm at one configuration: links, joints and base.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (2,)
+        Joint angles in radians.
+    ax : matplotlib.axes.Axes
+    color, label, alpha, linewidth :
+        Line style of the links.
+
+    Returns
+    -------
+    matplotlib.lines.Line2D
+        The line through base, elbow and tip (update it with ``set_data``).
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> ax = setup_axes(arms.two_metre)
+    >>> line = draw_arm(arms.two_metre, [0.0, np.pi / 2], ax)
+    >>> np.round(line.get_xydata(), 12)
+    array([[0., 0.],
+           [2., 0.],
+           [2., 2.]])
+    >>> plt.close(ax.figure)
+    """
+    q = as_pairs(q, "q")
+    if q.ndim != 1:
+        raise ValueError(f"draw_arm draws one configuration, q of shape (2,); got {q.shape}")
+    points = arm.joint_positions(q)
+    (line,) = ax.plot(
+        points[:, 0],
+        points[:, 1],
+        "-o",
+        color=color,
+        linewidth=linewidth,
+        markersize=linewidth * 2,
+        markerfacecolor=JOINT_COLOR,
+        markeredgecolor=color,
+        alpha=alpha,
+        label=label,
+        solid_capstyle="round",
+    )
+    ax.plot([0.0], [0.0], marker="s", color="k", markersize=8)
+    return line
+
+
+def draw_strobe(arm, q_path, ax, frames=8, color=LINK_COLOR, path=True):
+    """A still of a motion: the arm at ``frames`` evenly spaced instants, fading in.
+
+    Use it beside an animation so the motion shows where scripts do not run
+    (GitHub, PDF).
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q_path : array_like, shape (n, 2)
+        Joint angles along the motion, radians.
+    ax : matplotlib.axes.Axes
+    frames : int
+        How many poses to draw (first and last included).
+    path : bool
+        Also draw the tip's path.
+
+    Returns
+    -------
+    list of matplotlib.lines.Line2D
+    """
+    q_path = as_pairs(q_path, "q_path")
+    indices = np.linspace(0, len(q_path) - 1, min(frames, len(q_path))).round().astype(int)
+    lines = []
+    for rank, index in enumerate(indices):
+        alpha = 0.25 + 0.75 * rank / max(1, len(indices) - 1)
+        lines.append(draw_arm(arm, q_path[index], ax, color=color, alpha=alpha, linewidth=3.0))
+    if path:
+        p_path = arm.fk(q_path)
+        lines.extend(ax.plot(p_path[:, 0], p_path[:, 1], color=PATH_COLOR, linewidth=1.5))
+    return lines
+
+
+def animate_arm(arm, q_path, t=None, ax=None, path=True, interval=100, title=None, extra=None):
+    """Animate the arm along a joint-space path, optionally tracing the tip.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q_path : array_like, shape (n, 2)
+        Joint angles per frame, radians.  Keep ``n`` around 50 or fewer for
+        notebooks (each frame is a video frame).
+    t : array_like, shape (n,), optional
+        Times of the frames in seconds, shown in the corner.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on (set up with :func:`setup_axes` if omitted).
+    path : bool
+        Trace the tip's path as the arm moves.
+    interval : float
+        Milliseconds between frames.
+    extra : callable, optional
+        ``extra(frame_index) -> iterable of artists`` to update more artists
+        (force arrows, targets) each frame.
+
+    Returns
+    -------
+    matplotlib.animation.FuncAnimation
+        Show it in a notebook with :func:`animation_html`, after closing its
+        figure (``plt.close(anim._fig)`` is done for you there).
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> q_path = np.linspace([0.0, 0.0], [np.pi / 2, np.pi / 2], 5)
+    >>> anim = animate_arm(arms.two_metre, q_path)
+    >>> len(list(anim.new_frame_seq()))
+    5
+    >>> plt.close(anim._fig)
+    """
+    q_path = as_pairs(q_path, "q_path")
+    if q_path.ndim != 2 or len(q_path) < 1:
+        raise ValueError(f"q_path must have shape (n, 2) with n >= 1; got {q_path.shape}")
+    ax = setup_axes(arm, ax, title=title)
+    p_path = arm.fk(q_path)
+    arm_line = draw_arm(arm, q_path[0], ax)
+    (tip_trace,) = ax.plot([], [], color=PATH_COLOR, linewidth=1.5)
+    clock = ax.text(0.02, 0.95, "", transform=ax.transAxes, fontsize=9)
+
+    def update(frame):
+        points = arm.joint_positions(q_path[frame])
+        arm_line.set_data(points[:, 0], points[:, 1])
+        artists = [arm_line, tip_trace, clock]
+        if path:
+            tip_trace.set_data(p_path[: frame + 1, 0], p_path[: frame + 1, 1])
+        if t is not None:
+            clock.set_text(f"t = {t[frame]:.2f} s")
+        if extra is not None:
+            artists.extend(extra(frame))
+        return artists
+
+    return animation.FuncAnimation(ax.figure, update, frames=len(q_path), interval=interval, blit=False)
+
+
+def animation_html(anim):
+    """An H.264 ``<video>`` of the animation for notebooks (small, byte-stable).
+
+    Uses the ffmpeg shipped by the ``imageio-ffmpeg`` package, so no system
+    ffmpeg is needed, and closes the animation's figure so no stray still is
+    shown.
+
+    Returns
+    -------
+    IPython.display.HTML
+    """
+    import imageio_ffmpeg
+    import matplotlib
+    from IPython.display import HTML
+
+    plt.close(anim._fig)
+    with matplotlib.rc_context({"animation.ffmpeg_path": imageio_ffmpeg.get_ffmpeg_exe()}):
+        return HTML(anim.to_html5_video(embed_limit=5.0))
