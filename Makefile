@@ -1,0 +1,49 @@
+# twolink: the two commands a learner needs are `make lab` and `make test`.
+# Both create the virtual environment .venv on first use.
+
+PYTHON ?= python3
+VENV ?= .venv
+BIN := $(VENV)/bin
+STAMP := $(VENV)/.installed-stamp
+NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
+
+.PHONY: help install lab test unit notebooks bench clean
+
+help:
+	@echo "make lab        open the course in JupyterLab (creates .venv on first use)"
+	@echo "make test       unit tests, doctests, notebook hygiene and every notebook under strict nbval"
+	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
+	@echo "make bench      print the speed benchmark tables"
+
+$(STAMP): requirements.txt pyproject.toml
+	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -r requirements.txt
+	@touch $(STAMP)
+
+install: $(STAMP)
+
+lab: $(STAMP)
+	$(BIN)/jupyter lab --ServerApp.root_dir=notebooks
+
+# Options for pytest (doctests, strict nbval, sanitize file, xdist) live in
+# pyproject.toml so that a plain `pytest` in the venv behaves the same.
+test: $(STAMP)
+	$(BIN)/python -m pytest
+
+notebooks: $(STAMP)
+	@for notebook in $(NOTEBOOKS); do \
+		echo "executing $$notebook"; \
+		env -u MPLBACKEND $(BIN)/jupyter nbconvert --to notebook --execute --inplace \
+			--ExecutePreprocessor.timeout=600 \
+			--ExecutePreprocessor.record_timing=False \
+			--ExecutePreprocessor.store_widget_state=False \
+			"$$notebook" || exit 1; \
+		$(BIN)/nbstripout --keep-output --keep-count "$$notebook" || exit 1; \
+	done
+
+bench: $(STAMP)
+	@for script in benchmarks/bench_*.py; do $(BIN)/python "$$script" || exit 1; done
+
+clean:
+	rm -rf build .pytest_cache

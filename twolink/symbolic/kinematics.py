@@ -1,0 +1,79 @@
+"""DH transforms and forward kinematics of the planar 2R arm, in sympy."""
+
+import sympy as sp
+
+__all__ = ["planar_symbols", "dh_matrix", "planar_fk"]
+
+
+def planar_symbols():
+    """The symbols the course uses: joint angles ``q1, q2`` and lengths ``l1, l2``, plus ``d``.
+
+    Lengths are positive and angles real, so sympy can simplify.
+
+    Returns
+    -------
+    dict
+        ``{"q1", "q2", "l1", "l2", "d"}`` mapped to sympy symbols.
+
+    Examples
+    --------
+    >>> sorted(planar_symbols())
+    ['d', 'l1', 'l2', 'q1', 'q2']
+    """
+    q1, q2 = sp.symbols("q1 q2", real=True)
+    l1, l2 = sp.symbols("l1 l2", positive=True)
+    d = sp.Symbol("d", real=True)
+    return {"q1": q1, "q2": q2, "l1": l1, "l2": l2, "d": d}
+
+
+def dh_matrix(theta, d, a, alpha):
+    """The DH transform ``Rot_z(theta) Trans_z(d) Trans_x(a) Rot_x(alpha)`` as a sympy matrix.
+
+    Examples
+    --------
+    >>> q, a = sp.symbols("q a")
+    >>> dh_matrix(q, 0, a, 0)
+    Matrix([
+    [cos(q), -sin(q), 0, a*cos(q)],
+    [sin(q),  cos(q), 0, a*sin(q)],
+    [     0,       0, 1,        0],
+    [     0,       0, 0,        1]])
+    """
+    return sp.Matrix(
+        [
+            [sp.cos(theta), -sp.sin(theta) * sp.cos(alpha), sp.sin(theta) * sp.sin(alpha), a * sp.cos(theta)],
+            [sp.sin(theta), sp.cos(theta) * sp.cos(alpha), -sp.cos(theta) * sp.sin(alpha), a * sp.sin(theta)],
+            [0, sp.sin(alpha), sp.cos(alpha), d],
+            [0, 0, 0, 1],
+        ]
+    )
+
+
+def planar_fk(with_offset=False):
+    """``(A1, A2, T_02, p_tip)`` of the planar arm, with ``T_02 = A1 A2`` simplified.
+
+    Parameters
+    ----------
+    with_offset : bool
+        Include the base offset ``d`` in the first DH row (the OSAKE arm).
+
+    Returns
+    -------
+    tuple
+        ``A1``, ``A2``, ``T_02`` (4x4 sympy matrices) and the tip position
+        ``p_tip = T_02[:2, 3]`` (2x1), in terms of :func:`planar_symbols`.
+
+    Examples
+    --------
+    >>> A1, A2, T_02, p_tip = planar_fk()
+    >>> p_tip
+    Matrix([
+    [l1*cos(q1) + l2*cos(q1 + q2)],
+    [l1*sin(q1) + l2*sin(q1 + q2)]])
+    """
+    symbols = planar_symbols()
+    d = symbols["d"] if with_offset else 0
+    A1 = dh_matrix(symbols["q1"], d, symbols["l1"], 0)
+    A2 = dh_matrix(symbols["q2"], 0, symbols["l2"], 0)
+    T_02 = sp.simplify(A1 * A2)
+    return A1, A2, T_02, T_02[:2, 3]
