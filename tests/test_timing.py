@@ -1,0 +1,33 @@
+"""The IK comparison used by chapters 2 and 7 and by the benchmarks."""
+
+import numpy as np
+import pytest
+
+from twolink import arms, timing
+
+
+def circle(n=6):
+    angle = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    return np.c_[12.5 + 2 * np.cos(angle), 12.5 + 2 * np.sin(angle)]
+
+
+@pytest.mark.parametrize("per_call", [True, False])
+def test_every_method_reports_accuracy_from_fk(per_call):
+    rows = timing.compare_ik_methods(arms.ten, circle(), repeat=1, per_call=per_call)
+    assert [row["method"] for row in rows] == list(timing.IK_METHODS)
+    for row in rows:
+        assert row["seconds_per_target"] > 0
+        assert row["solved"] == 1.0, row
+    by_name = {row["method"]: row for row in rows}
+    assert by_name["closed form"]["max_residual"] < 1e-12
+    # brute force error is set by the grid: about the grid bound, far above the others
+    assert 1e-4 < by_name["brute force"]["max_residual"] <= (10 + 20) * np.radians(1.0) / 2
+
+
+def test_unknown_method_and_bad_targets():
+    with pytest.raises(ValueError, match="unknown methods"):
+        timing.compare_ik_methods(arms.ten, circle(), methods=["magic"])
+    with pytest.raises(ValueError, match="shape \\(n, 2\\)"):
+        timing.compare_ik_methods(arms.ten, [10.0, 10.0])
+    with pytest.raises(ValueError, match="repeat must be"):
+        timing.median_time(lambda: None, repeat=0)

@@ -1,0 +1,120 @@
+"""Timing and comparing IK solvers: the measurements behind "can it run in real time?".
+
+One implementation serves the notebooks (chapters 2 and 7) and the benchmark
+scripts, so every table in the course is measured the same way: ``timeit``
+with several repeats, the median reported.
+"""
+
+import timeit
+
+import numpy as np
+
+from . import ik
+
+__all__ = ["median_time", "IK_METHODS", "compare_ik_methods"]
+
+
+def median_time(function, repeat=5, min_seconds=0.05):
+    """Median wall time of one call of ``function()``, in seconds.
+
+    Calls are batched with :meth:`timeit.Timer.autorange` so each measurement
+    lasts at least about ``min_seconds``; the median of ``repeat`` batches
+    resists the odd slow run.
+
+    Examples
+    --------
+    >>> seconds = median_time(lambda: sum(range(100)), repeat=3)
+    >>> 0 < seconds < 1e-3
+    True
+    """
+    if repeat < 1:
+        raise ValueError(f"repeat must be >= 1; got {repeat}")
+    timer = timeit.Timer(function)
+    number, _ = timer.autorange()
+    number = max(1, int(np.ceil(number * min_seconds / 0.2)))
+    return float(np.median(timer.repeat(repeat=repeat, number=number)) / number)
+
+
+def _solvers(q0, step):
+    return {
+        "closed form": lambda arm, p: ik.closed_form(arm, p, elbow="down"),
+        "newton": lambda arm, p: ik.newton(arm, p, q0=q0).q,
+        "minimize (BFGS)": lambda arm, p: ik.minimize(arm, p, q0=q0).q,
+        "minimize (SLSQP, constrained)": lambda arm, p: ik.minimize(arm, p, q0=q0, constrained=True).q,
+        "brute force": lambda arm, p: ik.brute_force(arm, p, step=step).q,
+    }
+
+
+#: The method names :func:`compare_ik_methods` knows, fastest first.
+IK_METHODS = tuple(_solvers((0.5, 1.0), 1.0))
+
+
+def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), methods=IK_METHODS, repeat=3, per_call=True):
+    """Time every IK method on the same targets and report its accuracy.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    targets : array_like, shape (n, 2)
+        Reachable targets in metres.
+    q0 : pair of float
+        Start for the iterative methods, radians.
+    step : float
+        Grid step of the brute-force method, radians.
+    methods : sequence of str
+        Names from :data:`IK_METHODS`.
+    repeat : int
+        Timing repeats (the median is kept).
+    per_call : bool
+        True: solve the targets one call each, in a Python loop (what a
+        controller does once per cycle).  False: one vectorised call for all.
+
+    Returns
+    -------
+    list of dict
+        One row per method: ``method``, ``seconds_per_target``,
+        ``max_residual`` (m, recomputed with FK) and ``solved`` (fraction of
+        targets whose residual is below 1e-9 of the reach, or the grid bound
+        for brute force).
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> rows = compare_ik_methods(arms.ten, [[10.0, 10.0], [12.0, 9.0]], methods=["closed form"], repeat=1)
+    >>> rows[0]["method"], rows[0]["solved"], rows[0]["max_residual"] < 1e-12
+    ('closed form', 1.0, True)
+    """
+    targets = ik.check_reachable(arm, targets)
+    if targets.ndim != 2:
+        raise ValueError(f"targets must have shape (n, 2); got {targets.shape}")
+    solvers = _solvers(tuple(q0), step)
+    unknown = [name for name in methods if name not in solvers]
+    if unknown:
+        raise ValueError(f"unknown methods {unknown}; choose from {IK_METHODS}")
+    rows = []
+    for name in methods:
+        solve = solvers[name]
+        if per_call:
+            q = np.array([solve(arm, p) for p in targets])
+
+            def run(solve=solve):
+                for p in targets:
+                    solve(arm, p)
+
+        else:
+            q = np.asarray(solve(arm, targets))
+
+            def run(solve=solve):
+                solve(arm, targets)
+
+        residual = np.hypot(*(arm.fk(q) - targets).T)
+        tolerance = (arm.l1 + 2 * arm.l2) * step / 2 if name == "brute force" else 1e-9 * (arm.l1 + arm.l2)
+        rows.append(
+            {
+                "method": name,
+                "seconds_per_target": median_time(run, repeat=repeat) / len(targets),
+                "max_residual": float(residual.max()),
+                "solved": float(np.mean(residual <= tolerance)),
+            }
+        )
+    return rows
