@@ -7,13 +7,16 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
 
-.PHONY: help install lab test unit notebooks bench clean
+.PHONY: help install lab test notebooks bench student site browser-test clean
 
 help:
 	@echo "make lab        open the course in JupyterLab (creates .venv on first use)"
 	@echo "make test       unit tests, doctests, notebook hygiene and every notebook under strict nbval"
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables"
+	@echo "make student    write the student edition (solutions stubbed) to build/student/"
+	@echo "make site       render the executed chapters to static HTML in build/site/"
+	@echo "make browser-test  run only the browser suite (JupyterLab and the site in Chromium)"
 
 $(STAMP): requirements.txt pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
@@ -46,6 +49,15 @@ notebooks: $(STAMP)
 
 bench: $(STAMP)
 	@for script in benchmarks/bench_*.py; do $(BIN)/python "$$script" || exit 1; done
+
+student: $(STAMP)
+	$(BIN)/python tools/editions.py student --out build/student
+
+site: $(STAMP)
+	$(BIN)/python tools/editions.py site --out build/site
+
+browser-test: $(STAMP)
+	$(BIN)/python -m pytest -m browser tests/browser -n 0 -s
 
 clean:
 	rm -rf build .pytest_cache

@@ -1,0 +1,69 @@
+"""The static edition in a browser: every page loads offline, with figures and playable animations."""
+
+import functools
+import http.server
+import json
+import sys
+import threading
+
+import pytest
+
+from .conftest import ROOT
+
+sys.path.insert(0, str(ROOT / "tools"))
+import editions  # noqa: E402
+
+NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+
+
+@pytest.fixture(scope="module")
+def site(tmp_path_factory):
+    out = tmp_path_factory.mktemp("site")
+    editions.build_site(ROOT / "notebooks", out)
+    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(out))
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
+    thread = threading.Thread(target=server.serve_forever, daemon=True)
+    thread.start()
+    try:
+        yield f"http://127.0.0.1:{server.server_address[1]}"
+    finally:
+        server.shutdown()
+        server.server_close()
+
+
+@pytest.mark.browser
+def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page):
+    failures = []
+    page.on("requestfailed", lambda request: failures.append(f"failed: {request.url}"))
+    page.on("response", lambda response: response.status >= 400 and failures.append(f"{response.status}: {response.url}"))
+    page.on("request", lambda request: request.url.startswith(("http://127.0.0.1", "data:", "blob:")) or failures.append(f"external: {request.url}"))
+
+    page.goto(f"{site}/index.html")
+    links = page.locator("ol li a")
+    hrefs = [links.nth(index).get_attribute("href") for index in range(links.count())]
+    assert hrefs == [path.with_suffix(".html").name for path in NOTEBOOKS]
+
+    for path, href in zip(NOTEBOOKS, hrefs):
+        page.goto(f"{site}/index.html")
+        page.locator(f"a[href='{href}']").click()
+        page.wait_for_load_state("load")
+        source = "\n".join("".join(cell["source"]) for cell in json.loads(path.read_text(encoding="utf-8"))["cells"])
+        images = page.locator(".jp-OutputArea-output img")
+        assert images.count() >= 1, f"{href}: no figures"
+        broken = page.evaluate("() => [...document.querySelectorAll('img')].filter(i => !(i.complete && i.naturalWidth > 0)).length")
+        assert broken == 0, f"{href}: {broken} images failed to render"
+        videos = page.locator("video")
+        assert videos.count() >= source.count("animation_html("), f"{href}: animations missing"
+        for index in range(videos.count()):
+            state = videos.nth(index).evaluate(
+                """async video => {
+                    video.muted = true;
+                    await video.play();
+                    await new Promise(resolve => setTimeout(resolve, 500));
+                    return {duration: video.duration, time: video.currentTime};
+                }"""
+            )
+            assert state["duration"] > 0 and state["time"] > 0, f"{href}: video {index} does not play: {state}"
+        if "$" in source:
+            page.wait_for_function("() => window.MathJax && window.MathJax.isReady", timeout=30_000)
+    assert not failures, failures

@@ -1,0 +1,76 @@
+"""The student edition: solutions stubbed, notebooks still run, self-checks flip.
+
+Builds ``build/student``-style notebooks in a temporary folder, executes each
+in a fresh kernel and checks that every self-check says "not solved yet" on
+the stub, while the committed notebook's stored self-check output says
+"correct." (nbval, in the same test run, re-executes the committed notebooks
+and compares those outputs).
+"""
+
+import json
+import pathlib
+import sys
+
+import nbformat
+import pytest
+from nbclient import NotebookClient
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+import editions  # noqa: E402
+
+NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+
+
+def selfcheck_cells(notebook):
+    return [cell for cell in notebook["cells"] if cell["cell_type"] == "code" and "selfcheck.check_" in "".join(cell["source"])]
+
+
+def output_text(cell):
+    parts = []
+    for output in cell.get("outputs", []):
+        if output["output_type"] == "stream":
+            parts.append("".join(output["text"]))
+        elif "data" in output:
+            parts.append("".join(output["data"].get("text/plain", "")))
+    return "".join(parts)
+
+
+def test_stub_replaces_each_block_with_the_names_it_assigns():
+    source = "# Exercise 9.1\nx0 = 1\n### BEGIN SOLUTION\nq_up, q_down = 1, 2\np_tip = q_up + q_down\n### END SOLUTION\nprint(x0)\n"
+    stubbed = editions.stub_source(source)
+    assert "q_up = ...  # your code here\nq_down = ...  # your code here\np_tip = ...  # your code here\n" in stubbed
+    assert "BEGIN SOLUTION" not in stubbed and "q_up + q_down" not in stubbed
+    assert stubbed.startswith("# Exercise 9.1\nx0 = 1\n") and stubbed.endswith("print(x0)\n")
+
+
+def test_indented_blocks_and_errors():
+    stubbed = editions.stub_source("if True:\n    ### BEGIN SOLUTION\n    angle = 3\n    ### END SOLUTION\n")
+    assert stubbed == "if True:\n    angle = ...  # your code here\n"
+    with pytest.raises(ValueError, match="unbalanced"):
+        editions.stub_source("### BEGIN SOLUTION\nx = 1\n")
+    with pytest.raises(ValueError, match="assigns no name"):
+        editions.stub_source("### BEGIN SOLUTION\nprint(1)\n### END SOLUTION\n")
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
+def test_committed_solutions_pass_their_self_checks(path):
+    notebook = json.loads(path.read_text(encoding="utf-8"))
+    cells = selfcheck_cells(notebook)
+    assert cells, f"{path.name} has no self-check cells"
+    for cell in cells:
+        text = output_text(cell)
+        assert "correct." in text and "not right yet" not in text and "not solved yet" not in text, text
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
+def test_student_edition_runs_and_reports_not_solved(path, tmp_path):
+    editions.build_student(path.parent, tmp_path)
+    student = nbformat.read(tmp_path / path.name, as_version=4)
+    assert "### BEGIN SOLUTION" not in json.dumps(student)
+    NotebookClient(student, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}).execute()
+    errors = [output for cell in student.cells for output in cell.get("outputs", []) if output.output_type == "error"]
+    assert not errors, f"{path.name} student edition raised: {errors[0].ename}: {errors[0].evalue}"
+    for cell in selfcheck_cells(student):
+        text = output_text(cell)
+        assert "not solved yet" in text and "correct." not in text, f"{path.name}: self-check passed on a stub: {text}"

@@ -1,0 +1,202 @@
+"""Build the course's other editions from the committed notebooks.
+
+- Student edition (``make student`` -> ``build/student/``): every
+  ``### BEGIN SOLUTION`` ... ``### END SOLUTION`` block is replaced by stubs
+  (``name = ...  # your code here`` for each name the solution assigns), and
+  the outputs of those cells are cleared.  Self-checks report "not solved yet"
+  for a ``...`` answer, so the notebook still runs top to bottom.
+- Static edition (``make site`` -> ``build/site/``): every executed chapter
+  rendered to HTML by nbconvert, with an index page linking them in order.
+  MathJax is served from the ``jupyter-server-mathjax`` package's copy, so the
+  pages load nothing from the network.
+
+Usage: ``python tools/editions.py student|site [--source notebooks] [--out DIR]``.
+"""
+
+import argparse
+import ast
+import copy
+import html
+import json
+import pathlib
+import re
+import shutil
+import subprocess
+import sys
+
+BEGIN = "### BEGIN SOLUTION"
+END = "### END SOLUTION"
+STUB_COMMENT = "# your code here"
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+
+SOLUTION_BLOCK = re.compile(
+    r"^(?P<indent>[ \t]*)" + re.escape(BEGIN) + r"[^\n]*\n(?P<body>.*?)^[ \t]*" + re.escape(END) + r"[^\n]*(\n|$)",
+    re.MULTILINE | re.DOTALL,
+)
+
+
+def assigned_names(code):
+    """Names a solution block binds at its top level, in order of first appearance.
+
+    >>> assigned_names("x = 1\\ny, z = 2, 3\\nx += 1\\ndef f():\\n    w = 0")
+    ['x', 'y', 'z', 'f']
+    """
+    tree = ast.parse(code)
+    names = []
+
+    def add(target):
+        if isinstance(target, ast.Name) and target.id not in names:
+            names.append(target.id)
+        elif isinstance(target, (ast.Tuple, ast.List)):
+            for element in target.elts:
+                add(element)
+
+    for node in tree.body:
+        if isinstance(node, ast.Assign):
+            for target in node.targets:
+                add(target)
+        elif isinstance(node, (ast.AugAssign, ast.AnnAssign)):
+            add(node.target)
+        elif isinstance(node, (ast.FunctionDef, ast.ClassDef)) and node.name not in names:
+            names.append(node.name)
+    return names
+
+
+def stub_source(source):
+    """Replace each solution block of a cell's source by stubs for the names it assigns.
+
+    >>> print(stub_source("# Exercise\\n### BEGIN SOLUTION\\np_tip = [1, 2]\\n### END SOLUTION\\n"))
+    # Exercise
+    p_tip = ...  # your code here
+    <BLANKLINE>
+    """
+
+    def replace(match):
+        indent = match.group("indent")
+        body = "\n".join(line[len(indent):] if line.startswith(indent) else line for line in match.group("body").splitlines())
+        names = assigned_names(body)
+        if not names:
+            raise ValueError(f"a solution block assigns no name, so it cannot be stubbed:\n{match.group('body')}")
+        return "".join(f"{indent}{name} = ...  {STUB_COMMENT}\n" for name in names)
+
+    if source.count(BEGIN) != source.count(END):
+        raise ValueError(f"unbalanced solution markers in cell:\n{source[:200]}")
+    return SOLUTION_BLOCK.sub(replace, source)
+
+
+def student_notebook(notebook):
+    """A copy of a notebook (as a JSON dict) with solutions stubbed and their outputs cleared."""
+    student = copy.deepcopy(notebook)
+    for cell in student["cells"]:
+        if cell["cell_type"] != "code":
+            continue
+        source = "".join(cell["source"])
+        if BEGIN in source:
+            cell["source"] = stub_source(source)
+            cell["outputs"] = []
+            cell["execution_count"] = None
+    return student
+
+
+def build_student(source_dir, out_dir):
+    """Write the student edition of every notebook in ``source_dir`` to ``out_dir``."""
+    source_dir, out_dir = pathlib.Path(source_dir), pathlib.Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    written = []
+    for path in sorted(source_dir.glob("*.ipynb")):
+        notebook = json.loads(path.read_text(encoding="utf-8"))
+        target = out_dir / path.name
+        target.write_text(json.dumps(student_notebook(notebook), indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+        written.append(target)
+    return written
+
+
+def chapter_title(notebook, fallback):
+    """The first Markdown heading of a notebook, without the leading #."""
+    for cell in notebook["cells"]:
+        if cell["cell_type"] == "markdown":
+            for line in "".join(cell["source"]).splitlines():
+                if line.startswith("#"):
+                    return line.lstrip("#").strip()
+    return fallback
+
+
+#: The jupyter-server-mathjax copy ships only the STIX-Web fonts: tell MathJax
+#: to use them instead of looking for its default TeX fonts.
+MATHJAX_FONT_CONFIG = """MathJax.Hub.Config({
+  "HTML-CSS": {availableFonts: [], imageFont: null, preferredFont: null, webFont: "STIX-Web"},
+  SVG: {font: "STIX-Web"}
+});
+MathJax.Ajax.loadComplete("[MathJax]/config/local/twolink.js");
+"""
+
+
+def mathjax_source():
+    """Folder of the MathJax 2.7 copy shipped by the jupyter-server-mathjax package."""
+    import jupyter_server_mathjax
+
+    return pathlib.Path(jupyter_server_mathjax.__file__).parent / "static"
+
+
+def build_site(source_dir, out_dir):
+    """Render every notebook to HTML (nbconvert) and write an index page linking them in order."""
+    source_dir, out_dir = pathlib.Path(source_dir), pathlib.Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    mathjax_dir = out_dir / "mathjax"
+    if not mathjax_dir.exists():
+        shutil.copytree(mathjax_source(), mathjax_dir)
+    local_config = mathjax_dir / "config" / "local" / "twolink.js"
+    local_config.parent.mkdir(parents=True, exist_ok=True)
+    local_config.write_text(MATHJAX_FONT_CONFIG, encoding="utf-8")
+    notebooks = sorted(source_dir.glob("*.ipynb"))
+    subprocess.run(
+        [
+            sys.executable, "-m", "nbconvert", "--to", "html",
+            "--TemplateExporter.extra_template_basedirs=" + str(ROOT / "tools" / "site_template"),
+            "--template", "course",
+            "--HTMLExporter.mathjax_url=mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe,local/twolink",
+            "--output-dir", str(out_dir),
+            *map(str, notebooks),
+        ],
+        check=True,
+    )
+    entries = []
+    for path in notebooks:
+        notebook = json.loads(path.read_text(encoding="utf-8"))
+        page = path.with_suffix(".html").name
+        entries.append(f'    <li><a href="{html.escape(page)}">{html.escape(chapter_title(notebook, path.stem))}</a></li>')
+    index = "\n".join(
+        [
+            "<!DOCTYPE html>",
+            '<html lang="en">',
+            '<head><meta charset="utf-8"><title>twolink: the planar two-link arm</title>',
+            "<style>body{font-family:sans-serif;max-width:40em;margin:3em auto;line-height:1.5}</style></head>",
+            "<body>",
+            "  <h1>twolink: the planar two-link arm</h1>",
+            "  <p>The course's chapters, executed. Run them yourself with <code>make lab</code>.</p>",
+            "  <ol>",
+            *entries,
+            "  </ol>",
+            "</body>",
+            "</html>",
+            "",
+        ]
+    )
+    (out_dir / "index.html").write_text(index, encoding="utf-8")
+    return [out_dir / "index.html"] + [out_dir / path.with_suffix(".html").name for path in notebooks]
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("edition", choices=["student", "site"])
+    parser.add_argument("--source", default=str(ROOT / "notebooks"))
+    parser.add_argument("--out", default=None)
+    args = parser.parse_args(argv)
+    out = args.out or str(ROOT / "build" / args.edition)
+    builder = build_student if args.edition == "student" else build_site
+    for path in builder(args.source, out):
+        print(path)
+
+
+if __name__ == "__main__":
+    main()
