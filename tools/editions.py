@@ -36,29 +36,36 @@ SOLUTION_BLOCK = re.compile(
 
 
 def assigned_names(code):
-    """Names a solution block binds at its top level, in order of first appearance.
+    r"""Names a solution block binds, in order of first appearance.
 
-    >>> assigned_names("x = 1\\ny, z = 2, 3\\nx += 1\\ndef f():\\n    w = 0")
+    Assignments anywhere in the block count (inside ``try``, ``if``, ``for``,
+    ``with``), except inside nested functions, classes, lambdas and
+    comprehensions, whose own names are local to them.
+
+    >>> assigned_names("x = 1\ny, z = 2, 3\nx += 1\ndef f():\n    w = 0")
     ['x', 'y', 'z', 'f']
+    >>> assigned_names("try:\n    pass\nexcept ValueError as error:\n    message = str(error)")
+    ['message']
     """
-    tree = ast.parse(code)
     names = []
 
-    def add(target):
-        if isinstance(target, ast.Name) and target.id not in names:
-            names.append(target.id)
-        elif isinstance(target, (ast.Tuple, ast.List)):
-            for element in target.elts:
-                add(element)
+    class Collector(ast.NodeVisitor):
+        def visit_Name(self, node):
+            if isinstance(node.ctx, ast.Store) and node.id not in names:
+                names.append(node.id)
 
-    for node in tree.body:
-        if isinstance(node, ast.Assign):
-            for target in node.targets:
-                add(target)
-        elif isinstance(node, (ast.AugAssign, ast.AnnAssign)):
-            add(node.target)
-        elif isinstance(node, (ast.FunctionDef, ast.ClassDef)) and node.name not in names:
-            names.append(node.name)
+        def visit_FunctionDef(self, node):
+            if node.name not in names:
+                names.append(node.name)
+
+        visit_AsyncFunctionDef = visit_ClassDef = visit_FunctionDef
+
+        def visit_Lambda(self, node):
+            pass
+
+        visit_ListComp = visit_SetComp = visit_DictComp = visit_GeneratorExp = visit_Lambda
+
+    Collector().visit(ast.parse(code))
     return names
 
 

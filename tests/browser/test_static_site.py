@@ -34,9 +34,10 @@ def site(tmp_path_factory):
 @pytest.mark.browser
 def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page):
     failures = []
-    page.on("requestfailed", lambda request: failures.append(f"failed: {request.url}"))
+    local = ("http://127.0.0.1", "data:", "blob:", "about:blank")
+    page.on("requestfailed", lambda request: failures.append(f"failed ({request.failure}): {request.url}"))
     page.on("response", lambda response: response.status >= 400 and failures.append(f"{response.status}: {response.url}"))
-    page.on("request", lambda request: request.url.startswith(("http://127.0.0.1", "data:", "blob:")) or failures.append(f"external: {request.url}"))
+    page.on("request", lambda request: request.url.startswith(local) or failures.append(f"external: {request.url}"))
 
     page.goto(f"{site}/index.html")
     links = page.locator("ol li a")
@@ -47,6 +48,10 @@ def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page
         page.goto(f"{site}/index.html")
         page.locator(f"a[href='{href}']").click()
         page.wait_for_load_state("load")
+        if page.evaluate("() => Boolean(window.MathJax && window.MathJax.Hub)"):
+            # let MathJax finish typesetting (it loads fonts as it goes) before looking or leaving
+            page.evaluate("() => new Promise(resolve => MathJax.Hub.Queue(resolve))")
+        page.wait_for_load_state("networkidle")
         source = "\n".join("".join(cell["source"]) for cell in json.loads(path.read_text(encoding="utf-8"))["cells"])
         images = page.locator(".jp-OutputArea-output img")
         assert images.count() >= 1, f"{href}: no figures"
@@ -65,5 +70,6 @@ def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page
             )
             assert state["duration"] > 0 and state["time"] > 0, f"{href}: video {index} does not play: {state}"
         if "$" in source:
-            page.wait_for_function("() => window.MathJax && window.MathJax.isReady", timeout=30_000)
+            rendered = page.locator(".MathJax, .MathJax_Display")
+            assert rendered.count() > 0, f"{href}: LaTeX in the notebook but no MathJax output in the page"
     assert not failures, failures
