@@ -38,3 +38,27 @@ def arms(draw, ratio_max=20.0):
 @st.composite
 def configurations(draw):
     return np.array([draw(angles), draw(angles)])
+
+
+# --- dynamics
+rates = st.floats(min_value=-10.0, max_value=10.0, allow_nan=False, allow_infinity=False)
+
+
+@st.composite
+def dynamic_arms(draw):
+    """Arms with mass (0.1..10 kg per link, so M is invertible), lengths 0.05..20 m (ratio <= 20),
+    gravity -20..20 m/s^2, and half the time inertias that are not the uniform-rod value."""
+    from twolink import TwoLinkArm
+
+    l1 = draw(lengths)
+    l2 = draw(st.floats(min_value=max(0.05, l1 / 20.0), max_value=min(20.0, l1 * 20.0)))
+    m1 = draw(st.floats(min_value=0.1, max_value=10.0))
+    m2 = draw(st.floats(min_value=0.1, max_value=10.0))
+    g = draw(st.floats(min_value=-20.0, max_value=20.0, allow_subnormal=False))
+    inertias = {}
+    if draw(st.booleans()):
+        inertias = {
+            "I1": m1 * l1**2 * draw(st.floats(min_value=0.01, max_value=0.5)),
+            "I2": m2 * l2**2 * draw(st.floats(min_value=0.01, max_value=0.5)),
+        }
+    return TwoLinkArm(l1=l1, l2=l2, m1=m1, m2=m2, g=g, **inertias)

@@ -18,6 +18,11 @@ from . import arms, ik
 from .arm import TwoLinkArm
 from .conventions import to_absolute, to_relative, wrap_angle
 from .errors import SingularityError, UnreachableError
+from . import statics, velocity
+from .statics import Wall, WallContact, wall_contact
+from . import dynamics
+from .simulate import SimulationError, SimulationResult, simulate
+from . import arcs, trajectory, workspace
 
 __version__ = "0.1.0"
 
@@ -30,4 +35,16 @@ __all__ = [
     "wrap_angle",
     "UnreachableError",
     "SingularityError",
+    "velocity",
+    "statics",
+    "Wall",
+    "WallContact",
+    "wall_contact",
+    "dynamics",
+    "simulate",
+    "SimulationResult",
+    "SimulationError",
+    "arcs",
+    "workspace",
+    "trajectory",
 ]

@@ -10,6 +10,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from . import dh, kinematics
+from . import velocity
+from . import dynamics
 from ._validate import as_finite_scalar, as_pairs
 from .conventions import to_absolute
 
@@ -207,3 +209,45 @@ class TwoLinkArm:
     def geometric_jacobian(self, q):
         """The 6x2 geometric Jacobian; see :func:`twolink.dh.geometric_jacobian`."""
         return dh.geometric_jacobian(self, q)
+
+    # --- velocity
+    def tip_velocity(self, q, qd):
+        """Tip velocity ``J(q) qd`` ``(..., 2)`` in m/s; see :func:`twolink.velocity.tip_velocity`."""
+        return velocity.tip_velocity(self, q, qd)
+
+    def joint_rates(self, q, v_tip, tol=velocity.SINGULARITY_TOL):
+        """Joint rates ``J^-1 v_tip``, raising ``SingularityError`` when ``|sin q2| <= tol``; see :func:`twolink.velocity.joint_rates`."""
+        return velocity.joint_rates(self, q, v_tip, tol=tol)
+
+    def joint_rates_dls(self, q, v_tip, damping):
+        """Damped-least-squares joint rates (bounded at singularities); see :func:`twolink.velocity.joint_rates_dls`."""
+        return velocity.joint_rates_dls(self, q, v_tip, damping)
+
+    def manipulability(self, q):
+        """Yoshikawa's manipulability ``|l1 l2 sin q2|`` ``(...)``; see :func:`twolink.velocity.manipulability`."""
+        return velocity.manipulability(self, q)
+
+    # --- dynamics
+    def mass_matrix(self, q):
+        """Mass matrix ``M(q)`` ``(..., 2, 2)``; see :func:`twolink.dynamics.mass_matrix`."""
+        return dynamics.mass_matrix(self, q)
+
+    def coriolis(self, q, qd):
+        """Coriolis matrix ``C(q, qd)`` ``(..., 2, 2)``, ``dM/dt - 2C`` skew; see :func:`twolink.dynamics.coriolis`."""
+        return dynamics.coriolis(self, q, qd)
+
+    def gravity(self, q):
+        """Gravity torques ``g(q)`` ``(..., 2)`` of ``M qdd + C qd + g = tau``; see :func:`twolink.dynamics.gravity`."""
+        return dynamics.gravity(self, q)
+
+    def inverse_dynamics(self, q, qd, qdd, force=None):
+        """Torques ``tau = M qdd + C qd + g [+ J^T F]`` ``(..., 2)``; see :func:`twolink.dynamics.inverse_dynamics`."""
+        return dynamics.inverse_dynamics(self, q, qd, qdd, force)
+
+    def forward_dynamics(self, q, qd, tau, force=None):
+        """Accelerations ``qdd = M^-1 (tau - C qd - g [- J^T F])`` ``(..., 2)``; see :func:`twolink.dynamics.forward_dynamics`."""
+        return dynamics.forward_dynamics(self, q, qd, tau, force)
+
+    def energy(self, q, qd):
+        """Kinetic and potential energy ``(T, V)``, each ``(...)``; see :func:`twolink.dynamics.energy`."""
+        return dynamics.energy(self, q, qd)

@@ -11,15 +11,17 @@ import numpy as np
 
 from . import ik
 
-__all__ = ["median_time", "IK_METHODS", "compare_ik_methods"]
+__all__ = ["median_time", "IK_METHODS", "compare_ik_methods", "brute_force_sweep"]
 
 
 def median_time(function, repeat=5, min_seconds=0.05):
     """Median wall time of one call of ``function()``, in seconds.
 
-    Calls are batched with :meth:`timeit.Timer.autorange` so each measurement
-    lasts at least about ``min_seconds``; the median of ``repeat`` batches
-    resists the odd slow run.
+    Calls are batched so that each measurement lasts about ``min_seconds``
+    (the batch size is calibrated from a first run of at least a tenth of
+    that, far cheaper than :meth:`timeit.Timer.autorange`'s fixed 0.2 s, which
+    dominated notebooks timing several methods); the median of ``repeat``
+    batches resists the odd slow run.
 
     Examples
     --------
@@ -30,8 +32,13 @@ def median_time(function, repeat=5, min_seconds=0.05):
     if repeat < 1:
         raise ValueError(f"repeat must be >= 1; got {repeat}")
     timer = timeit.Timer(function)
-    number, _ = timer.autorange()
-    number = max(1, int(np.ceil(number * min_seconds / 0.2)))
+    number = 1
+    while True:  # 1, 10, 100, ... calls until a run lasts a tenth of min_seconds
+        elapsed = timer.timeit(number=number)
+        if elapsed >= min_seconds / 10 or number >= 10**9:
+            break
+        number *= 10
+    number = max(1, int(np.ceil(number * min_seconds / max(elapsed, 1e-12))))
     return float(np.median(timer.repeat(repeat=repeat, number=number)) / number)
 
 
@@ -117,4 +124,42 @@ def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), method
                 "solved": float(np.mean(residual <= tolerance)),
             }
         )
+    return rows
+
+
+def brute_force_sweep(arm, targets, steps, repeat=3):
+    """How brute-force IK cost and error grow with the grid resolution.
+
+    Runs :func:`compare_ik_methods` (brute force only, one vectorised call
+    per grid) at each grid step.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    targets : array_like, shape (n, 2)
+        Reachable targets in metres.
+    steps : sequence of float
+        Grid steps in radians.
+    repeat : int
+        Timing repeats (the median is kept).
+
+    Returns
+    -------
+    list of dict
+        One row per step: ``step`` (rad), ``grid_points`` (per target),
+        ``seconds_per_target``, ``max_residual`` (m) and ``solved``.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> rows = brute_force_sweep(arms.ten, [[10.0, 10.0]], np.radians([2.0, 1.0]), repeat=1)
+    >>> [row["grid_points"] for row in rows]
+    [4186, 16471]
+    """
+    targets = ik.check_reachable(arm, targets)
+    rows = []
+    for step in steps:
+        row = compare_ik_methods(arm, targets, step=float(step), methods=["brute force"], repeat=repeat, per_call=False)[0]
+        grid_points = int(np.ravel(ik.brute_force(arm, targets[:1], step=float(step)).iterations)[0])
+        rows.append({"step": float(step), "grid_points": grid_points, **{k: v for k, v in row.items() if k != "method"}})
     return rows

@@ -1,0 +1,362 @@
+"""Dynamics of the 2R arm: symbolic derivation, numeric M, C, g, inverse/forward dynamics, energy."""
+
+import dataclasses
+
+import numpy as np
+import pytest
+import sympy as sp
+from conftest import configurations, dynamic_arms, rates
+from hypothesis import given
+from hypothesis import strategies as st
+
+from twolink import TwoLinkArm, arms, dynamics
+from twolink.symbolic import dynamics_symbols, equations_of_motion, lambdify_dynamics
+
+NUMERIC = {model: lambdify_dynamics(model) for model in ("relative", "absolute")}
+
+# Absolute link angles theta = T q and torques tau = T^T u (virtual work) for T below.
+TO_ABSOLUTE = np.array([[1.0, 0.0], [1.0, 1.0]])
+
+pairs = st.tuples(rates, rates).map(np.array)
+
+
+def mass_scale(arm):
+    """The largest entry M can have (M11 stretched out), for relative tolerances."""
+    return float(arm.mass_matrix([0.0, 0.0])[0, 0])
+
+
+def gravity_scale(arm):
+    """Upper bound of |g_i(q)|: the weights times their largest moment arms."""
+    return abs(arm.g) * (arm.m1 * arm.l1 / 2 + arm.m2 * (arm.l1 + arm.l2 / 2))
+
+
+def assert_within(actual, expected, tolerance):
+    tolerance = max(tolerance, 1e-300)  # relative tolerances of exact zeros (g = 0) stay meaningful
+    error = float(np.max(np.abs(np.asarray(actual) - np.asarray(expected))))
+    assert error <= tolerance, f"max error {error:.3e} > {tolerance:.3e}\nactual {actual}\nexpected {expected}"
+
+
+# ----------------------------------------------------------------- symbolic derivation
+@pytest.mark.parametrize("model", ["relative", "absolute"])
+def test_m_c_g_reproduce_the_euler_lagrange_equations(model):
+    assert equations_of_motion(model).residual() == sp.zeros(2, 1)
+
+
+@pytest.mark.parametrize("model", ["relative", "absolute"])
+def test_symbolic_mass_matrix_is_symmetric_and_coriolis_skew_property_holds(model):
+    eom = equations_of_motion(model)
+    assert sp.simplify(eom.M - eom.M.T) == sp.zeros(2, 2)
+    M_dot = sp.Matrix(2, 2, lambda i, j: sum(sp.diff(eom.M[i, j], q) * qd for q, qd in zip(eom.q, eom.qd)))
+    N = M_dot - 2 * eom.C
+    assert sp.simplify(N + N.T) == sp.zeros(2, 2)
+
+
+def test_relative_model_matches_the_textbook_uniform_rod_form():
+    s = dynamics_symbols()
+    eom = equations_of_motion("relative")
+    rods = {s["I1"]: s["m1"] * s["l1"] ** 2 / 12, s["I2"]: s["m2"] * s["l2"] ** 2 / 12}
+    l1, l2, m1, m2, q2 = s["l1"], s["l2"], s["m1"], s["m2"], s["q2"]
+    expected_M = sp.Matrix(
+        [
+            [m1 * l1**2 / 3 + m2 * (l1**2 + l2**2 / 3 + l1 * l2 * sp.cos(q2)), m2 * (l2**2 / 3 + l1 * l2 * sp.cos(q2) / 2)],
+            [m2 * (l2**2 / 3 + l1 * l2 * sp.cos(q2) / 2), m2 * l2**2 / 3],
+        ]
+    )
+    assert sp.simplify(eom.M.subs(rods) - expected_M) == sp.zeros(2, 2)
+
+
+def test_the_two_models_are_the_same_machine():
+    """theta = (q1, q1 + q2) turns the absolute model into the relative one, with tau = T^T u."""
+    s = dynamics_symbols()
+    relative, absolute = equations_of_motion("relative"), equations_of_motion("absolute")
+    substitution = {
+        s["theta1"]: s["q1"],
+        s["theta2"]: s["q1"] + s["q2"],
+        s["thetad1"]: s["qd1"],
+        s["thetad2"]: s["qd1"] + s["qd2"],
+        s["thetadd1"]: s["qdd1"],
+        s["thetadd2"]: s["qdd1"] + s["qdd2"],
+    }
+    T = sp.Matrix(TO_ABSOLUTE.astype(int))
+    absolute_lhs = (absolute.M * absolute.qdd + absolute.C * absolute.qd + absolute.g).subs(substitution)
+    relative_lhs = relative.M * relative.qdd + relative.C * relative.qd + relative.g
+    assert sp.simplify(T.T * absolute_lhs - relative_lhs) == sp.zeros(2, 1)
+    assert sp.simplify(T.T * absolute.M.subs(substitution) * T - relative.M) == sp.zeros(2, 2)
+    assert sp.simplify(T.T * absolute.Q - sp.Matrix([s["u1"] + s["u2"], s["u2"]])) == sp.zeros(2, 1)
+    # The energies are the same function of the motion.
+    assert sp.simplify(absolute.kinetic.subs(substitution) - relative.kinetic) == 0
+    assert sp.simplify(absolute.potential.subs(substitution) - relative.potential) == 0
+
+
+def test_relative_generalised_forces_are_the_motor_torques():
+    s = dynamics_symbols()
+    assert equations_of_motion("relative").Q == sp.Matrix([s["tau1"], s["tau2"]])
+
+
+def test_derivation_is_cached_and_immutable():
+    eom = equations_of_motion("relative")
+    assert equations_of_motion("relative") is eom
+    with pytest.raises(TypeError):
+        eom.M[0, 0] = 0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        eom.model = "absolute"
+
+
+def test_unknown_model_raises():
+    with pytest.raises(ValueError, match="model must be one of"):
+        equations_of_motion("polar")
+
+
+# ----------------------------------------------------------------- numeric == symbolic
+@given(dynamic_arms(), configurations(), pairs)
+def test_numeric_matches_symbolic_relative_model(arm, q, qd):
+    symbolic = NUMERIC["relative"]
+    scale = mass_scale(arm)
+    assert_within(arm.mass_matrix(q), symbolic.mass_matrix(arm, q), 1e-12 * scale)
+    assert_within(arm.coriolis(q, qd), symbolic.coriolis(arm, q, qd), 1e-12 * scale * (1 + np.abs(qd).sum()))
+    assert_within(arm.gravity(q), symbolic.gravity(arm, q), 1e-12 * gravity_scale(arm))
+
+
+@given(dynamic_arms(), configurations(), pairs, pairs)
+def test_numeric_matches_symbolic_absolute_model_after_change_of_variables(arm, q, qd, qdd):
+    """The absolute model's torques u, mapped by tau = T^T u, are the DH torques of the same motion."""
+    symbolic = NUMERIC["absolute"]
+    theta, thetad, thetadd = q @ TO_ABSOLUTE.T, qd @ TO_ABSOLUTE.T, qdd @ TO_ABSOLUTE.T
+    u = (
+        symbolic.mass_matrix(arm, theta) @ thetadd
+        + symbolic.coriolis(arm, theta, thetad) @ thetad
+        + symbolic.gravity(arm, theta)
+    )
+    tau = arm.inverse_dynamics(q, qd, qdd)
+    scale = mass_scale(arm) * (np.abs(qdd).sum() + np.abs(qd).sum() ** 2) + gravity_scale(arm)
+    assert_within(TO_ABSOLUTE.T @ u, tau, 1e-12 * scale)
+    assert_within(TO_ABSOLUTE.T @ symbolic.mass_matrix(arm, theta) @ TO_ABSOLUTE, arm.mass_matrix(q), 1e-12 * mass_scale(arm))
+
+
+# ----------------------------------------------------------------- properties of M and C
+@given(dynamic_arms(), configurations())
+def test_mass_matrix_is_symmetric_positive_definite(arm, q):
+    M = arm.mass_matrix(q)
+    assert M[0, 1] == M[1, 0]
+    assert np.all(np.linalg.eigvalsh(M) > 0)
+    np.linalg.cholesky(M)  # raises LinAlgError unless positive definite
+
+
+def test_mass_matrix_of_known_bodies():
+    """Stretched out, equal rods are one rod of length 2l about its end; link 2 alone is a rod about its end."""
+    arm = TwoLinkArm(1.5, 1.5, m1=2.0, m2=2.0)
+    M = arm.mass_matrix([0.3, 0.0])
+    assert M[0, 0] == pytest.approx(4.0 * 3.0**2 / 3.0, rel=1e-14)
+    assert M[1, 1] == pytest.approx(2.0 * 1.5**2 / 3.0, rel=1e-14)
+    # Inertia override: a point mass m2 at the centre of link 2 (I2 = 0).
+    point = TwoLinkArm(1.0, 2.0, m1=1.0, m2=3.0, I2=0.0)
+    assert point.mass_matrix([0.0, 0.0])[1, 1] == pytest.approx(3.0 * 1.0**2, rel=1e-14)
+
+
+@given(dynamic_arms(), configurations(), pairs)
+def test_m_dot_minus_2c_is_skew_symmetric(arm, q, qd):
+    step = 1e-6
+    M_dot = (arm.mass_matrix(q + step * qd) - arm.mass_matrix(q - step * qd)) / (2 * step)
+    N = M_dot - 2 * arm.coriolis(q, qd)
+    tolerance = 1e-8 * mass_scale(arm) * (1 + np.abs(qd).sum())
+    assert_within(N + N.T, np.zeros((2, 2)), tolerance)
+    assert abs(qd @ N @ qd) <= tolerance * (1 + qd @ qd)
+
+
+def test_skew_test_rejects_another_valid_coriolis_factorisation():
+    """C' below gives the same C' qd but dM/dt - 2C' is not skew: the property picks the Christoffel C."""
+    arm, q, qd = arms.two_metre, np.array([0.2, 0.9]), np.array([0.7, -1.3])
+    h = -arm.m2 * arm.l1 * arm.l2 / 2 * np.sin(q[1])
+    other_C = np.array([[2 * h * qd[1], h * qd[1]], [-h * qd[0], 0.0]])
+    assert np.allclose(other_C @ qd, arm.coriolis(q, qd) @ qd, atol=1e-12)
+    step = 1e-6
+    M_dot = (arm.mass_matrix(q + step * qd) - arm.mass_matrix(q - step * qd)) / (2 * step)
+    assert np.abs((M_dot - 2 * other_C) + (M_dot - 2 * other_C).T).max() > 0.1
+
+
+# ----------------------------------------------------------------- inverse / forward dynamics
+@given(dynamic_arms(), configurations(), pairs, pairs)
+def test_inverse_then_forward_returns_the_acceleration(arm, q, qd, qdd):
+    tau = arm.inverse_dynamics(q, qd, qdd)
+    M = arm.mass_matrix(q)
+    # Error of the round trip: rounding of tau (scale of its terms) amplified by M^-1.
+    tau_scale = mass_scale(arm) * (np.abs(qdd).sum() + np.abs(qd).sum() ** 2) + gravity_scale(arm)
+    tolerance = 1e-13 * np.abs(np.linalg.inv(M)).max() * tau_scale
+    assert_within(arm.forward_dynamics(q, qd, tau), qdd, tolerance)
+
+
+@given(dynamic_arms(), configurations(), pairs, pairs)
+def test_closed_form_solve_agrees_with_numpy_solve(arm, q, qd, tau):
+    M = arm.mass_matrix(q)
+    rhs = tau - arm.coriolis(q, qd) @ qd - arm.gravity(q)
+    expected = np.linalg.solve(M, rhs)
+    tolerance = 1e-13 * np.linalg.cond(M) * (np.abs(expected).max() + np.abs(np.linalg.inv(M)).max() * np.abs(rhs).max())
+    assert_within(arm.forward_dynamics(q, qd, tau), expected, tolerance)
+
+
+def test_vectorised_and_single_state_paths_agree():
+    rng = np.random.default_rng(4)
+    arm = TwoLinkArm(1.3, 0.8, m1=2.0, m2=0.7, g=9.81)
+    q, qd, tau = rng.normal(size=(3, 50, 2))
+    batch = arm.forward_dynamics(q, qd, tau)
+    one_by_one = np.array([arm.forward_dynamics(*state) for state in zip(q, qd, tau)])
+    lists = np.array([arm.forward_dynamics(list(a), tuple(b), list(c)) for a, b, c in zip(q, qd, tau)])
+    assert np.allclose(batch, one_by_one, rtol=1e-14, atol=1e-12)
+    assert np.allclose(batch, lists, rtol=1e-14, atol=1e-12)
+    tau_batch = arm.inverse_dynamics(q, qd, batch)
+    tau_one = np.array([arm.inverse_dynamics(*state) for state in zip(q, qd, batch)])
+    assert np.allclose(tau_batch, tau_one, rtol=1e-14, atol=1e-12)
+    assert np.allclose(tau_batch, tau, rtol=1e-12, atol=1e-12)
+
+
+def test_leading_axes_broadcast():
+    arm = arms.two_metre
+    q = np.zeros((3, 4, 2))
+    qd = np.ones(2)
+    assert arm.mass_matrix(q).shape == (3, 4, 2, 2)
+    assert arm.coriolis(q, qd).shape == (3, 4, 2, 2)
+    assert arm.coriolis(qd, q).shape == (3, 4, 2, 2)
+    assert arm.gravity(q).shape == (3, 4, 2)
+    assert arm.inverse_dynamics(q, qd, qd).shape == (3, 4, 2)
+    assert arm.forward_dynamics(qd, q, qd).shape == (3, 4, 2)
+    kinetic, potential = arm.energy(qd, q)
+    assert kinetic.shape == potential.shape == (3, 4)
+    assert arm.forward_dynamics([0, 0], [0, 0], [0, 0]).shape == (2,)  # ints take the checked path
+
+
+def test_arm_methods_delegate_to_the_dynamics_module():
+    arm, q, qd, qdd = arms.osake, np.array([0.4, -1.1]), np.array([2.0, 0.5]), np.array([-1.0, 3.0])
+    assert np.array_equal(arm.mass_matrix(q), dynamics.mass_matrix(arm, q))
+    assert np.array_equal(arm.coriolis(q, qd), dynamics.coriolis(arm, q, qd))
+    assert np.array_equal(arm.gravity(q), dynamics.gravity(arm, q))
+    assert np.array_equal(arm.inverse_dynamics(q, qd, qdd), dynamics.inverse_dynamics(arm, q, qd, qdd))
+    tau = arm.inverse_dynamics(q, qd, qdd)
+    assert np.array_equal(arm.forward_dynamics(q, qd, tau), dynamics.forward_dynamics(arm, q, qd, tau))
+    assert np.array_equal(np.array(arm.energy(q, qd)), np.array(dynamics.energy(arm, q, qd)))
+
+
+# ----------------------------------------------------------------- gravity and statics
+def test_gravity_direction_and_switch():
+    arm = arms.two_metre
+    # Straight out along +x the weights pull down: the motors must push up (positive torques).
+    assert np.all(arm.gravity([0.0, 0.0]) > 0)
+    # Released there, link 1 falls (clockwise, qdd1 < 0).
+    assert arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [0.0, 0.0])[0] < 0
+    # Hanging straight down or standing straight up needs no torque.
+    assert np.allclose(arm.gravity([[-np.pi / 2, 0.0], [np.pi / 2, 0.0]]), 0.0, atol=1e-12)
+    horizontal = dataclasses.replace(arm, g=0.0)
+    q = np.random.default_rng(1).uniform(-np.pi, np.pi, (20, 2))
+    assert np.all(horizontal.gravity(q) == 0.0)
+    assert np.all(horizontal.forward_dynamics(q, np.zeros(2), np.zeros(2)) == 0.0)
+
+
+@given(dynamic_arms(), configurations())
+def test_gravity_is_the_statics_of_the_link_weights(arm, q):
+    """Free-body check: each motor holds the moments, about its joint, of the weights beyond it."""
+    q1, q12 = q[0], q[0] + q[1]
+    elbow = arm.l1 * np.array([np.cos(q1), np.sin(q1)])
+    centre_1 = elbow / 2
+    centre_2 = elbow + arm.l2 / 2 * np.array([np.cos(q12), np.sin(q12)])
+
+    def moment(arm_vector, force):
+        return arm_vector[0] * force[1] - arm_vector[1] * force[0]
+
+    weight_1, weight_2 = np.array([0.0, -arm.m1 * arm.g]), np.array([0.0, -arm.m2 * arm.g])
+    # The motors balance the weights' moments: tau = -(moments of the weights).
+    tau_shoulder = -(moment(centre_1, weight_1) + moment(centre_2, weight_2))
+    tau_elbow = -moment(centre_2 - elbow, weight_2)
+    assert_within(arm.gravity(q), [tau_shoulder, tau_elbow], 1e-12 * gravity_scale(arm))
+
+
+@given(dynamic_arms(), configurations(), pairs)
+def test_gravity_is_the_gradient_of_the_potential_energy(arm, q, direction):
+    step = 1e-6
+    _, v_plus = arm.energy(q + step * direction, [0.0, 0.0])
+    _, v_minus = arm.energy(q - step * direction, [0.0, 0.0])
+    assert abs((v_plus - v_minus) / (2 * step) - arm.gravity(q) @ direction) <= 1e-7 * gravity_scale(arm) * (
+        1 + np.abs(direction).sum()
+    )
+
+
+@given(dynamic_arms(), configurations(), pairs)
+def test_static_torques_plus_gravity_equal_inverse_dynamics_at_rest(arm, q, force):
+    """Chapter 4's tau = J^T F plus the weight is what inverse dynamics asks for at rest."""
+    held = arm.joint_torques(q, force) + arm.gravity(q)
+    at_rest = np.zeros(2)
+    scale = gravity_scale(arm) + (arm.l1 + arm.l2) * np.abs(force).sum()
+    assert_within(arm.inverse_dynamics(q, at_rest, at_rest, force=force), held, 1e-12 * scale)
+    # Forward: with those torques the arm pushing with F stays at rest.
+    M_inverse = np.abs(np.linalg.inv(arm.mass_matrix(q))).max()
+    assert_within(arm.forward_dynamics(q, at_rest, held, force=force), at_rest, 1e-13 * M_inverse * scale)
+
+
+# ----------------------------------------------------------------- energy
+def test_energy_values():
+    arm = TwoLinkArm(2.0, 2.0, m1=3.0, m2=3.0, g=10.0)
+    kinetic, potential = arm.energy([0.0, 0.0], [1.0, 0.0])
+    # One 4 m, 6 kg rod spinning about its end at 1 rad/s; lying along x, so V = 0.
+    assert float(kinetic) == pytest.approx(0.5 * 6.0 * 4.0**2 / 3.0, rel=1e-14)
+    assert float(potential) == 0.0
+    kinetic, potential = arm.energy([np.pi / 2, 0.0], [0.0, 0.0])
+    assert float(kinetic) == 0.0
+    assert float(potential) == pytest.approx(3.0 * 10.0 * 1.0 + 3.0 * 10.0 * 3.0, rel=1e-14)
+
+
+@given(dynamic_arms(), configurations(), pairs, pairs)
+def test_power_balance(arm, q, qd, tau):
+    """d/dt (T + V) = qd . tau along the motion the dynamics predict."""
+    qdd = arm.forward_dynamics(q, qd, tau)
+    step = 1e-6
+    e_plus = sum(arm.energy(q + step * qd, qd + step * qdd))
+    e_minus = sum(arm.energy(q - step * qd, qd - step * qdd))
+    power = (e_plus - e_minus) / (2 * step)
+    scale = (mass_scale(arm) * (1 + np.abs(qd).sum() + np.abs(qdd).sum()) ** 2 + gravity_scale(arm)) * (
+        1 + np.abs(qd).sum()
+    )
+    assert abs(power - qd @ tau) <= 1e-7 * scale
+
+
+# ----------------------------------------------------------------- bad input
+@pytest.mark.parametrize(
+    "call, fragment",
+    [
+        (lambda arm: arm.mass_matrix([0.0, 1.0, 2.0]), r"q must have shape \(\.\.\., 2\)"),
+        (lambda arm: arm.mass_matrix([np.nan, 1.0]), "q must be finite"),
+        (lambda arm: arm.coriolis([0.0, 0.0], [1.0]), "qd must have shape"),
+        (lambda arm: arm.gravity("up"), "q must be numbers"),
+        (lambda arm: arm.inverse_dynamics([0.0, 0.0], [0.0, np.inf], [0.0, 0.0]), "qd must be finite"),
+        (lambda arm: arm.inverse_dynamics([0.0, 0.0], [0.0, 0.0], [[1.0, 2.0, 3.0]]), "qdd must have shape"),
+        (lambda arm: arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [np.nan, 0.0]), "tau must be finite"),
+        (lambda arm: arm.forward_dynamics([0.0, np.nan], [0.0, 0.0], [0.0, 0.0]), "q must be finite"),
+        (lambda arm: arm.forward_dynamics(np.zeros((3, 2)), np.zeros((4, 2)), np.zeros(2)), "broadcast"),
+        (lambda arm: arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [0.0, 0.0], force=[1.0]), "force must have shape"),
+        (lambda arm: arm.energy([0.0, 0.0], [[0.0, 0.0, 0.0]]), "qd must have shape"),
+    ],
+)
+def test_bad_input_raises_a_clear_value_error(call, fragment):
+    with pytest.raises(ValueError, match=fragment):
+        call(arms.two_metre)
+
+
+@pytest.mark.parametrize("kwargs", [{"m2": 0.0}, {"m1": 0.0, "I1": 0.0, "m2": 1.0, "I2": 0.0}, {"m1": 0.0, "m2": 0.0}])
+def test_singular_mass_matrix_is_refused_by_forward_dynamics(kwargs):
+    arm = TwoLinkArm(1.0, 1.0, **kwargs)
+    with pytest.raises(ValueError, match="mass matrix is singular"):
+        arm.forward_dynamics([0.0, 0.5], [0.0, 0.0], [0.0, 0.0])
+    with pytest.raises(ValueError, match="mass matrix is singular"):
+        arm.forward_dynamics(np.zeros((3, 2)), np.zeros(2), np.zeros(2))
+
+
+def test_a_massless_link_1_is_fine_when_link_2_has_inertia():
+    arm = TwoLinkArm(1.0, 1.0, m1=0.0, m2=2.0)
+    qdd = arm.forward_dynamics([0.3, 0.5], [0.1, 0.2], [1.0, -1.0])
+    assert np.all(np.isfinite(qdd))
+    assert np.allclose(arm.inverse_dynamics([0.3, 0.5], [0.1, 0.2], qdd), [1.0, -1.0], atol=1e-12)
+
+
+def test_lambdify_takes_a_derivation_or_a_model_name():
+    arm, q, qd = arms.osake, np.array([0.3, -0.4]), np.array([1.0, 2.0])
+    from_derivation = lambdify_dynamics(equations_of_motion("absolute"))
+    assert from_derivation.model == NUMERIC["absolute"].model == "absolute"
+    assert np.array_equal(from_derivation.coriolis(arm, q, qd), NUMERIC["absolute"].coriolis(arm, q, qd))
+    assert NUMERIC["relative"].gravity(arm, q).shape == (2,)

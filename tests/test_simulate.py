@@ -1,0 +1,212 @@
+"""twolink.simulate: free and driven motion, energy conservation, failures, the result object."""
+
+import dataclasses
+
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+from conftest import dynamic_arms
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from scipy.integrate import solve_ivp
+
+from twolink import SimulationError, SimulationResult, TwoLinkArm, arms, plot, simulate
+
+TIGHT = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
+
+
+def relative_energy_drift(result):
+    """max |E(t) - E(0)| over the largest kinetic energy, computed here from arm.energy."""
+    kinetic, potential = result.arm.energy(result.q, result.qd)
+    total = kinetic + potential
+    return np.max(np.abs(total - total[0])) / np.max(kinetic)
+
+
+@pytest.mark.parametrize(
+    "arm, q0, qd0",
+    [
+        (arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0]),  # the benchmark's start: a chaotic swing
+        (TwoLinkArm(1.0, 0.5, m1=3.0, m2=0.5), [-0.3, 2.0], [1.0, -2.0]),
+        (TwoLinkArm(2.0, 2.0, g=0.0), [0.0, 1.0], [1.5, -3.0]),  # horizontal arm, spinning
+    ],
+)
+def test_energy_is_conserved_in_free_motion(arm, q0, qd0):
+    result = simulate(arm, q0, qd0, 10.0, **TIGHT)
+    assert result.status == 0 and result.t[-1] == 10.0
+    assert np.ptp(result.q[:, 1]) > 0.5  # it really moved (the elbow swung)
+    drift = relative_energy_drift(result)
+    assert drift < 1e-8
+    assert result.energy_drift() == pytest.approx(drift, rel=1e-12)
+
+
+def test_loose_tolerances_do_drift():
+    """The drift test can fail: a loose RK45 run loses energy visibly."""
+    loose = simulate(arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0], 10.0, method="RK45", rtol=1e-3, atol=1e-6)
+    assert relative_energy_drift(loose) > 1e-6
+
+
+def test_horizontal_arm_conserves_angular_momentum_about_the_base():
+    """With g = 0 nothing turns the whole arm: p1 = dL/dqd1 = (M qd)[0] stays constant."""
+    arm = TwoLinkArm(1.0, 1.5, m1=2.0, m2=1.0, g=0.0)
+    result = simulate(arm, [0.2, 0.4], [2.0, -5.0], 5.0, **TIGHT)
+    momentum = np.einsum("nij,nj->ni", arm.mass_matrix(result.q), result.qd)[:, 0]
+    assert np.ptp(result.q[:, 1]) > 1.0
+    assert np.max(np.abs(momentum - momentum[0])) < 1e-8 * abs(momentum[0])
+
+
+def test_matches_an_independent_right_hand_side():
+    """The lean RHS agrees with one built from M, C, g and numpy.linalg.solve."""
+    arm = TwoLinkArm(1.2, 0.9, m1=1.5, m2=0.8, I2=0.1)
+
+    def torque(t, q, qd):
+        return np.array([2.0 * np.sin(3.0 * t), -1.0 - 0.5 * qd[1]])
+
+    def reference_rhs(t, state):
+        q, qd = state[:2], state[2:]
+        qdd = np.linalg.solve(arm.mass_matrix(q), torque(t, q, qd) - arm.coriolis(q, qd) @ qd - arm.gravity(q))
+        return np.concatenate([qd, qdd])
+
+    t_eval = np.linspace(0.0, 3.0, 61)
+    result = simulate(arm, [0.5, -0.5], [0.0, 1.0], 3.0, torque=torque, t_eval=t_eval, **TIGHT)
+    reference = solve_ivp(reference_rhs, (0.0, 3.0), [0.5, -0.5, 0.0, 1.0], t_eval=t_eval, **TIGHT)
+    assert np.allclose(result.q, reference.y[:2].T, atol=1e-8)
+    assert np.allclose(result.qd, reference.y[2:].T, atol=1e-8)
+    expected_tau = np.array([torque(t, q, qd) for t, q, qd in zip(result.t, result.q, result.qd)])
+    assert np.array_equal(result.tau, expected_tau)
+
+
+def test_torques_equal_to_gravity_hold_the_arm():
+    arm = arms.two_metre
+    q0 = np.array([0.7, -1.2])
+    result = simulate(arm, q0, [0.0, 0.0], 3.0, torque=lambda t, q, qd: arm.gravity(q), t_eval=[0.0, 1.5, 3.0])
+    assert np.allclose(result.q, q0, atol=1e-9)
+    assert np.allclose(result.qd, 0.0, atol=1e-9)
+    assert np.allclose(result.tau, arm.gravity(q0), atol=1e-9)
+
+
+def test_feedforward_of_inverse_dynamics_reproduces_the_trajectory():
+    """Open-loop torques from inverse dynamics drive the arm along the planned motion."""
+    arm = arms.two_metre
+    q_start, q_goal, duration = np.array([-1.2, 0.3]), np.array([0.6, 1.4]), 2.0
+
+    def planned(t):
+        s = np.clip(t / duration, 0.0, 1.0)
+        blend = 10 * s**3 - 15 * s**4 + 6 * s**5
+        rate = (30 * s**2 - 60 * s**3 + 30 * s**4) / duration
+        accel = (60 * s - 180 * s**2 + 120 * s**3) / duration**2
+        delta = q_goal - q_start
+        return q_start + blend * delta, rate * delta, accel * delta
+
+    result = simulate(arm, q_start, [0.0, 0.0], duration, torque=lambda t, q, qd: arm.inverse_dynamics(*planned(t)))
+    assert np.allclose(result.q[-1], q_goal, atol=1e-6)
+    assert np.allclose(result.qd[-1], 0.0, atol=1e-5)
+
+
+@settings(max_examples=10)
+@given(dynamic_arms(), st.floats(-np.pi, np.pi), st.floats(-np.pi, np.pi))
+def test_free_motion_of_random_arms_keeps_its_energy(arm, q1, q2):
+    result = simulate(arm, [q1, q2], [0.5, -0.5], 1.0, **TIGHT)
+    assert result.status == 0
+    assert relative_energy_drift(result) < 1e-8
+
+
+# ----------------------------------------------------------------- result object
+def test_result_shapes_t_eval_and_read_only():
+    t_eval = np.linspace(0.0, 2.0, 41)
+    result = simulate(arms.two_metre, [0.1, 0.2], [0.0, 0.0], 2.0, t_eval=t_eval)
+    assert isinstance(result, SimulationResult)
+    assert np.array_equal(result.t, t_eval)
+    assert result.q.shape == result.qd.shape == result.tau.shape == (41, 2)
+    assert np.array_equal(result.q[0], [0.1, 0.2]) and np.array_equal(result.qd[0], [0.0, 0.0])
+    assert np.all(result.tau == 0.0)
+    assert result.status == 0 and "reached the end" in result.message
+    assert result.nfev > 0
+    with pytest.raises(ValueError):
+        result.q[0, 0] = 1.0
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        result.status = 1
+
+
+def test_default_solver_is_tight_and_options_pass_through():
+    arm = arms.two_metre
+    default = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0)
+    tight = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0, **TIGHT)
+    assert np.array_equal(default.q, tight.q)
+    radau = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0, method="Radau", rtol=1e-6, atol=1e-8)
+    assert radau.nfev != tight.nfev
+    assert np.allclose(radau.q[-1], tight.q[-1], atol=1e-3)
+    capped = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0, max_step=0.01)
+    assert np.all(np.diff(capped.t) <= 0.01 + 1e-12)
+
+
+def test_terminal_event_is_reported_not_hidden():
+    """A terminal event stops early with status 1 and says so."""
+
+    def elbow_straight(t, state):
+        return state[1]
+
+    elbow_straight.terminal = True
+    elbow_straight.direction = 1
+    result = simulate(arms.two_metre, [np.pi / 4, -0.5], [0.0, 0.0], 10.0, events=elbow_straight)
+    assert result.status == 1
+    assert result.t[-1] < 10.0
+    assert len(result.t_events[0]) == 1
+    assert abs(result.q[-1, 1]) < 1e-8
+
+
+def test_frames_pick_evenly_with_first_and_last():
+    result = simulate(arms.two_metre, [0.3, 0.3], [0.0, 0.0], 5.0, t_eval=np.linspace(0.0, 5.0, 501))
+    frames = result.frames(50)
+    assert len(frames) == 50 and frames[0] == 0 and frames[-1] == 500
+    assert np.all(np.diff(frames) > 0)
+    assert len(result.frames(1000)) == 501
+    with pytest.raises(ValueError, match="max_frames must be >= 2"):
+        result.frames(1)
+
+
+def test_animate_simulation_has_at_most_50_frames_and_a_clock():
+    result = simulate(arms.two_metre, [0.3, 0.3], [0.0, 0.0], 5.0, t_eval=np.linspace(0.0, 5.0, 501))
+    anim = plot.animate_simulation(result)
+    frames = list(anim.new_frame_seq())
+    assert len(frames) == 50
+    assert anim._interval == pytest.approx(5000.0 / 49)  # real time
+    anim._func(len(frames) - 1)
+    clock = [text.get_text() for text in anim._fig.axes[0].texts]
+    assert "t = 5.00 s" in clock
+    plt.close(anim._fig)
+    with pytest.raises(ValueError, match="speed must be > 0"):
+        plot.animate_simulation(result, speed=0.0)
+
+
+# ----------------------------------------------------------------- failures and bad input
+def test_solver_failure_raises_instead_of_returning_a_partial_result():
+    """A torque that grows like qd^3 makes the speed blow up in finite time: the solver gives up."""
+    with pytest.raises(SimulationError, match="integration failed at t = .* Required step size"):
+        simulate(arms.two_metre, [0.0, 0.0], [1.0, 0.0], 5.0, torque=lambda t, q, qd: [50.0 * qd[0] ** 3, 0.0])
+
+
+@pytest.mark.parametrize(
+    "kwargs, error, fragment",
+    [
+        ({"q0": [0.0, 0.0, 0.0]}, ValueError, r"q0 must have shape \(\.\.\., 2\)"),
+        ({"q0": [[0.0, 0.0], [1.0, 1.0]]}, ValueError, r"one state each, shape \(2,\)"),
+        ({"qd0": [np.nan, 0.0]}, ValueError, "qd0 must be finite"),
+        ({"t_end": 0.0}, ValueError, r"t_end \(s\) must be > 0"),
+        ({"t_end": np.inf}, ValueError, r"t_end \(s\) must be finite"),
+        ({"torque": [1.0, 2.0]}, ValueError, "torque must be None or a callable"),
+        ({"torque": lambda t, q, qd: [np.nan, 0.0]}, ValueError, "non-finite torques"),
+        ({"torque": lambda t, q, qd: [1.0, 2.0, 3.0]}, ValueError, r"must return shape \(2,\)"),
+        ({"torque": lambda t, q, qd: "strong"}, ValueError, "must return two numbers"),
+        ({"method": "Euler"}, ValueError, "`method` must be one of"),
+    ],
+)
+def test_bad_input_raises(kwargs, error, fragment):
+    arguments = {"arm": arms.two_metre, "q0": [0.0, 0.0], "qd0": [0.0, 0.0], "t_end": 1.0}
+    arguments.update(kwargs)
+    with pytest.raises(error, match=fragment):
+        simulate(**arguments)
+
+
+def test_arm_with_a_singular_mass_matrix_is_refused():
+    with pytest.raises(ValueError, match="mass matrix is singular"):
+        simulate(TwoLinkArm(1.0, 1.0, m2=0.0), [0.0, 0.0], [0.0, 0.0], 1.0)

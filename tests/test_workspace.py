@@ -1,0 +1,365 @@
+"""The workspace with joint limits: reachability, boundary arcs, clearance, largest circle."""
+
+import re
+
+import numpy as np
+import pytest
+from conftest import angles, lengths, unit
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from twolink import TwoLinkArm, UnreachableError, arms, to_absolute, workspace
+from twolink.arcs import Arc, circle_intersections
+
+
+@st.composite
+def limited_arms(draw):
+    """Arms with random joint limits in either convention (each range 0.05 rad .. 2 pi wide)."""
+    l1 = draw(lengths)
+    l2 = draw(st.floats(min_value=max(0.05, l1 / 20), max_value=min(20.0, l1 * 20)))
+    low = np.array([draw(angles), draw(angles)])
+    width = np.array([draw(st.floats(0.05, 2 * np.pi)), draw(st.floats(0.05, 2 * np.pi))])
+    return TwoLinkArm(l1, l2, q_min=tuple(low), q_max=tuple(low + width), limits=draw(st.sampled_from(["relative", "absolute"])))
+
+
+def configuration_within(arm, fractions):
+    """The configuration at ``fractions`` (each in [0, 1]) across the limit box, in relative angles."""
+    angles_in_box = np.asarray(arm.q_min) + np.asarray(fractions) * (np.asarray(arm.q_max) - np.asarray(arm.q_min))
+    if arm.limits == "absolute":
+        return np.array([angles_in_box[0], angles_in_box[1] - angles_in_box[0]])
+    return angles_in_box
+
+
+# ---------------------------------------------------------------- reachability, independent descriptions
+
+
+def ten_region(p, elbow=None):
+    """arms.ten by geometry: tip at distance r = 20 cos(q2 / 2) in direction q1 + q2 / 2, so
+    10 sqrt 2 <= r <= 20 and q1 = direction -+ acos(r / 20) in [0, 90] deg (- elbow down, + up)."""
+    r = np.hypot(p[..., 0], p[..., 1])
+    direction = np.arctan2(p[..., 1], p[..., 0])
+    half_bend = np.arccos(np.clip(r / 20.0, -1.0, 1.0))
+    in_band = (r >= 10 * np.sqrt(2)) & (r <= 20.0)
+    down = (direction - half_bend >= 0.0) & (direction - half_bend <= np.pi / 2)
+    up = (direction + half_bend >= 0.0) & (direction + half_bend <= np.pi / 2)
+    return in_band & {None: down | up, "down": down, "up": up}[elbow]
+
+
+def two_metre_limited_region(p):
+    """arms.two_metre_limited by geometry: equal links, so the link angles are
+    direction -+ acos(r / 4), and both must lie in [35, 145] deg."""
+    r = np.hypot(p[..., 0], p[..., 1])
+    direction = np.arctan2(p[..., 1], p[..., 0])
+    half_bend = np.arccos(np.clip(r / 4.0, -1.0, 1.0))
+    low, high = np.radians(35.0), np.radians(145.0)
+    return (r <= 4.0) & (direction - half_bend >= low) & (direction + half_bend <= high)
+
+
+@pytest.mark.parametrize(
+    "arm, region, box, elbow",
+    [
+        (arms.ten, ten_region, (-25.0, 25.0), None),
+        (arms.ten, ten_region, (-25.0, 25.0), "down"),
+        (arms.ten, ten_region, (-25.0, 25.0), "up"),
+        (arms.two_metre_limited, two_metre_limited_region, (-5.0, 5.0), None),
+    ],
+    ids=["ten (relative limits)", "ten, elbow down", "ten, elbow up", "two_metre_limited (absolute limits)"],
+)
+def test_is_reachable_matches_the_geometric_description(arm, region, box, elbow):
+    rng = np.random.default_rng(7)
+    p = rng.uniform(box[0], box[1], size=(20_000, 2))
+    expected = region(p) if elbow is None else region(p, elbow)
+    got = workspace.is_reachable(arm, p, elbow=elbow)
+    assert expected.sum() > 500 and (~expected).sum() > 500  # both kinds are tested
+    # points within round-off of the boundary may go either way; nothing else may disagree
+    disagree = got != expected
+    assert np.all(np.abs(workspace.clearance(arm, p[disagree], elbow=elbow)) < 1e-6)
+    assert disagree.sum() <= 2
+
+
+def test_the_two_branch_workspaces_of_the_ten_arm_are_mirror_images():
+    # q -> (90 deg - q1 - q2, q2 -> -q2) mirrors the tip in the 45 deg line and swaps the branches
+    rng = np.random.default_rng(5)
+    p = rng.uniform(-25, 25, size=(5000, 2))
+    assert np.array_equal(workspace.is_reachable(arms.ten, p, elbow="down"), workspace.is_reachable(arms.ten, p[:, ::-1], elbow="up"))
+    with pytest.raises(ValueError, match="elbow must be"):
+        workspace.is_reachable(arms.ten, p, elbow="both")
+
+
+@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited, arms.two_metre], ids=lambda arm: str(arm.limits))
+def test_every_point_returned_as_reachable_is_reached_by_ik_within_limits(arm):
+    rng = np.random.default_rng(3)
+    scale = arm.reach[1] * 1.2
+    p = rng.uniform(-scale, scale, size=(5000, 2))
+    reachable = workspace.is_reachable(arm, p)
+    q_both, valid = workspace.solutions_within_limits(arm, p)
+    assert np.array_equal(reachable, valid.any(axis=-1))
+    for branch in (0, 1):
+        chosen = valid[:, branch]
+        q = q_both[chosen, branch]
+        assert np.all(arm.within_limits(q, tol=workspace.LIMIT_TOL))
+        assert np.max(np.hypot(*(arm.fk(q) - p[chosen]).T), initial=0.0) <= 1e-12 * arm.reach[1]
+
+
+def test_sampled_points_are_reachable_and_their_configurations_within_limits():
+    for arm in (arms.ten, arms.two_metre_limited, arms.two_metre):
+        p, q = workspace.sample_reachable(arm, n=3000, seed=11)
+        assert np.all(arm.within_limits(q))
+        assert np.allclose(arm.fk(q), p)
+        assert np.all(workspace.is_reachable(arm, p))
+
+
+@given(arm=limited_arms(), u=unit, v=unit)
+def test_every_configuration_within_limits_reaches_a_reachable_point(arm, u, v):
+    """Completeness: with the soundness test above, is_reachable(p) <=> some configuration within limits reaches p."""
+    q = configuration_within(arm, [u, v])
+    assert arm.within_limits(q)
+    assert workspace.is_reachable(arm, arm.fk(q))
+
+
+@given(arm=limited_arms(), fraction=unit, heading=angles)
+def test_reachable_points_of_random_limited_arms_have_a_valid_configuration(arm, fraction, heading):
+    r_min, r_max = arm.reach
+    radius = r_min + fraction * (r_max - r_min)
+    p = radius * np.array([np.cos(heading), np.sin(heading)])
+    q_both, valid = workspace.solutions_within_limits(arm, p)
+    assert workspace.is_reachable(arm, p) == valid.any()
+    for q in q_both[valid]:
+        assert arm.within_limits(q, tol=workspace.LIMIT_TOL)
+        assert np.linalg.norm(arm.fk(q) - p) <= 1e-9 * r_max
+
+
+def test_points_outside_are_rejected():
+    # outside the reach annulus, whatever the limits
+    assert not workspace.is_reachable(arms.ten, [20.001, 0.0])
+    assert not workspace.is_reachable(arms.two_metre, [0.0, 4.0 + 1e-6])
+    assert workspace.is_reachable(arms.two_metre, [0.0, 0.0])
+    # inside the annulus but only by configurations that break the limits
+    assert not workspace.is_reachable(arms.ten, [0.0, 0.0])  # needs q2 = 180 deg
+    assert workspace.is_reachable(arms.ten, [-10.0, 10.0])  # the corner q = (90, 90) deg
+    assert not workspace.is_reachable(arms.ten, [-12.0, 12.0])  # needs q1 > 90 deg
+    assert not workspace.is_reachable(arms.ten, [5.0, -15.0])  # needs q1 < 0
+    assert not workspace.is_reachable(arms.two_metre_limited, [-3.5, 1.0])  # link 2 at 188.5 deg
+    assert not workspace.is_reachable(arms.two_metre_limited, [0.0, 2.0])  # links 120 deg apart > 110
+    for q_outside in ([np.radians(-50.0), np.radians(30.0)], [np.radians(40.0), np.radians(120.0)]):
+        # for arms.ten, the other branch of these is outside the limits too
+        p = arms.ten.fk(q_outside)
+        _, valid = workspace.solutions_within_limits(arms.ten, p)
+        assert not valid.any() and not workspace.is_reachable(arms.ten, p)
+
+
+def test_bad_input_is_refused():
+    with pytest.raises(ValueError, match="finite"):
+        workspace.is_reachable(arms.ten, [np.nan, 1.0])
+    with pytest.raises(ValueError, match="shape"):
+        workspace.is_reachable(arms.ten, [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match="positive integer"):
+        workspace.sample_reachable(arms.ten, n=0)
+
+
+# ---------------------------------------------------------------- the first unreachable point
+
+
+def test_require_reachable_names_the_first_point_outside_the_reach():
+    path = np.array([[12.0, 12.0], [13.0, 13.0], [14.5, 14.5], [15.0, 15.0]])  # |p| = 20.5 at index 2
+    with pytest.raises(UnreachableError) as caught:
+        workspace.require_reachable(arms.ten, path, what="path point")
+    message = str(caught.value)
+    assert "path point 2 (of 4)" in message
+    assert "(14.5, 14.5)" in message
+    assert f"{np.hypot(14.5, 14.5):.6g} m" in message
+    assert "[0, 20] m" in message
+    assert "nan" not in message.lower()
+
+
+def test_require_reachable_names_the_limits_when_inside_the_reach():
+    path = np.array([[12.5, 12.5], [0.0, 16.0], [-12.0, 12.0]])  # (0, 16): direction 90 deg, fine; (-12, 12) is not
+    with pytest.raises(UnreachableError) as caught:
+        workspace.require_reachable(arms.ten, path, what="path point")
+    message = str(caught.value)
+    assert message.startswith("path point 2 (of 3) at (-12, 12)")
+    assert "outside the joint limits" in message
+    assert workspace.describe_limits(arms.ten) in message
+    numbers = [float(value) for value in re.findall(r"q = \(([-\d.e+]+), ([-\d.e+]+)\) deg", message)[0]]
+    assert numbers[0] > 90.0  # the elbow-down q1 breaks q1 <= 90 deg
+
+
+def test_require_reachable_returns_the_points_when_all_are_inside():
+    points = workspace.circle_points([12.5, 12.5], 2.0, 12)
+    assert np.array_equal(workspace.require_reachable(arms.ten, points), points)
+
+
+# ---------------------------------------------------------------- boundary arcs
+
+
+@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited], ids=["ten", "two_metre_limited"])
+def test_candidate_arcs_are_traced_by_configurations_within_limits(arm):
+    for arc in workspace.candidate_arcs(arm):
+        points = arc.points(50)
+        assert np.all(workspace.is_reachable(arm, points)), arc.label
+
+
+@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited, arms.two_metre], ids=["ten", "two_metre_limited", "two_metre"])
+def test_boundary_arcs_separate_reachable_from_unreachable(arm):
+    arcs = workspace.boundary_arcs(arm)
+    assert arcs
+    probe = 1e-4 * arm.reach[1]
+    for arc in arcs:
+        if arc.radius == 0.0:
+            continue
+        fractions = np.linspace(0.05, 0.95, 19)
+        on_arc = arc.point_at(fractions)
+        outward = (on_arc - np.asarray(arc.centre)) / arc.radius
+        inside = workspace.is_reachable(arm, on_arc - probe * outward)
+        outside = workspace.is_reachable(arm, on_arc + probe * outward)
+        assert np.all(inside != outside), arc.label
+
+
+@settings(max_examples=60)
+@given(arm=limited_arms(), elbow=st.sampled_from([None, "down", "up"]))
+def test_boundary_arcs_and_clearance_of_random_limited_arms(arm, elbow):
+    """No boundary arc runs through the inside, and the sign of clearance is reachability."""
+    arcs = workspace.boundary_arcs(arm, elbow=elbow)
+    if not arcs:  # one branch may reach nothing within the limits: then no configuration is on it
+        _, q = workspace.sample_reachable(arm, 500)
+        assert elbow is not None and np.all(np.sin(q[:, 1]) * (1 if elbow == "down" else -1) <= 1e-6)
+        assert np.all(workspace.clearance(arm, [[0.0, 0.0], [1.0, 1.0]], arcs, elbow=elbow) == -np.inf)
+        return
+    assert arcs
+    probe = 1e-4 * arm.reach[1]
+    directions = np.linspace(0, 2 * np.pi, 256, endpoint=False)
+    ring = probe * np.c_[np.cos(directions), np.sin(directions)]
+    for arc in arcs:
+        on_arc = arc.point_at(np.linspace(0.1, 0.9, 9))
+        assert np.all(workspace.is_reachable(arm, on_arc, elbow=elbow)), arc
+        assert not np.any(workspace.is_reachable(arm, on_arc[:, None, :] + ring, elbow=elbow).all(axis=1)), arc
+    rng = np.random.default_rng(0)
+    p = rng.uniform(-1.1, 1.1, (2000, 2)) * arm.reach[1]
+    room = workspace.clearance(arm, p, arcs, elbow=elbow)
+    disagree = (room > 0) != workspace.is_reachable(arm, p, elbow=elbow)
+    assert np.all(np.abs(room[disagree]) < 1e-6 * arm.reach[1])
+
+
+def test_boundary_of_the_ten_arm_is_the_expected_five_arcs():
+    arcs = {arc.label: arc for arc in workspace.boundary_arcs(arms.ten)}
+    assert set(arcs) == {"q1 = 0 deg", "q1 = 90 deg", "q2 = -90 deg", "q2 = 90 deg", "q2 = 0 deg (full stretch)"}
+    assert arcs["q2 = 0 deg (full stretch)"].radius == pytest.approx(20.0)
+    assert arcs["q2 = 90 deg"].radius == pytest.approx(10 * np.sqrt(2))
+    # q1 = 0: only the half with q2 <= 0 (elbow up, tip below the x-axis) is on the boundary
+    assert np.all(arcs["q1 = 0 deg"].points(10)[:, 1] <= 1e-9)
+    for arc in arcs.values():
+        assert abs(arc.sweep) == pytest.approx(np.pi / 2)
+
+
+# ---------------------------------------------------------------- clearance and the largest circle
+
+
+@given(fraction=unit, heading=st.floats(0.0, np.pi / 2))
+def test_clearance_is_the_radius_of_the_largest_circle_about_a_point(fraction, heading):
+    arm = arms.ten
+    arcs = workspace.boundary_arcs(arm)
+    radius = 10 * np.sqrt(2) + 1e-3 + fraction * (20 - 10 * np.sqrt(2) - 2e-3)
+    p = radius * np.array([np.cos(heading), np.sin(heading)])
+    room = float(workspace.clearance(arm, p, arcs))
+    assert room > 0
+    around = np.linspace(0.0, 2 * np.pi, 4000, endpoint=False)
+    ring = np.c_[np.cos(around), np.sin(around)]
+    assert np.all(workspace.is_reachable(arm, p + room * (1 - 1e-6) * ring))
+    assert not np.all(workspace.is_reachable(arm, p + room * (1 + 1e-3) * ring))
+
+
+def test_clearance_is_negative_outside():
+    assert workspace.clearance(arms.ten, [0.0, 0.0]) == pytest.approx(-10 * np.sqrt(2))
+    assert workspace.clearance(arms.ten, [25.0, 0.0]) < 0
+
+
+def test_largest_circle_of_the_ten_arm_matches_the_closed_form():
+    # The set lies in the annulus sqrt(a1^2 + a2^2) <= r <= a1 + a2 (|q2| <= 90 deg), whose
+    # widest circle has diameter a1 + a2 - sqrt(a1^2 + a2^2); one fits (direction 45 deg).
+    exact = (20.0 - np.sqrt(10.0**2 + 10.0**2)) / 2.0
+    centre, radius = workspace.largest_inscribed_circle(arms.ten)
+    assert abs(radius - exact) <= 1e-3  # the issue's requirement
+    assert abs(radius - exact) <= 1e-9 * arms.ten.reach[1]  # the docstring's claim
+    assert np.hypot(*centre) == pytest.approx(20.0 - exact, abs=1e-6)
+    on_circle = workspace.circle_points(centre, radius * (1 - 1e-9), 720)
+    assert np.all(workspace.is_reachable(arms.ten, on_circle))
+
+
+def test_largest_circle_of_the_limited_two_metre_arm_matches_its_closed_form():
+    # Symmetric about the y-axis: centre (0, 4 - rho) touching the outer arc r = 4 and, outside,
+    # the circle of radius 2 about the elbow 2 (cos 35, sin 35): rho = 4 (1 - s) / (3 - s), s = sin 35 deg.
+    s = np.sin(np.radians(35.0))
+    exact = 4 * (1 - s) / (3 - s)
+    centre, radius = workspace.largest_inscribed_circle(arms.two_metre_limited)
+    assert abs(radius - exact) <= 1e-9 * 4.0
+    assert np.allclose(centre, [0.0, 4.0 - exact], atol=1e-6)
+
+
+def test_largest_circle_of_an_arm_without_limits_is_the_reach_disc_or_band():
+    centre, radius = workspace.largest_inscribed_circle(arms.two_metre)
+    assert radius == pytest.approx(4.0, abs=1e-8) and np.allclose(centre, 0.0, atol=1e-6)
+    centre, radius = workspace.largest_inscribed_circle(TwoLinkArm(3.0, 1.0))
+    assert radius == pytest.approx(1.0, abs=1e-8) and np.hypot(*centre) == pytest.approx(3.0, abs=1e-6)
+
+
+# ---------------------------------------------------------------- circle points and arcs
+
+
+@given(
+    x=st.floats(-10, 10), y=st.floats(-10, 10), radius=st.floats(0.01, 10), n=st.integers(1, 40), start=angles
+)
+def test_circle_points_are_equally_spaced_on_the_circle(x, y, radius, n, start):
+    points = workspace.circle_points([x, y], radius, n, start_angle=start)
+    assert points.shape == (n, 2)
+    assert np.allclose(np.hypot(points[:, 0] - x, points[:, 1] - y), radius)
+    if n >= 2:
+        steps = np.hypot(*np.diff(np.vstack([points, points[:1]]), axis=0).T)
+        assert np.allclose(steps, 2 * radius * np.sin(np.pi / n))
+
+
+def test_circle_points_refuses_bad_input():
+    for bad in (dict(radius=0.0, n=5), dict(radius=1.0, n=0), dict(radius=1.0, n=2.5), dict(radius=np.inf, n=3)):
+        with pytest.raises(ValueError):
+            workspace.circle_points([0.0, 0.0], **bad)
+
+
+@given(
+    radius=st.floats(0.1, 5), start=angles, sweep=st.floats(-2 * np.pi, 2 * np.pi), px=st.floats(-8, 8), py=st.floats(-8, 8)
+)
+def test_arc_distance_is_the_distance_to_its_nearest_point(radius, start, sweep, px, py):
+    assume(abs(sweep) > 1e-3)
+    arc = Arc((0.5, -0.3), radius, start, sweep)
+    dense = arc.points(20001)
+    brute = np.min(np.hypot(*(dense - [px, py]).T))
+    exact = float(arc.distance([px, py]))
+    assert exact <= brute + 1e-12
+    assert brute - exact <= radius * abs(sweep) / 20000  # the dense points are this far apart at most
+
+
+@given(
+    ax=st.floats(-3, 3), ay=st.floats(-3, 3), ra=st.floats(0.1, 3), bx=st.floats(-3, 3), by=st.floats(-3, 3), rb=st.floats(0.1, 3)
+)
+def test_circle_intersections_lie_on_both_circles(ax, ay, ra, bx, by, rb):
+    points = circle_intersections((ax, ay), ra, (bx, by), rb)
+    for point in points:
+        assert np.hypot(point[0] - ax, point[1] - ay) == pytest.approx(ra, abs=1e-7)
+        assert np.hypot(point[0] - bx, point[1] - by) == pytest.approx(rb, abs=1e-7)
+    distance = np.hypot(bx - ax, by - ay)
+    if abs(ra - rb) + 1e-6 < distance < ra + rb - 1e-6:
+        assert len(points) == 2
+
+
+def test_arc_split_and_fraction_round_trip():
+    arc = Arc((1.0, 2.0), 3.0, 0.3, -2.0)
+    pieces = arc.split([0.25, 0.5])
+    assert sum(piece.sweep for piece in pieces) == pytest.approx(arc.sweep)
+    assert np.allclose(pieces[1].end_points, arc.point_at(np.array([0.25, 0.5])))
+    assert np.allclose(arc.fraction_of(arc.point_at(np.array([0.0, 0.3, 1.0]))), [0.0, 0.3, 1.0])
+    assert arc.fraction_of(arc.point_at(np.array(1.5)) * 0 + [1.0 + 3.0 * np.cos(1.0), 2.0 + 3.0 * np.sin(1.0)]) == -1.0
+
+
+def test_limit_description_is_in_degrees_and_names_the_convention():
+    assert "relative" in workspace.describe_limits(arms.ten)
+    assert "absolute" in workspace.describe_limits(arms.two_metre_limited)
+    assert workspace.describe_limits(arms.two_metre) == "no joint limits"
+    assert np.allclose(np.degrees(to_absolute(configuration_within(arms.two_metre_limited, [0.0, 1.0]))), [35.0, 145.0])

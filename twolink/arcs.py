@@ -1,0 +1,181 @@
+"""Circular arcs in the plane: the pieces the workspace boundary is made of.
+
+With one joint angle held fixed (at a joint limit, or at a singular value such
+as ``q2 = 0``) and the other swept, the tip of a 2R arm moves on a circle.
+So the boundary of the reachable set is a union of circular arcs, and
+distances to it can be computed exactly instead of from sampled points.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import as_finite_scalar, as_pairs
+
+__all__ = ["Arc", "circle_intersections"]
+
+_TWO_PI = 2.0 * np.pi
+
+
+@dataclass(frozen=True)
+class Arc:
+    """The arc ``centre + radius * (cos a, sin a)`` for ``a`` from ``start`` to ``start + sweep``.
+
+    Parameters
+    ----------
+    centre : pair of float
+        Centre of the circle, metres.
+    radius : float
+        Radius (>= 0; 0 makes the arc a single point), metres.
+    start : float
+        Angle of the first end point about the centre, radians.
+    sweep : float
+        Signed angle swept, radians, ``|sweep| <= 2 pi`` (``2 pi``: a full circle).
+    label : str
+        What traces the arc, e.g. ``"q1 = 0 deg"``.
+    kind : str
+        ``"joint limit"``, ``"singular"`` or ``"reach"``.
+
+    Examples
+    --------
+    >>> quarter = Arc((0.0, 0.0), 2.0, 0.0, np.pi / 2)
+    >>> quarter.points(3).round(12)
+    array([[2.        , 0.        ],
+           [1.41421356, 1.41421356],
+           [0.        , 2.        ]])
+    >>> quarter.distance([[3.0, 0.0], [0.0, 0.0], [-2.0, -1.0]]).round(12)
+    array([1.        , 2.        , 3.60555128])
+    """
+
+    centre: tuple
+    radius: float
+    start: float
+    sweep: float
+    label: str = ""
+    kind: str = ""
+
+    def __post_init__(self):
+        centre = as_pairs(self.centre, "centre")
+        if centre.shape != (2,):
+            raise ValueError(f"centre must be one (x, y) pair; got shape {centre.shape}")
+        object.__setattr__(self, "centre", (float(centre[0]), float(centre[1])))
+        object.__setattr__(self, "radius", as_finite_scalar(self.radius, "radius (m)", minimum=0.0))
+        object.__setattr__(self, "start", as_finite_scalar(self.start, "start (rad)"))
+        sweep = as_finite_scalar(self.sweep, "sweep (rad)")
+        if abs(sweep) > _TWO_PI * (1.0 + 1e-12):
+            raise ValueError(f"sweep must satisfy |sweep| <= 2 pi; got {sweep}")
+        object.__setattr__(self, "sweep", sweep)
+
+    def point_at(self, fraction):
+        """Points at ``fraction`` (0 = start, 1 = end) along the arc, shape ``(..., 2)``."""
+        angle = self.start + self.sweep * np.asarray(fraction, dtype=float)
+        points = np.empty(angle.shape + (2,))
+        points[..., 0] = self.centre[0] + self.radius * np.cos(angle)
+        points[..., 1] = self.centre[1] + self.radius * np.sin(angle)
+        return points
+
+    def points(self, n=100):
+        """``n`` equally spaced points from start to end (both included), shape ``(n, 2)``."""
+        if int(n) < 2:
+            raise ValueError(f"n must be an integer >= 2; got {n!r}")
+        return self.point_at(np.linspace(0.0, 1.0, int(n)))
+
+    @property
+    def end_points(self):
+        """The first and last point, shape ``(2, 2)``."""
+        return self.point_at(np.array([0.0, 1.0]))
+
+    def fraction_of(self, p):
+        """Where points on the arc's circle lie along the arc: fractions in ``[0, 1]``.
+
+        Points off the arc (outside its angular span) get ``-1``, and so does
+        every point for a degenerate arc (radius or sweep 0), which has no
+        inside to cut.
+
+        Examples
+        --------
+        >>> Arc((0.0, 0.0), 1.0, 0.0, np.pi).fraction_of([[0.0, 1.0], [0.0, -1.0]])
+        array([ 0.5, -1. ])
+        """
+        p = as_pairs(p, "p")
+        angle = np.arctan2(p[..., 1] - self.centre[1], p[..., 0] - self.centre[0])
+        span = abs(self.sweep)
+        if span == 0.0 or self.radius == 0.0:
+            return np.full(p.shape[:-1], -1.0)
+        along = np.mod((angle - self.start) * np.sign(self.sweep), _TWO_PI)
+        # within round-off of the start, seen from below (2 pi - tiny): that is the start
+        along = np.where(along > _TWO_PI - 1e-12, 0.0, along)
+        return np.where(along <= span * (1.0 + 1e-12), np.minimum(along / span, 1.0), -1.0)
+
+    def distance(self, p):
+        """Euclidean distance from points ``p`` (..., 2) to the arc, exactly.
+
+        Inside the arc's angular span the nearest point is the radial
+        projection onto the circle; outside it, the nearer end point.
+        """
+        p = as_pairs(p, "p")
+        offset = p - np.asarray(self.centre)
+        from_centre = np.hypot(offset[..., 0], offset[..., 1])
+        if self.radius == 0.0:
+            return from_centre
+        ends = self.end_points
+        to_ends = np.minimum(
+            np.hypot(*np.moveaxis(p - ends[0], -1, 0)),
+            np.hypot(*np.moveaxis(p - ends[1], -1, 0)),
+        )
+        if abs(self.sweep) >= _TWO_PI:
+            return np.abs(from_centre - self.radius)
+        angle = np.arctan2(offset[..., 1], offset[..., 0])
+        along = np.mod((angle - self.start) * np.sign(self.sweep), _TWO_PI)
+        radial = np.abs(from_centre - self.radius)
+        return np.where(along <= abs(self.sweep), radial, to_ends)
+
+    def split(self, fractions):
+        """Cut the arc at the given fractions (0 < f < 1) into consecutive pieces.
+
+        Examples
+        --------
+        >>> pieces = Arc((0.0, 0.0), 1.0, 0.0, np.pi).split([0.5])
+        >>> [round(piece.sweep / np.pi, 12) for piece in pieces]
+        [0.5, 0.5]
+        """
+        cuts = np.unique(np.clip(np.asarray(fractions, dtype=float).ravel(), 0.0, 1.0))
+        cuts = cuts[(cuts > 1e-9) & (cuts < 1.0 - 1e-9)]
+        edges = np.concatenate([[0.0], cuts, [1.0]])
+        return [
+            Arc(self.centre, self.radius, self.start + self.sweep * low, self.sweep * (high - low), self.label, self.kind)
+            for low, high in zip(edges[:-1], edges[1:])
+        ]
+
+
+def circle_intersections(centre_a, radius_a, centre_b, radius_b):
+    """Intersection points of two circles, shape ``(k, 2)`` with k = 0, 1 or 2.
+
+    Concentric circles give no points (identical circles included: the
+    caller decides what overlapping arcs mean).
+
+    Examples
+    --------
+    >>> circle_intersections((0.0, 0.0), 1.0, (1.0, 0.0), 1.0).round(12)
+    array([[ 0.5      , -0.8660254],
+           [ 0.5      ,  0.8660254]])
+    >>> circle_intersections((0.0, 0.0), 1.0, (3.0, 0.0), 1.0).shape
+    (0, 2)
+    """
+    centre_a = np.asarray(centre_a, dtype=float)
+    centre_b = np.asarray(centre_b, dtype=float)
+    between = centre_b - centre_a
+    distance = float(np.hypot(*between))
+    scale = max(radius_a, radius_b, distance, 1e-300)
+    if distance <= 1e-14 * scale:
+        return np.empty((0, 2))
+    if distance > radius_a + radius_b + 1e-12 * scale or distance < abs(radius_a - radius_b) - 1e-12 * scale:
+        return np.empty((0, 2))
+    along = (radius_a**2 - radius_b**2 + distance**2) / (2.0 * distance)
+    height = np.sqrt(max(radius_a**2 - along**2, 0.0))
+    unit = between / distance
+    normal = np.array([-unit[1], unit[0]])
+    foot = centre_a + along * unit
+    if height <= 1e-12 * scale:
+        return foot[None, :]
+    return np.array([foot - height * normal, foot + height * normal])

@@ -1,0 +1,467 @@
+"""Cartesian paths with a time law, and the joint motions that follow them.
+
+A path says where the tip should be at each instant: :class:`LinePath` (a
+straight segment) and :class:`CirclePath`, both run through a time law
+(:func:`time_scaling`: constant speed, or cubic / quintic polynomials that
+start and stop smoothly).  Two ways turn a path into joint angles:
+
+- :func:`ik_trajectory`: closed-form IK at every sample, on one elbow branch
+  for the whole path (no branch flips mid-path) with the angles kept
+  continuous (no 2 pi jumps) and within the joint limits;
+- :func:`resolved_rate_trajectory`: integrate the joint rates
+  ``qd = J^-1 (v_ref + gain (p_ref - p))`` (Whitney's resolved-rate control),
+  using :func:`twolink.velocity.joint_rates` or its damped variant.
+
+A path that leaves the workspace raises :class:`twolink.UnreachableError`
+naming the first sample out of reach, never a NaN.
+
+Examples
+--------
+>>> from twolink import arms, trajectory
+>>> line = trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0)
+>>> motion = trajectory.ik_trajectory(arms.two_metre, line, n=50)
+>>> motion.q.shape, bool(motion.tracking_error.max() < 1e-12)
+((50, 2), True)
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ._validate import as_finite_scalar, as_pairs
+from .errors import SingularityError, UnreachableError
+from .kinematics import fk
+from .velocity import joint_rates, joint_rates_dls
+from .workspace import LIMIT_TOL, describe_limits, require_reachable, solutions_within_limits
+
+__all__ = [
+    "TIME_LAWS",
+    "time_scaling",
+    "LinePath",
+    "CirclePath",
+    "JointTrajectory",
+    "ik_trajectory",
+    "resolved_rate_trajectory",
+]
+
+#: The time laws :func:`time_scaling` knows.
+TIME_LAWS = ("linear", "cubic", "quintic")
+
+_BRANCHES = ("down", "up")
+
+
+def time_scaling(t, duration, law="quintic"):
+    """Progress ``s(t)`` from 0 to 1 over ``[0, duration]``, and its rate ``ds/dt``.
+
+    With ``tau = t / duration`` (clipped to [0, 1]):
+
+    - ``"linear"``: ``s = tau``, constant speed (the speed jumps at both ends);
+    - ``"cubic"``: ``s = 3 tau^2 - 2 tau^3``, zero speed at both ends;
+    - ``"quintic"``: ``s = 10 tau^3 - 15 tau^4 + 6 tau^5``, zero speed and
+      zero acceleration at both ends.
+
+    Parameters
+    ----------
+    t : array_like
+        Times in seconds.
+    duration : float
+        Seconds (> 0).
+    law : {"linear", "cubic", "quintic"}
+
+    Returns
+    -------
+    s, s_dot : numpy.ndarray
+        Same shape as ``t``; ``s_dot`` in 1/s (0 outside the interval).
+
+    Examples
+    --------
+    >>> s, s_dot = time_scaling([0.0, 1.0, 2.0], 2.0, "cubic")
+    >>> s, s_dot
+    (array([0. , 0.5, 1. ]), array([0.  , 0.75, 0.  ]))
+    """
+    duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
+    if law not in TIME_LAWS:
+        raise ValueError(f"law must be one of {TIME_LAWS}; got {law!r}")
+    t = np.asarray(t, dtype=float)
+    if not np.all(np.isfinite(t)):
+        raise ValueError("t must be finite times in seconds")
+    tau = np.clip(t / duration, 0.0, 1.0)
+    inside = (t >= 0.0) & (t <= duration)
+    if law == "linear":
+        s, ds = tau, np.ones_like(tau)
+    elif law == "cubic":
+        s, ds = tau * tau * (3.0 - 2.0 * tau), 6.0 * tau * (1.0 - tau)
+    else:
+        s = tau**3 * (10.0 - 15.0 * tau + 6.0 * tau * tau)
+        ds = 30.0 * tau * tau * (1.0 - tau) ** 2
+    return s, np.where(inside, ds / duration, 0.0)
+
+
+def _point(value, name):
+    point = as_pairs(value, name)
+    if point.shape != (2,):
+        raise ValueError(f"{name} must be one (x, y) pair in metres; got shape {point.shape}")
+    return point
+
+
+def _sample_times(duration, n):
+    if isinstance(n, bool) or int(n) != n or int(n) < 2:
+        raise ValueError(f"n must be an integer >= 2 (samples, both ends included); got {n!r}")
+    return np.linspace(0.0, duration, int(n))
+
+
+@dataclass(frozen=True)
+class LinePath:
+    """The straight segment from ``p_start`` to ``p_end``, travelled in ``duration`` seconds.
+
+    Parameters
+    ----------
+    p_start, p_end : pair of float
+        End points, metres.
+    duration : float
+        Seconds (> 0).
+    law : {"linear", "cubic", "quintic"}
+        Time law (:func:`time_scaling`).
+
+    Examples
+    --------
+    >>> line = LinePath([0.0, 0.0], [3.0, 4.0], duration=2.0, law="linear")
+    >>> line.length
+    5.0
+    >>> p, v = line.at(1.0)
+    >>> p, v
+    (array([1.5, 2. ]), array([1.5, 2. ]))
+    """
+
+    p_start: tuple
+    p_end: tuple
+    duration: float
+    law: str = "quintic"
+
+    def __post_init__(self):
+        object.__setattr__(self, "p_start", tuple(_point(self.p_start, "p_start")))
+        object.__setattr__(self, "p_end", tuple(_point(self.p_end, "p_end")))
+        object.__setattr__(
+            self, "duration", as_finite_scalar(self.duration, "duration (s)", minimum=0.0, strictly=True)
+        )
+        time_scaling(0.0, self.duration, self.law)  # checks the law's name
+
+    @property
+    def length(self):
+        """Length of the segment, metres."""
+        return float(np.hypot(self.p_end[0] - self.p_start[0], self.p_end[1] - self.p_start[1]))
+
+    def at(self, t):
+        """Tip position and velocity at times ``t``: two arrays of shape ``t.shape + (2,)``."""
+        s, s_dot = time_scaling(t, self.duration, self.law)
+        start, chord = np.asarray(self.p_start), np.subtract(self.p_end, self.p_start)
+        return start + np.multiply.outer(s, chord), np.multiply.outer(s_dot, chord)
+
+    def sample(self, n=50):
+        """``n`` evenly spaced instants over ``[0, duration]`` (both ends): ``(t, p, v)``."""
+        t = _sample_times(self.duration, n)
+        return (t, *self.at(t))
+
+
+@dataclass(frozen=True)
+class CirclePath:
+    """``turns`` times round a circle, counter-clockwise from ``start_angle``, in ``duration`` seconds.
+
+    Parameters
+    ----------
+    centre : pair of float
+        Centre, metres.
+    radius : float
+        Radius (> 0), metres.
+    duration : float
+        Seconds (> 0).
+    law : {"linear", "cubic", "quintic"}
+        Time law (:func:`time_scaling`).
+    start_angle : float
+        Angle of the first point about the centre, radians.
+    turns : float
+        How far round (negative: clockwise); 1 is a closed circle.
+
+    Examples
+    --------
+    >>> circle = CirclePath([12.5, 12.5], 2.0, duration=4.0, law="linear")
+    >>> p, v = circle.at(1.0)   # a quarter of the way round
+    >>> p.round(12), (v * 2 / np.pi).round(12)
+    (array([12.5, 14.5]), array([-1.,  0.]))
+    """
+
+    centre: tuple
+    radius: float
+    duration: float
+    law: str = "quintic"
+    start_angle: float = 0.0
+    turns: float = 1.0
+
+    def __post_init__(self):
+        object.__setattr__(self, "centre", tuple(_point(self.centre, "centre")))
+        object.__setattr__(self, "radius", as_finite_scalar(self.radius, "radius (m)", minimum=0.0, strictly=True))
+        object.__setattr__(
+            self, "duration", as_finite_scalar(self.duration, "duration (s)", minimum=0.0, strictly=True)
+        )
+        object.__setattr__(self, "start_angle", as_finite_scalar(self.start_angle, "start_angle (rad)"))
+        turns = as_finite_scalar(self.turns, "turns")
+        if turns == 0.0:
+            raise ValueError("turns must be non-zero (1 is once round, counter-clockwise)")
+        object.__setattr__(self, "turns", turns)
+        time_scaling(0.0, self.duration, self.law)
+
+    @property
+    def length(self):
+        """Length of the path, metres."""
+        return float(2.0 * np.pi * self.radius * abs(self.turns))
+
+    def at(self, t):
+        """Tip position and velocity at times ``t``: two arrays of shape ``t.shape + (2,)``."""
+        s, s_dot = time_scaling(t, self.duration, self.law)
+        sweep = 2.0 * np.pi * self.turns
+        angle = self.start_angle + sweep * s
+        direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+        tangent = np.stack([-np.sin(angle), np.cos(angle)], axis=-1)
+        p = np.asarray(self.centre) + self.radius * direction
+        return p, (self.radius * sweep * s_dot)[..., None] * tangent
+
+    def sample(self, n=50):
+        """``n`` evenly spaced instants over ``[0, duration]`` (both ends): ``(t, p, v)``."""
+        t = _sample_times(self.duration, n)
+        return (t, *self.at(t))
+
+
+@dataclass(frozen=True)
+class JointTrajectory:
+    """A joint motion that follows a Cartesian path, sampled at ``len(t)`` instants.
+
+    Attributes
+    ----------
+    arm : TwoLinkArm
+    t : numpy.ndarray, shape (n,)
+        Times in seconds.
+    q : numpy.ndarray, shape (n, 2)
+        Joint angles in radians (continuous: no 2 pi jumps).
+    qd : numpy.ndarray, shape (n, 2)
+        Joint rates in rad/s.
+    p_ref : numpy.ndarray, shape (n, 2)
+        Where the path wants the tip, metres.
+    elbow : str
+        ``"down"`` or ``"up"``: the branch followed (at the start, for resolved rate).
+    method : str
+        ``"closed form"`` or ``"resolved rate"``.
+    """
+
+    arm: object
+    t: np.ndarray
+    q: np.ndarray
+    qd: np.ndarray
+    p_ref: np.ndarray
+    elbow: str
+    method: str
+
+    @property
+    def p_tip(self):
+        """Where the tip actually is, ``fk(q)``, metres."""
+        return fk(self.arm, self.q)
+
+    @property
+    def tracking_error(self):
+        """``|p_tip - p_ref|`` per sample, metres."""
+        return np.hypot(*(self.p_tip - self.p_ref).T)
+
+    @property
+    def joint_steps(self):
+        """Largest joint change between consecutive samples, ``max_j |q[k+1, j] - q[k, j]|``, shape (n - 1,)."""
+        return np.max(np.abs(np.diff(self.q, axis=0)), axis=-1)
+
+    @property
+    def within_limits(self):
+        """Whether each sample respects the arm's joint limits, shape (n,)."""
+        return self.arm.within_limits(self.q, tol=LIMIT_TOL)
+
+
+def _path_samples(path, n):
+    """``(t, p, v)`` from a path object, or from an (m, 2) array of points (then ``t`` counts samples)."""
+    if hasattr(path, "sample"):
+        return path.sample(n)
+    points = as_pairs(path, "path")
+    if points.ndim != 2 or len(points) < 2:
+        raise ValueError(f"a path of points must have shape (m, 2) with m >= 2; got {points.shape}")
+    t = np.arange(len(points), dtype=float)
+    return t, points, np.gradient(points, t, axis=0)
+
+
+def _choose_branch(arm, points, valid, elbow):
+    """The one branch used for the whole path, or a clear error."""
+    if elbow not in _BRANCHES + ("auto",):
+        raise ValueError(f"elbow must be 'down', 'up' or 'auto'; got {elbow!r}")
+    valid_everywhere = np.all(valid, axis=0)
+    wanted = _BRANCHES if elbow == "auto" else (elbow,)
+    for name in wanted:
+        if valid_everywhere[_BRANCHES.index(name)]:
+            return _BRANCHES.index(name)
+    leaves = []
+    for name in wanted:
+        first = int(np.flatnonzero(~valid[:, _BRANCHES.index(name)])[0])
+        x, y = points[first]
+        leaves.append(f"elbow {name} leaves them at path point {first} ({x:.6g}, {y:.6g})")
+    advice = (
+        "every point is reachable, but not on one branch: split the path, or let it pass through a "
+        "stretched or folded (singular) pose where the branches meet"
+        if elbow == "auto"
+        else "try elbow='auto' or the other branch"
+    )
+    raise UnreachableError(
+        f"no elbow branch stays within the joint limits ({describe_limits(arm)}) along the whole path: "
+        f"{'; '.join(leaves)}; {advice}"
+    )
+
+
+def _continuous(q_branch):
+    """Unwrap each joint along the path (no 2 pi jumps), keeping the first sample as it is."""
+    return np.unwrap(q_branch, axis=0)
+
+
+def ik_trajectory(arm, path, n=50, elbow="auto"):
+    """Joint angles along a path from the closed form, on one elbow branch throughout.
+
+    Each sample is solved in closed form (:func:`twolink.workspace.solutions_within_limits`,
+    both branches), then one branch is kept for every sample, so the elbow never
+    flips mid-path, and the angles are unwrapped so they never jump by ``2 pi``.
+    Joint rates are finite differences of the angles (second order,
+    :func:`numpy.gradient`), which stay finite where the path touches a
+    singular circle.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    path : LinePath, CirclePath or array_like of shape (m, 2)
+        A path object (sampled ``n`` times over its duration), or points in
+        order (then ``t`` is the sample index and ``n`` is ignored).
+    n : int
+        Number of samples, both ends included (>= 2).
+    elbow : {"auto", "down", "up"}
+        The branch.  ``"auto"`` takes elbow down if it stays within the limits
+        along the whole path, else elbow up.
+
+    Returns
+    -------
+    JointTrajectory
+
+    Raises
+    ------
+    twolink.UnreachableError
+        If a sample is outside the workspace (the message names the first one:
+        index, coordinates, distance, reach or limits), or if no single branch
+        (or not the requested one) stays within the limits along the path.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> circle = CirclePath([12.5, 12.5], 2.0, duration=4.0, law="linear")
+    >>> motion = ik_trajectory(arms.ten, circle, n=20)
+    >>> motion.elbow, bool(np.all(motion.within_limits)), bool(motion.joint_steps.max() < 0.2)
+    ('down', True, True)
+    >>> ik_trajectory(arms.ten, LinePath([12.0, 12.0], [16.0, 16.0], duration=1.0, law="linear"), n=5)
+    Traceback (most recent call last):
+    ...
+    twolink.errors.UnreachableError: path point 3 (of 5) at (15, 15) is 21.2132 m from the base, outside the reach [0, 20] m of this arm (l1=10, l2=10)
+    """
+    t, points, _ = _path_samples(path, n)
+    require_reachable(arm, points, what="path point")
+    q_both, valid = solutions_within_limits(arm, points)
+    branch = _choose_branch(arm, points, valid, elbow)
+    q = _continuous(q_both[:, branch, :])
+    if arm.has_limits and not np.all(arm.within_limits(q, tol=LIMIT_TOL)):
+        first = int(np.flatnonzero(~arm.within_limits(q, tol=LIMIT_TOL))[0])
+        raise UnreachableError(
+            f"the elbow-{_BRANCHES[branch]} branch cannot follow the path continuously within the joint limits "
+            f"({describe_limits(arm)}): it would have to wrap round by 360 deg at path point {first}"
+        )
+    qd = np.gradient(q, t, axis=0, edge_order=2) if len(t) > 2 else np.gradient(q, t, axis=0)
+    return JointTrajectory(arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=_BRANCHES[branch], method="closed form")
+
+
+def resolved_rate_trajectory(arm, path, n=50, q_start=None, elbow="auto", gain=10.0, damping=0.0, rtol=1e-8):
+    """Follow a path by resolved-rate control: integrate ``qd = J^-1 (v_ref + gain (p_ref - fk(q)))``.
+
+    The joint rates come from :func:`twolink.velocity.joint_rates` (exact
+    inverse) or, with ``damping > 0``, :func:`twolink.velocity.joint_rates_dls`;
+    the motion is integrated with :func:`scipy.integrate.solve_ivp` and
+    sampled at ``n`` instants.  The position feedback ``gain`` pulls the tip
+    back to the path; without it (``gain=0``) integration errors accumulate.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    path : LinePath or CirclePath
+        Needs ``at(t)`` for the reference position and velocity at any time.
+    n : int
+        Output samples over ``[0, duration]`` (>= 2).
+    q_start : array_like, shape (2,), optional
+        Start configuration, radians; default: the closed form at the path's
+        start on the branch :func:`ik_trajectory` would choose.
+    elbow : {"auto", "down", "up"}
+        Branch for the default start.
+    gain : float
+        Position feedback gain, 1/s (>= 0).
+    damping : float
+        Damped-least-squares damping, m/rad (>= 0); 0 uses the exact inverse.
+    rtol : float
+        Relative tolerance of the integrator.
+
+    Returns
+    -------
+    JointTrajectory
+        ``qd`` holds the commanded rates at the samples.
+
+    Raises
+    ------
+    twolink.UnreachableError
+        If the sampled path leaves the workspace (checked before integrating).
+    twolink.SingularityError
+        If the exact inverse meets a singularity (the message gives the time).
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> line = LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0)
+    >>> motion = resolved_rate_trajectory(arms.two_metre, line, n=50)
+    >>> bool(motion.tracking_error.max() < 1e-6)
+    True
+    """
+    if not hasattr(path, "at"):
+        raise ValueError("resolved_rate_trajectory needs a path object with at(t) (LinePath or CirclePath)")
+    gain = as_finite_scalar(gain, "gain (1/s)", minimum=0.0)
+    damping = as_finite_scalar(damping, "damping (m/rad)", minimum=0.0)
+    rtol = as_finite_scalar(rtol, "rtol", minimum=0.0, strictly=True)
+    t, points, _ = path.sample(n)
+    start_branch = elbow
+    if q_start is None:
+        start = ik_trajectory(arm, points, elbow=elbow)
+        q_start, start_branch = start.q[0], start.elbow
+    else:
+        require_reachable(arm, points, what="path point")
+        q_start = as_pairs(q_start, "q_start")
+        if q_start.shape != (2,):
+            raise ValueError(f"q_start must be one configuration of shape (2,); got {q_start.shape}")
+        start_branch = "down" if np.sin(q_start[1]) >= 0.0 else "up"
+
+    def rates(time, q):
+        p_ref, v_ref = path.at(time)
+        v_command = v_ref + gain * (p_ref - fk(arm, q))
+        if damping > 0.0:
+            return joint_rates_dls(arm, q, v_command, damping)
+        try:
+            return joint_rates(arm, q, v_command)
+        except SingularityError as exc:
+            raise SingularityError(f"resolved rate met a singularity at t = {time:.6g} s: {exc}") from exc
+
+    solution = solve_ivp(rates, (t[0], t[-1]), q_start, t_eval=t, rtol=rtol, atol=rtol * 1e-2)
+    if not solution.success:
+        raise RuntimeError(f"the integration failed: {solution.message}")
+    q = solution.y.T
+    qd = np.array([rates(time, q_now) for time, q_now in zip(t, q)])
+    return JointTrajectory(arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=start_branch, method="resolved rate")

@@ -1,0 +1,337 @@
+"""Velocity kinematics of the planar 2R arm: tip velocity, joint rates, manipulability, ellipses.
+
+``v_tip = J(q) qd`` maps joint rates (rad/s) to the tip's linear velocity
+(m/s).  Inverting it gives the joint rates for a wanted tip velocity, which
+fails at the singular configurations ``sin q2 = 0`` (arm stretched or folded,
+``det J = l1 l2 sin q2 = 0``).  Functions here take the arm (anything with
+``l1`` and ``l2``) and are vectorised over leading axes like
+:mod:`twolink.kinematics`.
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ._validate import as_finite_scalar, as_pairs
+from .errors import SingularityError
+from .kinematics import fk, jacobian
+
+__all__ = [
+    "SINGULARITY_TOL",
+    "tip_velocity",
+    "joint_rates",
+    "joint_rates_dls",
+    "manipulability",
+    "Ellipse",
+    "velocity_ellipse",
+    "force_ellipse",
+]
+
+#: Default tolerance of :func:`joint_rates` on ``|sin q2|``: closer to a
+#: singularity than this, the exact inverse is refused.
+SINGULARITY_TOL = 1e-6
+
+
+def _broadcast_pairs(q, other, other_name):
+    q = as_pairs(q, "q")
+    other = as_pairs(other, other_name)
+    try:
+        shape = np.broadcast_shapes(q.shape, other.shape)
+    except ValueError as exc:
+        raise ValueError(f"q of shape {q.shape} and {other_name} of shape {other.shape} do not broadcast") from exc
+    return np.broadcast_to(q, shape), np.broadcast_to(other, shape)
+
+
+def tip_velocity(arm, q, qd):
+    """Linear velocity of the tip, ``v_tip = J(q) qd``.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+    qd : array_like, shape (..., 2)
+        Joint rates in rad/s (broadcast against ``q``).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        ``(xdot, ydot)`` in m/s.
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> TwoLinkArm(1.0, 1.0).tip_velocity([0.0, np.pi / 2], [1.0, 0.0]).round(12)
+    array([-1.,  1.])
+    """
+    q, qd = _broadcast_pairs(q, qd, "qd")
+    return np.einsum("...ij,...j->...i", jacobian(arm, q), qd)
+
+
+def _sin_q2(q):
+    return np.sin(q[..., 1])
+
+
+def joint_rates(arm, q, v_tip, tol=SINGULARITY_TOL):
+    """Joint rates that give the tip velocity ``v_tip``: ``qd = J(q)^-1 v_tip``.
+
+    Solved with :func:`numpy.linalg.solve`, refusing configurations within
+    ``tol`` of a singularity, where the rates grow like ``1 / sin q2``.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+    v_tip : array_like, shape (..., 2)
+        Wanted tip velocity ``(xdot, ydot)`` in m/s (broadcast against ``q``).
+    tol : float
+        Smallest accepted ``|sin q2| = |det J| / (l1 l2)`` (dimensionless, >= 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        Joint rates in rad/s.
+
+    Raises
+    ------
+    twolink.SingularityError
+        If ``|sin q2| <= tol`` anywhere; the message gives the configuration,
+        ``|sin q2|``, ``|det J|`` and the tolerance.  Use
+        :func:`joint_rates_dls` there.
+    ValueError
+        For NaN/inf input, wrong shapes or a negative ``tol``.
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> arm = TwoLinkArm(1.0, 1.0)
+    >>> arm.joint_rates([0.0, np.pi / 2], [-1.0, 1.0]).round(12) + 0.0
+    array([1., 0.])
+    >>> arm.joint_rates([0.3, 0.0], [0.0, 1.0])
+    Traceback (most recent call last):
+    ...
+    twolink.errors.SingularityError: q = (0.3, 0) rad is singular: |sin q2| = 0 <= tol = 1e-06 (|det J| = 0 m^2, the arm is stretched or folded); the joint rates are unbounded there: use joint_rates_dls
+    """
+    q, v_tip = _broadcast_pairs(q, v_tip, "v_tip")
+    tol = as_finite_scalar(tol, "tol (smallest |sin q2|)", minimum=0.0)
+    distance = np.abs(_sin_q2(q))
+    near = distance <= tol
+    if np.any(near):
+        index = tuple(int(i) for i in np.argwhere(near)[0]) if near.ndim else ()
+        q_bad = q[index]
+        where = f" (index {index}, first of {int(np.count_nonzero(near))})" if near.ndim else ""
+        raise SingularityError(
+            f"q = ({q_bad[0]:.6g}, {q_bad[1]:.6g}) rad{where} is singular: |sin q2| = "
+            f"{distance[index]:.3g} <= tol = {tol:.3g} (|det J| = {arm.l1 * arm.l2 * distance[index]:.3g} m^2, "
+            "the arm is stretched or folded); the joint rates are unbounded there: use joint_rates_dls"
+        )
+    return np.linalg.solve(jacobian(arm, q), v_tip[..., None])[..., 0]
+
+
+def joint_rates_dls(arm, q, v_tip, damping):
+    """Damped-least-squares joint rates ``qd = J^T (J J^T + damping^2 I)^-1 v_tip``.
+
+    The rates minimise ``|J qd - v_tip|^2 + damping^2 |qd|^2``: they stay
+    bounded (at most ``|v_tip| / (2 damping)``) at and near singularities,
+    at the price of a tip velocity error there.  Far from singularities
+    (every singular value of ``J`` much larger than ``damping``) they tend to
+    the exact :func:`joint_rates`.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+    v_tip : array_like, shape (..., 2)
+        Wanted tip velocity in m/s (broadcast against ``q``).
+    damping : float
+        Damping ``lambda`` in metres per radian (the units of ``J``), >= 0.
+        ``0`` means no damping: the exact inverse, which raises
+        :class:`twolink.SingularityError` at a singularity (see
+        :func:`joint_rates`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        Joint rates in rad/s.
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> arm = TwoLinkArm(1.0, 1.0)
+    >>> qd = arm.joint_rates_dls([0.3, 0.0], [0.0, 1.0], damping=0.1)
+    >>> bool(np.all(np.isfinite(qd))), bool(np.linalg.norm(qd) <= 1.0 / (2 * 0.1))
+    (True, True)
+    >>> np.allclose(arm.joint_rates_dls([0.3, 1.0], [0.0, 1.0], damping=1e-9),
+    ...             arm.joint_rates([0.3, 1.0], [0.0, 1.0]))
+    True
+    """
+    damping = as_finite_scalar(damping, "damping (m/rad)", minimum=0.0)
+    if damping == 0.0:
+        return joint_rates(arm, q, v_tip)
+    q, v_tip = _broadcast_pairs(q, v_tip, "v_tip")
+    J = jacobian(arm, q)
+    J_JT = J @ np.swapaxes(J, -1, -2)
+    J_JT[..., 0, 0] += damping**2
+    J_JT[..., 1, 1] += damping**2
+    weights = np.linalg.solve(J_JT, v_tip[..., None])
+    return (np.swapaxes(J, -1, -2) @ weights)[..., 0]
+
+
+def manipulability(arm, q):
+    """Yoshikawa's manipulability ``w = sqrt(det(J J^T)) = |l1 l2 sin q2|``.
+
+    The area of the velocity ellipse divided by pi: zero at singularities,
+    largest (``l1 l2``) with the links at right angles.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+        In m^2 (per rad^2).
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> TwoLinkArm(2.0, 1.5).manipulability([[0.4, np.pi / 2], [0.4, 0.0]])
+    array([3., 0.])
+    """
+    q = as_pairs(q, "q")
+    return np.abs(arm.l1 * arm.l2 * _sin_q2(q))
+
+
+@dataclass(frozen=True)
+class Ellipse:
+    """An ellipse (or a batch of them) ready to draw.
+
+    Attributes
+    ----------
+    center : numpy.ndarray, shape (..., 2)
+        Centre, usually the tip position (m).
+    semi_axes : numpy.ndarray, shape (..., 2)
+        Semi-axis lengths, largest first (``inf`` for an unbounded axis).
+    directions : numpy.ndarray, shape (..., 2, 2)
+        Unit vectors of the axes as columns: ``directions[..., :, k]`` goes
+        with ``semi_axes[..., k]``.
+    """
+
+    center: np.ndarray
+    semi_axes: np.ndarray
+    directions: np.ndarray
+
+    @property
+    def angle(self):
+        """Angle of the major axis from the x-axis, radians in ``(-pi/2, pi/2]``."""
+        major = self.directions[..., :, 0]
+        angle = np.arctan2(major[..., 1], major[..., 0])
+        return np.where(angle <= -np.pi / 2, angle + np.pi, np.where(angle > np.pi / 2, angle - np.pi, angle))
+
+    def points(self, n=64, scale=1.0, clip=None):
+        """Points on the boundary, ``(..., n, 2)``, for ``ax.plot`` or ``ax.fill``.
+
+        Parameters
+        ----------
+        n : int
+            Number of points (the first is repeated at the end: ``n`` >= 3).
+        scale : float
+            Drawing scale: metres of figure per unit of the ellipse's quantity
+            (e.g. m per (m/s)).
+        clip : float, optional
+            Longest semi-axis drawn, after scaling (for unbounded axes).
+
+        Examples
+        --------
+        >>> circle = Ellipse(np.zeros(2), np.ones(2), np.eye(2))
+        >>> circle.points(n=5).round(12)
+        array([[ 1.,  0.],
+               [ 0.,  1.],
+               [-1.,  0.],
+               [-0., -1.],
+               [ 1., -0.]])
+        """
+        if int(n) < 3:
+            raise ValueError(f"n must be >= 3 boundary points; got {n!r}")
+        scale = as_finite_scalar(scale, "scale", minimum=0.0, strictly=True)
+        lengths = np.asarray(self.semi_axes, dtype=float) * scale
+        if clip is not None:
+            lengths = np.minimum(lengths, as_finite_scalar(clip, "clip", minimum=0.0, strictly=True))
+        elif not np.all(np.isfinite(lengths)):
+            raise ValueError("the ellipse has an unbounded axis (a singular configuration): pass clip=")
+        phase = np.linspace(0.0, 2.0 * np.pi, int(n))
+        unit_circle = np.stack([np.cos(phase), np.sin(phase)], axis=-1)  # (n, 2)
+        local = unit_circle * lengths[..., None, :]  # (..., n, 2)
+        return self.center[..., None, :] + np.einsum("...ij,...nj->...ni", self.directions, local)
+
+
+def _svd(arm, q):
+    q = as_pairs(q, "q")
+    U, singular_values, _ = np.linalg.svd(jacobian(arm, q))
+    return q, U, singular_values
+
+
+def velocity_ellipse(arm, q):
+    """The tip velocities reachable with unit joint speed, ``{J qd : |qd| <= 1}``.
+
+    Semi-axes are the singular values of ``J`` (m/s per rad/s), along the left
+    singular vectors (the eigenvectors of ``J J^T``); centred at the tip.
+    At a singularity the minor axis is zero: the tip cannot move along the
+    arm.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+
+    Returns
+    -------
+    Ellipse
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> ellipse = velocity_ellipse(TwoLinkArm(1.0, 1.0), [0.0, np.pi / 2])
+    >>> ellipse.center.round(12), (ellipse.semi_axes ** 2).round(12)
+    (array([1., 1.]), array([2.618034, 0.381966]))
+    """
+    q, U, singular_values = _svd(arm, q)
+    return Ellipse(center=fk(arm, q), semi_axes=singular_values, directions=U)
+
+
+def force_ellipse(arm, q):
+    """The tip forces that unit joint torque can hold, ``{F : |J^T F| <= 1}``.
+
+    Semi-axes are ``1 / sigma`` (N per N m) for the singular values ``sigma``
+    of ``J``, along the same directions as the velocity ellipse: where the
+    tip moves easily it pushes weakly, and the other way round.  At a
+    singularity the major axis is ``inf``: a force along the stretched (or
+    folded) arm needs no torque at all.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+
+    Returns
+    -------
+    Ellipse
+        ``semi_axes`` largest first (``inf`` where ``J`` is exactly singular).
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> ellipse = force_ellipse(TwoLinkArm(1.0, 1.0), [0.0, np.pi / 2])
+    >>> (1 / ellipse.semi_axes ** 2).round(12)
+    array([0.381966, 2.618034])
+    """
+    q, U, singular_values = _svd(arm, q)
+    inverse = np.full_like(singular_values, np.inf)
+    np.divide(1.0, singular_values, out=inverse, where=singular_values > 0.0)
+    return Ellipse(center=fk(arm, q), semi_axes=inverse[..., ::-1], directions=U[..., :, ::-1])

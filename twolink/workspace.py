@@ -1,0 +1,617 @@
+"""The workspace: which tip positions an arm reaches within its joint limits.
+
+Without limits a 2R arm reaches the annulus ``|l1 - l2| <= |p| <= l1 + l2``.
+Joint limits cut that down.  The module answers, for either limit convention
+of :class:`~twolink.TwoLinkArm` (``limits="relative"`` bounds ``(q1, q2)``,
+``limits="absolute"`` bounds the link angles ``(q1, q1 + q2)``):
+
+- :func:`is_reachable`: is a point reached by a configuration within limits?
+- :func:`sample_reachable`: random configurations within limits and their tips.
+- :func:`candidate_arcs` / :func:`boundary_arcs`: the boundary as exact arcs
+  (one joint at a limit or at a singular value, the other swept).
+- :func:`clearance` and :func:`largest_inscribed_circle`: how much room there is.
+- :func:`circle_points`: equally spaced targets on a circle.
+- :func:`require_reachable`: the same test, raising a clear error naming the
+  first point that is out of the workspace.
+
+Examples
+--------
+>>> from twolink import arms, workspace
+>>> workspace.is_reachable(arms.ten, [[12.5, 12.5], [5.0, -15.0], [0.0, 0.0]])
+array([ True, False, False])
+"""
+
+import numpy as np
+import scipy.optimize
+
+from ._validate import as_finite_scalar, as_pairs
+from .arcs import Arc, circle_intersections
+from .conventions import to_absolute, to_relative, wrap_angle
+from .errors import UnreachableError
+from .ik.analytic import closed_form
+from .ik.targets import REACH_RTOL
+
+__all__ = [
+    "LIMIT_TOL",
+    "is_reachable",
+    "solutions_within_limits",
+    "require_reachable",
+    "describe_limits",
+    "sample_reachable",
+    "candidate_arcs",
+    "boundary_arcs",
+    "clearance",
+    "largest_inscribed_circle",
+    "circle_points",
+]
+
+#: Slack (radians) with which a configuration on a joint limit counts as inside.
+#: At a stretched or folded pose the tip pins the angles down only to about
+#: the square root of machine epsilon (1.5e-8 rad), so a point traced by a
+#: configuration on a limit needs this much slack to be recognised.
+LIMIT_TOL = 1e-7
+
+_TWO_PI = 2.0 * np.pi
+
+
+def describe_limits(arm):
+    """The joint limits in words and degrees, for messages and tables.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> describe_limits(arms.ten)
+    'q1 in [0, 90] deg, q2 in [-90, 90] deg (relative joint angles)'
+    >>> describe_limits(arms.two_metre_limited)
+    'link 1 angle q1 in [35, 145] deg, link 2 angle q1 + q2 in [35, 145] deg (absolute angles from the x-axis)'
+    """
+    if not arm.has_limits:
+        return "no joint limits"
+    low, high = np.degrees(arm.q_min), np.degrees(arm.q_max)
+    if arm.limits == "relative":
+        return (
+            f"q1 in [{low[0]:.6g}, {high[0]:.6g}] deg, q2 in [{low[1]:.6g}, {high[1]:.6g}] deg "
+            "(relative joint angles)"
+        )
+    return (
+        f"link 1 angle q1 in [{low[0]:.6g}, {high[0]:.6g}] deg, link 2 angle q1 + q2 in "
+        f"[{low[1]:.6g}, {high[1]:.6g}] deg (absolute angles from the x-axis)"
+    )
+
+
+def _shift_into_range(angles, low, high, tol):
+    """Each angle moved by a multiple of 2 pi to its representative in ``[low - tol, low - tol + 2 pi)``."""
+    shifted = np.mod(angles - low + tol, _TWO_PI)
+    shifted += low - tol
+    return shifted, shifted <= high + tol
+
+
+def solutions_within_limits(arm, p, tol=LIMIT_TOL):
+    """Both closed-form IK branches at each point, moved into the limits where possible.
+
+    Each joint angle is shifted by a multiple of ``2 pi`` (the same physical
+    configuration) into the limit interval when it can be; absolute limits are
+    applied to the link angles ``(q1, q1 + q2)``.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    p : array_like, shape (..., 2)
+        Tip positions, metres.
+    tol : float
+        Slack in radians at each limit.
+
+    Returns
+    -------
+    q_both : numpy.ndarray, shape (..., 2, 2)
+        ``[..., 0, :]`` the elbow-down branch (``q2 >= 0`` before shifting),
+        ``[..., 1, :]`` elbow-up.  For points outside the reach annulus these
+        are the angles of the nearest point of the annulus (never NaN): read
+        ``valid`` before using them.
+    valid : numpy.ndarray of bool, shape (..., 2)
+        Whether each branch reaches the point within the limits.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> q_both, valid = solutions_within_limits(arms.ten, [10.0, 10.0])
+    >>> np.degrees(q_both).round(6), valid
+    (array([[  0.,  90.],
+           [ 90., -90.]]), array([ True,  True]))
+    >>> solutions_within_limits(arms.ten, [5.0, -15.0])[1]
+    array([False, False])
+    """
+    p = as_pairs(p, "p")
+    tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
+    r_min, r_max = arm.reach
+    slack = REACH_RTOL * r_max
+    distance = np.hypot(p[..., 0], p[..., 1])
+    in_reach = (distance <= r_max + slack) & (distance >= r_min - slack)
+    # Project points outside the annulus onto it so the closed form never raises.
+    safe = np.where(distance > 0.0, distance, 1.0)
+    direction = np.where(distance[..., None] > 0.0, p / safe[..., None], np.array([1.0, 0.0]))
+    p_projected = np.where(in_reach[..., None], p, direction * np.clip(distance, r_min, r_max)[..., None])
+    q_both = closed_form(arm, p_projected, elbow="both")
+    valid = np.broadcast_to(in_reach[..., None], q_both.shape[:-1]).copy()
+    if not arm.has_limits:
+        return q_both, valid
+    low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)
+    if arm.limits == "relative":
+        q_both, inside = _shift_into_range(q_both, low, high, tol)
+    else:
+        q_abs, inside = _shift_into_range(to_absolute(q_both), low, high, tol)
+        q_both = to_relative(q_abs)
+    valid &= np.all(inside, axis=-1)
+    return q_both, valid
+
+
+def is_reachable(arm, p, tol=LIMIT_TOL, elbow=None):
+    """Whether a configuration within the joint limits puts the tip at ``p``.
+
+    Vectorised: solves both closed-form branches at every point and checks
+    them against the limits in the arm's convention (angles compared modulo
+    ``2 pi``).  Points outside the reach annulus are unreachable whatever the
+    limits.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    p : array_like, shape (..., 2)
+        Tip positions, metres.
+    tol : float
+        Slack in radians at each limit (a point on the boundary counts as inside).
+    elbow : {None, "down", "up"}
+        ``None``: either branch will do.  ``"down"`` / ``"up"``: only that
+        branch counts (the workspace of a motion that must not flip its elbow).
+
+    Returns
+    -------
+    numpy.ndarray of bool, shape (...)
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> is_reachable(arms.two_metre_limited, [[0.0, 3.0], [0.0, 2.0], [3.0, 0.0]])
+    array([ True, False, False])
+    >>> is_reachable(arms.two_metre, [[0.0, 0.0], [0.0, 4.5]])
+    array([ True, False])
+    >>> is_reachable(arms.ten, [[15.0, 1.0], [1.0, 15.0]], elbow="down")
+    array([False,  True])
+    """
+    valid = solutions_within_limits(arm, p, tol)[1]
+    if elbow is None:
+        return np.any(valid, axis=-1)
+    return valid[..., _branch_index(elbow)]
+
+
+def _branch_index(elbow):
+    if elbow not in ("down", "up"):
+        raise ValueError(f"elbow must be None (either branch), 'down' or 'up'; got {elbow!r}")
+    return 0 if elbow == "down" else 1
+
+
+def require_reachable(arm, p, what="point", tol=LIMIT_TOL):
+    """Return ``p`` as an array, or raise naming the first point out of the workspace.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    p : array_like, shape (n, 2) or (2,)
+        Points in order (a path), metres.
+    what : str
+        How to call a point in the message, e.g. ``"path point"``.
+    tol : float
+        Slack at the joint limits, radians.
+
+    Raises
+    ------
+    twolink.UnreachableError
+        Naming the first unreachable point: its index, coordinates, distance
+        from the base, and either the reach interval (outside the annulus) or
+        the joint limits with both IK branches in degrees (inside the annulus
+        but outside the limits).
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> require_reachable(arms.ten, [[12.5, 12.5], [20.0, 5.0]], what="path point")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.UnreachableError: path point 1 (of 2) at (20, 5) is 20.6155 m from the base, outside the reach [0, 20] m of this arm (l1=10, l2=10)
+    """
+    p = as_pairs(p, "p")
+    flat = p.reshape(-1, 2)
+    q_both, valid = solutions_within_limits(arm, flat, tol)
+    reachable = np.any(valid, axis=-1)
+    if np.all(reachable):
+        return p
+    index = int(np.flatnonzero(~reachable)[0])
+    x, y = flat[index]
+    distance = float(np.hypot(x, y))
+    r_min, r_max = arm.reach
+    slack = REACH_RTOL * r_max
+    where = f"{what} {index} (of {len(flat)}) at ({x:.6g}, {y:.6g}) is {distance:.6g} m from the base"
+    if distance > r_max + slack or distance < r_min - slack:
+        raise UnreachableError(
+            f"{where}, outside the reach [{r_min:.6g}, {r_max:.6g}] m of this arm (l1={arm.l1:.6g}, l2={arm.l2:.6g})"
+        )
+    # each angle shown as the turn nearest the middle of its limit interval: how far outside it is
+    q_plain = closed_form(arm, flat[index], elbow="both")
+    angles = to_absolute(q_plain) if arm.limits == "absolute" else q_plain
+    middle = (np.asarray(arm.q_min) + np.asarray(arm.q_max)) / 2.0
+    down, up = np.degrees(middle + wrap_angle(angles - middle))
+    needs = "link angles (q1, q1 + q2)" if arm.limits == "absolute" else "q"
+    raise UnreachableError(
+        f"{where}, inside the reach [{r_min:.6g}, {r_max:.6g}] m but outside the joint limits: "
+        f"{describe_limits(arm)}; elbow down needs {needs} = ({down[0]:.4g}, {down[1]:.4g}) deg, "
+        f"elbow up {needs} = ({up[0]:.4g}, {up[1]:.4g}) deg"
+    )
+
+
+def sample_reachable(arm, n=2000, seed=0):
+    """Random configurations within the limits and the tip positions they reach.
+
+    Configurations are uniform over the joint-limit box in the arm's
+    convention (over ``[-pi, pi)^2`` without limits), so the points are
+    denser where the map from joints to tip compresses area (near the
+    singular circles).
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    n : int
+        Number of samples.
+    seed : int
+        Seed of :func:`numpy.random.default_rng`, for reproducible figures.
+
+    Returns
+    -------
+    p : numpy.ndarray, shape (n, 2)
+        Tip positions, metres.
+    q : numpy.ndarray, shape (n, 2)
+        Relative joint angles, radians (within limits).
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> p, q = sample_reachable(arms.ten, n=500)
+    >>> p.shape, bool(np.all(arms.ten.within_limits(q))), bool(np.all(is_reachable(arms.ten, p)))
+    ((500, 2), True, True)
+    """
+    if int(n) < 1:
+        raise ValueError(f"n must be a positive integer; got {n!r}")
+    rng = np.random.default_rng(seed)
+    if arm.has_limits:
+        low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)
+    else:
+        low, high = np.full(2, -np.pi), np.full(2, np.pi)
+    angles = rng.uniform(low, high, size=(int(n), 2))
+    q = to_relative(angles) if arm.has_limits and arm.limits == "absolute" else angles
+    return arm.fk(q), q
+
+
+def _polar_offset(arm, q2):
+    """Radius and polar angle offset of the tip for fixed ``q2``: ``p = r (cos(q1 + psi), sin(q1 + psi))``."""
+    radius = float(np.hypot(arm.l1 + arm.l2 * np.cos(q2), arm.l2 * np.sin(q2)))
+    return radius, float(np.arctan2(arm.l2 * np.sin(q2), arm.l1 + arm.l2 * np.cos(q2)))
+
+
+def _values_in(value, low, high):
+    """``value + 2 pi k`` lying in ``[low, high]``, for the k that give one."""
+    first = np.ceil((low - value) / _TWO_PI - 1e-12)
+    last = np.floor((high - value) / _TWO_PI + 1e-12)
+    return [value + _TWO_PI * k for k in np.arange(first, last + 1)]
+
+
+def _overlaps(low_a, high_a, low_b, high_b):
+    """Intervals where ``[low_a, high_a]`` meets ``[low_b, high_b] + 2 pi k`` (for any k)."""
+    intervals = []
+    for k in range(-2, 3):
+        low = max(low_a, low_b + _TWO_PI * k)
+        high = min(high_a, high_b + _TWO_PI * k)
+        if high > low:  # a single shared angle is a corner, already an end point of the edge arcs
+            intervals.append((low, high))
+    return intervals
+
+
+def _label(name, angle):
+    return f"{name} = {np.degrees(angle):.6g} deg"
+
+
+def candidate_arcs(arm):
+    """Every curve the workspace boundary can be made of, as exact arcs.
+
+    The boundary of the reachable set lies on the images of the edges of the
+    joint-limit box (one joint at a limit, the other swept through its range)
+    and of the singular configurations inside the box (full stretch
+    ``q2 = 0``, full fold ``q2 = pi``), and each of those images is a circular
+    arc.  Parts of some arcs run through the inside of the set (the same
+    points are reached by the other branch); :func:`boundary_arcs` keeps only
+    the parts on the boundary.
+
+    Relative limits: ``q1`` at a limit traces a circle of radius ``l2`` about
+    the elbow; ``q2`` at a limit (or at 0 or pi) traces a circle about the base.
+    Absolute limits: link 1 at a limit traces a circle of radius ``l2`` about
+    the elbow; link 2 at a limit, a circle of radius ``l1`` about the point
+    ``l2 (cos q12, sin q12)``.
+
+    Returns
+    -------
+    list of twolink.arcs.Arc
+        Each labelled with what traces it; ``kind`` is ``"joint limit"`` or ``"singular"``.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> [arc.label for arc in candidate_arcs(arms.ten)]
+    ['q1 = 0 deg', 'q1 = 90 deg', 'q2 = -90 deg', 'q2 = 90 deg', 'q2 = 0 deg (full stretch)']
+    >>> [arc.label for arc in candidate_arcs(arms.two_metre)]
+    ['q2 = 0 deg (full stretch)', 'q2 = 180 deg (full fold)']
+    """
+    l1, l2 = arm.l1, arm.l2
+    origin = (0.0, 0.0)
+    if not arm.has_limits:
+        low, high = np.array([-np.pi, -np.pi]), np.array([np.pi, np.pi])
+        convention = "relative"
+    else:
+        low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)
+        convention = arm.limits
+    span = np.minimum(high - low, _TWO_PI)
+    bounded = high - low < _TWO_PI
+    arcs = []
+    if convention == "relative":
+        if bounded[0]:
+            for q1 in (low[0], high[0]):
+                elbow = (l1 * np.cos(q1), l1 * np.sin(q1))
+                arcs.append(Arc(elbow, l2, q1 + low[1], span[1], _label("q1", q1), "joint limit"))
+        if bounded[1]:
+            for q2 in (low[1], high[1]):
+                radius, offset = _polar_offset(arm, q2)
+                arcs.append(Arc(origin, radius, low[0] + offset, span[0], _label("q2", q2), "joint limit"))
+        for singular, name in ((0.0, "full stretch"), (np.pi, "full fold")):
+            for q2 in _values_in(singular, low[1], high[1])[:1]:
+                radius, offset = _polar_offset(arm, q2)
+                arcs.append(Arc(origin, radius, low[0] + offset, span[0], f"{_label('q2', singular)} ({name})", "singular"))
+        return arcs
+    if bounded[0]:
+        for q1 in (low[0], high[0]):
+            elbow = (l1 * np.cos(q1), l1 * np.sin(q1))
+            arcs.append(Arc(elbow, l2, low[1], span[1], _label("q1", q1), "joint limit"))
+    if bounded[1]:
+        for q12 in (low[1], high[1]):
+            centre = (l2 * np.cos(q12), l2 * np.sin(q12))
+            arcs.append(Arc(centre, l1, low[0], span[0], _label("q1 + q2", q12), "joint limit"))
+    # Full stretch: link angles equal; full fold: link 2 turned back by pi.
+    for shift, name, radius in ((0.0, "full stretch", l1 + l2), (np.pi, "full fold", abs(l1 - l2))):
+        for first, last in _overlaps(low[0], high[0], low[1] - shift, high[1] - shift):
+            offset = 0.0 if (shift == 0.0 or l1 >= l2) else np.pi
+            arcs.append(Arc(origin, radius, first + offset, last - first, f"{_label('q2', shift)} ({name})", "singular"))
+    return arcs
+
+
+def _same_circle(arc_a, arc_b, scale):
+    return (
+        np.hypot(arc_a.centre[0] - arc_b.centre[0], arc_a.centre[1] - arc_b.centre[1]) <= 1e-12 * scale
+        and abs(arc_a.radius - arc_b.radius) <= 1e-12 * scale
+    )
+
+
+def _same_arc(arc_a, arc_b, scale):
+    if not _same_circle(arc_a, arc_b, scale):
+        return False
+    # same end points and same midpoint (two halves of a circle share their end points)
+    points_a = arc_a.point_at(np.array([0.0, 0.5, 1.0]))
+    points_b = arc_b.point_at(np.array([0.0, 0.5, 1.0]))
+    close = 1e-9 * scale
+    return np.abs(points_a - points_b).max() <= close or np.abs(points_a - points_b[::-1]).max() <= close
+
+
+def boundary_arcs(arm, probe=1e-5, elbow=None):
+    """The boundary of the reachable set, as exact arcs.
+
+    Method: every candidate arc (:func:`candidate_arcs`) is cut where it
+    meets another candidate (circle-circle intersections, exact), so each
+    piece lies either wholly on the boundary, wholly inside the set or wholly
+    outside it (possible for one branch only).  A piece is kept when its
+    midpoint is reachable and some point of a small ring around it (radius
+    ``probe * (l1 + l2)``) is not.  Where two arcs touch tangentially (an
+    edge arc meets a singular circle tangentially at a singular pose) their
+    computed crossings are ``sqrt(eps)`` apart; pieces shorter than
+    ``1e-6 (l1 + l2)`` from such cuts are dropped.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    probe : float
+        Ring radius relative to the reach used to tell boundary from inside.
+    elbow : {None, "down", "up"}
+        The workspace of either branch (``None``) or of one branch only; the
+        singular arcs (``q2 = 0``, ``pi``), where the branches meet, bound the latter.
+
+    Returns
+    -------
+    list of twolink.arcs.Arc
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> [arc.label for arc in boundary_arcs(arms.ten)]
+    ['q1 = 0 deg', 'q1 = 90 deg', 'q2 = -90 deg', 'q2 = 90 deg', 'q2 = 0 deg (full stretch)']
+    >>> outer = boundary_arcs(arms.ten)[-1]
+    >>> float(outer.radius), round(float(np.degrees(abs(outer.sweep))), 9)
+    (20.0, 90.0)
+    >>> [arc.label for arc in boundary_arcs(arms.ten, elbow="down")]
+    ['q1 = 0 deg', 'q1 = 90 deg', 'q2 = 90 deg', 'q2 = 0 deg (full stretch)']
+    """
+    scale = arm.reach[1]
+    candidates = candidate_arcs(arm)
+    pieces = []
+    for index, arc in enumerate(candidates):
+        cuts = []
+        for other_index, other in enumerate(candidates):
+            if other_index == index:
+                continue
+            if _same_circle(arc, other, scale):
+                crossings = other.end_points
+            else:
+                crossings = circle_intersections(arc.centre, arc.radius, other.centre, other.radius)
+            if len(crossings):
+                fractions = arc.fraction_of(crossings)
+                cuts.extend(fractions[fractions >= 0.0])
+        pieces.extend(arc.split(cuts))
+    directions = np.linspace(0.0, _TWO_PI, 16, endpoint=False)
+    ring = probe * scale * np.c_[np.cos(directions), np.sin(directions)]
+    midpoints = np.array([piece.point_at(0.5) for piece in pieces])
+    outside = ~is_reachable(arm, midpoints[:, None, :] + ring, elbow=elbow)
+    on_edge = np.any(outside, axis=1) & is_reachable(arm, midpoints, elbow=elbow)
+    kept = []
+    for piece, piece_on_edge in zip(pieces, on_edge):
+        sliver = 0.0 < piece.radius * abs(piece.sweep) < 1e-6 * scale
+        if piece_on_edge and not sliver and not any(_same_arc(piece, other, scale) for other in kept):
+            kept.append(piece)
+    return kept
+
+
+def clearance(arm, p, arcs=None, elbow=None):
+    """Signed distance from points to the edge of the reachable set, metres.
+
+    Positive inside (the radius of the largest circle about ``p`` that fits
+    in the workspace), negative outside, exact: distances to the boundary
+    arcs, not to sampled points.  ``-inf`` everywhere when nothing is
+    reachable (an ``elbow`` branch entirely outside the limits).
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    p : array_like, shape (..., 2)
+    arcs : list of Arc, optional
+        :func:`boundary_arcs` of the arm (same ``elbow``), if already computed.
+    elbow : {None, "down", "up"}
+        Room in the workspace of either branch, or of one branch only.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> clearance(arms.ten, [[12.5, 12.5], [0.0, 0.0]]).round(6)
+    array([  2.32233 , -14.142136])
+    """
+    p = as_pairs(p, "p")
+    arcs = boundary_arcs(arm, elbow=elbow) if arcs is None else arcs
+    if not arcs:  # nothing is reachable (one branch may be entirely outside the limits)
+        return np.full(p.shape[:-1], -np.inf)
+    distance = np.min([arc.distance(p) for arc in arcs], axis=0)
+    return np.where(is_reachable(arm, p, elbow=elbow), distance, -distance)
+
+
+def largest_inscribed_circle(arm, starts=6, seed=0, elbow=None):
+    """The largest circle that fits inside the reachable set: ``(centre, radius)``.
+
+    Method: maximise :func:`clearance` (exact distance to the boundary arcs,
+    negative outside the set) over the centre with
+    :func:`scipy.optimize.minimize` (Nelder-Mead, which needs no gradient:
+    clearance is a minimum of distances and has kinks).  The starts are the
+    ``starts`` sampled reachable points with the most clearance, kept apart so
+    that separate lobes of the workspace are all tried.
+
+    Accuracy: the radius returned is the exact clearance of the centre
+    returned, so the circle always fits; it falls short of the true maximum
+    by the optimiser's tolerance, about ``1e-9 (l1 + l2)`` (checked in the
+    tests against the closed form ``10 - 5 sqrt 2`` for :data:`twolink.arms.ten`).
+    The centre need not be unique: for a workspace whose narrowest part is an
+    annulus band, every centre along the band's mid-circle that keeps the
+    circle inside gives the same radius; one of them is returned.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    starts : int
+        Number of optimiser starts.
+    seed : int
+        Seed for the sampled starting points.
+    elbow : {None, "down", "up"}
+        The largest circle in the workspace of either branch, or of one
+        branch only: a circle the arm can trace without flipping its elbow.
+
+    Returns
+    -------
+    centre : numpy.ndarray, shape (2,)
+    radius : float
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> centre, radius = largest_inscribed_circle(arms.ten)
+    >>> round(radius, 6), round(float(10 - 5 * np.sqrt(2)), 6)
+    (2.928932, 2.928932)
+    >>> round(float(np.hypot(*centre)), 6)  # on the mid-circle of the band 10 sqrt 2 <= r <= 20
+    17.071068
+    """
+    if int(starts) < 1:
+        raise ValueError(f"starts must be a positive integer; got {starts!r}")
+    arcs = boundary_arcs(arm, elbow=elbow)
+    if not arcs:
+        raise ValueError(f"no configuration within the joint limits ({describe_limits(arm)}) has elbow {elbow}")
+    scale = arm.reach[1]
+    samples, _ = sample_reachable(arm, n=4000, seed=seed)
+    room = clearance(arm, samples, arcs, elbow=elbow)
+    chosen = []
+    for index in np.argsort(room)[::-1]:
+        if all(np.hypot(*(samples[index] - samples[other])) > 0.5 * room[index] for other in chosen):
+            chosen.append(index)
+        if len(chosen) == int(starts):
+            break
+
+    def negative_clearance(centre):
+        return -float(clearance(arm, centre, arcs, elbow=elbow))
+
+    best_centre, best_radius = samples[chosen[0]], float(room[chosen[0]])
+    for index in chosen:
+        outcome = scipy.optimize.minimize(
+            negative_clearance,
+            samples[index],
+            method="Nelder-Mead",
+            options={"xatol": 1e-12 * scale, "fatol": 1e-14 * scale, "maxiter": 4000, "maxfev": 8000},
+        )
+        radius = -negative_clearance(outcome.x)
+        if radius > best_radius:
+            best_centre, best_radius = np.asarray(outcome.x, dtype=float), radius
+    return best_centre, best_radius
+
+
+def circle_points(centre, radius, n, start_angle=0.0):
+    """``n`` equally spaced points on a circle, counter-clockwise from ``start_angle``.
+
+    The last point is one step before the first (no repeated point).
+
+    Parameters
+    ----------
+    centre : pair of float
+        Centre, metres.
+    radius : float
+        Radius (> 0), metres.
+    n : int
+        Number of points (>= 1).
+    start_angle : float
+        Angle of the first point about the centre, radians.
+
+    Returns
+    -------
+    numpy.ndarray, shape (n, 2)
+
+    Examples
+    --------
+    >>> circle_points([12.5, 12.5], 2.0, 4).round(12)
+    array([[14.5, 12.5],
+           [12.5, 14.5],
+           [10.5, 12.5],
+           [12.5, 10.5]])
+    """
+    centre = as_pairs(centre, "centre")
+    if centre.shape != (2,):
+        raise ValueError(f"centre must be one (x, y) pair; got shape {centre.shape}")
+    radius = as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True)
+    start_angle = as_finite_scalar(start_angle, "start_angle (rad)")
+    if isinstance(n, bool) or int(n) != n or int(n) < 1:
+        raise ValueError(f"n must be an integer >= 1; got {n!r}")
+    angle = start_angle + _TWO_PI * np.arange(int(n)) / int(n)
+    return centre + radius * np.c_[np.cos(angle), np.sin(angle)]
