@@ -23,6 +23,9 @@ from .statics import Wall, WallContact, wall_contact
 from . import dynamics
 from .simulate import SimulationError, SimulationResult, simulate
 from . import arcs, trajectory, workspace
+from . import contact, controllers, linearization, stiffness
+from .controllers import CartesianSpring, ComputedTorque, Impedance, JointPD, JointReference
+from .linearization import linearize
 
 __version__ = "0.1.0"
 
@@ -47,4 +50,14 @@ __all__ = [
     "arcs",
     "workspace",
     "trajectory",
+    "controllers",
+    "contact",
+    "linearization",
+    "stiffness",
+    "CartesianSpring",
+    "Impedance",
+    "JointPD",
+    "ComputedTorque",
+    "JointReference",
+    "linearize",
 ]

@@ -8,6 +8,7 @@ and plays.  A screenshot per chapter goes to build/screenshots/.
 """
 
 import json
+import urllib.request
 import re
 
 import pytest
@@ -55,6 +56,17 @@ def wait_for_all_cells(page, timeout_ms):
     )
 
 
+def shut_down_kernels(jupyterlab):
+    """Stop every kernel the server runs, so chapters do not pile up kernels."""
+    base = f"{jupyterlab['url']}/api/kernels"
+    headers = {"Authorization": f"token {jupyterlab['token']}"}
+    with urllib.request.urlopen(urllib.request.Request(base, headers=headers), timeout=10) as response:
+        kernels = json.load(response)
+    for kernel in kernels:
+        request = urllib.request.Request(f"{base}/{kernel['id']}", headers=headers, method="DELETE")
+        urllib.request.urlopen(request, timeout=10).close()
+
+
 def figure_source(container):
     images = container.locator("img")
     return images.first.get_attribute("src") if images.count() else None
@@ -63,21 +75,30 @@ def figure_source(container):
 @pytest.mark.browser
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
 def test_chapter_runs_and_plays_in_jupyterlab(jupyterlab, page, path):
-    page.goto(f"{jupyterlab['url']}/lab/tree/{path.name}?token={jupyterlab['token']}")
-    page.wait_for_selector(".jp-NotebookPanel .jp-Cell", timeout=90_000)
+    try:
+        run_chapter(jupyterlab, page, path)
+    finally:
+        shut_down_kernels(jupyterlab)
+
+
+def run_chapter(jupyterlab, page, path):
+    # a workspace of its own, so tabs of earlier chapters are not restored
+    page.goto(f"{jupyterlab['url']}/lab/workspaces/{path.stem}/tree/{path.name}?reset&token={jupyterlab['token']}")
+    panel = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden)")
+    panel.locator(".jp-Cell").first.wait_for(timeout=90_000)
     accept_kernel_dialog(page)
     wait_until_idle(page, 90_000)
     run_all_cells(page)
     wait_for_all_cells(page, 300_000)
     wait_until_idle(page, 300_000)
 
-    errors = page.locator("[data-mime-type='application/vnd.jupyter.error']")
+    errors = panel.locator("[data-mime-type='application/vnd.jupyter.error']")
     assert errors.count() == 0, f"{path.name}: error output: {errors.first.inner_text()[:500]}"
-    stderr = page.locator("[data-mime-type='application/vnd.jupyter.stderr']")
+    stderr = panel.locator("[data-mime-type='application/vnd.jupyter.stderr']")
     assert stderr.count() == 0, f"{path.name}: stderr output: {stderr.first.inner_text()[:500]}"
 
     interactive_count, animation_count = expected_widgets(path)
-    containers = page.locator(".widget-interact")
+    containers = panel.locator(".widget-interact")
     assert containers.count() == interactive_count, f"{path.name}: {containers.count()} interactive widgets rendered, {interactive_count} built"
     moved = []
     for index in range(containers.count()):
@@ -112,7 +133,7 @@ def test_chapter_runs_and_plays_in_jupyterlab(jupyterlab, page, path):
             moved.append(f"{index}:{slider.locator('.widget-label').first.inner_text()}")
     assert len(moved) >= interactive_count
 
-    videos = page.locator(".jp-OutputArea-output video")
+    videos = panel.locator(".jp-OutputArea-output video")
     assert videos.count() >= animation_count, f"{path.name}: {videos.count()} videos, {animation_count} animations built"
     for index in range(videos.count()):
         state = videos.nth(index).evaluate(

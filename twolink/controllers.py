@@ -1,0 +1,580 @@
+"""Controllers for the simulated arm: torque laws ``tau(t, q, qd)`` that plug into :func:`twolink.simulate`.
+
+Each controller is a small frozen object, checked once at construction,
+whose ``__call__(t, q, qd)`` returns the two motor torques (N m):
+
+- :class:`CartesianSpring`: a virtual spring at the tip,
+  ``tau = J^T K (x0 - x)``: the motors make the arm feel as if the tip were
+  tied to the rest point ``x0`` by a spring of stiffness ``K`` (N/m);
+- :class:`Impedance`: the spring plus Cartesian damping ``-D xdot``
+  (N s/m) and, optionally, gravity compensation ``+ g(q)``;
+- :class:`JointPD`: a joint-space PD law ``Kp (q_ref - q) + Kd (qd_ref - qd)``
+  with gravity compensation;
+- :class:`ComputedTorque`: feedback linearisation,
+  ``tau = M(q) (qdd_ref + Kd (qd_ref - qd) + Kp (q_ref - q)) + C(q, qd) qd + g(q)``,
+  which makes the tracking error obey ``e'' + Kd e' + Kp e = 0``.
+
+Joint references (:class:`JointReference`) are callables of time or samples
+interpolated by a cubic spline.  Why ``tau = J^T F`` makes the tip feel a
+force ``F``: by virtual work (chapter 4), motor torques ``J^T F`` do the same
+work as a force ``F`` applied at the tip, so in ``M qdd + C qd + g = tau``
+they act exactly like that force.
+
+Examples
+--------
+>>> from twolink import arms, ik
+>>> spring = CartesianSpring(arms.two_metre, stiffness=600.0, rest_point=[3.0, 1.0])
+>>> q = ik.closed_form(arms.two_metre, [3.0, 0.0])
+>>> spring.force(q).round(9) + 0.0          # tip 1 m below the rest point: pulled up
+array([  0., 600.])
+>>> spring(0.0, q, [0.0, 0.0]).round(6)     # tau = J^T F: x F_y about the shoulder, 1.5 m x F_y about the elbow
+array([1800.,  900.])
+"""
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+
+from ._validate import as_finite_scalar, as_pairs
+from .dynamics import _constants
+
+__all__ = [
+    "gain_matrix",
+    "CartesianSpring",
+    "Impedance",
+    "JointReference",
+    "JointPD",
+    "ComputedTorque",
+]
+
+#: Relative tolerance of the symmetry and positive-semi-definiteness checks
+#: of gain matrices (relative to the largest entry).
+GAIN_RTOL = 1e-9
+
+
+def gain_matrix(value, name):
+    """A stiffness or damping gain as a symmetric positive semi-definite 2x2 matrix.
+
+    Parameters
+    ----------
+    value : float or array_like, shape (2, 2)
+        A scalar ``k >= 0`` (meaning ``k I``, the same in every direction) or
+        a symmetric positive semi-definite 2x2 matrix.
+    name : str
+        What the gain is, with its units, for error messages.
+
+    Returns
+    -------
+    numpy.ndarray, shape (2, 2)
+        A new, read-only array.
+
+    Raises
+    ------
+    ValueError
+        For NaN or infinite entries, a negative scalar, another shape, a
+        matrix that is not symmetric, or one with a negative eigenvalue
+        (a spring that pushes away in some direction).
+
+    Examples
+    --------
+    >>> gain_matrix(600, "stiffness (N/m)")
+    array([[600.,   0.],
+           [  0., 600.]])
+    >>> gain_matrix([[2.0, 1.0], [0.0, 2.0]], "stiffness (N/m)")
+    Traceback (most recent call last):
+    ...
+    ValueError: stiffness (N/m) must be symmetric (K = K^T); got [[2.0, 1.0], [0.0, 2.0]]
+    >>> gain_matrix(-5.0, "stiffness (N/m)")
+    Traceback (most recent call last):
+    ...
+    ValueError: stiffness (N/m) must be >= 0.0; got -5.0
+    """
+    if np.ndim(value) == 0:
+        scalar = as_finite_scalar(value, name, minimum=0.0)
+        matrix = scalar * np.eye(2)
+    else:
+        try:
+            matrix = np.array(value, dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{name} must be a number >= 0 or a 2x2 matrix; got {value!r}") from exc
+        if matrix.shape != (2, 2):
+            raise ValueError(f"{name} must be a number >= 0 or a 2x2 matrix; got shape {matrix.shape}")
+        if not np.all(np.isfinite(matrix)):
+            raise ValueError(f"{name} must have finite entries; got {matrix.tolist()}")
+        scale = float(np.max(np.abs(matrix)))
+        if abs(matrix[0, 1] - matrix[1, 0]) > GAIN_RTOL * scale:
+            raise ValueError(f"{name} must be symmetric (K = K^T); got {matrix.tolist()}")
+        matrix = (matrix + matrix.T) / 2.0
+        smallest = float(np.linalg.eigvalsh(matrix)[0])
+        if smallest < -GAIN_RTOL * scale:
+            raise ValueError(
+                f"{name} must be positive semi-definite (no direction with a negative gain); "
+                f"got {matrix.tolist()} with eigenvalue {smallest:.6g}"
+            )
+    matrix.setflags(write=False)
+    return matrix
+
+
+def _point(value, name):
+    point = as_pairs(value, name)
+    if point.shape != (2,):
+        raise ValueError(f"{name} must be one (x, y) pair in metres; got shape {point.shape}")
+    point = point.copy()
+    point.setflags(write=False)
+    return point
+
+
+def _require_arm(arm, who):
+    if not all(hasattr(arm, attribute) for attribute in ("fk", "jacobian", "mass_matrix", "gravity")):
+        raise ValueError(f"{who} needs a twolink.TwoLinkArm as its arm; got {type(arm).__name__}")
+
+
+def _transpose_times(J, force):
+    """``J^T F`` over leading axes."""
+    return np.einsum("...ki,...k->...i", J, force)
+
+
+@dataclass(frozen=True, eq=False)
+class CartesianSpring:
+    """A virtual spring between the tip and a rest point: ``tau = J(q)^T K (x0 - x)``.
+
+    The force on the tip is ``F = K (x0 - x)``, pulling it towards the rest
+    point ``x0``; the potential energy stored in the spring is
+    ``(x0 - x)^T K (x0 - x) / 2`` and ``tau = -dV/dq``.  Nothing damps it
+    and gravity is not compensated: on the simulated arm it oscillates.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    stiffness : float or array_like, shape (2, 2)
+        ``K`` in N/m: a scalar (the same in every direction) or a symmetric
+        positive semi-definite matrix (see :func:`gain_matrix`).
+    rest_point : array_like, shape (2,)
+        ``x0``, where the spring is relaxed, metres.
+
+    Raises
+    ------
+    ValueError
+        For a bad stiffness (negative, not symmetric, not PSD, NaN) or rest point.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> spring = CartesianSpring(arms.two_metre, 600.0, [3.0, 1.0])
+    >>> float(spring.potential_energy([0.0, 0.0]))   # tip at (4, 0): 600 * 2 / 2
+    600.0
+    >>> CartesianSpring(arms.two_metre, float("nan"), [3.0, 1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: stiffness K (N/m) must be finite; got nan
+    """
+
+    arm: object
+    stiffness: object
+    rest_point: object
+
+    def __post_init__(self):
+        _require_arm(self.arm, type(self).__name__)
+        object.__setattr__(self, "stiffness", gain_matrix(self.stiffness, "stiffness K (N/m)"))
+        object.__setattr__(self, "rest_point", _point(self.rest_point, "rest_point x0"))
+
+    def force(self, q):
+        """The spring's force on the tip, ``K (x0 - x)``, N; ``q`` of shape ``(..., 2)``."""
+        return (self.rest_point - self.arm.fk(q)) @ self.stiffness.T
+
+    def torque(self, q):
+        """The joint torques ``J(q)^T K (x0 - x)``, N m; vectorised over ``q`` ``(..., 2)``."""
+        q = as_pairs(q, "q")
+        return _transpose_times(self.arm.jacobian(q), self.force(q))
+
+    def potential_energy(self, q):
+        """Energy stored in the spring, ``(x0 - x)^T K (x0 - x) / 2``, joules; shape ``(...)``."""
+        stretch = self.rest_point - self.arm.fk(q)
+        return 0.5 * np.einsum("...i,ij,...j->...", stretch, self.stiffness, stretch)
+
+    def __call__(self, t, q, qd):
+        return self.torque(q)
+
+    def _linear_terms(self, t, q):
+        """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``."""
+        return _spring_stiffness(self.arm, q, self.force(q), self.stiffness), np.zeros((2, 2))
+
+
+def _jacobian_derivatives(arm, q):
+    """``dJ/dq1`` and ``dJ/dq2`` (each 2x2) at one configuration ``q``."""
+    q1, q12 = q[0], q[0] + q[1]
+    x2, y2 = arm.l2 * np.cos(q12), arm.l2 * np.sin(q12)
+    x1, y1 = arm.l1 * np.cos(q1), arm.l1 * np.sin(q1)
+    by_q1 = -np.array([[x1 + x2, x2], [y1 + y2, y2]])
+    by_q2 = -np.array([[x2, x2], [y2, y2]])
+    return by_q1, by_q2
+
+
+def _spring_stiffness(arm, q, force, stiffness):
+    """``d(J^T F)/dq`` for ``F = K (x0 - x(q))``: ``sum_k dJ_ki/dq_j F_k - J^T K J``."""
+    J = arm.jacobian(q)
+    by_q1, by_q2 = _jacobian_derivatives(arm, q)
+    geometric = np.column_stack([by_q1.T @ force, by_q2.T @ force])
+    return geometric - J.T @ stiffness @ J
+
+
+@dataclass(frozen=True, eq=False)
+class Impedance:
+    """Impedance control: a tip spring, Cartesian damping and gravity compensation.
+
+    ``tau = J(q)^T (K (x0 - x) - D J(q) qd) [+ g(q)]``: the tip behaves like
+    a mass on a spring ``K`` (N/m) and a damper ``D`` (N s/m) anchored at
+    ``x0``; with ``gravity_compensation`` the motors also carry the arm's
+    weight, so the rest point is where the tip comes to rest.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    stiffness : float or array_like, shape (2, 2)
+        ``K`` in N/m (see :func:`gain_matrix`).
+    damping : float or array_like, shape (2, 2)
+        ``D`` in N s/m, a scalar or a symmetric PSD matrix.
+    rest_point : array_like, shape (2,)
+        ``x0`` in metres.
+    gravity_compensation : bool
+        Add ``arm.gravity(q)`` to the torques (default True).
+
+    Examples
+    --------
+    At the rest point and at rest, the motors only hold the arm's weight:
+
+    >>> from twolink import arms, ik
+    >>> arm = arms.two_metre
+    >>> control = Impedance(arm, stiffness=600.0, damping=50.0, rest_point=[3.0, 1.0])
+    >>> q_rest = ik.closed_form(arm, [3.0, 1.0])
+    >>> bool(np.allclose(control(0.0, q_rest, [0.0, 0.0]), arm.gravity(q_rest)))
+    True
+    >>> Impedance(arm, 600.0, [[10.0, 20.0], [20.0, 10.0]], [3.0, 1.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: damping D (N s/m) must be positive semi-definite (no direction with a negative gain); got [[10.0, 20.0], [20.0, 10.0]] with eigenvalue -10
+    """
+
+    arm: object
+    stiffness: object
+    damping: object
+    rest_point: object
+    gravity_compensation: bool = True
+
+    def __post_init__(self):
+        _require_arm(self.arm, type(self).__name__)
+        object.__setattr__(self, "stiffness", gain_matrix(self.stiffness, "stiffness K (N/m)"))
+        object.__setattr__(self, "damping", gain_matrix(self.damping, "damping D (N s/m)"))
+        object.__setattr__(self, "rest_point", _point(self.rest_point, "rest_point x0"))
+        if not isinstance(self.gravity_compensation, (bool, np.bool_)):
+            raise ValueError(f"gravity_compensation must be True or False; got {self.gravity_compensation!r}")
+
+    @property
+    def spring(self):
+        """The spring part alone, a :class:`CartesianSpring`."""
+        return CartesianSpring(self.arm, self.stiffness, self.rest_point)
+
+    def force(self, q, qd):
+        """The force the controller puts on the tip, ``K (x0 - x) - D xdot``, N."""
+        q = as_pairs(q, "q")
+        tip_velocity = np.einsum("...ij,...j->...i", self.arm.jacobian(q), as_pairs(qd, "qd"))
+        return (self.rest_point - self.arm.fk(q)) @ self.stiffness.T - tip_velocity @ self.damping.T
+
+    def torque(self, q, qd):
+        """The motor torques, N m; vectorised over ``q`` and ``qd`` ``(..., 2)``."""
+        q = as_pairs(q, "q")
+        tau = _transpose_times(self.arm.jacobian(q), self.force(q, qd))
+        if self.gravity_compensation:
+            tau = tau + self.arm.gravity(q)
+        return tau
+
+    def potential_energy(self, q):
+        """Energy stored in the virtual spring, joules (see :meth:`CartesianSpring.potential_energy`)."""
+        return self.spring.potential_energy(q)
+
+    def __call__(self, t, q, qd):
+        return self.torque(q, qd)
+
+    def _linear_terms(self, t, q):
+        J = self.arm.jacobian(q)
+        by_q = _spring_stiffness(self.arm, q, self.spring.force(q), self.stiffness)
+        if self.gravity_compensation:
+            by_q = by_q + _gravity_jacobian(self.arm, q)
+        return by_q, -J.T @ self.damping @ J
+
+
+def _gravity_jacobian(arm, q):
+    """``dg/dq`` (2x2, symmetric) at one configuration."""
+    constants = _constants(arm)
+    s1, s12 = np.sin(q[0]), np.sin(q[0] + q[1])
+    g12 = -constants.gamma2 * s12
+    return np.array([[-constants.gamma1 * s1 + g12, g12], [g12, g12]])
+
+
+def _mass_matrix_derivative(arm, q):
+    """``dM/dq2`` (``M`` does not depend on ``q1``)."""
+    change = -_constants(arm).beta * np.sin(q[1])
+    return np.array([[2.0 * change, change], [change, 0.0]])
+
+
+def _pair_function(function, name):
+    if not callable(function):
+        raise ValueError(f"{name} must be a callable of time t -> array of shape (2,); got {function!r}")
+    return function
+
+
+@dataclass(frozen=True, eq=False)
+class JointReference:
+    """A joint-space reference ``q_ref(t)`` with its rate and acceleration.
+
+    Build one from three callables of time (each ``t -> array (2,)``), from
+    a constant configuration (:meth:`constant`) or from samples
+    (:meth:`from_samples`, a cubic spline).  Calling it gives
+    ``(q_ref, qd_ref, qdd_ref)`` at a time.
+
+    Parameters
+    ----------
+    position, velocity, acceleration : callable
+        ``t -> array (2,)``: radians, rad/s and rad/s^2.
+
+    Examples
+    --------
+    >>> wave = JointReference(lambda t: np.array([np.sin(t), 0.0]),
+    ...                       lambda t: np.array([np.cos(t), 0.0]),
+    ...                       lambda t: np.array([-np.sin(t), 0.0]))
+    >>> [value.round(6) for value in wave(0.0)]
+    [array([0., 0.]), array([1., 0.]), array([-0., 0.])]
+    """
+
+    position: Callable
+    velocity: Callable
+    acceleration: Callable
+
+    def __post_init__(self):
+        for name in ("position", "velocity", "acceleration"):
+            _pair_function(getattr(self, name), name)
+
+    def __call__(self, t):
+        """``(q_ref, qd_ref, qdd_ref)`` at time ``t``, each an array of shape (2,)."""
+        return (
+            np.asarray(self.position(t), dtype=float),
+            np.asarray(self.velocity(t), dtype=float),
+            np.asarray(self.acceleration(t), dtype=float),
+        )
+
+    @classmethod
+    def constant(cls, q_ref):
+        """Hold ``q_ref`` (radians, shape (2,)) for ever: zero rate and acceleration.
+
+        Examples
+        --------
+        >>> JointReference.constant([0.5, 1.0])(3.0)[0]
+        array([0.5, 1. ])
+        """
+        q_ref = as_pairs(q_ref, "q_ref")
+        if q_ref.shape != (2,):
+            raise ValueError(f"q_ref must be one configuration of shape (2,); got {q_ref.shape}")
+        held = q_ref.copy()
+        held.setflags(write=False)
+        zeros = np.zeros(2)
+        zeros.setflags(write=False)
+        return cls(lambda t: held, lambda t: zeros, lambda t: zeros)
+
+    @classmethod
+    def from_samples(cls, t, q, qd=None):
+        """A cubic-spline reference through samples ``q`` at times ``t``.
+
+        The spline has continuous rate and acceleration (what a controller
+        with an ODE solver needs).  With ``qd`` given, its end rates are
+        clamped to ``qd[0]`` and ``qd[-1]``; otherwise "not-a-knot" ends.
+        Outside ``[t[0], t[-1]]`` the reference holds its end positions with
+        zero rate and acceleration.
+
+        Parameters
+        ----------
+        t : array_like, shape (n,)
+            Strictly increasing times, seconds (n >= 2; n >= 4 without ``qd``).
+        q : array_like, shape (n, 2)
+            Joint angles, radians (continuous: no 2 pi jumps).
+        qd : array_like, shape (n, 2), optional
+            Joint rates, rad/s (only the first and last rows are used).
+
+        Examples
+        --------
+        >>> t = np.linspace(0.0, 1.0, 11)
+        >>> q = np.column_stack([t**2, -t])
+        >>> reference = JointReference.from_samples(t, q)
+        >>> [value.round(9) + 0.0 for value in reference(0.5)]
+        [array([ 0.25, -0.5 ]), array([ 1., -1.]), array([2., 0.])]
+        >>> reference(2.0)[0], reference(2.0)[1]
+        (array([ 1., -1.]), array([0., 0.]))
+        """
+        t = np.asarray(t, dtype=float)
+        if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or not np.all(np.diff(t) > 0):
+            raise ValueError("t must be a 1-D array of at least 2 finite, strictly increasing times (s)")
+        q = as_pairs(q, "q samples")
+        if q.shape != (len(t), 2):
+            raise ValueError(f"q must have shape ({len(t)}, 2), one configuration per time; got {q.shape}")
+        if qd is None:
+            if len(t) < 4:
+                raise ValueError("a not-a-knot spline needs at least 4 samples; give more, or the end rates qd")
+            spline = CubicSpline(t, q, axis=0)
+        else:
+            qd = as_pairs(qd, "qd samples")
+            if qd.shape != q.shape:
+                raise ValueError(f"qd must have the shape of q, {q.shape}; got {qd.shape}")
+            spline = CubicSpline(t, q, axis=0, bc_type=((1, qd[0]), (1, qd[-1])))
+        rate, acceleration = spline.derivative(1), spline.derivative(2)
+        start, end = float(t[0]), float(t[-1])
+        q_start, q_end = q[0].copy(), q[-1].copy()
+
+        def position(time):
+            if time <= start:
+                return q_start
+            if time >= end:
+                return q_end
+            return spline(time)
+
+        def inside(derivative):
+            def evaluate(time):
+                return derivative(time) if start < time < end else np.zeros(2)
+
+            return evaluate
+
+        return cls(position, inside(rate), inside(acceleration))
+
+
+def _as_reference(reference):
+    if isinstance(reference, JointReference):
+        return reference
+    if callable(reference):
+        raise ValueError(
+            "reference must be a JointReference (for a trajectory: JointReference(position, velocity, "
+            "acceleration) or JointReference.from_samples(t, q)) or a fixed configuration q_ref of shape (2,)"
+        )
+    return JointReference.constant(reference)
+
+
+@dataclass(frozen=True, eq=False)
+class JointPD:
+    """Joint-space PD control with gravity compensation.
+
+    ``tau = Kp (q_ref - q) + Kd (qd_ref - qd) [+ g(q)]``: a spring and a
+    damper on each joint (coupled if the gains are full matrices).  The
+    error is not wrapped: ``q_ref`` and ``q`` must be on the same turn.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    kp : float or array_like, shape (2, 2)
+        Joint stiffness, N m/rad (see :func:`gain_matrix`).
+    kd : float or array_like, shape (2, 2)
+        Joint damping, N m s/rad.
+    reference : JointReference or array_like, shape (2,)
+        The reference trajectory, or a fixed configuration (radians).
+    gravity_compensation : bool
+        Add ``arm.gravity(q)`` (default True).
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> hold = JointPD(arms.two_metre, kp=100.0, kd=20.0, reference=[0.0, 0.0], gravity_compensation=False)
+    >>> hold(0.0, np.array([0.1, 0.0]), np.array([0.0, 1.0])).round(12)
+    array([-10., -20.])
+    """
+
+    arm: object
+    kp: object
+    kd: object
+    reference: object
+    gravity_compensation: bool = True
+
+    def __post_init__(self):
+        _require_arm(self.arm, type(self).__name__)
+        object.__setattr__(self, "kp", gain_matrix(self.kp, "kp (joint stiffness, N m/rad)"))
+        object.__setattr__(self, "kd", gain_matrix(self.kd, "kd (joint damping, N m s/rad)"))
+        object.__setattr__(self, "reference", _as_reference(self.reference))
+        if not isinstance(self.gravity_compensation, (bool, np.bool_)):
+            raise ValueError(f"gravity_compensation must be True or False; got {self.gravity_compensation!r}")
+
+    def __call__(self, t, q, qd):
+        q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
+        q_ref, qd_ref, _ = self.reference(t)
+        tau = self.kp @ (q_ref - q) + self.kd @ (qd_ref - qd)
+        if self.gravity_compensation:
+            tau = tau + self.arm.gravity(q)
+        return tau
+
+    def _linear_terms(self, t, q):
+        by_q = -self.kp + (_gravity_jacobian(self.arm, q) if self.gravity_compensation else 0.0)
+        return by_q, -self.kd
+
+
+@dataclass(frozen=True, eq=False)
+class ComputedTorque:
+    """Computed-torque control (feedback linearisation) tracking a joint reference.
+
+    ``tau = M(q) v + C(q, qd) qd + g(q)`` with
+    ``v = qdd_ref + Kd (qd_ref - qd) + Kp (q_ref - q)``: with a perfect model
+    the arm's acceleration is ``v``, so the error ``e = q_ref - q`` obeys
+    ``e'' + Kd e' + Kp e = 0`` whatever the pose; ``Kp = wn^2``,
+    ``Kd = 2 wn`` makes it critically damped.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+        The arm being controlled.
+    kp : float or array_like, shape (2, 2)
+        1/s^2 (gains on the error, before multiplying by ``M``).
+    kd : float or array_like, shape (2, 2)
+        1/s.
+    reference : JointReference or array_like, shape (2,)
+        The trajectory to track, or a fixed configuration.
+    model : TwoLinkArm, optional
+        The model the controller believes in (default: ``arm``); a different
+        one shows what model errors do.
+
+    Examples
+    --------
+    Starting on a fixed reference at rest, the torque is exactly the weight:
+
+    >>> from twolink import arms
+    >>> arm = arms.two_metre
+    >>> control = ComputedTorque(arm, kp=400.0, kd=40.0, reference=[0.3, 0.6])
+    >>> bool(np.allclose(control(0.0, np.array([0.3, 0.6]), np.zeros(2)), arm.gravity([0.3, 0.6])))
+    True
+    """
+
+    arm: object
+    kp: object
+    kd: object
+    reference: object
+    model: object = None
+
+    def __post_init__(self):
+        _require_arm(self.arm, type(self).__name__)
+        object.__setattr__(self, "kp", gain_matrix(self.kp, "kp (1/s^2)"))
+        object.__setattr__(self, "kd", gain_matrix(self.kd, "kd (1/s)"))
+        object.__setattr__(self, "reference", _as_reference(self.reference))
+        if self.model is None:
+            object.__setattr__(self, "model", self.arm)
+        _require_arm(self.model, "ComputedTorque's model")
+
+    def commanded_acceleration(self, t, q, qd):
+        """``v = qdd_ref + Kd (qd_ref - qd) + Kp (q_ref - q)``, rad/s^2."""
+        q_ref, qd_ref, qdd_ref = self.reference(t)
+        return qdd_ref + self.kd @ (qd_ref - qd) + self.kp @ (q_ref - q)
+
+    def __call__(self, t, q, qd):
+        q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
+        return self.model.inverse_dynamics(q, qd, self.commanded_acceleration(t, q, qd))
+
+    def _linear_terms(self, t, q):
+        zero = np.zeros(2)
+        acceleration = self.commanded_acceleration(t, q, zero)
+        M = self.model.mass_matrix(q)
+        by_q = -M @ self.kp + _gravity_jacobian(self.model, q)
+        by_q[:, 1] += _mass_matrix_derivative(self.model, q) @ acceleration
+        return by_q, -M @ self.kd
