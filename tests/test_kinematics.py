@@ -5,7 +5,6 @@ import pytest
 from conftest import arms as arm_strategy
 from conftest import configurations
 from hypothesis import given
-from hypothesis import strategies as st
 
 from twolink import TwoLinkArm, arms, to_absolute, to_relative, wrap_angle
 

@@ -6,7 +6,7 @@ import control
 import numpy as np
 import pytest
 from conftest import dynamic_arms
-from hypothesis import assume, given, settings
+from hypothesis import assume, given
 from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
 

@@ -8,7 +8,7 @@ from conftest import configurations
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
-from twolink import SingularityError, TwoLinkArm, arms, ik, velocity
+from twolink import SingularityError, TwoLinkArm, arms, velocity
 
 rates = st.floats(min_value=-10.0, max_value=10.0, allow_nan=False, allow_infinity=False)
 

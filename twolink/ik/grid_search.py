@@ -3,9 +3,8 @@
 import numpy as np
 
 from .._validate import as_finite_scalar
-from ..kinematics import fk
 from .iterative import distance_outside_reach
-from .result import IKResult
+from .result import assemble_result
 from .targets import check_reachable
 
 __all__ = ["brute_force", "grid_axis", "GRID_CHUNK"]
@@ -138,26 +137,13 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
         row, column = _best_on_grid(arm, p_target, q1_axis, q2_axis, absolute_limits)
         q[index] = (q1_axis[row], q2_axis[column])
 
-    residual = np.hypot(*(fk(arm, q) - p_flat).T)
     bound = (arm.l1 + 2.0 * arm.l2) * step / 2.0
-    success = residual <= bound + distance_outside_reach(arm, p_flat)
     grid_points = len(q1_axis) * len(q2_axis)
-    failures = int(np.count_nonzero(~success))
-    if failures:
-        first = int(np.flatnonzero(~success)[0])
-        message = (
-            f"no grid point within the resolution bound {bound:.3g} m for {failures} of "
-            f"{success.size} targets (first: flat index {first}, best residual "
-            f"{residual[first]:.3g} m): the solution lies outside the searched range or limits"
-        )
-    else:
-        message = f"all {success.size} targets within the grid bound {bound:.3g} m ({grid_points} points)"
-    shape = p.shape[:-1]
-    return IKResult(
-        q=q.reshape(p.shape),
-        success=success.reshape(shape),
-        iterations=np.full(shape, grid_points),
-        residual=residual.reshape(shape),
-        method="brute-force",
-        message=message,
+    return assemble_result(
+        arm, p, q, np.full(len(q), grid_points), bound + distance_outside_reach(arm, p_flat), "brute-force",
+        solved_message=f"all {len(q)} targets within the grid bound {bound:.3g} m ({grid_points} points)",
+        failure_detail=lambda index, residual: (
+            f"best residual {residual:.3g} m, above the grid bound {bound:.3g} m: "
+            "the solution lies outside the searched range or limits"
+        ),
     )

@@ -5,7 +5,7 @@ import numpy as np
 from .._validate import as_finite_scalar, as_pairs
 from ..conventions import wrap_angle
 from ..kinematics import fk, jacobian
-from .result import IKResult
+from .result import assemble_result
 from .targets import check_reachable
 
 __all__ = ["newton", "distance_outside_reach"]
@@ -72,7 +72,6 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
     if int(max_iter) < 1:
         raise ValueError(f"max_iter must be a positive integer; got {max_iter!r}")
     q0 = as_pairs(q0, "q0")
-    shape = p.shape[:-1]
     p_flat = p.reshape(-1, 2)
     q = wrap_angle(np.broadcast_to(q0, p.shape)).reshape(-1, 2).copy()
 
@@ -106,23 +105,10 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
         still = (error[active] > threshold[active]) & (damping[active] < 1e12 * scale**2)
         active = active[still]
 
-    residual = np.hypot(*(fk(arm, q) - p_flat).T)
-    success = residual <= threshold
-    failures = int(np.count_nonzero(~success))
-    if failures:
-        first = int(np.flatnonzero(~success)[0])
-        message = (
-            f"did not converge for {failures} of {success.size} targets "
-            f"(first: flat index {first}, residual {residual[first]:.3g} m after "
-            f"{iterations[first]} iterations)"
-        )
-    else:
-        message = f"converged for all {success.size} targets (max {iterations.max()} iterations)"
-    return IKResult(
-        q=q.reshape(p.shape),
-        success=success.reshape(shape),
-        iterations=iterations.reshape(shape),
-        residual=residual.reshape(shape),
-        method="newton",
-        message=message,
+    return assemble_result(
+        arm, p, q, iterations, threshold, "newton",
+        solved_message=f"converged for all {len(q)} targets (max {iterations.max()} iterations)",
+        failure_detail=lambda index, residual: (
+            f"did not converge: residual {residual:.3g} m after {iterations[index]} iterations"
+        ),
     )

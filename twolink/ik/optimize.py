@@ -10,7 +10,7 @@ import scipy.optimize
 from .._validate import as_finite_scalar, as_pairs
 from ..kinematics import fk, jacobian
 from .iterative import distance_outside_reach
-from .result import IKResult
+from .result import assemble_result
 from .targets import check_reachable
 
 __all__ = ["minimize"]
@@ -108,24 +108,9 @@ def minimize(arm, p, q0=(0.5, 1.0), constrained=False, tol=1e-9):
         iterations[index] = outcome.nit
         scipy_messages.append(outcome.message)
 
-    residual = np.hypot(*(fk(arm, q) - p_flat).T)
-    success = residual <= tol * (arm.l1 + arm.l2) + distance_outside_reach(arm, p_flat)
-    method = "minimize-slsqp" if constrained else "minimize-bfgs"
-    failures = int(np.count_nonzero(~success))
-    if failures:
-        first = int(np.flatnonzero(~success)[0])
-        message = (
-            f"failed for {failures} of {success.size} targets (first: flat index {first}, "
-            f"residual {residual[first]:.3g} m; scipy said: {scipy_messages[first]})"
-        )
-    else:
-        message = f"solved all {success.size} targets"
-    shape = p.shape[:-1]
-    return IKResult(
-        q=q.reshape(p.shape),
-        success=success.reshape(shape),
-        iterations=iterations.reshape(shape),
-        residual=residual.reshape(shape),
-        method=method,
-        message=message,
+    threshold = tol * (arm.l1 + arm.l2) + distance_outside_reach(arm, p_flat)
+    return assemble_result(
+        arm, p, q, iterations, threshold, "minimize-slsqp" if constrained else "minimize-bfgs",
+        solved_message=f"solved all {len(q)} targets",
+        failure_detail=lambda index, residual: f"residual {residual:.3g} m; scipy said: {scipy_messages[index]}",
     )

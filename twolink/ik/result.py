@@ -4,7 +4,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["IKResult"]
+from ..kinematics import fk
+
+__all__ = ["IKResult", "assemble_result"]
 
 
 @dataclass(frozen=True)
@@ -52,3 +54,45 @@ class IKResult:
     def all_success(self):
         """True when every target in the batch was solved."""
         return bool(np.all(self.success))
+
+
+def assemble_result(arm, p, q_flat, iterations, threshold, method, solved_message, failure_detail):
+    """Build an :class:`IKResult` with the residual recomputed by forward kinematics.
+
+    Every solver ends here, so success is always judged the same way: the
+    FK distance from ``fk(q)`` to the target, never the solver's own claim.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    p : numpy.ndarray, shape (..., 2)
+        The targets as given (their leading shape is the result's).
+    q_flat : numpy.ndarray, shape (n, 2)
+        Solutions, one row per flattened target.
+    iterations : numpy.ndarray of int, shape (n,)
+    threshold : numpy.ndarray or float
+        Success where the residual is at most this (metres).
+    method : str
+    solved_message : str
+        The message when every target is solved.
+    failure_detail : callable
+        ``failure_detail(index, residual)`` describes the first failed
+        target (flat index) for the message.
+    """
+    residual = np.hypot(*(fk(arm, q_flat) - p.reshape(-1, 2)).T)
+    success = residual <= threshold
+    failures = int(np.count_nonzero(~success))
+    if failures:
+        first = int(np.flatnonzero(~success)[0])
+        message = f"failed for {failures} of {success.size} targets (first: flat index {first}, {failure_detail(first, residual[first])})"
+    else:
+        message = solved_message
+    shape = p.shape[:-1]
+    return IKResult(
+        q=q_flat.reshape(p.shape),
+        success=success.reshape(shape),
+        iterations=np.asarray(iterations).reshape(shape),
+        residual=residual.reshape(shape),
+        method=method,
+        message=message,
+    )
