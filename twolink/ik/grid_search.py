@@ -9,8 +9,9 @@ from .targets import check_reachable
 
 __all__ = ["brute_force", "grid_axis", "GRID_CHUNK"]
 
-#: Grid points evaluated at once: bounds memory (a few MB) however fine the step.
-GRID_CHUNK = 1 << 17
+#: Grid points evaluated at once: bounds memory however fine the step, and keeps
+#: each chunk (a few 256 KB arrays) in cache; larger chunks measured 2-3x slower.
+GRID_CHUNK = 1 << 15
 
 
 def grid_axis(low, high, step):
