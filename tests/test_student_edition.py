@@ -44,6 +44,20 @@ def test_stub_replaces_each_block_with_the_names_it_assigns():
     assert stubbed.startswith("# Exercise 9.1\nx0 = 1\n") and stubbed.endswith("print(x0)\n")
 
 
+def test_stubs_ask_for_the_checked_answers_only():
+    notebook = {
+        "cells": [
+            {"cell_type": "code", "source": "### BEGIN SOLUTION\nrho = 2.0\nradius_ex = rho * 3\n### END SOLUTION\n", "outputs": [], "execution_count": 1},
+            {"cell_type": "markdown", "source": "check it"},
+            {"cell_type": "code", "source": "selfcheck.check_close('Ex', radius_ex, 6.0)", "outputs": [], "execution_count": 2},
+        ]
+    }
+    student = editions.student_notebook(notebook)
+    assert student["cells"][0]["source"] == "radius_ex = ...  # your code here\n"
+    assert student["cells"][0]["execution_count"] is None
+    assert notebook["cells"][0]["source"].startswith("### BEGIN SOLUTION")  # the original is untouched
+
+
 def test_indented_blocks_and_errors():
     stubbed = editions.stub_source("if True:\n    ### BEGIN SOLUTION\n    angle = 3\n    ### END SOLUTION\n")
     assert stubbed == "if True:\n    angle = ...  # your code here\n"

@@ -69,7 +69,7 @@ def assigned_names(code):
     return names
 
 
-def stub_source(source):
+def stub_source(source, checked_names=None):
     """Replace each solution block of a cell's source by stubs for the names it assigns.
 
     >>> print(stub_source("# Exercise\\n### BEGIN SOLUTION\\np_tip = [1, 2]\\n### END SOLUTION\\n"))
@@ -82,6 +82,9 @@ def stub_source(source):
         indent = match.group("indent")
         body = "\n".join(line[len(indent):] if line.startswith(indent) else line for line in match.group("body").splitlines())
         names = assigned_names(body)
+        if checked_names is not None:
+            # stub only the answers the self-check reads, not the solution's helper variables
+            names = [name for name in names if name in checked_names] or names
         if not names:
             raise ValueError(f"a solution block assigns no name, so it cannot be stubbed:\n{match.group('body')}")
         return "".join(f"{indent}{name} = ...  {STUB_COMMENT}\n" for name in names)
@@ -91,15 +94,43 @@ def stub_source(source):
     return SOLUTION_BLOCK.sub(replace, source)
 
 
-def student_notebook(notebook):
-    """A copy of a notebook (as a JSON dict) with solutions stubbed and their outputs cleared."""
-    student = copy.deepcopy(notebook)
-    for cell in student["cells"]:
+def loaded_names(code):
+    """Names a piece of code reads.
+
+    >>> sorted(loaded_names("check(p_tip, arm.fk(q))"))
+    ['arm', 'check', 'p_tip', 'q']
+    """
+    return {node.id for node in ast.walk(ast.parse(code)) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
+
+
+def next_selfcheck_names(cells, start):
+    """Names read by the first self-check cell after ``cells[start]``, before the next solution."""
+    for cell in cells[start + 1:]:
         if cell["cell_type"] != "code":
             continue
         source = "".join(cell["source"])
         if BEGIN in source:
-            cell["source"] = stub_source(source)
+            return None
+        if "selfcheck.check_" in source:
+            return loaded_names(source)
+    return None
+
+
+def student_notebook(notebook):
+    """A copy of a notebook (as a JSON dict) with solutions stubbed and their outputs cleared.
+
+    Each solution block becomes ``name = ...`` stubs for the names the next
+    self-check reads (all names the block assigns if it reads none of them),
+    so the stub asks for the answers, not for the worked solution's steps.
+    """
+    student = copy.deepcopy(notebook)
+    cells = student["cells"]
+    for index, cell in enumerate(cells):
+        if cell["cell_type"] != "code":
+            continue
+        source = "".join(cell["source"])
+        if BEGIN in source:
+            cell["source"] = stub_source(source, next_selfcheck_names(cells, index))
             cell["outputs"] = []
             cell["execution_count"] = None
     return student
