@@ -83,8 +83,9 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
     The grid covers ``q1_range`` x ``q2_range`` (radians, inclusive) with
     spacing ``step``, intersected with the arm's joint limits (absolute-angle
     limits mask grid points instead).  The search works in chunks of
-    ``GRID_CHUNK`` points, so memory stays bounded however fine the step; time
-    grows as ``1 / step^2``.
+    ``GRID_CHUNK`` points, so memory stays bounded however fine the step.  The
+    number of grid points grows as ``1 / step^2``; the time approaches that
+    growth once the grid work dominates the fixed cost of a call.
 
     A grid point lies within ``step / 2`` of the exact solution in each joint,
     so the tip error is at most ``(l1 + 2 l2) * step / 2``: ``success`` is
