@@ -22,6 +22,20 @@ import editions  # noqa: E402
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 
 
+class HeadlessClient(NotebookClient):
+    """Runs a notebook without emulating a widget front end.
+
+    NotebookClient mimics JupyterLab's Output widget by routing output
+    through comm messages; that emulation sometimes blocks forever on
+    ``widgets.interactive`` cells (jupyter/nbclient#312).  Ignoring comm
+    messages leaves widget output in the cell, which is all this test reads
+    (the browser suite checks widgets in a real JupyterLab).
+    """
+
+    def handle_comm_msg(self, outs, msg, cell_index):
+        return None
+
+
 def selfcheck_cells(notebook):
     return [cell for cell in notebook["cells"] if cell["cell_type"] == "code" and "selfcheck.check_" in "".join(cell["source"])]
 
@@ -82,7 +96,7 @@ def test_student_edition_runs_and_reports_not_solved(path, tmp_path):
     editions.build_student(path.parent, tmp_path)
     student = nbformat.read(tmp_path / path.name, as_version=4)
     assert "### BEGIN SOLUTION" not in json.dumps(student)
-    NotebookClient(student, timeout=600, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}).execute()
+    HeadlessClient(student, timeout=180, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}).execute()
     errors = [output for cell in student.cells for output in cell.get("outputs", []) if output.output_type == "error"]
     assert not errors, f"{path.name} student edition raised: {errors[0].ename}: {errors[0].evalue}"
     for cell in selfcheck_cells(student):
