@@ -296,3 +296,15 @@ def test_damping_bounds_the_joint_rates_near_a_singularity_at_a_tracking_cost():
     # the DLS inverse caps the rates at |v| / (2 lambda)
     assert np.all(np.linalg.norm(damped.qd, axis=1) <= np.linalg.norm(v_command, axis=1) / (2 * 0.3) + 1e-9)
     assert exact.tracking_error.max() < 1e-4 < damped.tracking_error.max()
+
+
+@pytest.mark.parametrize("law", ["cubic", "quintic"])
+def test_time_scaling_acceleration_matches_finite_differences(law):
+    t = np.linspace(0.1, 1.9, 37)
+    h = 1e-5
+    _, s_dot, s_ddot = trajectory.time_scaling(t, 2.0, law, with_acceleration=True)
+    _, s_dot_plus = trajectory.time_scaling(t + h, 2.0, law)
+    _, s_dot_minus = trajectory.time_scaling(t - h, 2.0, law)
+    assert np.allclose(s_ddot, (s_dot_plus - s_dot_minus) / (2 * h), atol=1e-6)
+    assert np.allclose(s_dot, trajectory.time_scaling(t, 2.0, law)[1])
+

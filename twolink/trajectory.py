@@ -51,8 +51,8 @@ TIME_LAWS = ("linear", "cubic", "quintic")
 _BRANCHES = ("down", "up")
 
 
-def time_scaling(t, duration, law="quintic"):
-    """Progress ``s(t)`` from 0 to 1 over ``[0, duration]``, and its rate ``ds/dt``.
+def time_scaling(t, duration, law="quintic", with_acceleration=False):
+    """Progress ``s(t)`` from 0 to 1 over ``[0, duration]``, its rate ``ds/dt`` and (optionally) ``d2s/dt2``.
 
     With ``tau = t / duration`` (clipped to [0, 1]):
 
@@ -68,17 +68,23 @@ def time_scaling(t, duration, law="quintic"):
     duration : float
         Seconds (> 0).
     law : {"linear", "cubic", "quintic"}
+    with_acceleration : bool
+        Also return ``s_ddot`` (what inverse dynamics needs).
 
     Returns
     -------
-    s, s_dot : numpy.ndarray
-        Same shape as ``t``; ``s_dot`` in 1/s (0 outside the interval).
+    s, s_dot[, s_ddot] : numpy.ndarray
+        Same shape as ``t``; ``s_dot`` in 1/s and ``s_ddot`` in 1/s^2 (0
+        outside the interval; the linear law's acceleration is 0 inside and
+        impulsive at the ends, which this cannot represent).
 
     Examples
     --------
     >>> s, s_dot = time_scaling([0.0, 1.0, 2.0], 2.0, "cubic")
     >>> s, s_dot
     (array([0. , 0.5, 1. ]), array([0.  , 0.75, 0.  ]))
+    >>> time_scaling([0.5, 1.0], 2.0, "quintic", with_acceleration=True)[2]
+    array([1.40625, 0.     ])
     """
     duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
     if law not in TIME_LAWS:
@@ -89,13 +95,17 @@ def time_scaling(t, duration, law="quintic"):
     tau = np.clip(t / duration, 0.0, 1.0)
     inside = (t >= 0.0) & (t <= duration)
     if law == "linear":
-        s, ds = tau, np.ones_like(tau)
+        s, ds, dds = tau, np.ones_like(tau), np.zeros_like(tau)
     elif law == "cubic":
-        s, ds = tau * tau * (3.0 - 2.0 * tau), 6.0 * tau * (1.0 - tau)
+        s, ds, dds = tau * tau * (3.0 - 2.0 * tau), 6.0 * tau * (1.0 - tau), 6.0 - 12.0 * tau
     else:
         s = tau**3 * (10.0 - 15.0 * tau + 6.0 * tau * tau)
         ds = 30.0 * tau * tau * (1.0 - tau) ** 2
-    return s, np.where(inside, ds / duration, 0.0)
+        dds = 60.0 * tau * (1.0 - tau) * (1.0 - 2.0 * tau)
+    s_dot = np.where(inside, ds / duration, 0.0)
+    if not with_acceleration:
+        return s, s_dot
+    return s, s_dot, np.where(inside, dds / duration**2, 0.0)
 
 
 def _point(value, name):
