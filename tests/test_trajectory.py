@@ -308,3 +308,12 @@ def test_time_scaling_acceleration_matches_finite_differences(law):
     assert np.allclose(s_ddot, (s_dot_plus - s_dot_minus) / (2 * h), atol=1e-6)
     assert np.allclose(s_dot, trajectory.time_scaling(t, 2.0, law)[1])
 
+
+def test_ik_trajectory_rates_are_exact_for_path_objects():
+    """J qd reproduces the path's velocity, including at rest at both ends of a quintic move."""
+    circle = CirclePath([12.5, 12.5], 2.0, duration=4.0, law="quintic")
+    motion = trajectory.ik_trajectory(arms.ten, circle, n=30)
+    _, _, v_path = circle.sample(30)
+    assert np.allclose(arms.ten.tip_velocity(motion.q, motion.qd), v_path, atol=1e-12)
+    assert np.allclose(motion.qd[[0, -1]], 0.0, atol=1e-15)
+

@@ -334,15 +334,22 @@ def _continuous(q_branch):
     return np.unwrap(q_branch, axis=0)
 
 
+#: Below this ``|sin q2|`` :func:`ik_trajectory` takes finite-difference joint
+#: rates instead of ``J^-1 v`` (whose size grows as ``1 / |sin q2|``).
+RATE_SINGULARITY_TOL = 1e-3
+
+
 def ik_trajectory(arm, path, n=50, elbow="auto"):
     """Joint angles along a path from the closed form, on one elbow branch throughout.
 
     Each sample is solved in closed form (:func:`twolink.workspace.solutions_within_limits`,
     both branches), then one branch is kept for every sample, so the elbow never
     flips mid-path, and the angles are unwrapped so they never jump by ``2 pi``.
-    Joint rates are finite differences of the angles (second order,
-    :func:`numpy.gradient`), which stay finite where the path touches a
-    singular circle.
+    Joint rates are exact, ``J^-1 v`` from the path's own velocity, for a
+    path object; for a list of points, and at samples within
+    ``RATE_SINGULARITY_TOL`` of a singular circle (where ``J^-1 v`` blows up),
+    they are finite differences of the angles (second order,
+    :func:`numpy.gradient`).
 
     Parameters
     ----------
@@ -379,7 +386,7 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     ...
     twolink.errors.UnreachableError: path point 3 (of 5) at (15, 15) is 21.2132 m from the base, outside the reach [0, 20] m of this arm (l1=10, l2=10)
     """
-    t, points, _ = _path_samples(path, n)
+    t, points, v_path = _path_samples(path, n)
     require_reachable(arm, points, what="path point")
     q_both, valid = solutions_within_limits(arm, points)
     branch = _choose_branch(arm, points, valid, elbow)
@@ -391,6 +398,10 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
             f"({describe_limits(arm)}): it would have to wrap round by 360 deg at path point {first}"
         )
     qd = np.gradient(q, t, axis=0, edge_order=2) if len(t) > 2 else np.gradient(q, t, axis=0)
+    if hasattr(path, "sample"):
+        regular = np.abs(np.sin(q[:, 1])) > RATE_SINGULARITY_TOL
+        if np.any(regular):
+            qd[regular] = joint_rates(arm, q[regular], v_path[regular])
     return JointTrajectory(arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=_BRANCHES[branch], method="closed form")
 
 
