@@ -1,0 +1,244 @@
+"""One call at a time: twolink beside a plain-Python version of the same formula.
+
+Students call the package one configuration, one target, one state at a time
+(in loops, widgets, controllers).  This script times each public entry point
+on a single input and divides by the time of a plain-Python (``math`` module)
+implementation of the same formula, measured in the same run, so the ratio
+does not depend on the machine.  It also times the vectorised (batched) call
+per element, to show that the single-input path does not cost the batch path
+anything, and the same ``solve_ivp`` call with twolink's right-hand side and
+with a plain-Python one.
+
+Run with ``make bench`` or ``.venv/bin/python benchmarks/bench_single_call.py``
+(``--quick`` for a smoke run with tiny sizes, used by the test suite).
+"""
+
+import argparse
+import math
+import platform
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from twolink import TwoLinkArm, dynamics, ik, simulate
+from twolink.display import markdown_table
+from twolink.timing import median_time
+
+# The per-call targets of the speed issue: twolink / plain Python.
+TARGET_RATIO = {
+    "fk": 4.0,
+    "jacobian": 4.0,
+    "ik.closed_form": 3.0,
+    "ik.newton": 3.0,
+    "forward_dynamics": 2.0,
+    "inverse_dynamics": 2.0,
+}
+SIMULATE_TARGET_RATIO = 1.2
+
+
+# --- plain-Python references: the same formulas, floats and the math module only
+
+
+def plain_fk(l1, l2, q1, q2):
+    q12 = q1 + q2
+    return (l1 * math.cos(q1) + l2 * math.cos(q12), l1 * math.sin(q1) + l2 * math.sin(q12))
+
+
+def plain_jacobian(l1, l2, q1, q2):
+    q12 = q1 + q2
+    s1, c1, s12, c12 = math.sin(q1), math.cos(q1), math.sin(q12), math.cos(q12)
+    return ((-l1 * s1 - l2 * s12, -l2 * s12), (l1 * c1 + l2 * c12, l2 * c12))
+
+
+def plain_closed_form(l1, l2, x, y):
+    """Elbow-down closed form with the reach check a correct solver needs."""
+    r_squared = x * x + y * y
+    c2 = (r_squared - l1 * l1 - l2 * l2) / (2.0 * l1 * l2)
+    if not -1.0 <= c2 <= 1.0:
+        raise ValueError("unreachable")
+    q2 = math.acos(c2)
+    q1 = math.atan2(y, x) - math.atan2(l2 * math.sin(q2), l1 + l2 * c2)
+    return q1, q2
+
+
+def plain_newton(l1, l2, x, y, q1=0.5, q2=1.0, tol=1e-12, max_iter=100):
+    """Newton on fk(q) = p with a backtracking (halving) step: 2x2 solve by Cramer's rule."""
+    fx, fy = plain_fk(l1, l2, q1, q2)
+    rx, ry = fx - x, fy - y
+    error = math.hypot(rx, ry)
+    threshold = tol * (l1 + l2)
+    for _ in range(max_iter):
+        if error <= threshold:
+            break
+        (a, b), (c, d) = plain_jacobian(l1, l2, q1, q2)
+        det = a * d - b * c
+        if det == 0.0:
+            det = 1e-300
+        dq1 = -(d * rx - b * ry) / det
+        dq2 = -(-c * rx + a * ry) / det
+        step = 1.0
+        while step > 1e-10:
+            t1, t2 = q1 + step * dq1, q2 + step * dq2
+            fx, fy = plain_fk(l1, l2, t1, t2)
+            trial_error = math.hypot(fx - x, fy - y)
+            if trial_error < error:
+                q1, q2, rx, ry, error = t1, t2, fx - x, fy - y, trial_error
+                break
+            step *= 0.5
+        else:
+            break
+    return q1, q2
+
+
+def plain_dynamics_terms(arm, q1, q2, qd1, qd2):
+    """M, the Coriolis/centrifugal vector and gravity of the uniform-rod model (floats)."""
+    I1, I2 = arm.inertias
+    lc1, lc2 = arm.l1 / 2.0, arm.l2 / 2.0
+    m1, m2, l1, g = arm.m1, arm.m2, arm.l1, arm.g
+    c2, s2 = math.cos(q2), math.sin(q2)
+    m11 = I1 + I2 + m1 * lc1 * lc1 + m2 * (l1 * l1 + lc2 * lc2 + 2.0 * l1 * lc2 * c2)
+    m12 = I2 + m2 * (lc2 * lc2 + l1 * lc2 * c2)
+    m22 = I2 + m2 * lc2 * lc2
+    h = m2 * l1 * lc2 * s2
+    bias1 = -h * (2.0 * qd1 * qd2 + qd2 * qd2)
+    bias2 = h * qd1 * qd1
+    c1, c12 = math.cos(q1), math.cos(q1 + q2)
+    gravity1 = (m1 * lc1 + m2 * l1) * g * c1 + m2 * lc2 * g * c12
+    gravity2 = m2 * lc2 * g * c12
+    return m11, m12, m22, bias1 + gravity1, bias2 + gravity2
+
+
+def plain_forward_dynamics(arm, q1, q2, qd1, qd2, tau1, tau2):
+    m11, m12, m22, n1, n2 = plain_dynamics_terms(arm, q1, q2, qd1, qd2)
+    rhs1, rhs2 = tau1 - n1, tau2 - n2
+    det = m11 * m22 - m12 * m12
+    return ((m22 * rhs1 - m12 * rhs2) / det, (m11 * rhs2 - m12 * rhs1) / det)
+
+
+def plain_inverse_dynamics(arm, q1, q2, qd1, qd2, qdd1, qdd2):
+    m11, m12, m22, n1, n2 = plain_dynamics_terms(arm, q1, q2, qd1, qd2)
+    return (m11 * qdd1 + m12 * qdd2 + n1, m12 * qdd1 + m22 * qdd2 + n2)
+
+
+def plain_state_derivative(arm):
+    def free_motion(t, state):
+        q1, q2, qd1, qd2 = state
+        qdd1, qdd2 = plain_forward_dynamics(arm, q1, q2, qd1, qd2, 0.0, 0.0)
+        return [qd1, qd2, qdd1, qdd2]
+
+    return free_motion
+
+
+# --- measurement
+
+
+def check_references_agree(arm, q, qd, tau, p):
+    """The plain versions compute what twolink computes (else the ratios mean nothing)."""
+    q1, q2 = q
+    assert np.allclose(plain_fk(arm.l1, arm.l2, q1, q2), arm.fk(q), rtol=0, atol=1e-12)
+    assert np.allclose(plain_jacobian(arm.l1, arm.l2, q1, q2), arm.jacobian(q), rtol=0, atol=1e-12)
+    assert np.allclose(plain_closed_form(arm.l1, arm.l2, *p), ik.closed_form(arm, p, elbow="down"), atol=1e-9)
+    q_newton = plain_newton(arm.l1, arm.l2, *p)
+    assert np.allclose(plain_fk(arm.l1, arm.l2, *q_newton), p, atol=1e-9)
+    assert np.allclose(
+        plain_forward_dynamics(arm, *q, *qd, *tau), dynamics.forward_dynamics(arm, q, qd, tau), rtol=1e-9, atol=1e-9
+    )
+    qdd = dynamics.forward_dynamics(arm, q, qd, tau)
+    assert np.allclose(plain_inverse_dynamics(arm, *q, *qd, *qdd), tau, rtol=1e-9, atol=1e-9)
+
+
+def single_call_rows(arm, repeat, min_seconds, batch):
+    rng = np.random.default_rng(13)
+    q = np.array([0.4, 1.1])
+    qd = np.array([0.3, -0.8])
+    tau = np.array([2.0, -1.0])
+    qdd = np.array([1.5, 0.2])
+    p = arm.fk(q)
+    check_references_agree(arm, q, qd, tau, p)
+    q_list, p_list = q.tolist(), p.tolist()
+    l1, l2 = arm.l1, arm.l2
+
+    q_batch = rng.uniform(-np.pi, np.pi, (batch, 2))
+    qd_batch = rng.uniform(-2.0, 2.0, (batch, 2))
+    tau_batch = rng.uniform(-5.0, 5.0, (batch, 2))
+    p_batch = arm.fk(rng.uniform([0.2, 0.3], [1.2, 2.5], (batch, 2)))
+
+    cases = [
+        ("fk", lambda: arm.fk(q_list), lambda: plain_fk(l1, l2, *q_list), lambda: arm.fk(q_batch)),
+        ("jacobian", lambda: arm.jacobian(q_list), lambda: plain_jacobian(l1, l2, *q_list), lambda: arm.jacobian(q_batch)),
+        (
+            "ik.closed_form",
+            lambda: ik.closed_form(arm, p_list, elbow="down"),
+            lambda: plain_closed_form(l1, l2, *p_list),
+            lambda: ik.closed_form(arm, p_batch, elbow="down"),
+        ),
+        (
+            "ik.newton",
+            lambda: ik.newton(arm, p_list, q0=(0.5, 1.0)),
+            lambda: plain_newton(l1, l2, *p_list),
+            lambda: ik.newton(arm, p_batch, q0=(0.5, 1.0)),
+        ),
+        (
+            "forward_dynamics",
+            lambda: dynamics.forward_dynamics(arm, q_list, qd.tolist(), tau.tolist()),
+            lambda: plain_forward_dynamics(arm, *q_list, *qd.tolist(), *tau.tolist()),
+            lambda: dynamics.forward_dynamics(arm, q_batch, qd_batch, tau_batch),
+        ),
+        (
+            "inverse_dynamics",
+            lambda: dynamics.inverse_dynamics(arm, q_list, qd.tolist(), qdd.tolist()),
+            lambda: plain_inverse_dynamics(arm, *q_list, *qd.tolist(), *qdd.tolist()),
+            lambda: dynamics.inverse_dynamics(arm, q_batch, qd_batch, tau_batch),
+        ),
+    ]
+    rows = []
+    for name, twolink_call, plain_call, batch_call in cases:
+        t_twolink = median_time(twolink_call, repeat=repeat, min_seconds=min_seconds)
+        t_plain = median_time(plain_call, repeat=repeat, min_seconds=min_seconds)
+        t_batch = median_time(batch_call, repeat=repeat, min_seconds=min_seconds) / batch
+        ratio = t_twolink / t_plain
+        rows.append((name, t_twolink, t_plain, ratio, TARGET_RATIO[name], t_batch))
+    return rows
+
+
+def simulate_row(arm, t_end, repeat):
+    q0, qd0 = np.array([np.pi / 4, 0.0]), np.zeros(2)
+    options = dict(method="DOP853", rtol=1e-10, atol=1e-10)
+    plain_rhs = plain_state_derivative(arm)
+    state0 = np.concatenate([q0, qd0])
+    t_twolink = median_time(lambda: simulate(arm, q0, qd0, t_end, **options), repeat=repeat, min_seconds=0.0)
+    t_plain = median_time(lambda: solve_ivp(plain_rhs, (0.0, t_end), state0, **options), repeat=repeat, min_seconds=0.0)
+    return t_twolink, t_plain, t_twolink / t_plain
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="tiny sizes: checks the script runs, not the speed")
+    args = parser.parse_args(argv)
+    repeat, min_seconds, batch, t_end = (1, 0.0, 100, 0.2) if args.quick else (7, 0.05, 100_000, 10.0)
+
+    arm = TwoLinkArm(l1=1.0, l2=0.7, m1=2.0, m2=1.2)
+    rows = single_call_rows(arm, repeat, min_seconds, batch)
+    t_sim, t_sim_plain, sim_ratio = simulate_row(arm, t_end, repeat=1 if args.quick else 5)
+
+    print(f"# twolink, one call at a time ({platform.machine()}, {platform.python_implementation()} "
+          f"{platform.python_version()}, numpy {np.__version__})\n")
+    table = []
+    for name, t_twolink, t_plain, ratio, target, t_batch in rows:
+        table.append((
+            name, f"{t_twolink * 1e6:.2f}", f"{t_plain * 1e6:.2f}", f"{ratio:.2f}x", f"<= {target:g}x",
+            "yes" if ratio <= target else "NO", f"{t_batch * 1e9:.0f}",
+        ))
+    table.append((
+        f"simulate, {t_end:g} s free motion, DOP853 rtol 1e-10", f"{t_sim * 1e6:.0f}", f"{t_sim_plain * 1e6:.0f}",
+        f"{sim_ratio:.2f}x", f"<= {SIMULATE_TARGET_RATIO:g}x", "yes" if sim_ratio <= SIMULATE_TARGET_RATIO else "NO", "",
+    ))
+    print(markdown_table(
+        ["call (one input)", "twolink [us]", "plain Python [us]", "ratio", "target", "meets", "batched [ns/item]"], table,
+    ))
+    met = all(ratio <= target for _, _, _, ratio, target, _ in rows) and sim_ratio <= SIMULATE_TARGET_RATIO
+    return met or args.quick
+
+
+if __name__ == "__main__":
+    raise SystemExit(0 if main() else 1)
