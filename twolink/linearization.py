@@ -33,6 +33,7 @@ import numpy as np
 import scipy.linalg
 import scipy.optimize
 
+from ._optional import require
 from ._validate import as_finite_scalar, as_pairs
 from .controllers import _gravity_jacobian, gain_matrix
 from .errors import SingularityError
@@ -346,7 +347,7 @@ def linearize(arm, controller, q_eq, t=0.0, tol=1e-6, name=None):
     array([[0.001667, 0.      ],
            [0.      , 0.001667]])
     """
-    import control
+    control = require("control", "twolink.linearization.linearize")
 
     A, B, C, D = closed_loop_matrices(arm, controller, q_eq, t=t, tol=tol)
     options = {"states": list(STATES), "inputs": list(INPUTS), "outputs": list(OUTPUTS)}
@@ -373,7 +374,7 @@ def closed_loop_system(arm, controller, name=None):
     >>> bool(np.allclose(numerical.A, linearize(arm, impedance, q_rest).A, rtol=1e-4, atol=1e-3))
     True
     """
-    import control
+    control = require("control", "twolink.linearization.closed_loop_system")
 
     def update(t, state, force, params):
         q, qd = state[:2], state[2:]

@@ -226,19 +226,32 @@ def animation_html(anim):
 
     Uses the ffmpeg shipped by the ``imageio-ffmpeg`` package, so no system
     ffmpeg is needed, and closes the animation's figure so no stray still is
-    shown.
+    shown.  Without imageio-ffmpeg (``pip install twolink`` alone) it falls
+    back to matplotlib's JavaScript player (``to_jshtml``), headed by a note
+    saying so and how to get the video.
 
     Returns
     -------
     IPython.display.HTML
+        (or an object with the same ``_repr_html_`` when IPython is absent)
     """
-    import imageio_ffmpeg
     import matplotlib
-    from IPython.display import HTML
+
+    from ._optional import COURSE_INSTALL, html
 
     plt.close(anim._fig)
-    with matplotlib.rc_context({"animation.ffmpeg_path": imageio_ffmpeg.get_ffmpeg_exe()}):
-        return HTML(anim.to_html5_video(embed_limit=5.0))
+    try:
+        import imageio_ffmpeg
+
+        ffmpeg = imageio_ffmpeg.get_ffmpeg_exe()
+    except (ImportError, RuntimeError):  # not installed, or its binary is missing
+        note = (
+            "<p><em>twolink.plot.animation_html: ffmpeg (imageio-ffmpeg) is not installed, so this is "
+            f"a JavaScript animation instead of a video; {COURSE_INSTALL} gives the video.</em></p>"
+        )
+        return html(note + anim.to_jshtml(default_mode="loop", embed_limit=5.0))
+    with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg}):
+        return html(anim.to_html5_video(embed_limit=5.0))
 
 
 def animate_simulation(result, max_frames=50, ax=None, path=True, title=None, speed=1.0):
