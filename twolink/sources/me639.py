@@ -1,0 +1,381 @@
+"""The ME 639 2R mini-project, reproduced: l1 = l2 = 2 m, absolute angles, motor 2 on the ground.
+
+The project measures **both** link angles from the x-axis (``q1`` and
+``q2_abs = q1 + q2``), as for a belt drive with motor 2 on the ground.  This
+module reproduces its methods as they were, so that the course (chapters 4-7)
+and the tests can show its printed numbers coming out of its own formulas:
+
+- :func:`source_ik`: its inverse kinematics, in both readings of the transcribed
+  line (``l1 + l2 sin(theta)`` or ``l1 + l2 cos(theta)``; COURSE.md H4.1).
+- :func:`source_wall_search`: its wall search, 100,000 points from (4, 0) to
+  (0, 4), stopped at the first point whose rounded absolute link-2 angle equals
+  ``round(pi/4, 4)``; with its torque formulas (H4.2).
+- :func:`source_spring_torques`: its spring, ``F = k (x, y)`` (anchored at the
+  origin), torques in its own convention (H4.3).
+- :func:`correct_spring_torques_dh` and :func:`dh_to_motor_torques`: the correct
+  law ``tau = J^T k (x0 - x)`` and the conversion to the source's convention.
+
+The package itself works in relative (DH) angles; convert the absolute angles
+returned here with :func:`twolink.to_relative`.
+
+Examples
+--------
+>>> import numpy as np
+>>> import twolink
+>>> q_abs = source_ik([3.0, 1.0])                   # the correct ("cos") reading
+>>> q_dh = twolink.to_relative(q_abs)               # (q1, q2_abs - q1)
+>>> twolink.TwoLinkArm(2.0, 2.0).fk(q_dh).round(12)
+array([3., 1.])
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from .._validate import as_finite_scalar, as_pairs
+from ..errors import UnreachableError
+
+__all__ = [
+    "READINGS",
+    "source_ik",
+    "source_fk",
+    "source_link_torques",
+    "WallSearchResult",
+    "source_wall_search",
+    "source_spring_torques",
+    "correct_spring_torques_dh",
+    "dh_to_motor_torques",
+    "motor_to_dh_torques",
+]
+
+#: The two readings of the transcribed IK line for q1 (COURSE.md H4.1).
+READINGS = ("sin", "cos")
+
+_ACOS_SLACK = 1e-12  # rounding slack on the cosine at full stretch
+
+
+def _check_reading(reading):
+    if reading not in READINGS:
+        raise ValueError(f"reading must be 'sin' (the transcribed typo) or 'cos' (correct); got {reading!r}")
+
+
+def source_ik(p_tip, *, reading="cos", l1=2.0, l2=2.0):
+    """The source's inverse kinematics: absolute link angles ``(q1, q2_abs)`` for a tip point.
+
+    The source computes the elbow angle (link 2 relative to link 1) with
+    ``theta = acos((x^2 + y^2 - l1^2 - l2^2) / (2 l1 l2))`` (so ``theta`` is
+    in ``[0, pi]``: the package's ``elbow="down"`` branch), then
+    ``q1 = atan2(y, x) - atan2(l2 sin(theta), l1 + l2 cos(theta))`` and
+    ``q2_abs = q1 + theta``.  In the transcription of the wall, trajectory and
+    workspace programs the second ``atan2`` reads ``l1 + l2 sin(theta)``
+    (``reading="sin"``); the spring program has ``cos`` (``reading="cos"``, the
+    correct formula).  The transcription breaks that line, so the ``sin`` may not
+    be the author's (COURSE.md H4.1).
+
+    Parameters
+    ----------
+    p_tip : array_like, shape (..., 2)
+        Tip targets ``(x, y)``, metres.
+    reading : {"cos", "sin"}
+        Which reading of the transcribed line to use.
+    l1, l2 : float
+        Link lengths, metres (> 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        Absolute angles ``(q1, q2_abs)`` in radians, both from the x-axis.
+        Convert to the package's DH angles with :func:`twolink.to_relative`.
+
+    Raises
+    ------
+    ValueError
+        For NaN/inf or badly shaped targets, non-positive lengths or an unknown reading.
+    twolink.UnreachableError
+        For targets outside the annulus ``|l1 - l2| <= r <= l1 + l2`` (the source's
+        ``acos`` would have returned a complex or NaN angle there).
+
+    Examples
+    --------
+    The source's spring program, at its rest point (3, 1), in degrees:
+
+    >>> np.degrees(source_ik([3.0, 1.0])).round(2)
+    array([-19.33,  56.2 ])
+
+    The typo moves link 1 (the elbow angle ``theta`` is the same), so the tip misses:
+
+    >>> q_sin = source_ik([3.4116, 0.5884], reading="sin")
+    >>> source_fk(q_sin).round(3)
+    array([3.345, 0.892])
+    >>> source_ik([5.0, 0.0])
+    Traceback (most recent call last):
+    ...
+    twolink.errors.UnreachableError: p_tip (5, 0) is 5 m from the base; the arm reaches from 0 to 4 m
+    """
+    _check_reading(reading)
+    l1 = as_finite_scalar(l1, "l1", minimum=0.0, strictly=True)
+    l2 = as_finite_scalar(l2, "l2", minimum=0.0, strictly=True)
+    p_tip = as_pairs(p_tip, "p_tip")
+    x, y = p_tip[..., 0], p_tip[..., 1]
+    cos_theta = (x**2 + y**2 - l1**2 - l2**2) / (2.0 * l1 * l2)
+    bad = np.abs(cos_theta) > 1.0 + _ACOS_SLACK
+    if np.any(bad):
+        p_bad = p_tip[bad] if p_tip.ndim > 1 else p_tip
+        p_bad = np.atleast_2d(p_bad)[0]
+        r = float(np.hypot(p_bad[0], p_bad[1]))
+        raise UnreachableError(
+            f"p_tip ({p_bad[0]:.6g}, {p_bad[1]:.6g}) is {r:.6g} m from the base; "
+            f"the arm reaches from {abs(l1 - l2):.6g} to {l1 + l2:.6g} m"
+        )
+    theta = np.arccos(np.clip(cos_theta, -1.0, 1.0))
+    second = np.sin(theta) if reading == "sin" else np.cos(theta)
+    q1 = np.arctan2(y, x) - np.arctan2(l2 * np.sin(theta), l1 + l2 * second)
+    return np.stack([q1, q1 + theta], axis=-1)
+
+
+def source_fk(q_abs, *, l1=2.0, l2=2.0):
+    """Tip position from absolute link angles: ``(l1 cos q1 + l2 cos q2_abs, l1 sin q1 + l2 sin q2_abs)``.
+
+    Where the arm's tip really is for the angles the source commanded.
+
+    Examples
+    --------
+    >>> source_fk([0.0, np.pi / 2]).round(12)
+    array([2., 2.])
+    """
+    l1 = as_finite_scalar(l1, "l1", minimum=0.0, strictly=True)
+    l2 = as_finite_scalar(l2, "l2", minimum=0.0, strictly=True)
+    q_abs = as_pairs(q_abs, "q_abs")
+    q1, q2 = q_abs[..., 0], q_abs[..., 1]
+    return np.stack([l1 * np.cos(q1) + l2 * np.cos(q2), l1 * np.sin(q1) + l2 * np.sin(q2)], axis=-1)
+
+
+def source_link_torques(q_abs, force, *, l1=2.0, l2=2.0):
+    """The source's torque formulas: ``T_i = l_i (F_y cos q_i - F_x sin q_i)``, absolute angles.
+
+    These are the generalised forces of the absolute-angle model (motor 2 on
+    the ground), ``J_abs^T F``.  They relate to the DH torques by
+    ``T1 = tau1_DH - tau2_DH``, ``T2 = tau2_DH`` (:func:`dh_to_motor_torques`).
+
+    Parameters
+    ----------
+    q_abs : array_like, shape (..., 2)
+        Absolute link angles, radians.
+    force : array_like, shape (..., 2)
+        Force at the tip, newtons.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        ``(T1, T2)`` in N m.
+
+    Examples
+    --------
+    A force along link 2 gives ``T2 = 0``:
+
+    >>> source_link_torques([0.0, np.pi / 4], [100.0, 100.0]).round(9)
+    array([200.,   0.])
+    """
+    l1 = as_finite_scalar(l1, "l1", minimum=0.0, strictly=True)
+    l2 = as_finite_scalar(l2, "l2", minimum=0.0, strictly=True)
+    q_abs = as_pairs(q_abs, "q_abs")
+    force = as_pairs(force, "force")
+    fx, fy = force[..., 0], force[..., 1]
+    t1 = l1 * (fy * np.cos(q_abs[..., 0]) - fx * np.sin(q_abs[..., 0]))
+    t2 = l2 * (fy * np.cos(q_abs[..., 1]) - fx * np.sin(q_abs[..., 1]))
+    return np.stack(np.broadcast_arrays(t1, t2), axis=-1)
+
+
+@dataclass(frozen=True)
+class WallSearchResult:
+    """The first match of the source's wall search.
+
+    Attributes
+    ----------
+    index : int
+        Index of the first matching point among the ``n_points``.
+    p_contact : numpy.ndarray, shape (2,)
+        The wall point the search stopped at, metres.
+    q_abs : numpy.ndarray, shape (2,)
+        The source's absolute angles for it, radians.
+    torques : numpy.ndarray, shape (2,)
+        ``(T1, T2)`` from :func:`source_link_torques`, N m.
+    p_tip_fk : numpy.ndarray, shape (2,)
+        Where the arm's tip really is for ``q_abs`` (forward kinematics), metres.
+    """
+
+    index: int
+    p_contact: np.ndarray
+    q_abs: np.ndarray
+    torques: np.ndarray
+    p_tip_fk: np.ndarray
+
+
+def source_wall_search(*, reading="cos", n_points=100_000, normal_force=500.0, l1=2.0, l2=2.0):
+    """The source's wall search, vectorised: the first point with ``round(q2_abs, 4) == round(pi/4, 4)``.
+
+    The source walks ``n_points`` equally spaced points from (4, 0) to (0, 4)
+    (the wall ``x + y = 4``), runs its IK (:func:`source_ik`) on each and stops at
+    the **first** one whose absolute link-2 angle, rounded to four decimals in
+    radians, equals ``round(pi/4, 4) = 0.7854`` (link 2 perpendicular to the
+    wall, to about +-0.003 deg).  The torques use the normal force
+    ``N = normal_force (1, 1)/sqrt(2)`` (the push into the wall) in
+    :func:`source_link_torques`.  This does the same work on all points at once.
+
+    Parameters
+    ----------
+    reading : {"cos", "sin"}
+        Which reading of the transcribed IK line (H4.1).
+    n_points : int
+        Number of points along the wall (the source used 100,000; at least 2).
+    normal_force : float
+        Magnitude of the push, newtons.
+    l1, l2 : float
+        Link lengths, metres.
+
+    Returns
+    -------
+    WallSearchResult
+
+    Raises
+    ------
+    ValueError
+        For a bad ``reading`` or ``n_points``, or when no point matches.
+
+    Examples
+    --------
+    With the correct IK the search finds the right contact, to four digits:
+
+    >>> hit = source_wall_search(reading="cos")
+    >>> hit.p_contact.round(4), hit.torques.round(2)
+    (array([3.2872, 0.7128]), array([9.1018e+02, 3.0000e-02]))
+
+    With the ``sin`` typo it stops elsewhere, and the real tip is off the wall:
+
+    >>> typo = source_wall_search(reading="sin")
+    >>> typo.p_contact.round(4), round(float(typo.torques[0]), 2), typo.p_tip_fk.round(3)
+    (array([3.4116, 0.5884]), 867.11, array([3.345, 0.892]))
+    """
+    _check_reading(reading)
+    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < 2:
+        raise ValueError(f"n_points must be an integer >= 2; got {n_points!r}")
+    normal_force = as_finite_scalar(normal_force, "normal_force")
+    s = np.linspace(0.0, 1.0, int(n_points))
+    p_wall = np.stack([4.0 - 4.0 * s, 4.0 * s], axis=-1)
+    q_abs = source_ik(p_wall, reading=reading, l1=l1, l2=l2)
+    hits = np.flatnonzero(np.round(q_abs[:, 1], 4) == round(np.pi / 4, 4))
+    if hits.size == 0:
+        raise ValueError(f"no point of the {n_points} matched round(q2_abs, 4) == {round(np.pi / 4, 4)}")
+    i = int(hits[0])
+    force = normal_force * np.array([1.0, 1.0]) / np.sqrt(2.0)
+    return WallSearchResult(
+        index=i,
+        p_contact=p_wall[i],
+        q_abs=q_abs[i],
+        torques=source_link_torques(q_abs[i], force, l1=l1, l2=l2),
+        p_tip_fk=source_fk(q_abs[i], l1=l1, l2=l2),
+    )
+
+
+def source_spring_torques(p_tip, *, k=600.0, l1=2.0, l2=2.0):
+    """The source's spring torques: ``F = k (x, y)`` and ``t_i = k y l_i cos q_i - k x l_i sin q_i``.
+
+    The spring is anchored at the origin (``x`` where ``x0 - x`` belongs), the
+    angles are the source's absolute angles from :func:`source_ik` with the
+    ``cos`` reading (the spring program's), elbow branch ``theta >= 0`` (the
+    package's ``elbow="down"``), and the torques are in the source's convention
+    (motor 2 on the ground, :func:`source_link_torques`).
+
+    Parameters
+    ----------
+    p_tip : array_like, shape (..., 2)
+        Tip positions, metres.
+    k : float
+        Spring constant, N/m.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        ``(t1, t2)`` in N m, the source's convention.
+
+    Examples
+    --------
+    Along x = 3 at y = 0, 1, 2 (motor 1 is not zero in this convention):
+
+    >>> p = [[3.0, 0.0], [3.0, 1.0], [3.0, 2.0]]
+    >>> source_spring_torques(p).round(0)
+    array([[ 2381., -2381.],
+           [ 2324., -2324.],
+           [ 1873., -1873.]])
+    """
+    k = as_finite_scalar(k, "k")
+    p_tip = as_pairs(p_tip, "p_tip")
+    q_abs = source_ik(p_tip, reading="cos", l1=l1, l2=l2)
+    return source_link_torques(q_abs, k * p_tip, l1=l1, l2=l2)
+
+
+def correct_spring_torques_dh(q_dh, p_rest, *, k=600.0, l1=2.0, l2=2.0):
+    """The correct spring law in DH torques: ``tau = J(q)^T k (x0 - x)``.
+
+    Parameters
+    ----------
+    q_dh : array_like, shape (..., 2)
+        Relative (DH) joint angles, radians.
+    p_rest : array_like, shape (2,)
+        The spring's rest point ``x0``, metres.
+    k : float
+        Spring constant, N/m.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        ``(tau1, tau2)`` in DH convention, N m.
+
+    Examples
+    --------
+    At the rest point the spring is silent:
+
+    >>> import twolink
+    >>> q = twolink.to_relative(source_ik([3.0, 1.0]))
+    >>> correct_spring_torques_dh(q, [3.0, 1.0]).round(9) + 0.0
+    array([0., 0.])
+    """
+    from ..arm import TwoLinkArm
+
+    k = as_finite_scalar(k, "k")
+    p_rest = as_pairs(p_rest, "p_rest")
+    arm = TwoLinkArm(l1=l1, l2=l2)
+    q_dh = as_pairs(q_dh, "q_dh")
+    force = k * (p_rest - arm.fk(q_dh))
+    return arm.joint_torques(q_dh, force=force)
+
+
+def dh_to_motor_torques(tau_dh):
+    """DH joint torques to the source's motor torques: ``u1 = tau1 - tau2``, ``u2 = tau2``.
+
+    With motor 2 on the ground driving link 2's absolute angle, the virtual
+    work ``tau1 dq1 + tau2 dq2 = u1 dq1 + u2 d(q1 + q2)`` gives this map.
+
+    Examples
+    --------
+    >>> dh_to_motor_torques([0.0, -2381.0])
+    array([ 2381., -2381.])
+    """
+    tau_dh = as_pairs(tau_dh, "tau_dh")
+    u = tau_dh.copy()
+    u[..., 0] = tau_dh[..., 0] - tau_dh[..., 1]
+    return u
+
+
+def motor_to_dh_torques(u_motor):
+    """The source's motor torques to DH joint torques: ``tau1 = u1 + u2``, ``tau2 = u2``.
+
+    Examples
+    --------
+    >>> motor_to_dh_torques([2381.0, -2381.0])
+    array([    0., -2381.])
+    """
+    u_motor = as_pairs(u_motor, "u_motor")
+    tau = u_motor.copy()
+    tau[..., 0] = u_motor[..., 0] + u_motor[..., 1]
+    return tau
