@@ -1,0 +1,134 @@
+"""MAE 6245 assignment 5, reproduced (twolink.sources.mae6245).
+
+For every number the assignment printed (COURSE.md H1), the reproduction of its
+method must give it to the printed rounding; beside it, the corrected value
+computed by the package.
+"""
+
+import numpy as np
+import pytest
+from conftest import angles
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from twolink import arms, ik, wrap_angle
+from twolink.sources import mae6245
+
+ARM = arms.ten
+
+
+# H1.1: the closed form on the x-equation only ------------------------------------------------
+
+
+def test_closed_form_reproduces_the_printed_plus_minus_0_7854():
+    roots = mae6245.x_equation_roots(mae6245.TARGET, theta2=0.0)
+    assert np.round(roots, 4).tolist() == [0.7854, -0.7854]
+
+
+def test_the_minus_root_is_spurious_and_the_package_gives_only_the_plus_root():
+    plus, minus = mae6245.x_equation_roots(mae6245.TARGET, theta2=0.0)
+    target = np.array(mae6245.TARGET)
+    assert np.allclose(ARM.fk([plus, 0.0]), target, atol=1e-12)
+    assert np.allclose(ARM.fk([minus, 0.0]), [target[0], -target[1]], atol=1e-12)  # (14.14, -14.14)
+    assert round(float(np.hypot(*(ARM.fk([minus, 0.0]) - target))), 2) == 28.28
+    q_both = ik.closed_form(ARM, target, elbow="both")
+    assert np.allclose(q_both, [[np.pi / 4, 0.0], [np.pi / 4, 0.0]], atol=1e-12)
+
+
+@given(q1=angles, q2=angles)
+def test_both_x_equation_roots_solve_the_x_equation_and_the_other_lands_on_the_mirror_point(q1, q2):
+    target = ARM.fk([q1, q2])
+    assume(abs(target[0]) < 0.999 * np.hypot(10 + 10 * np.cos(q2), 10 * np.sin(q2)))  # two distinct roots
+    roots = mae6245.x_equation_roots(target, theta2=q2)
+    tips = np.array([ARM.fk([root, q2]) for root in roots])
+    assert np.allclose(tips[:, 0], target[0], atol=1e-9)
+    # one root is the configuration itself, the other reaches (x, -y): same distance, same x
+    matches = [np.allclose(wrap_angle(root - q1), 0.0, atol=1e-7) for root in roots]
+    assert any(matches)
+    other = tips[matches.index(False)] if not all(matches) else tips[1]
+    assert np.allclose(other, [target[0], -target[1]], atol=1e-7)
+
+
+def test_x_equation_roots_refuses_an_x_beyond_reach():
+    with pytest.raises(ValueError, match="no real root"):
+        mae6245.x_equation_roots([25.0, 0.0], theta2=0.0)
+
+
+# H1.2: fminunc on abs of the y-residual, acos from the x-equation ------------------------------
+
+
+def test_numerical_ik_with_matlab_acos_reproduces_the_printed_0_7854_and_0():
+    run = mae6245.numerical_ik(acos="matlab")
+    assert run.success
+    assert round(float(run.q[0]), 4) == 0.7854
+    assert round(float(run.q[1]), 4) == 0.0 and run.q2_imag == 0.0
+    assert abs(run.q[0] - np.pi / 4) < 1e-6 and abs(run.q[1]) < 1e-6
+    assert run.evaluations < 40  # H1.2: 18 with scipy's BFGS from 0.4
+    # it did leave the real domain of acos on the way, and MATLAB's complex acos carried it through
+    arguments = (mae6245.TARGET[0] - 10 * np.cos(run.q1_trials)) / 10
+    assert np.any(np.abs(arguments) > 1) and np.all(np.isfinite(run.objective_trials))
+
+
+def test_numerical_ik_with_numpy_arccos_fails_silently_on_the_same_target():
+    run = mae6245.numerical_ik(acos="numpy")
+    assert not run.success
+    assert np.isnan(run.q[1])
+    assert abs(run.q[0]) > 2 * np.pi  # wandered off (H1.2: 1034.6 with scipy's BFGS)
+    assert np.isnan(run.objective_trials[2])  # the first trial step already returns nan
+    assert np.isfinite(run.objective_trials[:2]).all()
+
+
+def test_acos_only_gives_link_2_directions_in_0_to_pi():
+    # a target of the arm's workspace whose in-limits configuration has link 2 pointing down
+    q_in_limits = np.radians([10.0, -60.0])
+    target = ARM.fk(q_in_limits)
+    assert ARM.within_limits(q_in_limits) and q_in_limits.sum() < 0
+    q1_grid = np.linspace(-np.pi, np.pi, 20001)
+    residual = mae6245.y_residual(q1_grid, target)
+    zeros = q1_grid[residual < 1e-2]
+    # the objective's only zero is the other branch, link 1 at -50 deg, outside the q1 limits
+    assert np.allclose(zeros, np.radians(-50.0), atol=1e-3)
+    run = mae6245.numerical_ik(target, acos="matlab")
+    assert np.hypot(*(ARM.fk(np.real(run.q)) - target)) > 1.0
+
+
+def test_numerical_ik_rejects_an_unknown_acos():
+    with pytest.raises(ValueError, match="acos must be one of"):
+        mae6245.numerical_ik(acos="octave")
+
+
+# H1.3: the FK check typed with 0.7845 ------------------------------------------------------------
+
+
+def test_fk_check_reproduces_the_printed_14_1548_14_1294():
+    assert np.round(mae6245.fk_check(), 4).tolist() == [14.1548, 14.1294]
+    assert np.allclose(mae6245.fk_check(), ARM.fk([0.7845, 0.0]), atol=1e-12)
+
+
+def test_fk_check_with_the_intended_angle_lands_on_the_target():
+    error_typo = np.hypot(*(mae6245.fk_check(0.7845) - np.array(mae6245.TARGET)))
+    error_intended = np.hypot(*(mae6245.fk_check(0.7854) - np.array(mae6245.TARGET)))
+    assert round(float(error_typo), 4) == 0.0180  # 20 x 0.0009 rad (minus the rounding of 0.7854)
+    assert error_intended < 1e-3 and error_intended < error_typo / 20
+
+
+# H1.4: phi = 0:0.5:2*pi --------------------------------------------------------------------------
+
+
+def test_circle_angles_are_13_with_a_short_last_gap():
+    phi = mae6245.circle_angles()
+    gaps = np.diff(np.append(phi, 2 * np.pi))
+    assert len(phi) == 13 and phi[-1] == 6.0
+    assert np.allclose(gaps[:-1], 0.5) and round(float(gaps[-1]), 3) == 0.283
+
+
+@given(n=st.integers(min_value=10, max_value=20))
+def test_linspace_without_end_point_gives_equal_gaps(n):
+    phi = np.linspace(0.0, 2 * np.pi, n, endpoint=False)
+    gaps = np.diff(np.append(phi, 2 * np.pi))
+    assert np.allclose(gaps, 2 * np.pi / n)
+
+
+def test_circle_angles_rejects_a_non_positive_step():
+    with pytest.raises(ValueError, match="step must be > 0"):
+        mae6245.circle_angles(0.0)

@@ -1,0 +1,309 @@
+"""MAE 6245 assignment 5, reproduced: inverse kinematics three ways on a1 = a2 = 10.
+
+The assignment solved the IK of the planar 2R arm with a1 = a2 = 10 (no units)
+for the target (10 sqrt 2, 10 sqrt 2) three ways (a closed form, MATLAB's
+``fminunc`` on one equation in q1, and a brute-force grid), checked an answer
+with forward kinematics, and drew the arm on a circle of targets.  This module
+reruns what it did, step by step, so that chapters 2 and 7 (and the tests)
+show its printed numbers coming out of its own formulas:
+
+- :func:`x_equation_roots`: its closed form, the ``a cos t + b sin t = c``
+  solution applied to the x-equation alone; printed "theta1 = +-0.7854,
+  theta2 = 0", of which the minus root is spurious.
+- :func:`numerical_ik`: its ``fminunc`` run on the absolute y-residual with q1 + q2
+  from ``acos`` of the x-equation, translated with MATLAB's ``acos`` (complex
+  outside [-1, 1]) or with numpy's (``nan`` there); printed 0.7854, 0.
+- :func:`fk_check`: its forward-kinematics check, typed with theta1 = 0.7845
+  (a digit swap of 0.7854); printed x = 14.1548, y = 14.1294.
+- :func:`circle_angles`: its circle points, ``phi = 0:0.5:2*pi``: 13 points, the
+  last gap shorter than the others.
+
+The correct methods live in :mod:`twolink.ik`; nothing here is meant for new
+code.  Angles in radians, lengths in the assignment's units (read as metres).
+"""
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.optimize
+
+__all__ = [
+    "A1",
+    "A2",
+    "TARGET",
+    "Q1_START",
+    "FK_CHECK_THETA1",
+    "CIRCLE_CENTRE",
+    "CIRCLE_RADIUS",
+    "CIRCLE_STEP",
+    "x_equation_roots",
+    "y_residual",
+    "NumericalRun",
+    "numerical_ik",
+    "fk_check",
+    "circle_angles",
+]
+
+#: The assignment's link lengths (no units; the course reads them as metres).
+A1 = 10.0
+A2 = 10.0
+#: The assignment's IK target, at full stretch: (10 sqrt 2, 10 sqrt 2).
+TARGET = (10.0 * np.sqrt(2.0), 10.0 * np.sqrt(2.0))
+#: Where its ``fminunc`` run started, rad.
+Q1_START = 0.4
+#: The theta1 its FK check was typed with: 0.7845, a digit swap of 0.7854.
+FK_CHECK_THETA1 = 0.7845
+#: Its circle of targets: centre, radius and the step of ``phi = 0:0.5:2*pi`` (rad).
+CIRCLE_CENTRE = (12.5, 12.5)
+CIRCLE_RADIUS = 2.0
+CIRCLE_STEP = 0.5
+
+_ACOS = {"matlab": np.emath.arccos, "numpy": np.arccos}
+
+
+def _check_acos(acos):
+    if acos not in _ACOS:
+        raise ValueError(f"acos must be one of {sorted(_ACOS)}; got {acos!r}")
+    return _ACOS[acos]
+
+
+def x_equation_roots(p, theta2, a1=A1, a2=A2):
+    """Both roots of the assignment's closed form: the x-equation solved for theta1.
+
+    With theta2 known, ``x = (a1 + a2 cos theta2) cos theta1 - a2 sin theta2 sin theta1``
+    has the form ``a cos t + b sin t = c`` (``a = a1 + a2 c2``, ``b = -a2 s2``,
+    ``c = x``), solved as
+    ``theta1 = atan2(b, a) +- atan2(sqrt(a^2 + b^2 - x^2), x)``.  Both roots
+    satisfy the x-equation; the y-equation was never imposed, so one of them is
+    in general spurious: with theta2 fixed the tip's distance from the base is
+    fixed, and the spurious root puts the tip at the mirror point (x, -y).
+
+    Parameters
+    ----------
+    p : pair of float
+        The target (x, y); only x enters.
+    theta2 : float
+        The elbow angle, radians (the assignment used theta2 = 0 for its target).
+    a1, a2 : float
+        Link lengths.
+
+    Returns
+    -------
+    numpy.ndarray, shape (2,)
+        theta1 with the plus sign, theta1 with the minus sign, radians.
+
+    Examples
+    --------
+    The assignment's printed "theta1 = +-0.7854" for its target:
+
+    >>> roots = x_equation_roots(TARGET, theta2=0.0)
+    >>> roots.round(4)
+    array([ 0.7854, -0.7854])
+
+    Only the plus root puts the tip on the target; the minus root lands at (x, -y):
+
+    >>> [fk_check(theta1, 0.0).round(2).tolist() for theta1 in roots]
+    [[14.14, 14.14], [14.14, -14.14]]
+    """
+    x = float(np.asarray(p, dtype=float)[0])
+    a = a1 + a2 * np.cos(theta2)
+    b = -a2 * np.sin(theta2)
+    discriminant = a**2 + b**2 - x**2
+    if discriminant < 0:
+        raise ValueError(f"no real root: x = {x:g} exceeds sqrt(a^2 + b^2) = {np.hypot(a, b):g} for theta2 = {theta2:g}")
+    direction = np.arctan2(b, a)
+    half_angle = np.arctan2(np.sqrt(discriminant), x)
+    return np.array([direction + half_angle, direction - half_angle])
+
+
+def y_residual(q1, p=TARGET, acos="matlab", a1=A1, a2=A2):
+    """The assignment's objective: ``abs(a1 sin q1 + a2 sin(acos((x - a1 cos q1)/a2)) - y)``.
+
+    q1 + q2 is taken from ``acos`` of the x-equation and put into the
+    y-equation; the absolute value (not a square) of what is left is the
+    objective it minimised over q1 alone.
+
+    Parameters
+    ----------
+    q1 : float or array_like
+        Link 1 angle, radians.
+    p : pair of float
+        The target (x, y).
+    acos : {"matlab", "numpy"}
+        "matlab": ``acos`` of a number outside [-1, 1] is complex (MATLAB's
+        ``acos``, here :func:`numpy.emath.arccos`), and the residual is the
+        modulus of a complex number.  "numpy": :func:`numpy.arccos`, ``nan``
+        there (its RuntimeWarning silenced, as in a script nobody watches).
+    a1, a2 : float
+        Link lengths.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        The objective, >= 0 (``nan`` for "numpy" outside the domain).
+
+    Examples
+    --------
+    At q1 = 1.41 the argument of ``acos`` is 1.25: MATLAB's ``acos`` still gives a
+    number, numpy's gives ``nan``.
+
+    >>> round(float(y_residual(1.41, acos="matlab")), 2), float(y_residual(1.41, acos="numpy"))
+    (8.69, nan)
+    >>> float(y_residual(np.pi / 4)) < 1e-12
+    True
+    """
+    arccos = _check_acos(acos)
+    x, y = np.asarray(p, dtype=float)
+    q1 = np.asarray(q1, dtype=float)
+    with np.errstate(invalid="ignore"):
+        residual = a1 * np.sin(q1) + a2 * np.sin(arccos((x - a1 * np.cos(q1)) / a2)) - y
+    return np.abs(residual)
+
+
+@dataclass(frozen=True)
+class NumericalRun:
+    """One run of the assignment's numerical IK (see :func:`numerical_ik`).
+
+    Attributes
+    ----------
+    q : numpy.ndarray, shape (2,)
+        (q1, q2) in radians: q1 where the optimiser stopped, q2 the real part of
+        ``acos((x - a1 cos q1)/a2) - q1`` (``nan`` with numpy's ``acos`` outside
+        its domain).
+    q2_imag : float
+        The imaginary part of that q2 (MATLAB's ``acos`` outside [-1, 1]); 0 for a
+        real answer.
+    success : bool
+        scipy's verdict.
+    message : str
+        scipy's message.
+    evaluations : int
+        Objective evaluations.
+    q1_trials, objective_trials : numpy.ndarray
+        Every q1 the optimiser asked about, and the objective it got back.
+    """
+
+    q: np.ndarray
+    q2_imag: float
+    success: bool
+    message: str
+    evaluations: int
+    q1_trials: np.ndarray
+    objective_trials: np.ndarray
+
+
+def numerical_ik(p=TARGET, q1_start=Q1_START, acos="matlab", a1=A1, a2=A2):
+    """The assignment's numerical IK, translated: minimise :func:`y_residual` over q1, then q2.
+
+    MATLAB's ``fminunc`` (a quasi-Newton method) becomes scipy's BFGS from the
+    same start; then ``q2 = acos((x - a1 cos q1)/a2) - q1``.
+
+    Parameters
+    ----------
+    p : pair of float
+        The target (x, y).
+    q1_start : float
+        Start of the minimisation, radians (the assignment's 0.4).
+    acos : {"matlab", "numpy"}
+        Which ``acos`` the translation uses (see :func:`y_residual`).
+    a1, a2 : float
+        Link lengths.
+
+    Returns
+    -------
+    NumericalRun
+
+    Examples
+    --------
+    With MATLAB's ``acos`` the method reaches the assignment's printed 0.7854, 0:
+
+    >>> run = numerical_ik(acos="matlab")
+    >>> round(float(run.q[0]), 4), bool(abs(run.q[1]) < 1e-6), run.success
+    (0.7854, True, True)
+
+    The same code with numpy's ``arccos``: the first trial step leaves the domain,
+    the objective returns nan without an error, and the run ends far away:
+
+    >>> run = numerical_ik(acos="numpy")
+    >>> run.success, bool(np.isnan(run.q[1])), bool(abs(run.q[0]) > 2 * np.pi)
+    (False, True, True)
+    """
+    arccos = _check_acos(acos)
+    x = float(np.asarray(p, dtype=float)[0])
+    q1_trials, objective_trials = [], []
+
+    def objective(q1_vector):
+        value = float(y_residual(q1_vector[0], p, acos, a1, a2))
+        q1_trials.append(float(q1_vector[0]))
+        objective_trials.append(value)
+        return value
+
+    outcome = scipy.optimize.minimize(objective, [float(q1_start)], method="BFGS")
+    q1 = float(outcome.x[0])
+    with np.errstate(invalid="ignore"):
+        q12 = complex(arccos((x - a1 * np.cos(q1)) / a2))
+    return NumericalRun(
+        q=np.array([q1, q12.real - q1]),
+        q2_imag=float(q12.imag),
+        success=bool(outcome.success),
+        message=str(outcome.message),
+        evaluations=int(outcome.nfev),
+        q1_trials=np.array(q1_trials),
+        objective_trials=np.array(objective_trials),
+    )
+
+
+def fk_check(theta1=FK_CHECK_THETA1, theta2=0.0, a1=A1, a2=A2):
+    """The assignment's FK check: ``x = a1 cos t1 + a2 cos(t1 + t2)``, ``y`` likewise.
+
+    It was typed with theta1 = 0.7845 instead of the 0.7854 its IK had printed.
+
+    Parameters
+    ----------
+    theta1, theta2 : float
+        Joint angles, radians (relative, DH).
+    a1, a2 : float
+        Link lengths.
+
+    Returns
+    -------
+    numpy.ndarray, shape (2,)
+        The tip (x, y).
+
+    Examples
+    --------
+    The printed "x = 14.1548, y = 14.1294":
+
+    >>> fk_check().round(4)
+    array([14.1548, 14.1294])
+    """
+    return np.array([a1 * np.cos(theta1) + a2 * np.cos(theta1 + theta2), a1 * np.sin(theta1) + a2 * np.sin(theta1 + theta2)])
+
+
+def circle_angles(step=CIRCLE_STEP):
+    """The assignment's circle parameter ``phi = 0:step:2*pi`` (MATLAB's colon operator).
+
+    The colon operator stops at the last multiple of the step not beyond
+    2 pi, so with step 0.5 there are 13 angles, 0 to 6, and the gap from the
+    last back to the first is 2 pi - 6 = 0.283 rad, not 0.5.
+
+    Parameters
+    ----------
+    step : float
+        Increment, radians (> 0).
+
+    Returns
+    -------
+    numpy.ndarray
+        The angles, radians.
+
+    Examples
+    --------
+    >>> phi = circle_angles()
+    >>> len(phi), float(phi[-1]), round(float(2 * np.pi - phi[-1]), 3)
+    (13, 6.0, 0.283)
+    """
+    if not step > 0:
+        raise ValueError(f"step must be > 0 rad; got {step!r}")
+    count = int(np.floor(2 * np.pi / step + 1e-10)) + 1
+    return step * np.arange(count)
