@@ -190,7 +190,7 @@ def to_mjcf(
     >>> print([line.strip() for line in mjcf.splitlines() if "inertial" in line][0])
     <inertial pos="1.0 0 0" mass="1.0" diaginertia="3.333333333333333e-07 0.3333333333333333 0.3333333333333333"/>
     >>> print([line.strip() for line in mjcf.splitlines() if 'name="wall"' in line][0])
-    <geom name="wall" type="plane" pos="2.0028284271247464 2.0028284271247464 0" zaxis="-0.7071067811865475 -0.7071067811865475 0" size="0 0 0.1" contype="0" conaffinity="1" rgba="0.6 0.6 0.6 0.5"/>
+    <geom name="wall" type="plane" pos="2.002828427124746 2.002828427124746 0" zaxis="-0.7071067811865475 -0.7071067811865475 0" size="0 0 0.1" contype="0" conaffinity="1" rgba="0.6 0.6 0.6 0.5"/>
     >>> export.to_mjcf(arms.two_metre, integrator="rk4")
     Traceback (most recent call last):
     ...
