@@ -1,0 +1,178 @@
+"""COMPSYS726 assignments 3-4, reproduced: the velocity table along the line y = 50.
+
+The assignments derived the planar arm's DH table, ``A1``, ``A2``,
+``T = A1 A2`` and its Jacobian (all correct), and the joint rates for a tip
+moving only vertically (``xdot = 0``) or only horizontally (``ydot = 0``),
+also correct:
+
+- vertical: ``q2dot = (-a1 s1 - a2 s12) / (a1 a2 s2) * ydot``
+  (:func:`q2_rate_vertical`);
+- horizontal: ``q1dot = a2 c12 / (a1 a2 s2) * xdot`` (:func:`q1_rate_horizontal`).
+
+Then they tabulated joint angles and a joint rate for the tip on the line
+``y = 50`` at ``x = 10, 20, ..., 100`` (bare numbers; the arm is not stated).
+The arm ``a1 = 100``, ``a2 = 50`` reproduces both printed angle columns.
+The table has three faults, reproduced here:
+
+1. :func:`ik_as_written`: ``q2 = acosd(...)`` (degrees, right), then
+   ``sin(q2)``, ``cos(q2)`` of that degree value (radians expected) inside
+   ``q1 = atand(y/x) - atand(a2 sin q2 / (a1 + a2 cos q2))``: the q1 column is
+   wrong.  (``atand(y/x)`` does no harm on this line, where ``x > 0``.)
+2. and 3. :func:`rate_as_printed`: the rate column is the **vertical**
+   formula, where horizontal motion was asked, evaluated at the printed
+   (wrong) angles and multiplied by -10 (a velocity the text never states).
+
+Lengths are the source's bare numbers; angles in the source's functions are
+in degrees, as the source printed them.  Nothing here is for new code: use
+:func:`twolink.ik.closed_form` and :meth:`twolink.TwoLinkArm.joint_rates`.
+"""
+
+import numpy as np
+
+from .._validate import as_finite_scalar
+
+__all__ = [
+    "A1",
+    "A2",
+    "Y_LINE",
+    "X_LINE",
+    "RATE_FACTOR",
+    "ik_as_written",
+    "q2_rate_vertical",
+    "q1_rate_horizontal",
+    "rate_as_printed",
+]
+
+A1 = 100.0
+"""Link 1 of the arm that reproduces the table (bare units)."""
+A2 = 50.0
+"""Link 2 of the arm that reproduces the table (bare units)."""
+Y_LINE = 50.0
+"""The table's line, ``y = 50``."""
+X_LINE = np.arange(10.0, 101.0, 10.0)
+"""The table's points, ``x = 10, 20, ..., 100``."""
+RATE_FACTOR = -10.0
+"""The factor the printed rate column carries (a tip velocity the text never states)."""
+
+
+def _array(values, name):
+    array = np.asarray(values, dtype=float)
+    if not np.isfinite(array).all():
+        raise ValueError(f"{name} must be finite numbers; got {values!r}")
+    return array
+
+
+def _lengths(a1, a2):
+    return (as_finite_scalar(a1, "a1", minimum=0.0, strictly=True),
+            as_finite_scalar(a2, "a2", minimum=0.0, strictly=True))
+
+
+def ik_as_written(x, y=Y_LINE, a1=A1, a2=A2):
+    """Joint angles ``(q1, q2)`` in degrees, as the source's IK function computed them.
+
+    ``q2 = acosd((x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2))`` is right (degrees,
+    elbow with ``q2 > 0``).  Then ``q1 = atand(y/x) - atand(a2 sin(q2) / (a1 + a2 cos(q2)))``
+    with ``sin``/``cos`` applied to the degree value of ``q2``, as if it were
+    radians: that makes ``q1`` wrong.  ``atand(y/x)`` would also be wrong for
+    ``x < 0`` (it cannot tell ``(x, y)`` from ``(-x, -y)``), but every point of
+    the table has ``x > 0``.
+
+    Parameters
+    ----------
+    x, y : array_like
+        Target tip position (bare units), broadcast together; ``x != 0``.
+    a1, a2 : float
+        Link lengths (> 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        ``(q1, q2)`` in degrees.
+
+    Raises
+    ------
+    ValueError
+        If a target is out of reach (the source's ``acosd`` would return a
+        complex number there) or ``x == 0`` (``y/x`` is undefined).
+
+    Examples
+    --------
+    >>> ik_as_written(10.0).round(2)      # printed: 49, 172; right: (70.74, 171.89)
+    array([ 49.1 , 171.89])
+    >>> ik_as_written(100.0).round(3)     # printed: -3.3, 90; right: (0, 90)
+    array([-3.379, 90.   ])
+    """
+    x, y = np.broadcast_arrays(_array(x, "x"), _array(y, "y"))
+    a1, a2 = _lengths(a1, a2)
+    if np.any(x == 0.0):
+        raise ValueError("x must be nonzero: the source's atand(y/x) divides by x")
+    cos_q2 = (x**2 + y**2 - a1**2 - a2**2) / (2.0 * a1 * a2)
+    if np.any(np.abs(cos_q2) > 1.0):
+        raise ValueError(f"target out of reach of the a1 = {a1:g}, a2 = {a2:g} arm: "
+                         f"(x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2) = {cos_q2[np.abs(cos_q2) > 1.0].ravel()[0]:.4g} "
+                         "is outside [-1, 1]")
+    q2_deg = np.degrees(np.arccos(cos_q2))  # acosd: right
+    q1_deg = np.degrees(np.arctan(y / x)) - np.degrees(  # atand(y/x), and sin/cos of degrees: wrong
+        np.arctan(a2 * np.sin(q2_deg) / (a1 + a2 * np.cos(q2_deg))))
+    return np.stack([q1_deg, q2_deg], axis=-1)
+
+
+def q2_rate_vertical(q1, q2, y_rate, a1=A1, a2=A2):
+    """``q2dot = (-a1 s1 - a2 s12) / (a1 a2 s2) * ydot`` for a tip moving only vertically (the source's, right).
+
+    Parameters
+    ----------
+    q1, q2 : array_like
+        Joint angles, radians.
+    y_rate : float or array_like
+        Vertical tip velocity (length units per s).
+    a1, a2 : float
+        Link lengths (> 0).
+
+    Examples
+    --------
+    >>> round(float(q2_rate_vertical(0.0, np.pi / 2, 1.0, a1=1.0, a2=1.0)), 12)
+    -1.0
+    """
+    q1, q2, y_rate = _array(q1, "q1"), _array(q2, "q2"), _array(y_rate, "y_rate")
+    a1, a2 = _lengths(a1, a2)
+    return (-a1 * np.sin(q1) - a2 * np.sin(q1 + q2)) / (a1 * a2 * np.sin(q2)) * y_rate
+
+
+def q1_rate_horizontal(q1, q2, x_rate, a1=A1, a2=A2):
+    """``q1dot = a2 c12 / (a1 a2 s2) * xdot`` for a tip moving only horizontally (the source's, right).
+
+    Examples
+    --------
+    >>> round(float(q1_rate_horizontal(0.0, np.pi / 2, 1.0, a1=1.0, a2=1.0)), 12)
+    0.0
+    """
+    q1, q2, x_rate = _array(q1, "q1"), _array(q2, "q2"), _array(x_rate, "x_rate")
+    a1, a2 = _lengths(a1, a2)
+    return a2 * np.cos(q1 + q2) / (a1 * a2 * np.sin(q2)) * x_rate
+
+
+def rate_as_printed(q_deg, a1=A1, a2=A2):
+    """The source's rate column: -10 times the vertical formula at the printed angles.
+
+    The table was to give the joint rates for horizontal motion; its printed
+    column equals ``RATE_FACTOR * (-a1 s1 - a2 s12) / (a1 a2 s2)``, the
+    vertical-motion ``q2dot`` per unit ``ydot``, evaluated at the table's
+    (wrong) angles (:func:`ik_as_written`, converted to radians).
+
+    Parameters
+    ----------
+    q_deg : array_like, shape (..., 2)
+        The table's angles ``(q1, q2)``, degrees.
+    a1, a2 : float
+        Link lengths (> 0).
+
+    Examples
+    --------
+    >>> rate_as_printed(ik_as_written(X_LINE)).round(3)   # within 0.2 % of the printed column
+    array([0.607, 0.373, 0.27 , 0.188, 0.195, 0.201, 0.136, 0.202, 0.16 , 0.088])
+    """
+    q = np.radians(_array(q_deg, "q_deg"))
+    if q.shape[-1:] != (2,):
+        raise ValueError(f"q_deg must have shape (..., 2); got shape {q.shape}")
+    return q2_rate_vertical(q[..., 0], q[..., 1], RATE_FACTOR, a1, a2)

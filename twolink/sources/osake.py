@@ -1,0 +1,310 @@
+"""The ME 639 OSAKE mini-project, reproduced: a desk arm's DH transform, Jacobian and C++ programs.
+
+The mini-project studied a small desk arm, "OSAKE": link lengths
+``L1 = 10 cm``, ``L2 = 11.5 cm`` and its plane of motion ``d = 6.5 cm`` above
+the base frame.  Its final ``H_0^2`` and 6x2 geometric Jacobian were right;
+the steps and programs below them were not.  Each function here reproduces
+one of those steps as the source did it, so that chapter 1 and chapter 3 of
+the course (and the tests) can show the source's result coming out of the
+source's method before correcting it:
+
+- :func:`h02_as_expanded`: the hand-expanded ``H_0^2`` (``cos q1 cos q2`` and
+  ``sin q1 cos q2`` where ``cos(q1+q2)`` and ``sin(q1+q2)`` belong, ``l1`` and
+  ``l2`` swapped in the position column);
+- :func:`jacobian_as_derived`: the derivation's first column
+  ``z_0 x (o_2 - o_1)``, taken literally with ``o_1`` the origin of frame 1;
+- :func:`cpp_fk_tip`: the C++ forward-kinematics program (link lengths read
+  into ``int``, no z-offset in ``H01``, triple-loop matrix product);
+- :func:`velocity_program_speed`: the C++ velocity program (angles meant in
+  degrees passed to ``cos``/``sin``, 3 deg/s used as 3 rad/s, the tip's linear
+  speed printed as its "angular velocity").
+
+Lengths are in the source's unit, centimetres (as it typed them); angles are
+plain numbers handed to ``cos``/``sin``, i.e. radians, unless a docstring
+says the source meant degrees.  Nothing here is for new code: the correct
+versions are :meth:`twolink.TwoLinkArm.transforms`,
+:meth:`twolink.TwoLinkArm.geometric_jacobian` and
+:meth:`twolink.TwoLinkArm.tip_velocity`.
+"""
+
+import re
+
+import numpy as np
+
+from .._validate import as_finite_scalar, as_pairs
+
+__all__ = [
+    "L1_CM",
+    "L2_CM",
+    "D_CM",
+    "h02_as_expanded",
+    "jacobian_as_derived",
+    "cpp_read_int",
+    "matmul_triple_loop",
+    "cpp_fk_tip",
+    "velocity_program_speed",
+]
+
+L1_CM = 10.0
+"""Link 1 of the OSAKE arm, cm."""
+L2_CM = 11.5
+"""Link 2 of the OSAKE arm, cm."""
+D_CM = 6.5
+"""Height of the arm's plane above the base frame (first DH row's ``d``), cm."""
+
+
+def _lengths(l1, l2):
+    return (as_finite_scalar(l1, "l1 (cm)", minimum=0.0, strictly=True),
+            as_finite_scalar(l2, "l2 (cm)", minimum=0.0, strictly=True))
+
+
+def h02_as_expanded(q, l1=L1_CM, l2=L2_CM, d=D_CM):
+    """The source's hand-expanded ``H_0^2``, with both of its mistakes.
+
+    Where ``cos(q1 + q2)`` belongs the expansion has ``cos q1 cos q2``, where
+    ``sin(q1 + q2)`` belongs it has ``sin q1 cos q2`` (the ``sin q1 sin q2`` and
+    ``cos q1 sin q2`` terms of the angle-sum formulas are lost), and the
+    position column has ``l1`` and ``l2`` swapped:
+    ``x = l2 cos q1 + l1 cos q1 cos q2``, ``y = l2 sin q1 + l1 sin q1 cos q2``.
+    Its upper-left block has determinant ``cos^2 q2``, so it is a rotation
+    only at ``q2 = 0`` or ``pi``; the tip is right only at ``q2 = 0``.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 2)
+        Joint angles ``(q1, q2)``, radians.
+    l1, l2 : float
+        Link lengths (> 0), cm.
+    d : float
+        Height of the arm's plane, cm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 4, 4)
+
+    Examples
+    --------
+    >>> H = h02_as_expanded(np.radians([30.0, 45.0]))
+    >>> H[:2, 3].round(3)                 # the right tip is (11.637, 16.108) cm
+    array([16.083,  9.286])
+    >>> round(float(np.linalg.det(H[:2, :2])), 3)   # cos^2 45 deg, not 1
+    0.5
+    >>> np.allclose(h02_as_expanded([0.7, 0.0])[:2, 3], (L1_CM + L2_CM) * np.array([np.cos(0.7), np.sin(0.7)]))
+    True
+    """
+    q = as_pairs(q, "q (rad)")
+    l1, l2 = _lengths(l1, l2)
+    d = as_finite_scalar(d, "d (cm)")
+    c1, s1, c2 = np.cos(q[..., 0]), np.sin(q[..., 0]), np.cos(q[..., 1])
+    H = np.zeros(q.shape[:-1] + (4, 4))
+    H[..., 0, 0], H[..., 0, 1] = c1 * c2, -s1 * c2
+    H[..., 1, 0], H[..., 1, 1] = s1 * c2, c1 * c2
+    H[..., 2, 2] = H[..., 3, 3] = 1.0
+    H[..., 0, 3] = l2 * c1 + l1 * c1 * c2
+    H[..., 1, 3] = l2 * s1 + l1 * s1 * c2
+    H[..., 2, 3] = d
+    return H
+
+
+def jacobian_as_derived(q, l1=L1_CM, l2=L2_CM):
+    """The 6x2 geometric Jacobian with the derivation's first column ``z_0 x (o_2 - o_1)``.
+
+    The source's derivation wrote ``o_2 - o_1`` in the first column and said
+    the origin of frame 1 is zero.  In DH numbering frame 0 is the base (its
+    origin is zero) and frame 1 sits at the elbow, ``o_1 = (l1 c1, l1 s1, d)``;
+    the first column needs ``z_0 x (o_2 - o_0)``.  Taken literally, ``o_2 - o_1``
+    makes the first column equal to the second (link 2 alone): the joint-1
+    column loses ``z_0 x o_1``, a vector of length ``l1`` per rad/s at every
+    configuration, and the 2x2 block is singular everywhere.  (The source's
+    final Jacobian, quoted above its derivation, is right; this is what its
+    derivation gives to a reader who follows it.)
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 2)
+        Joint angles, radians.
+    l1, l2 : float
+        Link lengths (> 0), cm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 6, 2)
+        Rows ``v_x, v_y, v_z`` (cm per rad) and ``omega`` (1 per joint).
+
+    Examples
+    --------
+    >>> J = jacobian_as_derived(np.radians([30.0, 45.0]))
+    >>> J[:2].round(3)                    # both columns are link 2's
+    array([[-11.108, -11.108],
+           [  2.976,   2.976]])
+    >>> float(np.linalg.det(J[:2]))
+    0.0
+    """
+    q = as_pairs(q, "q (rad)")
+    l1, l2 = _lengths(l1, l2)
+    q12 = q[..., 0] + q[..., 1]
+    J = np.zeros(q.shape[:-1] + (6, 2))
+    link2_column = np.stack([-l2 * np.sin(q12), l2 * np.cos(q12)], axis=-1)  # z x (o_2 - o_1)
+    J[..., :2, 0] = link2_column
+    J[..., :2, 1] = link2_column
+    J[..., 5, :] = 1.0
+    return J
+
+
+def cpp_read_int(typed):
+    """What C++'s ``std::cin >> n`` stores in an ``int n`` when the user types ``typed``.
+
+    The stream reads the leading integer and stops at the first character
+    that cannot belong to it: ``"11.5"`` gives 11 (the ``".5"`` stays in the
+    stream).
+
+    Parameters
+    ----------
+    typed : str
+        What the user typed, e.g. ``"11.5"``.
+
+    Raises
+    ------
+    ValueError
+        If ``typed`` does not start with an integer (``cin`` would fail).
+
+    Examples
+    --------
+    >>> cpp_read_int("11.5"), cpp_read_int("10"), cpp_read_int(" -3.9")
+    (11, 10, -3)
+    >>> cpp_read_int("abc")
+    Traceback (most recent call last):
+    ...
+    ValueError: typed must start with an integer for `cin >> int`; got 'abc'
+    """
+    match = re.match(r"\s*([+-]?\d+)", str(typed))
+    if match is None:
+        raise ValueError(f"typed must start with an integer for `cin >> int`; got {typed!r}")
+    return int(match.group(1))
+
+
+def matmul_triple_loop(left, right):
+    """The matrix product ``(AB)_ij = sum_k A_ik B_kj`` by three nested loops, as the C++ program did.
+
+    Correct (it is the definition) and slow; kept to compare with ``@``.
+
+    Examples
+    --------
+    >>> matmul_triple_loop([[1.0, 2.0], [3.0, 4.0]], [[0.0, 1.0], [1.0, 0.0]])
+    [[2.0, 1.0], [4.0, 3.0]]
+    """
+    n_rows, n_inner, n_cols = len(left), len(right), len(right[0])
+    if any(len(row) != n_inner for row in left):
+        raise ValueError(f"left must have {n_inner} columns (the rows of right); got rows of lengths "
+                         f"{[len(row) for row in left]}")
+    product = [[0.0] * n_cols for _ in range(n_rows)]
+    for i in range(n_rows):
+        for j in range(n_cols):
+            for k in range(n_inner):
+                product[i][j] += left[i][k] * right[k][j]
+    return product
+
+
+def _dh_planar(theta, d, a):
+    c, s = np.cos(theta), np.sin(theta)
+    return [[c, -s, 0.0, a * c], [s, c, 0.0, a * s], [0.0, 0.0, 1.0, d], [0.0, 0.0, 0.0, 1.0]]
+
+
+def cpp_fk_tip(q, l1_typed="10", l2_typed="11.5", d=D_CM, *, int_lengths=True, drop_offset=True):
+    """The tip ``(x, y, z)`` in cm as the source's C++ forward-kinematics program computed it.
+
+    The program read the link lengths into ``int`` variables (so ``11.5``
+    became 11, :func:`cpp_read_int`), built ``H01`` with a z-offset of 0 (the
+    6.5 cm height ``d`` dropped) and multiplied ``H01 H12`` with triple loops
+    (:func:`matmul_triple_loop`, which is right).  The two switches turn each
+    mistake off, so that each one's share of the error can be measured.
+
+    Parameters
+    ----------
+    q : array_like, shape (2,)
+        Joint angles, radians (the angles themselves were handled correctly).
+    l1_typed, l2_typed : str
+        The link lengths as the user typed them, cm.
+    d : float
+        The arm's real height, cm (used only with ``drop_offset=False``).
+    int_lengths : bool
+        Read the lengths into ``int`` as the source did (``False``: as doubles).
+    drop_offset : bool
+        Put 0 in ``H01``'s z-offset as the source did (``False``: ``d``).
+
+    Returns
+    -------
+    numpy.ndarray, shape (3,)
+
+    Examples
+    --------
+    >>> cpp_fk_tip(np.radians([30.0, 45.0])).round(4)      # the right tip: (11.6367, 16.1081, 6.5)
+    array([11.5073, 15.6252,  0.    ])
+    >>> cpp_fk_tip(np.radians([30.0, 45.0]), int_lengths=False, drop_offset=False).round(4)
+    array([11.6367, 16.1081,  6.5   ])
+    """
+    q = as_pairs(q, "q (rad)")
+    if q.shape != (2,):
+        raise ValueError(f"q must be one configuration, shape (2,); got shape {q.shape}")
+    if int_lengths:
+        l1, l2 = float(cpp_read_int(l1_typed)), float(cpp_read_int(l2_typed))
+    else:
+        l1, l2 = float(l1_typed), float(l2_typed)
+    l1, l2 = _lengths(l1, l2)
+    height = 0.0 if drop_offset else as_finite_scalar(d, "d (cm)")
+    H01 = _dh_planar(q[0], height, l1)
+    H12 = _dh_planar(q[1], 0.0, l2)
+    H02 = matmul_triple_loop(H01, H12)
+    return np.array([H02[0][3], H02[1][3], H02[2][3]])
+
+
+def velocity_program_speed(t, l1=L1_CM, l2=L2_CM, step=1e-3):
+    """The number the source's C++ velocity program printed as the "end-tip angular velocity".
+
+    The program set ``theta1 = 3 t`` and ``theta2 = 60``, both meant in
+    degrees, and passed them to ``cos``/``sin``, which take radians; it
+    differentiated the two angle functions numerically (for these linear
+    functions the derivative is just the slope, ``(3, 0)``) and used that as
+    the joint rates in rad/s, although 3 was meant as 3 deg/s; then it printed
+    the length of ``J(theta) theta_dot``, which is the tip's **linear** speed,
+    in cm/s.  Details the description leaves open and this reproduction
+    assumes: a central difference with ``step`` seconds (any step gives the
+    same slope to rounding), the lengths as doubles (10 and 11.5 cm), and the
+    speed as the Euclidean length of the planar tip velocity.  The result does
+    not depend on ``t``: the arm turns rigidly about the base.
+
+    Parameters
+    ----------
+    t : float
+        Time, s.
+    l1, l2 : float
+        Link lengths (> 0), cm.
+    step : float
+        Finite-difference step (> 0), s.
+
+    Returns
+    -------
+    float
+        The printed number, cm/s (a linear speed; the source called it an
+        angular velocity).
+
+    Examples
+    --------
+    >>> round(velocity_program_speed(1.0), 3)     # the correct tip speed is 0.976 cm/s
+    10.897
+    >>> round(velocity_program_speed(1.0, l2=11.0), 3)   # if the lengths were ints too
+    10.16
+    """
+    t = as_finite_scalar(t, "t (s)")
+    step = as_finite_scalar(step, "step (s)", minimum=0.0, strictly=True)
+    l1, l2 = _lengths(l1, l2)
+
+    def angles(time):  # the numbers the program fed to cos/sin ("degrees")
+        return np.array([3.0 * time, 60.0])
+
+    theta = angles(t)
+    theta_dot = (angles(t + step) - angles(t - step)) / (2.0 * step)  # numerically: the slope (3, 0)
+    q12 = theta[0] + theta[1]
+    J = np.array([[-l1 * np.sin(theta[0]) - l2 * np.sin(q12), -l2 * np.sin(q12)],
+                  [l1 * np.cos(theta[0]) + l2 * np.cos(q12), l2 * np.cos(q12)]])
+    return float(np.linalg.norm(J @ theta_dot))
