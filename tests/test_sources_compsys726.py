@@ -1,0 +1,95 @@
+"""COMPSYS726 assignments 3-4 reproduced (twolink.sources.compsys726), and the course's corrections.
+
+The printed numbers checked here are those COURSE.md section H quotes from the
+source: the angle columns' first and last rows.  (The printed rate column is
+not quoted there, only that -10 x the vertical formula at the printed angles
+matches it within 0.2 % in every row, so the test checks the reproduction's
+construction and the corrected rates.)
+"""
+
+import numpy as np
+import pytest
+from conftest import arms as arm_strategy
+from conftest import configurations
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from twolink import TwoLinkArm, ik
+from twolink.sources import compsys726 as source
+
+arm_source = TwoLinkArm(l1=source.A1, l2=source.A2)  # the arm that reproduces the table, bare units
+p_line = np.stack([source.X_LINE, np.full_like(source.X_LINE, source.Y_LINE)], axis=-1)
+
+
+def test_the_table_line():
+    assert source.X_LINE.tolist() == [10, 20, 30, 40, 50, 60, 70, 80, 90, 100] and source.Y_LINE == 50
+
+
+def test_ik_as_written_gives_the_printed_first_and_last_rows():
+    q1_first, q2_first = source.ik_as_written(10.0)
+    q1_last, q2_last = source.ik_as_written(100.0)
+    assert (round(q1_first), round(q2_first)) == (49, 172)
+    assert round(q2_last, 1) == 90.0
+    # H quotes -3.3; the reproduction gives -3.379, which shows as -3.3 if the digits were cut, not rounded
+    assert np.trunc(10 * q1_last) / 10 == -3.3
+
+
+def test_q2_column_is_right_and_q1_column_is_wrong():
+    q_source = source.ik_as_written(source.X_LINE)
+    q_right = np.degrees(ik.closed_form(arm_source, p_line, elbow="down"))
+    assert np.allclose(q_source[:, 1], q_right[:, 1], atol=1e-9)
+    assert np.all(np.abs(q_source[:, 0] - q_right[:, 0]) > 0.5)
+    assert np.allclose(q_right[0], [70.74, 171.89], atol=0.005)  # H2.3's correct first row
+    assert np.allclose(arm_source.fk(np.radians(q_right)), p_line, atol=1e-9)
+
+
+def test_the_only_fault_in_q1_is_degrees_fed_to_sin_and_cos():
+    # the same formula with q2 converted to radians is the right q1: atand(y/x) did no harm (x > 0)
+    q2 = np.radians(source.ik_as_written(source.X_LINE)[:, 1])
+    q1_fixed = np.degrees(np.arctan(source.Y_LINE / source.X_LINE)
+                          - np.arctan(source.A2 * np.sin(q2) / (source.A1 + source.A2 * np.cos(q2))))
+    assert np.allclose(q1_fixed, np.degrees(ik.closed_form(arm_source, p_line, elbow="down")[:, 0]), atol=1e-9)
+
+
+@given(x=st.floats(min_value=1e-3, max_value=1e3), y=st.floats(min_value=-1e3, max_value=1e3))
+def test_atan_of_the_ratio_equals_atan2_for_positive_x(x, y):
+    assert np.isclose(np.arctan(y / x), np.arctan2(y, x), atol=1e-12)
+
+
+def test_atan_of_the_ratio_is_half_a_turn_off_for_negative_x():
+    assert np.isclose(np.arctan2(50.0, -10.0) - np.arctan(50.0 / -10.0), np.pi)
+
+
+@given(arm=arm_strategy(), q=configurations(), rate=st.floats(min_value=-5.0, max_value=5.0))
+def test_the_source_special_case_formulas_are_right(arm, q, rate):
+    assume(abs(np.sin(q[1])) > 0.05)
+    qd_vertical = arm.joint_rates(q, [0.0, rate])
+    qd_horizontal = arm.joint_rates(q, [rate, 0.0])
+    scale = 1e-9 * (1 + abs(rate)) / (min(arm.l1, arm.l2) * abs(np.sin(q[1])))
+    assert np.isclose(source.q2_rate_vertical(q[0], q[1], rate, arm.l1, arm.l2), qd_vertical[1], atol=scale)
+    assert np.isclose(source.q1_rate_horizontal(q[0], q[1], rate, arm.l1, arm.l2), qd_horizontal[0], atol=scale)
+
+
+def test_rate_column_is_minus_ten_times_the_vertical_formula_at_the_printed_angles():
+    q_source = source.ik_as_written(source.X_LINE)
+    q = np.radians(q_source)
+    a1, a2 = source.A1, source.A2
+    vertical = (-a1 * np.sin(q[:, 0]) - a2 * np.sin(q.sum(axis=1))) / (a1 * a2 * np.sin(q[:, 1]))
+    reproduced = source.rate_as_printed(q_source)
+    assert source.RATE_FACTOR == -10.0
+    assert np.allclose(reproduced, -10.0 * vertical)
+    # it is not the horizontal rate the table asked for, at either the printed or the right angles
+    q_right = ik.closed_form(arm_source, p_line, elbow="down")
+    for x_rate in (10.0, -10.0):
+        right = arm_source.joint_rates(q_right, [x_rate, 0.0])[:, 0]
+        assert not np.allclose(reproduced, right, rtol=0.05)
+        assert not np.allclose(reproduced, source.q1_rate_horizontal(q[:, 0], q[:, 1], x_rate), rtol=0.05)
+
+
+def test_bad_input_is_named():
+    with pytest.raises(ValueError, match="out of reach"):
+        source.ik_as_written(200.0)
+    with pytest.raises(ValueError, match="x must be nonzero"):
+        source.ik_as_written(0.0)
+    with pytest.raises(ValueError, match="q_deg must have shape"):
+        source.rate_as_printed([1.0, 2.0, 3.0])

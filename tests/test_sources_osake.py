@@ -1,0 +1,134 @@
+"""The ME 639 OSAKE mini-project reproduced (twolink.sources.osake), and the course's corrections.
+
+Lengths in the source module are in its unit, centimetres; the package's arm
+``arms.osake`` is in metres, hence the factor 100 below.
+"""
+
+import numpy as np
+import pytest
+from conftest import angles, configurations
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from twolink import arms
+from twolink.sources import osake
+
+CM = 100.0  # centimetres per metre
+q_example = np.radians([30.0, 45.0])
+
+
+def right_h02_cm(q):
+    H = arms.osake.transforms(q)[1].copy()
+    H[..., :3, 3] *= CM
+    return H
+
+
+def test_the_module_uses_the_osake_arm():
+    assert (osake.L1_CM, osake.L2_CM, osake.D_CM) == pytest.approx((CM * arms.osake.l1, CM * arms.osake.l2,
+                                                                    CM * arms.osake.d))
+
+
+# --- H3.1: the hand-expanded H_0^2
+@given(q=configurations())
+def test_expanded_h02_rotation_block_has_determinant_cos_squared_q2(q):
+    H_wrong = osake.h02_as_expanded(q)
+    assert np.isclose(np.linalg.det(H_wrong[:2, :2]), np.cos(q[1]) ** 2, atol=1e-12)
+    assert np.isclose(np.linalg.det(right_h02_cm(q)[:2, :2]), 1.0, atol=1e-12)
+
+
+@given(q1=angles)
+def test_expanded_h02_is_right_when_the_arm_is_stretched(q1):
+    assert np.allclose(osake.h02_as_expanded([q1, 0.0]), right_h02_cm([q1, 0.0]), atol=1e-12)
+
+
+@given(q=configurations())
+def test_expanded_h02_misplaces_the_tip_whenever_the_elbow_is_bent(q):
+    assume(abs(q[1]) > 0.05)
+    error_cm = np.linalg.norm(osake.h02_as_expanded(q)[:2, 3] - right_h02_cm(q)[:2, 3])
+    assert error_cm > 0.01
+
+
+def test_expanded_h02_at_30_45_degrees():
+    H_wrong, H_right = osake.h02_as_expanded(q_example), right_h02_cm(q_example)
+    c1, s1, c2 = np.cos(q_example[0]), np.sin(q_example[0]), np.cos(q_example[1])
+    l1, l2 = osake.L1_CM, osake.L2_CM
+    assert np.allclose(H_wrong[:2, 3], [l2 * c1 + l1 * c1 * c2, l2 * s1 + l1 * s1 * c2])
+    assert np.allclose(H_wrong[:2, :2], c2 * np.array([[c1, -s1], [s1, c1]]))
+    assert np.isclose(np.linalg.det(H_wrong[:2, :2]), 0.5)
+    error_cm = np.linalg.norm(H_wrong[:2, 3] - H_right[:2, 3])
+    assert 6.0 < error_cm < 9.0  # the tip is off by several centimetres on a 21.5 cm arm
+    assert np.allclose(H_wrong[2:, :], H_right[2:, :])  # the height row and the last row are right
+
+
+# --- H3.2: o_2 - o_1 in the first Jacobian column
+@given(q=configurations())
+def test_derived_jacobian_first_column_is_link_2_alone(q):
+    J_derived = osake.jacobian_as_derived(q)
+    J_right = arms.osake.geometric_jacobian(q) * np.array([[CM], [CM], [CM], [1.0], [1.0], [1.0]])
+    assert np.allclose(J_derived[:, 0], J_derived[:, 1])
+    assert np.allclose(J_derived[:, 1], J_right[:, 1], atol=1e-12)
+    # the first column misses z_0 x o_1, a vector of length l1 per unit joint rate, at every configuration
+    assert np.isclose(np.linalg.norm(J_right[:, 0] - J_derived[:, 0]), osake.L1_CM)
+    assert np.isclose(np.linalg.det(J_derived[:2]), 0.0, atol=1e-9)
+
+
+# --- H3.3: the C++ forward-kinematics program
+@given(value=st.floats(min_value=0.0, max_value=1e6, allow_nan=False), decimals=st.integers(0, 4))
+def test_cpp_read_int_truncates_a_typed_decimal(value, decimals):
+    typed = f"{value:.{decimals}f}"
+    assert osake.cpp_read_int(typed) == int(typed.split(".")[0])
+
+
+def test_cpp_read_int_rejects_text():
+    with pytest.raises(ValueError, match="typed must start with an integer"):
+        osake.cpp_read_int("eleven")
+
+
+@given(q=configurations())
+def test_cpp_fk_without_its_mistakes_is_the_package_fk(q):
+    assert np.allclose(osake.cpp_fk_tip(q, int_lengths=False, drop_offset=False), right_h02_cm(q)[:3, 3], atol=1e-12)
+
+
+@given(q=configurations())
+def test_cpp_fk_int_lengths_cost_5_mm_and_the_dropped_offset_6_5_cm(q):
+    p_right = right_h02_cm(q)[:3, 3]
+    p_int = osake.cpp_fk_tip(q, drop_offset=False)
+    p_no_offset = osake.cpp_fk_tip(q, int_lengths=False)
+    p_source = osake.cpp_fk_tip(q)
+    assert np.isclose(np.linalg.norm(p_int - p_right), osake.L2_CM - 11.0)  # 0.5 cm, along link 2
+    assert np.allclose(p_no_offset[:2], p_right[:2]) and np.isclose(p_right[2] - p_no_offset[2], osake.D_CM)
+    assert np.isclose(np.linalg.norm(p_source - p_right), np.hypot(osake.L2_CM - 11.0, osake.D_CM))
+
+
+@given(left=st.lists(st.lists(st.floats(-10, 10), min_size=4, max_size=4), min_size=4, max_size=4),
+       right=st.lists(st.lists(st.floats(-10, 10), min_size=4, max_size=4), min_size=4, max_size=4))
+def test_triple_loop_is_the_matrix_product(left, right):
+    assert np.allclose(osake.matmul_triple_loop(left, right), np.array(left) @ np.array(right), atol=1e-9)
+
+
+# --- H3.4: the C++ velocity program
+@given(t=st.floats(min_value=0.0, max_value=120.0))
+def test_velocity_program_prints_three_rad_per_s_times_the_radius_at_60_rad(t):
+    l1, l2 = osake.L1_CM, osake.L2_CM
+    radius_at_60_rad = np.sqrt(l1**2 + l2**2 + 2 * l1 * l2 * np.cos(60.0))
+    assert np.isclose(osake.velocity_program_speed(t), 3.0 * radius_at_60_rad, rtol=1e-7)
+
+
+def test_velocity_program_number_against_the_jacobian():
+    printed = osake.velocity_program_speed(1.0)
+    assert round(printed, 2) == 10.9  # cm/s, a linear speed
+    q = np.radians([3.0, 60.0])
+    right_cm_s = CM * np.linalg.norm(arms.osake.tip_velocity(q, np.radians([3.0, 0.0])))
+    assert np.isclose(right_cm_s, np.radians(3.0) * CM * np.linalg.norm(arms.osake.fk(q)))
+    assert round(right_cm_s, 3) == 0.976
+    assert 11.0 < printed / right_cm_s < 11.3
+    # each mistake alone: 3 used as rad/s multiplies by 180/pi; 60 rad for 60 deg shrinks the radius
+    rate_only = CM * np.linalg.norm(arms.osake.tip_velocity(q, [3.0, 0.0]))
+    assert np.isclose(rate_only / right_cm_s, 180.0 / np.pi)
+    angle_only = CM * np.linalg.norm(arms.osake.tip_velocity([0.0, 60.0], np.radians([3.0, 0.0])))
+    assert np.isclose(printed / angle_only, 180.0 / np.pi)
+
+
+def test_velocity_program_rejects_a_zero_step():
+    with pytest.raises(ValueError, match="step"):
+        osake.velocity_program_speed(1.0, step=0.0)
