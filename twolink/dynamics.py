@@ -21,9 +21,12 @@ take a lean float path for a single state (what an ODE solver or a
 controller calls thousands of times).
 
 Forward dynamics solves the 2x2 system ``M qdd = rhs`` with the closed-form
-inverse ``M^-1 = [[M22, -M12], [-M12, M11]] / (M11 M22 - M12^2)``: part of
-this arm's analytic model, exact for 2x2 and checked against
-:func:`numpy.linalg.solve` by the tests.
+inverse ``M^-1 = [[M22, -M12], [-M12, M11]] / det M``, written without
+cancellation: ``det M = M11 M22 - M12^2`` expands to
+``(I1 + m1 lc1^2) delta + m2 l1^2 I2 + (m2 l1 lc2 sin q2)^2``, a sum of
+non-negative terms (the tests derive it with sympy), so that very unequal
+links (length ratios from 1e-9 to 1e9) keep full accuracy; the tests check it
+against a 50-digit mpmath reference.
 """
 
 import math
@@ -54,6 +57,7 @@ class _Constants(NamedTuple):
     gamma1: float
     gamma2: float
     det_min: float
+    link1: float
 
 
 def _constants(arm):
@@ -61,15 +65,19 @@ def _constants(arm):
     lc1, lc2 = arm.l1 / 2.0, arm.l2 / 2.0
     link_1_about_base = inertia_1 + arm.m1 * lc1 * lc1
     delta = inertia_2 + arm.m2 * lc2 * lc2
+    # alpha - delta: link 1 about the base plus link 2's mass at the elbow (a sum of
+    # non-negative terms, kept apart so that the solve never subtracts delta back out)
+    link1 = link_1_about_base + arm.m2 * arm.l1 * arm.l1
     return _Constants(
-        link_1_about_base + delta + arm.m2 * arm.l1 * arm.l1,  # alpha
+        link1 + delta,  # alpha
         arm.m2 * arm.l1 * lc2,  # beta
         delta,
         (arm.m1 * lc1 + arm.m2 * arm.l1) * arm.g,  # gamma1
         arm.m2 * lc2 * arm.g,  # gamma2
-        # min over q2 of det M = (I1 + m1 lc1^2) delta + m2 l1^2 I2, at cos q2 = +-1;
-        # written without cancellation so that zero means exactly singular.
+        # det M = det_min + (beta sin q2)^2 with det_min = (I1 + m1 lc1^2) delta + m2 l1^2 I2,
+        # its value at cos q2 = +-1: non-negative terms only, so zero means exactly singular.
         link_1_about_base * delta + arm.m2 * arm.l1 * arm.l1 * inertia_2,  # det_min
+        link1,
     )
 
 
@@ -103,12 +111,6 @@ def _gravity_terms(constants, cos_q1, cos_q12):
     return constants.gamma1 * cos_q1 + g2, g2
 
 
-def _solve_mass(m11, m12, m22, rhs1, rhs2):
-    """``M^-1 rhs`` by the closed-form inverse of the symmetric 2x2 ``M``."""
-    det = m11 * m22 - m12 * m12
-    return (m22 * rhs1 - m12 * rhs2) / det, (m11 * rhs2 - m12 * rhs1) / det
-
-
 def _bias_terms(constants, cos_q1, cos_q12, sin_q2, qd1, qd2):
     """``C qd + g`` as two components."""
     c11, c12, c21 = _coriolis_terms(constants, sin_q2, qd1, qd2)
@@ -117,10 +119,28 @@ def _bias_terms(constants, cos_q1, cos_q12, sin_q2, qd1, qd2):
 
 
 def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
-    """Joint accelerations ``(qdd1, qdd2)``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays)."""
-    bias1, bias2 = _bias_terms(constants, cos(q1), cos(q1 + q2), sin(q2), qd1, qd2)
-    m11, m12, m22 = _mass_terms(constants, cos(q2))
-    return _solve_mass(m11, m12, m22, tau1 - bias1, tau2 - bias2)
+    """Joint accelerations ``(qdd1, qdd2)``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays).
+
+    Solves ``M qdd = rhs`` without cancellation.  With ``A1 = alpha - delta``
+    (link 1 about the base plus link 2's mass at the elbow),
+    ``det M = M11 M22 - M12^2 = det_min + (beta sin q2)^2``, a sum of
+    non-negative terms; and the right-hand side is used as ``r2`` and
+    ``d1 = r1 - r2`` (link 1's own balance, in which the large terms of
+    link 2 do not appear), so that ``alpha`` (which rounds away ``A1`` when
+    link 1 is tiny) is never formed:
+    ``qdd1 = (delta d1 - beta c2 r2) / det``,
+    ``qdd2 = ((A1 + beta c2) r2 - (delta + beta c2) d1) / det``.
+    """
+    h = -constants.beta * sin(q2)
+    qd12 = qd1 + qd2
+    r2 = tau2 + h * qd1 * qd1 - constants.gamma2 * cos(q1 + q2)
+    d1 = tau1 - tau2 - h * qd12 * qd12 - constants.gamma1 * cos(q1)
+    beta_cos = constants.beta * cos(q2)
+    det = constants.det_min + h * h
+    return (
+        (constants.delta * d1 - beta_cos * r2) / det,
+        ((constants.link1 + beta_cos) * r2 - (constants.delta + beta_cos) * d1) / det,
+    )
 
 
 def _inverse(constants, cos, sin, q1, q2, qd1, qd2, qdd1, qdd2):
@@ -358,8 +378,9 @@ def forward_dynamics(arm, q, qd, tau, force=None):
     """Joint accelerations ``qdd = M(q)^-1 (tau - C(q, qd) qd - g(q) [- J^T F])``.
 
     ``M qdd = rhs`` is solved with the closed-form inverse of the 2x2 mass
-    matrix (determinant ``M11 M22 - M12^2``, always positive for an arm with
-    mass).  One state (all arguments of shape ``(2,)``) takes a lean path on
+    matrix, its determinant written as a sum of non-negative terms (positive
+    for an arm with mass; no cancellation, so links of very unequal length
+    keep full accuracy).  One state (all arguments of shape ``(2,)``) takes a lean path on
     Python floats; anything else is vectorised.
 
     Parameters
