@@ -177,6 +177,8 @@ class NumericalRun:
         scipy's verdict.
     message : str
         scipy's message.
+    iterations : int
+        Quasi-Newton iterations (scipy's ``nit``).
     evaluations : int
         Objective evaluations.
     q1_trials, objective_trials : numpy.ndarray
@@ -187,6 +189,7 @@ class NumericalRun:
     q2_imag: float
     success: bool
     message: str
+    iterations: int
     evaluations: int
     q1_trials: np.ndarray
     objective_trials: np.ndarray
@@ -247,6 +250,7 @@ def numerical_ik(p=TARGET, q1_start=Q1_START, acos="matlab", a1=A1, a2=A2):
         q2_imag=float(q12.imag),
         success=bool(outcome.success),
         message=str(outcome.message),
+        iterations=int(outcome.nit),
         evaluations=int(outcome.nfev),
         q1_trials=np.array(q1_trials),
         objective_trials=np.array(objective_trials),
