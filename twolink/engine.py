@@ -70,8 +70,14 @@ WALL_SOLIMP = (0.99, 0.99, 0.001, 0.5, 2.0)
 MAX_STEPS = 2_000_000
 
 
+_WARNING_TYPE = None  # mujoco.mjtWarning, set at the first import
+
+
 def _mujoco(function):
-    return require("mujoco", f"twolink.engine.{function}")
+    global _WARNING_TYPE
+    mujoco = require("mujoco", f"twolink.engine.{function}")
+    _WARNING_TYPE = mujoco.mjtWarning
+    return mujoco
 
 
 def build_model(arm, **mjcf_options):
@@ -203,12 +209,20 @@ def _force_on_wall(mujoco, model, data, wall_id, buffer):
     return total[:2]
 
 
+#: MuJoCo's warnings that mean the simulation went wrong (it then zeroes the bad value and goes on).
+_BAD_STATE_WARNINGS = ("mjWARN_BADQPOS", "mjWARN_BADQVEL", "mjWARN_BADQACC", "mjWARN_BADCTRL")
+
+
 def _check_state(data, t, who):
     qpos, qvel = data.qpos, data.qvel
-    if not math.isfinite(qpos[0] + qpos[1] + qvel[0] + qvel[1]):  # NaN or inf anywhere makes the sum so
+    warnings = data.warning
+    bad = [name for name in _BAD_STATE_WARNINGS if warnings[int(getattr(_WARNING_TYPE, name))].number]
+    if bad or not math.isfinite(qpos[0] + qpos[1] + qvel[0] + qvel[1]):  # NaN or inf anywhere makes the sum so
+        reason = f"MuJoCo warned {', '.join(bad)}" if bad else "MuJoCo's state became NaN or infinite"
         raise SimulationError(
-            f"{who}: MuJoCo's state became NaN or infinite at t = {t:.6g} s "
-            "(try a smaller timestep, smaller torques or gains)"
+            f"{who}: {reason} at or before t = {t:.6g} s "
+            "(a state or torque that is NaN, infinite or larger than 1e10: try a smaller timestep, "
+            "smaller torques or gains)"
         )
 
 

@@ -1,0 +1,168 @@
+"""twolink.engine: MuJoCo integrates the same equations as twolink (accelerations, motion, wall force)."""
+
+import dataclasses
+import sys
+
+import numpy as np
+import pytest
+from conftest import dynamic_arms
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from twolink import SimulationError, TwoLinkArm, arms, ik, simulate
+from twolink.controllers import Impedance
+from twolink.statics import Wall
+
+mujoco = pytest.importorskip("mujoco")
+from twolink import engine  # noqa: E402
+
+WALL = Wall.through([4.0, 0.0], [0.0, 4.0])
+
+
+def acceleration_scale(arm, q, qd, tau):
+    """The size of the accelerations each term alone would give (rad/s^2): what 1e-9 is relative to.
+
+    Several terms can cancel exactly in twolink's closed form (e.g. the Coriolis
+    term at q2 = 0) while MuJoCo's recursive algorithm leaves round-off there.
+    """
+    q, qd, tau = (np.asarray(v, dtype=float) for v in (q, qd, tau))
+    from_torque = arm.forward_dynamics(q, np.zeros(2), tau) - arm.forward_dynamics(q, np.zeros(2), np.zeros(2))
+    parts = [arm.forward_dynamics(q, qd, tau), from_torque, arm.forward_dynamics(q, qd, np.zeros(2)), qd * qd]
+    return max(float(np.max(np.abs(part))) for part in parts)
+
+
+@settings(max_examples=30, deadline=None)
+@given(
+    arm=dynamic_arms(),
+    q=st.tuples(st.floats(-np.pi, np.pi), st.floats(-np.pi, np.pi)),
+    qd=st.tuples(st.floats(-5.0, 5.0), st.floats(-5.0, 5.0)),
+    tau=st.tuples(st.floats(-50.0, 50.0), st.floats(-50.0, 50.0)),
+)
+def test_joint_accelerations_equal_forward_dynamics(arm, q, qd, tau):
+    got = engine.joint_accelerations(engine.build_model(arm), q, qd, tau)
+    expected = arm.forward_dynamics(q, qd, tau)
+    assert np.max(np.abs(got - expected)) <= 1e-9 * acceleration_scale(arm, q, qd, tau)
+
+
+@pytest.mark.parametrize(
+    "arm, q0, qd0",
+    [
+        (arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0]),
+        (TwoLinkArm(1.0, 0.5, m1=3.0, m2=0.5, I2=0.05), [-0.3, 2.0], [1.0, -2.0]),
+        (TwoLinkArm(2.0, 2.0, g=0.0), [0.0, 1.0], [1.5, -3.0]),
+    ],
+)
+def test_free_motion_matches_twolink_simulate(arm, q0, qd0):
+    mj = engine.simulate(arm, q0, qd0, 1.0, timestep=1e-3, sample_every=10)
+    reference = simulate(arm, q0, qd0, 1.0, t_eval=mj.t, rtol=1e-11, atol=1e-11)
+    assert np.ptp(mj.q[:, 1]) > 0.1  # it moved
+    assert np.max(np.abs(mj.q - reference.q)) < 1e-7
+    assert np.max(np.abs(mj.qd - reference.qd)) < 1e-6
+    assert np.allclose(mj.p_tip, arm.fk(mj.q), atol=1e-12)  # MuJoCo's tip site is twolink's fk
+    assert np.all(mj.force_on_wall == 0.0)
+
+
+def test_rk4_error_shrinks_with_the_step():
+    arm = arms.two_metre
+    coarse = engine.simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 0.5, timestep=4e-3, sample_every=125)
+    fine = engine.simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 0.5, timestep=2e-3, sample_every=250)
+    reference = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 0.5, t_eval=[0.0, 0.5], rtol=1e-12, atol=1e-12)
+    error_coarse = np.max(np.abs(coarse.q[-1] - reference.q[-1]))
+    error_fine = np.max(np.abs(fine.q[-1] - reference.q[-1]))
+    assert 8.0 < error_coarse / error_fine < 32.0  # fourth order: about 16
+
+
+def test_constant_torques_equal_to_gravity_hold_the_arm():
+    arm = arms.two_metre
+    q0 = np.array([0.7, -0.4])
+    held = engine.simulate(arm, q0, [0.0, 0.0], 0.2, torque=arm.gravity(q0), timestep=1e-3)
+    assert np.allclose(held.q, q0, atol=1e-12)
+    assert np.allclose(held.tau, arm.gravity(q0))
+
+
+def test_the_same_impedance_controller_drives_both_and_mujoco_converges_with_the_step():
+    arm = arms.two_metre
+    control = Impedance(arm, stiffness=600.0, damping=50.0, rest_point=[3.0, 1.0])
+    q0 = ik.closed_form(arm, [2.5, 0.5])
+    reference = simulate(arm, q0, [0.0, 0.0], 0.4, torque=control, t_eval=[0.0, 0.2, 0.4])
+    errors = []
+    for timestep in (1e-3, 5e-4):
+        mj = engine.simulate(arm, q0, [0.0, 0.0], 0.4, torque=control, timestep=timestep,
+                             sample_every=int(round(0.2 / timestep)))
+        assert np.allclose(mj.tau[0], control(0.0, q0, [0.0, 0.0]))
+        errors.append(np.max(np.abs(mj.p_tip - arm.fk(reference.q))))
+    assert np.linalg.norm(arm.fk(reference.q[-1]) - arm.fk(q0)) > 0.1  # the tip really moved
+    assert errors[1] < 2e-3
+    assert 1.5 < errors[0] / errors[1] < 2.5  # the torque is held over a step: first-order error
+
+
+def test_a_blow_up_is_a_simulation_error_naming_the_time():
+    def shove(t, q, qd):  # MuJoCo refuses torques above 1e10 (zeroes them and warns)
+        return [1e300, -1e300]
+
+    with pytest.raises(SimulationError, match=r"mjWARN_BADCTRL at or before t = 0.001 s"):
+        engine.simulate(arms.two_metre, [0.0, 0.0], [0.0, 0.0], 0.01, torque=shove, timestep=1e-3)
+
+    def negative_damping(t, q, qd):  # pumps energy in: the state grows without bound
+        return 1e4 * np.asarray(qd)
+
+    with pytest.raises(SimulationError, match=r"at or before t = "):
+        engine.simulate(arms.two_metre, [0.0, 0.0], [0.1, 0.0], 10.0, torque=negative_damping, timestep=1e-3)
+
+
+@pytest.mark.parametrize(
+    "kwargs, message",
+    [
+        ({"t_end": -1.0}, "t_end"),
+        ({"sample_every": 0}, "sample_every"),
+        ({"sample_every": 1000}, "at most the number of steps"),
+        ({"timestep": 1e-9}, "steps; allowed"),
+        ({"torque": lambda t, q, qd: [1.0, 2.0, 3.0]}, r"shape \(2,\)"),
+        ({"torque": [1.0]}, "torque"),
+    ],
+)
+def test_simulate_rejects_bad_arguments(kwargs, message):
+    arguments = {"t_end": 0.01, "timestep": 1e-3} | kwargs
+    with pytest.raises(ValueError, match=message):
+        engine.simulate(arms.two_metre, [0.0, 0.0], [0.0, 0.0], **arguments)
+
+
+@pytest.mark.parametrize("arm", [arms.two_metre, dataclasses.replace(arms.two_metre, g=0.0)])
+@pytest.mark.parametrize("elbow", ["down", "up"])
+def test_wall_push_gives_the_statics_force(arm, elbow):
+    push = engine.wall_push(arm, WALL, 500.0, elbow=elbow)
+    assert push.elbow == elbow
+    assert np.allclose(push.force_expected, 500.0 * np.array([1.0, 1.0]) / np.sqrt(2.0))
+    assert push.relative_error < 1e-5
+    assert abs(push.force_tangential) < 0.05
+    assert 0.0 < push.penetration < 1e-4
+    # MuJoCo's force is the one that balances the torques at its own (settled) configuration
+    assert np.max(np.abs(push.force_on_wall - push.force_statics_settled)) < 1e-2
+    assert np.max(np.abs(push.qd_settled)) < 1e-6 and push.force_drift < 1e-3
+
+
+def test_mujoco_default_contact_sinks_further_and_reads_further_from_the_statics():
+    stiff = engine.wall_push(arms.two_metre, WALL, 500.0)
+    default = engine.wall_push(
+        arms.two_metre, WALL, 500.0, contact_solref=(0.02, 1.0), contact_solimp=(0.9, 0.95, 0.001, 0.5, 2.0),
+        impratio=1.0,
+    )
+    assert default.penetration > 100.0 * stiff.penetration
+    assert default.relative_error > 10.0 * stiff.relative_error
+    # still the force that balances the torques where MuJoCo's arm came to rest
+    assert np.max(np.abs(default.force_on_wall - default.force_statics_settled)) < 0.1
+
+
+def test_wall_push_rejects_a_missing_branch_and_an_unreachable_wall():
+    with pytest.raises(ValueError, match="no 'left' configuration"):
+        engine.wall_push(arms.two_metre, WALL, 500.0, elbow="left")
+    with pytest.raises(ValueError, match="the wall is"):
+        engine.wall_push(arms.two_metre, Wall.through([9.0, 0.0], [0.0, 9.0]), 500.0)
+    with pytest.raises(ValueError, match="needs a wall"):
+        engine.wall_push(arms.two_metre, None, 500.0)
+
+
+def test_without_mujoco_the_error_names_the_function_and_the_install(monkeypatch):
+    monkeypatch.setitem(sys.modules, "mujoco", None)
+    with pytest.raises(ImportError, match=r'twolink.engine.simulate needs mujoco.*pip install "twolink\[course\]"'):
+        engine.simulate(arms.two_metre, [0.0, 0.0], [0.0, 0.0], 0.01)
