@@ -117,14 +117,17 @@ def run_online_section(url):
         badges,
         "",
         "- **Binder** (nothing to install, a few minutes to start the first time): open the Binder link. "
-        "Binder builds the repository with `runtime.txt` (the Python version) and `requirements.txt` "
-        "(the exact package versions), then opens chapter 1 in JupyterLab; the other chapters are in "
+        "Binder builds the repository from `.binder/`: `runtime.txt` (the Python version) and "
+        "`requirements.txt` (the course's `requirements.txt` with the exact versions of `constraints.txt`), "
+        "then opens chapter 1 in JupyterLab; the other chapters are in "
         "the file browser on the left, under `notebooks/`. Your changes are lost when the session ends: "
         "download a notebook (File > Download) to keep it.",
         "- **Colab** (a Google account): open the Colab link, or in Colab choose File > Open notebook > "
         "GitHub and paste the repository URL. Run the first code cell: it installs `twolink` "
         f"with the course's packages (`{install_requirement(url)}`) because Colab does not have it, "
-        "then the chapter runs as usual. Each chapter opens the same way.",
+        "then the chapter runs as usual. Each chapter opens the same way."
+        + ("" if known else " (twolink is not on PyPI: until the repository URL is set above, set "
+           "`TWOLINK_SOURCE` as below, or the install fails with \"No matching distribution found\".)"),
         "- **Any other Jupyter** (JupyterHub, VS Code, a notebook downloaded alone): the same first "
         "cell installs what is missing. To install from a fork or a local copy instead, set one "
         "environment variable before starting Jupyter, a pip requirement: "

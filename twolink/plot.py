@@ -237,19 +237,19 @@ def animation_html(anim):
     """
     import matplotlib
 
-    from ._optional import COURSE_INSTALL, html
+    from ._optional import COURSE_INSTALL, html, require
 
     plt.close(anim._fig)
     try:
-        import imageio_ffmpeg
-
+        imageio_ffmpeg = require("imageio_ffmpeg", "twolink.plot.animation_html")
         ffmpeg = imageio_ffmpeg.get_ffmpeg_exe()
     except (ImportError, RuntimeError):  # not installed, or its binary is missing
         note = (
             "<p><em>twolink.plot.animation_html: ffmpeg (imageio-ffmpeg) is not installed, so this is "
             f"a JavaScript animation instead of a video; {COURSE_INSTALL} gives the video.</em></p>"
         )
-        return html(note + anim.to_jshtml(default_mode="loop", embed_limit=5.0))
+        with matplotlib.rc_context({"animation.embed_limit": 5.0}):  # MB, as for the video
+            return html(note + anim.to_jshtml(default_mode="loop"))
     with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg}):
         return html(anim.to_html5_video(embed_limit=5.0))
 
