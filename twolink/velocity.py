@@ -126,7 +126,34 @@ def joint_rates(arm, q, v_tip, tol=SINGULARITY_TOL):
             f"{distance[index]:.3g} <= tol = {tol:.3g} (|det J| = {arm.l1 * arm.l2 * distance[index]:.3g} m^2, "
             "the arm is stretched or folded); the joint rates are unbounded there: use joint_rates_dls"
         )
-    return np.linalg.solve(jacobian(arm, q), v_tip[..., None])[..., 0]
+    scale = _row_scale(v_tip)
+    return np.linalg.solve(jacobian(arm, q), (v_tip / scale)[..., None])[..., 0] * scale
+
+
+def _row_scale(v_tip):
+    """Largest ``|component|`` of each velocity, shape ``(..., 1)`` (1 for a zero velocity).
+
+    The solvers work on ``v_tip / scale``, of size one, and multiply the
+    result back: a tiny (even subnormal) or huge velocity then loses no
+    accuracy inside the solve, only in the final, correctly rounded product.
+    """
+    scale = np.max(np.abs(v_tip), axis=-1, keepdims=True)
+    return np.where(scale > 0.0, scale, 1.0)
+
+
+def _accurate_svd(arm, q):
+    """``J = U diag(s) V^T`` with the smaller singular value accurate to its last bits.
+
+    :func:`numpy.linalg.svd` gets the singular vectors right, but the
+    smaller singular value only to ``eps * |J|`` (about 1e-16 at an exactly
+    singular pose).  ``s_min = |det J| / s_max`` with ``det J = l1 l2 sin q2``
+    (no cancellation) is exact: 0 at a singularity.
+    """
+    U, singular_values, Vt = np.linalg.svd(jacobian(arm, q))
+    s_max = singular_values[..., 0]
+    det = np.abs(arm.l1 * arm.l2 * _sin_q2(q))
+    singular_values[..., 1] = np.divide(det, s_max, out=np.zeros_like(det), where=s_max > 0.0)
+    return U, singular_values, Vt
 
 
 def joint_rates_dls(arm, q, v_tip, damping):
@@ -137,6 +164,15 @@ def joint_rates_dls(arm, q, v_tip, damping):
     at the price of a tip velocity error there.  Far from singularities
     (every singular value of ``J`` much larger than ``damping``) they tend to
     the exact :func:`joint_rates`.
+
+    Computed from the singular value decomposition ``J = U S V^T`` as
+    ``qd = V diag(s / (s^2 + damping^2)) U^T v_tip`` (:func:`numpy.linalg.svd`
+    for ``U`` and ``V``; the smaller singular value as ``|det J| / s_max``,
+    exactly 0 at a singular pose), not from the normal equations, whose
+    matrix ``J J^T + damping^2 I`` loses ``damping^2`` to round-off (or is
+    singular) for small damping at a singular pose: accurate to round-off for
+    any ``damping > 0``, at the singularity too (where the factor of the zero
+    singular value is 0).
 
     Parameters
     ----------
@@ -171,12 +207,13 @@ def joint_rates_dls(arm, q, v_tip, damping):
     if damping == 0.0:
         return joint_rates(arm, q, v_tip)
     q, v_tip = _broadcast_pairs(q, v_tip, "v_tip")
-    J = jacobian(arm, q)
-    J_JT = J @ np.swapaxes(J, -1, -2)
-    J_JT[..., 0, 0] += damping**2
-    J_JT[..., 1, 1] += damping**2
-    weights = np.linalg.solve(J_JT, v_tip[..., None])
-    return (np.swapaxes(J, -1, -2) @ weights)[..., 0]
+    U, singular_values, Vt = _accurate_svd(arm, q)
+    scale = _row_scale(v_tip)
+    weights = np.einsum("...ji,...j->...i", U, v_tip / scale)  # U^T v
+    # s / (s^2 + lambda^2) as (s / r) / r with r = hypot(s, lambda): no overflow or underflow of the squares
+    radius = np.hypot(singular_values, damping)
+    weights *= singular_values / radius / radius
+    return np.einsum("...ji,...j->...i", Vt, weights) * scale
 
 
 def manipulability(arm, q):
