@@ -3,9 +3,13 @@
 The suite needs Debian's Chromium at /usr/bin/chromium (``apt-get install -y
 chromium``) and the ``playwright`` Python package; it never downloads a
 browser.  Without them every browser test is skipped with the reason.  Server
-and browser are always shut down, even when a test fails.
+and browser are always shut down, even when a test fails; the server's process
+group and its kernels (which jupyter_client starts in sessions of their own)
+are also killed when pytest is interrupted (SIGINT), terminated (SIGTERM) or
+exits without running the fixture's teardown.
 """
 
+import atexit
 import json
 import os
 import pathlib
@@ -55,6 +59,100 @@ def pytest_collection_modifyitems(config, items):
             item.add_marker(pytest.mark.skip(reason=reason))
 
 
+class ProcessGroups:
+    """Processes started in their own session, killed with all their descendants' groups.
+
+    ``stop_all`` runs at exit and on SIGTERM / SIGINT (then the previous
+    handler runs: pytest's KeyboardInterrupt, or the default termination).
+    """
+
+    def __init__(self):
+        self.processes = []
+        self.previous = {}
+
+    def start(self, command, **popen_options):
+        process = subprocess.Popen(command, start_new_session=True, **popen_options)
+        self.processes.append(process)
+        self._install()
+        return process
+
+    def _install(self):
+        if self.previous:
+            return
+        atexit.register(self.stop_all)
+        for signum in (signal.SIGTERM, signal.SIGINT):
+            try:
+                self.previous[signum] = signal.signal(signum, self._on_signal)
+            except ValueError:  # not the main thread: atexit and the fixture's teardown remain
+                pass
+
+    def _on_signal(self, signum, frame):
+        self.stop_all()
+        previous = self.previous.get(signum, signal.SIG_DFL)
+        if callable(previous):
+            previous(signum, frame)
+        elif previous != signal.SIG_IGN:
+            signal.signal(signum, signal.SIG_DFL)
+            os.kill(os.getpid(), signum)
+
+    @staticmethod
+    def _descendants(pid):
+        children = {}
+        for stat in pathlib.Path("/proc").glob("[0-9]*/stat"):
+            try:
+                fields = stat.read_text().rsplit(")", 1)[1].split()
+            except (OSError, IndexError):
+                continue
+            children.setdefault(int(fields[1]), []).append(int(stat.parent.name))
+        found, todo = [], [pid]
+        while todo:
+            for child in children.get(todo.pop(), []):
+                found.append(child)
+                todo.append(child)
+        return found
+
+    def stop(self, process, timeout=20.0):
+        """SIGTERM the process's group and its descendants' groups, SIGKILL what is left after ``timeout``."""
+        groups = {process.pid}
+        for pid in self._descendants(process.pid):
+            try:
+                groups.add(os.getpgid(pid))
+            except ProcessLookupError:
+                pass
+        for sig in (signal.SIGTERM, signal.SIGKILL):
+            for group in groups:
+                try:
+                    os.killpg(group, sig)
+                except (ProcessLookupError, PermissionError):
+                    pass
+            try:
+                process.wait(timeout=timeout if sig == signal.SIGTERM else 5.0)
+            except subprocess.TimeoutExpired:
+                continue
+            alive = [group for group in groups if self._group_alive(group)]
+            if not alive:
+                break
+            groups = set(alive)
+            time.sleep(0.5)
+        if process in self.processes:
+            self.processes.remove(process)
+
+    @staticmethod
+    def _group_alive(group):
+        try:
+            os.killpg(group, 0)
+        except (ProcessLookupError, PermissionError):
+            return False
+        return True
+
+    def stop_all(self):
+        for process in list(self.processes):
+            self.stop(process, timeout=5.0)
+
+
+PROCESS_GROUPS = ProcessGroups()
+
+
 def free_port():
     with socket.socket() as sock:
         sock.bind(("127.0.0.1", 0))
@@ -100,7 +198,7 @@ def jupyterlab(tmp_path_factory):
         settings_file.parent.mkdir(parents=True, exist_ok=True)
         settings_file.write_text(json.dumps(values))
     log = open(home / "server.log", "w")
-    server = subprocess.Popen(
+    server = PROCESS_GROUPS.start(
         [
             sys.executable, "-m", "jupyterlab",
             "--no-browser", "--allow-root",
@@ -112,7 +210,6 @@ def jupyterlab(tmp_path_factory):
         env=env,
         stdout=log,
         stderr=subprocess.STDOUT,
-        start_new_session=True,
     )
     base_url = f"http://127.0.0.1:{port}"
     try:
@@ -129,12 +226,5 @@ def jupyterlab(tmp_path_factory):
                 time.sleep(0.5)
         yield {"url": base_url, "token": token, "notebooks": notebooks}
     finally:
-        try:
-            os.killpg(server.pid, signal.SIGTERM)
-            server.wait(timeout=20)
-        except (ProcessLookupError, subprocess.TimeoutExpired):
-            try:
-                os.killpg(server.pid, signal.SIGKILL)
-            except ProcessLookupError:
-                pass
+        PROCESS_GROUPS.stop(server)
         log.close()
