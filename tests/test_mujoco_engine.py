@@ -19,6 +19,12 @@ from twolink import engine  # noqa: E402
 WALL = Wall.through([4.0, 0.0], [0.0, 4.0])
 
 
+@pytest.fixture(autouse=True)
+def mujoco_log_in_tmp(tmp_path, monkeypatch):
+    """MuJoCo appends its warnings to MUJOCO_LOG.TXT in the working folder: keep that out of the checkout."""
+    monkeypatch.chdir(tmp_path)
+
+
 def acceleration_scale(arm, q, qd, tau):
     """The size of the accelerations each term alone would give (rad/s^2): what 1e-9 is relative to.
 
