@@ -111,7 +111,7 @@ def next_selfcheck_names(cells, start):
         source = "".join(cell["source"])
         if BEGIN in source:
             return None
-        if "selfcheck.check_" in source:
+        if "selfcheck.check" in source:
             return loaded_names(source)
     return None
 

@@ -1,17 +1,126 @@
 """Self-checks for the course's exercises: right or wrong, with a hint.
 
-An exercise cell assigns the learner's answer to a named variable; the next
-cell calls :func:`check_close` (or :func:`check_true`) with the value the
-package computes.  An answer left as ``...`` (the stub of the student edition)
-reports "not solved yet" instead of raising, so a notebook runs top to bottom
-with unsolved exercises.
+An exercise cell assigns the learner's answers to named variables; the next
+cell calls ``selfcheck.check("2.1", q_elbow_up, up_within_limits)``.  The
+expected values, tolerances, comparisons and hints live in
+:mod:`twolink.exercises`, out of the learner's sight.  Each part prints one
+line: ``correct.``, ``not solved yet`` (an answer left as ``...``, the stub of
+the student edition, so a notebook runs top to bottom with unsolved
+exercises), or ``wrong:`` with the reason and the hint.
+
+:func:`check_close` and :func:`check_true` are the lower-level helpers for a
+check whose reference is at hand (not used by the chapters' exercises).
 """
+
+import re
+from typing import NamedTuple
 
 import numpy as np
 
-__all__ = ["check_close", "check_true", "NOT_SOLVED"]
+__all__ = ["check", "check_close", "check_true", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
 
 NOT_SOLVED = "not solved yet"
+CORRECT = "correct"
+WRONG = "wrong"
+
+_LINE = re.compile(r"^Exercise (?P<number>\d+\.\d+) \((?P<part>[^)]*)\): (?P<status>correct|not solved yet|wrong)\b")
+
+
+class PartResult(NamedTuple):
+    """One part's verdict: ``status`` is ``"correct"``, ``"not solved yet"`` or ``"wrong"``."""
+
+    number: str
+    part: str
+    status: str
+    message: str
+
+
+class CheckReport(tuple):
+    """The verdicts of one :func:`check` call (a tuple of :class:`PartResult`)."""
+
+    @property
+    def passed(self) -> bool:
+        """True when every part is correct."""
+        return all(result.status == CORRECT for result in self)
+
+
+def check(exercise: str, *answers, **named_answers) -> CheckReport:
+    """Check a learner's answers to an exercise and print one line per part.
+
+    Parameters
+    ----------
+    exercise : str
+        The exercise's number, e.g. ``"2.1"``.
+    *answers
+        The answers in the order of the exercise's parts.
+    **named_answers
+        Or by the parts' variable names (``q_elbow_up=...``).  A part not given,
+        or given as ``...`` or ``None``, is "not solved yet".
+
+    Returns
+    -------
+    CheckReport
+        The verdicts (end the check cell with ``;`` so that only the lines show).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from twolink import arms
+    >>> report = check("1.1", arms.osake.fk(np.radians([45.0, -30.0])))
+    Exercise 1.1 (tip position): correct.
+    >>> report = check("1.1", ...)
+    Exercise 1.1 (tip position): not solved yet (replace the ... in p_tip_ex1 with your answer).
+    >>> report = check("1.1", arms.osake.fk([45.0, -30.0]))
+    Exercise 1.1 (tip position): wrong: this is the tip for the angles read as radians (45 rad, -30 rad): \
+convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with sin; angles in radians
+    >>> report.passed
+    False
+    """
+    from . import exercises
+
+    entry = exercises.get(exercise)
+    names = [part.name for part in entry.parts]
+    if len(answers) > len(names):
+        raise TypeError(f"exercise {entry.number} has {len(names)} parts ({', '.join(names)}), got {len(answers)} answers")
+    unknown = sorted(set(named_answers) - set(names))
+    if unknown:
+        raise TypeError(f"exercise {entry.number} has no part {unknown[0]!r}; its parts are {', '.join(names)}")
+    given = dict(zip(names, answers))
+    for name, value in named_answers.items():
+        if name in given:
+            raise TypeError(f"the answer {name!r} of exercise {entry.number} is given twice")
+        given[name] = value
+    solved = {name: value for name, value in given.items() if not exercises.is_unsolved(value)}
+    results = []
+    for part in entry.parts:
+        label = f"Exercise {entry.number} ({part.label})"
+        if part.name not in solved:
+            status, line = NOT_SOLVED, f"{label}: {NOT_SOLVED} (replace the ... in {part.name} with your answer)."
+        else:
+            siblings = {name: value for name, value in solved.items() if name != part.name}
+            try:
+                reason = part.judge(solved[part.name], siblings)
+            except exercises.Wrong as wrong:
+                reason = str(wrong)
+            except Exception as exc:  # the learner's value may be of any type
+                reason = f"could not use your {part.name} ({type(exc).__name__}: {exc})"
+            if reason is None:
+                status, line = CORRECT, f"{label}: {CORRECT}."
+            else:
+                status, line = WRONG, f"{label}: {WRONG}: {reason}. Hint: {part.hint}"
+        print(line)
+        results.append(PartResult(entry.number, part.label, status, line))
+    return CheckReport(results)
+
+
+def parse_line(line: str):
+    """``(number, part, status)`` of a line printed by :func:`check`, or ``None``.
+
+    >>> parse_line("Exercise 2.1 (angles): wrong: the tip lands 3 m from the target. Hint: ...")
+    ('2.1', 'angles', 'wrong')
+    """
+    match = _LINE.match(line.strip())
+    return (match["number"], match["part"], match["status"]) if match else None
 
 
 def _unsolved(answer):
