@@ -1,11 +1,14 @@
-"""The student edition: solutions stubbed, notebooks still run, self-checks flip.
+"""The student edition: solutions stubbed, nothing shown in advance, notebooks still run, self-checks flip.
 
-Builds ``build/student``-style notebooks in a temporary folder, executes each
-in a fresh kernel and checks that every self-check says "not solved yet" on
-the stub, while the committed notebook's stored self-check output says
-"correct." (nbval, in the same test run, re-executes the committed notebooks
-and compares those outputs).
+Builds ``build/student``-style notebooks in a temporary folder and checks that
+they store no self-check verdict ("correct" or otherwise) and do not say that
+the exercise cells hold worked solutions; then executes each in a fresh kernel
+and checks that every self-check says "not solved yet" on the stub, while the
+committed notebook's stored self-check output says "correct." (nbval, in the
+same test run, re-executes the committed notebooks and compares those outputs).
 """
+
+import re
 
 import json
 import pathlib
@@ -37,7 +40,7 @@ class HeadlessClient(NotebookClient):
 
 
 def selfcheck_cells(notebook):
-    return [cell for cell in notebook["cells"] if cell["cell_type"] == "code" and "selfcheck.check_" in "".join(cell["source"])]
+    return [cell for cell in notebook["cells"] if cell["cell_type"] == "code" and "selfcheck.check" in "".join(cell["source"])]
 
 
 def output_text(cell):
@@ -72,6 +75,16 @@ def test_stubs_ask_for_the_checked_answers_only():
     assert notebook["cells"][0]["source"].startswith("### BEGIN SOLUTION")  # the original is untouched
 
 
+def test_student_markdown_is_edition_aware():
+    source = ("## Exercises\n\nEach exercise cell holds a worked solution between the markers; the cell after\n"
+              "it checks the answer.\n\n<!-- BEGIN INSTRUCTOR -->For the teacher.<!-- END INSTRUCTOR -->"
+              "<!-- STUDENT: For you. -->**Exercise 9.1.** Do it.")
+    student = editions.student_markdown(source)
+    assert "worked solution" not in student and "For the teacher" not in student and "<!--" not in student
+    assert "For you." in student and "**Exercise 9.1.** Do it." in student and "not solved yet" in student
+    assert editions.student_markdown("No markers here.") == "No markers here."
+
+
 def test_indented_blocks_and_errors():
     stubbed = editions.stub_source("if True:\n    ### BEGIN SOLUTION\n    angle = 3\n    ### END SOLUTION\n")
     assert stubbed == "if True:\n    angle = ...  # your code here\n"
@@ -89,6 +102,25 @@ def test_committed_solutions_pass_their_self_checks(path):
     for cell in cells:
         text = output_text(cell)
         assert "correct." in text and "not right yet" not in text and "not solved yet" not in text, text
+
+
+SELFCHECK_VERDICT = re.compile(r"Exercise \d+\.\d+[^\n]*: (correct|wrong|not right yet)")
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
+def test_student_edition_shows_nothing_in_advance(path, tmp_path):
+    editions.build_student(path.parent, tmp_path)
+    student = json.loads((tmp_path / path.name).read_text(encoding="utf-8"))
+    assert selfcheck_cells(student), f"{path.name} has no self-check cells"
+    for cell in selfcheck_cells(student):
+        assert cell["outputs"] == [] and cell["execution_count"] is None, "".join(cell["source"])
+    for cell in student["cells"]:
+        text = output_text(cell) if cell["cell_type"] == "code" else ""
+        assert not SELFCHECK_VERDICT.search(text), f"{path.name} stores a self-check verdict: {text[:200]}"
+        if cell["cell_type"] == "markdown":
+            markdown = "".join(cell["source"])
+            assert "worked solution" not in markdown.lower(), f"{path.name}: {markdown[:200]}"
+            assert "INSTRUCTOR -->" not in markdown and "<!-- STUDENT:" not in markdown
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])

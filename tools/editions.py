@@ -2,9 +2,15 @@
 
 - Student edition (``make student`` -> ``build/student/``): every
   ``### BEGIN SOLUTION`` ... ``### END SOLUTION`` block is replaced by stubs
-  (``name = ...  # your code here`` for each name the solution assigns), and
-  the outputs of those cells are cleared.  Self-checks report "not solved yet"
-  for a ``...`` answer, so the notebook still runs top to bottom.
+  (``name = ...  # your code here`` for each answer the next self-check
+  reads), and the outputs of those cells and of the self-check cells are
+  cleared, so nothing says "correct" before the student has written a line.
+  Self-checks report "not solved yet" for a ``...`` answer, so the notebook
+  still runs top to bottom.  Markdown is edition-aware: a passage between
+  ``<!-- BEGIN INSTRUCTOR -->`` and ``<!-- END INSTRUCTOR -->`` is dropped, a
+  ``<!-- STUDENT: text -->`` comment becomes visible text, and the chapters'
+  "Each exercise cell holds a worked solution ..." paragraph is replaced by
+  the student's instructions.
 - Static edition (``make site`` -> ``build/site/``): every executed chapter
   rendered to HTML by nbconvert, with an index page linking them in order.
   MathJax is served from the ``jupyter-server-mathjax`` package's copy, so the
@@ -116,21 +122,55 @@ def next_selfcheck_names(cells, start):
     return None
 
 
+INSTRUCTOR_PASSAGE = re.compile(r"<!-- BEGIN INSTRUCTOR -->.*?<!-- END INSTRUCTOR -->\n?", re.DOTALL)
+STUDENT_PASSAGE = re.compile(r"<!-- STUDENT: (?P<text>.*?) -->", re.DOTALL)
+WORKED_SOLUTIONS_PARAGRAPH = re.compile(r"Each exercise cell holds a worked solution.*?(?=\n\n|\Z)", re.DOTALL)
+STUDENT_INSTRUCTIONS = (
+    "Each exercise cell ends with one `name = ...` line per answer: replace each `...` with your\n"
+    "answer (code that computes it) and run the cell after it, which checks your answers and says\n"
+    "\"not solved yet\" for any `...` left."
+)
+
+
+def student_markdown(source):
+    """The student edition of a Markdown cell's text.
+
+    >>> student_markdown("Intro.<!-- BEGIN INSTRUCTOR --> Solutions inside.<!-- END INSTRUCTOR --> <!-- STUDENT: Try. -->")
+    'Intro. Try.'
+    >>> student_markdown("## Exercises\\n\\nEach exercise cell holds a worked solution.\\n\\nMore.").splitlines()[2][:30]
+    'Each exercise cell ends with o'
+    """
+    source = INSTRUCTOR_PASSAGE.sub("", source)
+    source = STUDENT_PASSAGE.sub(lambda match: match.group("text"), source)
+    return WORKED_SOLUTIONS_PARAGRAPH.sub(STUDENT_INSTRUCTIONS, source)
+
+
+def is_selfcheck_cell(cell):
+    """A code cell that calls the self-checks."""
+    return cell["cell_type"] == "code" and "selfcheck.check" in "".join(cell["source"])
+
+
 def student_notebook(notebook):
     """A copy of a notebook (as a JSON dict) with solutions stubbed and their outputs cleared.
 
     Each solution block becomes ``name = ...`` stubs for the names the next
     self-check reads (all names the block assigns if it reads none of them),
     so the stub asks for the answers, not for the worked solution's steps.
+    The self-check cells' outputs are cleared and the Markdown is made
+    student-facing (:func:`student_markdown`).
     """
     student = copy.deepcopy(notebook)
     cells = student["cells"]
     for index, cell in enumerate(cells):
+        source = "".join(cell["source"])
+        if cell["cell_type"] == "markdown":
+            cell["source"] = student_markdown(source)
+            continue
         if cell["cell_type"] != "code":
             continue
-        source = "".join(cell["source"])
         if BEGIN in source:
             cell["source"] = stub_source(source, next_selfcheck_names(cells, index))
+        if BEGIN in source or is_selfcheck_cell(cell):
             cell["outputs"] = []
             cell["execution_count"] = None
     return student
