@@ -7,7 +7,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
 
-.PHONY: help install lock lab test notebooks bench student site browser-test clean
+.PHONY: help install lock lab test notebooks bench student grade site browser-test clean
 
 help:
 	@echo "make lab        open the course in JupyterLab (creates .venv on first use);"
@@ -16,6 +16,7 @@ help:
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables"
 	@echo "make student    write the student edition (solutions stubbed) to build/student/"
+	@echo "make grade SUBMISSIONS=folder  run returned notebooks headless; CSV + one line per notebook"
 	@echo "make site       render the executed chapters to static HTML in build/site/"
 	@echo "make browser-test  run only the browser suite (JupyterLab and the site in Chromium)"
 	@echo "make lock       regenerate constraints.txt (every package's exact version) from a clean venv"
@@ -76,6 +77,11 @@ bench: $(STAMP)
 
 student: $(STAMP)
 	$(BIN)/python tools/editions.py student --out build/student
+
+SUBMISSIONS ?=
+grade: $(STAMP)
+	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=folder-of-returned-notebooks"; exit 2; }
+	$(BIN)/python tools/grade.py "$(SUBMISSIONS)"
 
 site: $(STAMP)
 	$(BIN)/python tools/editions.py site --out build/site

@@ -23,7 +23,8 @@ NOT_SOLVED = "not solved yet"
 CORRECT = "correct"
 WRONG = "wrong"
 
-_LINE = re.compile(r"^Exercise (?P<number>\d+\.\d+) \((?P<part>[^)]*)\): (?P<status>correct|not solved yet|wrong)\b")
+_LINE = re.compile(r"^Exercise (?P<number>\d+\.\d+)(?: \((?P<part>[^)]*)\))?: "
+                   r"(?P<status>correct|not solved yet|wrong|not right yet)\b")
 
 
 class PartResult(NamedTuple):
@@ -118,9 +119,14 @@ def parse_line(line: str):
 
     >>> parse_line("Exercise 2.1 (angles): wrong: the tip lands 3 m from the target. Hint: ...")
     ('2.1', 'angles', 'wrong')
+    >>> parse_line("Exercise 1.1: not right yet. Hint: ...")
+    ('1.1', '', 'wrong')
     """
     match = _LINE.match(line.strip())
-    return (match["number"], match["part"], match["status"]) if match else None
+    if not match:
+        return None
+    status = WRONG if match["status"] == "not right yet" else match["status"]  # check_close's word for wrong
+    return match["number"], match["part"] or "", status
 
 
 def _unsolved(answer):

@@ -1,0 +1,90 @@
+"""make grade: returned notebooks run headless, a CSV and a line per notebook, failures reported.
+
+Uses the student edition of chapter 1 (the shortest): one untouched, one with
+an exercise solved and one answered wrongly, and one broken (a cell raises).
+"""
+
+import csv
+import json
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+import editions  # noqa: E402
+import grade  # noqa: E402
+
+CHAPTER = "01_dh_forward_kinematics.ipynb"
+
+
+def _student_chapter(tmp_path):
+    editions.build_student(ROOT / "notebooks", tmp_path / "edition")
+    return json.loads((tmp_path / "edition" / CHAPTER).read_text(encoding="utf-8"))
+
+
+def _replace(notebook, old, new):
+    hits = 0
+    for cell in notebook["cells"]:
+        source = "".join(cell["source"])
+        if old in source:
+            cell["source"] = source.replace(old, new)
+            hits += 1
+    assert hits == 1, f"{old!r} found {hits} times"
+
+
+@pytest.fixture(scope="module")
+def graded(tmp_path_factory):
+    tmp_path = tmp_path_factory.mktemp("grade")
+    submissions = tmp_path / "submissions"
+    submissions.mkdir()
+    untouched = _student_chapter(tmp_path)
+    (submissions / "ada_untouched.ipynb").write_text(json.dumps(untouched), encoding="utf-8")
+    solved = _student_chapter(tmp_path)
+    _replace(solved, "p_tip_ex1 = ...  # your code here", "p_tip_ex1 = osake.fk(q_ex1)")
+    _replace(solved, "q_rel_ex3 = ...  # your code here", "q_rel_ex3 = np.array([1.0, 2.0])")
+    (submissions / "bob_solved.ipynb").write_text(json.dumps(solved), encoding="utf-8")
+    broken = _student_chapter(tmp_path)
+    _replace(broken, "p_tip_ex1 = ...  # your code here", "p_tip_ex1 = undefined_name + 1")
+    (submissions / "cy_broken.ipynb").write_text(json.dumps(broken), encoding="utf-8")
+    out = tmp_path / "grades.csv"
+    lines = grade.grade_folder(submissions, out, timeout=120)
+    with out.open(encoding="utf-8") as handle:
+        rows = list(csv.DictReader(handle))
+    return lines, rows
+
+
+def _results(rows, name):
+    return {(row["exercise"], row["part"]): row["result"] for row in rows if row["student file"] == name}
+
+
+def test_untouched_notebook_is_all_not_solved(graded):
+    lines, rows = graded
+    results = _results(rows, "ada_untouched.ipynb")
+    assert results and set(results.values()) == {"not solved"}
+    assert {exercise for exercise, _ in results} == {"1.1", "1.2", "1.3"}
+    assert any(line.startswith("ada_untouched.ipynb: 0 passed,") and "FAILED" not in line for line in lines)
+
+
+def test_solved_and_wrong_parts_are_graded(graded):
+    lines, rows = graded
+    results = _results(rows, "bob_solved.ipynb")
+    assert [result for (exercise, _), result in results.items() if exercise == "1.1"] == ["passed"]
+    assert "wrong" in [result for (exercise, _), result in results.items() if exercise == "1.3"]
+    assert any(line.startswith("bob_solved.ipynb: 1 passed,") and " 1 wrong" in line for line in lines)
+
+
+def test_a_notebook_that_fails_to_run_is_reported(graded):
+    lines, rows = graded
+    failed = [row for row in rows if row["student file"] == "cy_broken.ipynb" and row["result"].startswith("failed to run")]
+    assert len(failed) == 1 and "NameError" in failed[0]["result"]
+    assert any(line.startswith("cy_broken.ipynb:") and "FAILED TO RUN: error: NameError" in line for line in lines)
+
+
+def test_make_grade_needs_a_folder():
+    result = subprocess.run(["make", "-s", "grade", "SUBMISSIONS="], cwd=ROOT, capture_output=True, text=True)
+    assert result.returncode != 0 and "usage: make grade SUBMISSIONS=" in result.stdout
+    with pytest.raises(SystemExit, match="not a folder"):
+        grade.grade_folder(ROOT / "no-such-folder", ROOT / "build" / "unused.csv")
