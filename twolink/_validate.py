@@ -5,9 +5,11 @@ that bad input fails early with a message that says what was wrong and what
 is allowed, instead of propagating NaN.
 """
 
+import math
+
 import numpy as np
 
-__all__ = ["as_pairs", "as_finite_scalar"]
+__all__ = ["as_pairs", "as_finite_scalar", "as_count"]
 
 
 def as_pairs(values, name):
@@ -92,3 +94,35 @@ def as_finite_scalar(value, name, *, minimum=None, strictly=False):
         if not strictly and not number >= minimum:
             raise ValueError(f"{name} must be >= {minimum}; got {number}")
     return number
+
+
+def as_count(value, name, *, minimum=1, maximum=None):
+    """Return ``value`` as a Python ``int`` at least ``minimum`` (and at most ``maximum``).
+
+    Integers (Python or numpy) and floats with an integral value (``50.0``)
+    are accepted; booleans, fractions, strings, ``None``, NaN and infinity
+    are refused with a message naming the argument.
+
+    Examples
+    --------
+    >>> as_count(50, "n", minimum=2)
+    50
+    >>> as_count(2.5, "n", minimum=2)
+    Traceback (most recent call last):
+    ...
+    ValueError: n must be an integer >= 2; got 2.5
+    >>> as_count(True, "n")
+    Traceback (most recent call last):
+    ...
+    TypeError: n must be an integer >= 1; got True (bool)
+    """
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name} must be an integer >= {minimum}; got {value!r} ({type(value).__name__})")
+    if isinstance(value, (float, np.floating)) and not (math.isfinite(value) and float(value).is_integer()):
+        raise ValueError(f"{name} must be an integer >= {minimum}; got {value!r}")
+    count = int(value)
+    if count < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum}; got {count}")
+    if maximum is not None and count > maximum:
+        raise ValueError(f"{name} must be an integer <= {maximum}; got {count}")
+    return count

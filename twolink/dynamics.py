@@ -36,6 +36,7 @@ import numpy as np
 
 from . import kinematics
 from ._validate import as_pairs
+from .errors import SimulationError
 
 __all__ = [
     "mass_matrix",
@@ -483,7 +484,9 @@ def state_derivative(arm, torque=None):
     torque : callable, optional
         ``torque(t, q, qd) -> tau`` (two numbers, N m), for example a
         controller; ``None`` for free motion.  A result that is not two
-        finite numbers raises :class:`ValueError` naming the time.
+        finite numbers raises :class:`ValueError` naming the time; a state
+        that is not finite raises :class:`twolink.SimulationError` naming
+        the time and the state.
 
     Returns
     -------
@@ -503,6 +506,8 @@ def state_derivative(arm, torque=None):
 
         def free_motion(t, state):
             q1, q2, qd1, qd2 = state.tolist()
+            if not math.isfinite(q1 + q2 + qd1 + qd2):
+                _raise_blow_up(t, state)
             qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, 0.0, 0.0)
             return [qd1, qd2, qdd1, qdd2]
 
@@ -512,11 +517,24 @@ def state_derivative(arm, torque=None):
 
     def driven_motion(t, state):
         q1, q2, qd1, qd2 = state.tolist()
+        if not math.isfinite(q1 + q2 + qd1 + qd2):
+            _raise_blow_up(t, state)
         tau1, tau2 = _torque_floats(torque(t, state[:2].copy(), state[2:].copy()), t)
         qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2)
         return [qd1, qd2, qdd1, qdd2]
 
     return driven_motion
+
+
+def _raise_blow_up(t, state):
+    raise SimulationError(
+        f"the motion blew up at t = {t:.6g} s: the state is not finite (or overflows), "
+        f"q = ({state[0]:.6g}, {state[1]:.6g}) rad, qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
+    )
+
+
+class NonFiniteTorque(ValueError):
+    """A torque callable returned NaN or infinity (the message names the time)."""
 
 
 def _torque_floats(value, t):
@@ -529,5 +547,5 @@ def _torque_floats(value, t):
         raise ValueError(f"torque(t, q, qd) must return shape (2,) (N m); got shape {array.shape} at t = {t}")
     tau1, tau2 = array.tolist()
     if not (math.isfinite(tau1) and math.isfinite(tau2)):
-        raise ValueError(f"torque(t, q, qd) returned non-finite torques {array} at t = {t}")
+        raise NonFiniteTorque(f"torque(t, q, qd) returned non-finite torques {array} at t = {t}")
     return tau1, tau2

@@ -1,10 +1,11 @@
 """Exceptions raised by twolink.
 
-Both are subclasses of :class:`ValueError`, so code that already catches
-``ValueError`` for bad input keeps working.
+The first two are subclasses of :class:`ValueError`, so code that already
+catches ``ValueError`` for bad input keeps working; :class:`SimulationError`
+(integrator trouble, not bad input) is a :class:`RuntimeError`.
 """
 
-__all__ = ["UnreachableError", "SingularityError"]
+__all__ = ["UnreachableError", "SingularityError", "SimulationError"]
 
 
 class UnreachableError(ValueError):
@@ -19,4 +20,13 @@ class SingularityError(ValueError):
     """A configuration is too close to a kinematic singularity for the request.
 
     The message names the configuration and how far it is from the singularity.
+    """
+
+
+class SimulationError(RuntimeError):
+    """The ODE solver failed before reaching the end time (its message says why).
+
+    Raised for a solver failure, a blow-up of the state (NaN, infinity or
+    overflowing rates, with the time and the state), and a stiff loop that
+    used up its budget of evaluations or wall time (with the method to use).
     """

@@ -6,6 +6,8 @@ callable ``(t, q, qd) -> tau`` drives the arm (a controller plugs in here);
 without one the arm moves freely under gravity.
 """
 
+import math
+import time
 from dataclasses import dataclass
 from types import MappingProxyType
 
@@ -13,9 +15,10 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from . import dynamics
-from ._validate import as_finite_scalar, as_pairs
+from ._validate import as_count, as_finite_scalar, as_pairs
+from .errors import SimulationError
 
-__all__ = ["simulate", "SimulationResult", "SimulationError"]
+__all__ = ["simulate", "SimulationResult", "SimulationError", "DEFAULT_MAX_EVALUATIONS", "DEFAULT_MAX_WALL_TIME"]
 
 #: Solver settings used unless the caller passes others: an 8th-order
 #: Runge-Kutta method at tolerances tight enough that the energy of free
@@ -23,8 +26,79 @@ __all__ = ["simulate", "SimulationResult", "SimulationError"]
 DEFAULT_SOLVER_OPTIONS = MappingProxyType({"method": "DOP853", "rtol": 1e-10, "atol": 1e-10})
 
 
-class SimulationError(RuntimeError):
-    """The ODE solver failed before reaching the end time (its message says why)."""
+#: Budget of :func:`simulate` unless the caller passes others: right-hand-side
+#: evaluations (a free motion of 10 s takes about 7e3; a stiff loop on an
+#: explicit method takes millions) and wall-clock seconds.
+DEFAULT_MAX_EVALUATIONS = 1_000_000
+DEFAULT_MAX_WALL_TIME = 30.0
+
+#: The explicit Runge-Kutta methods of ``solve_ivp`` (stiff loops need an implicit one).
+_EXPLICIT_METHODS = ("RK23", "RK45", "DOP853")
+
+#: Right-hand-side evaluations per step of each explicit method, and the
+#: length of its stability interval on the negative real axis (h |lambda| <= it).
+_EXPLICIT_COST = {"RK23": (3, 2.5), "RK45": (6, 3.3), "DOP853": (12, 6.0)}
+
+
+class _BudgetExceeded(Exception):
+    def __init__(self, t, state, what):
+        super().__init__(what)
+        self.t, self.state, self.what = t, np.array(state, dtype=float), what
+
+
+def _jacobian_eigenvalues(right_hand_side, t, state):
+    """Eigenvalues of ``df/dx`` at one state by central differences (8 evaluations), or None."""
+    try:
+        columns = []
+        for index in range(4):
+            step = 1e-7 * max(1.0, abs(state[index]))
+            offset = np.zeros(4)
+            offset[index] = step
+            forward = np.asarray(right_hand_side(t, state + offset), dtype=float)
+            backward = np.asarray(right_hand_side(t, state - offset), dtype=float)
+            columns.append((forward - backward) / (2.0 * step))
+        jacobian = np.column_stack(columns)
+        if not np.all(np.isfinite(jacobian)):
+            return None
+        return np.linalg.eigvals(jacobian)
+    except (ValueError, ArithmeticError, SimulationError):
+        return None
+
+
+def _stiffness(right_hand_side, t, state):
+    """Largest ``|lambda|`` of the linearised loop at a state (1/s), or None if it cannot be estimated."""
+    eigenvalues = _jacobian_eigenvalues(right_hand_side, t, state)
+    if eigenvalues is None or eigenvalues.size == 0:
+        return None
+    return float(np.max(np.abs(eigenvalues)))
+
+
+def _explicit_evaluations(method, rate, duration):
+    """About how many evaluations an explicit method needs for stability alone over ``duration``."""
+    per_step, interval = _EXPLICIT_COST[method]
+    return per_step * rate * duration / interval
+
+
+def _check_t_eval(t_eval, t_end):
+    try:
+        times = np.asarray(t_eval, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"t_eval must be times in seconds (numbers); got {t_eval!r}") from exc
+    if times.dtype != float or times.ndim != 1 or times.size == 0:
+        raise ValueError(f"t_eval must be a non-empty 1-D array of times (s); got shape {times.shape}")
+    if not np.all(np.isfinite(times)):
+        raise ValueError("t_eval must be finite times (s); it holds NaN or infinity")
+    if times.size > 1 and not np.all(np.diff(times) > 0.0):
+        first = int(np.flatnonzero(~(np.diff(times) > 0.0))[0])
+        raise ValueError(
+            f"t_eval must be strictly increasing; t_eval[{first + 1}] = {times[first + 1]:.6g} s follows "
+            f"t_eval[{first}] = {times[first]:.6g} s"
+        )
+    if times[0] < 0.0 or times[-1] > t_end:
+        raise ValueError(
+            f"t_eval must lie in [0, t_end] = [0, {t_end:.6g}] s; got [{times[0]:.6g}, {times[-1]:.6g}] s"
+        )
+    return times
 
 
 def _frozen(array):
@@ -117,11 +191,30 @@ class SimulationResult:
         return np.unique(np.linspace(0, len(self.t) - 1, count).round().astype(int))
 
 
-def simulate(arm, q0, qd0, t_end, torque=None, t_eval=None, **solver_options):
+def simulate(
+    arm,
+    q0,
+    qd0,
+    t_end,
+    torque=None,
+    t_eval=None,
+    max_evaluations=DEFAULT_MAX_EVALUATIONS,
+    max_wall_time=DEFAULT_MAX_WALL_TIME,
+    **solver_options,
+):
     """Integrate the arm's motion from ``(q0, qd0)`` at ``t = 0`` to ``t_end``.
 
     Solves ``M(q) qdd + C(q, qd) qd + g(q) = tau`` with
     :func:`scipy.integrate.solve_ivp` on the state ``(q1, q2, qd1, qd2)``.
+
+    Nothing hangs: the integration has a budget of right-hand-side
+    evaluations and of wall time.  A stiff closed loop (large gains, a hard
+    contact wall) on an explicit method would need millions of tiny steps;
+    when the loop is already stiff at the start and no ``method`` was given,
+    the implicit ``"Radau"`` method is chosen instead (the result's
+    ``message`` says so), and when the budget runs out the
+    :class:`SimulationError` says that the loop is stiff (with its fastest
+    rate) and to pass ``method="Radau"`` or ``"LSODA"``.
 
     Parameters
     ----------
@@ -137,8 +230,13 @@ def simulate(arm, q0, qd0, t_end, torque=None, t_eval=None, **solver_options):
         arguments only: it is also called again at the output times to
         report ``tau``.  ``None`` (default) is free motion.
     t_eval : array_like, optional
-        Times at which to report the motion (within ``[0, t_end]``,
-        increasing); by default the solver's own steps.
+        Times at which to report the motion: finite, strictly increasing,
+        within ``[0, t_end]``, at least one; by default the solver's own steps.
+    max_evaluations : int
+        Budget of right-hand-side evaluations (default
+        ``DEFAULT_MAX_EVALUATIONS`` = 1e6; 10 s of free motion takes ~7e3).
+    max_wall_time : float
+        Budget of wall-clock seconds (default ``DEFAULT_MAX_WALL_TIME`` = 30).
     **solver_options
         Passed to ``solve_ivp`` (``method``, ``rtol``, ``atol``,
         ``max_step``, ``events``, ...).  Defaults: ``method="DOP853"``,
@@ -152,11 +250,14 @@ def simulate(arm, q0, qd0, t_end, torque=None, t_eval=None, **solver_options):
     ------
     ValueError
         For a start of the wrong shape or not finite, a non-positive
-        ``t_end``, a ``torque`` that is not callable or does not return two
-        finite numbers, or an arm with a singular mass matrix.
+        ``t_end``, a bad ``t_eval`` or budget, a ``torque`` that is not
+        callable or does not return two finite numbers at the start, or an
+        arm with a singular mass matrix.
     SimulationError
-        When the solver fails (for example the step size becomes too small);
-        no partial result is returned.
+        When the solver fails (for example the step size becomes too small),
+        the state blows up (NaN, infinity, overflowing rates or torques: the
+        message names the time and the state), or the budget runs out; no
+        partial result is returned.
 
     Examples
     --------
@@ -178,12 +279,108 @@ def simulate(arm, q0, qd0, t_end, torque=None, t_eval=None, **solver_options):
     if q0.shape != (2,) or qd0.shape != (2,):
         raise ValueError(f"q0 and qd0 must be one state each, shape (2,); got {q0.shape} and {qd0.shape}")
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
-    right_hand_side = dynamics.state_derivative(arm, torque)
+    max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
+    max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
+    inner = dynamics.state_derivative(arm, torque)
     options = dict(DEFAULT_SOLVER_OPTIONS)
     options.update(solver_options)
     if t_eval is not None:
-        t_eval = np.asarray(t_eval, dtype=float)
-    solution = solve_ivp(right_hand_side, (0.0, t_end), np.concatenate([q0, qd0]), t_eval=t_eval, **options)
+        t_eval = _check_t_eval(t_eval, t_end)
+    start = np.concatenate([q0, qd0])
+    note = ""
+    method = options.get("method")
+    if isinstance(method, str) and method in _EXPLICIT_METHODS:
+        rate = _stiffness(inner, 0.0, start)
+        needed = _explicit_evaluations(method, rate, t_end) if rate is not None else 0.0
+        if needed > max_evaluations / 4:
+            if "method" in solver_options:
+                if needed > max_evaluations:
+                    raise SimulationError(
+                        f"the closed loop is stiff at t = 0 (fastest rate {rate:.3g} 1/s, time constant "
+                        f"{1.0 / rate:.2g} s): the explicit method {method!r} would need about {needed:.2g} "
+                        f"evaluations for {t_end:.6g} s, more than max_evaluations = {max_evaluations}; "
+                        "use an implicit method, method='Radau' or method='LSODA'"
+                    )
+                note = f" (the loop is stiff: fastest rate {rate:.3g} 1/s at t = 0; method='Radau' would be faster)"
+            else:
+                options["method"] = "Radau"
+                note = f" (the loop is stiff, fastest rate {rate:.3g} 1/s at t = 0: integrated with method='Radau')"
+
+    evaluations = 0
+    deadline = time.monotonic() + max_wall_time
+
+    last = [0.0, start]
+
+    def right_hand_side(t, state):
+        nonlocal evaluations
+        evaluations += 1
+        last[0], last[1] = t, state
+        if evaluations > max_evaluations:
+            raise _BudgetExceeded(t, state, f"its budget of max_evaluations = {max_evaluations} evaluations")
+        if not evaluations & 63 and time.monotonic() > deadline:
+            raise _BudgetExceeded(t, state, f"its budget of max_wall_time = {max_wall_time:.3g} s")
+        try:
+            derivative = inner(t, state)
+        except dynamics.NonFiniteTorque as exc:
+            if evaluations == 1:
+                raise
+            raise SimulationError(
+                f"the motion blew up at t = {t:.6g} s: {exc} in the state q = ({state[0]:.6g}, {state[1]:.6g}) rad, "
+                f"qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
+            ) from None
+        if not math.isfinite(derivative[2] + derivative[3]):
+            raise SimulationError(
+                f"the motion blew up at t = {t:.6g} s: the accelerations overflow "
+                f"(qdd = ({derivative[2]:.6g}, {derivative[3]:.6g}) rad/s^2) in the state "
+                f"q = ({state[0]:.6g}, {state[1]:.6g}) rad, qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
+            )
+        return derivative
+
+    try:
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            solution = solve_ivp(right_hand_side, (0.0, t_end), start, t_eval=t_eval, **options)
+    except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+        if evaluations <= 1 or isinstance(exc, dynamics.NonFiniteTorque):
+            raise
+        # the solver's own arithmetic broke down (overflowing rates or Jacobian): a blow-up, not bad input
+        t_last, state = last[0], np.asarray(last[1], dtype=float)
+        raise SimulationError(
+            f"the integration broke down at t = {t_last:.6g} s after {evaluations} evaluations "
+            f"({type(exc).__name__}: {exc}), last state q = ({state[0]:.6g}, {state[1]:.6g}) rad, "
+            f"qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s: the rates or the torques overflow; "
+            "check the controller's gains and the torques it returns"
+        ) from exc
+    except _BudgetExceeded as stop:
+        rate = _stiffness(inner, stop.t, stop.state)
+        used = options.get("method", "RK45")
+        explicit = isinstance(used, str) and used in _EXPLICIT_METHODS
+        if explicit and rate is not None:
+            # stiff: the steps taken were no longer than the explicit method's stability limit allows
+            per_step, interval = _EXPLICIT_COST[used]
+            stiff = stop.t / (evaluations / per_step) < 3.0 * interval / rate
+        else:
+            stiff = rate is not None and rate * t_end > 1e4
+        if stiff:
+            advice = (
+                f"the closed loop is stiff there (fastest rate {rate:.3g} 1/s, time constant {1.0 / rate:.2g} s, "
+                f"against {t_end:.6g} s to simulate)"
+            )
+            if explicit:
+                advice += f": use an implicit method, method='Radau' or method='LSODA', instead of {used!r}"
+            else:
+                advice += ": loosen rtol/atol or raise the budget"
+        elif explicit:
+            advice = "try looser tolerances, method='Radau' or method='LSODA' (if the loop is stiff), or a larger budget"
+        else:
+            advice = (
+                f"with the implicit method {used!r}, loosen rtol/atol (the defaults 1e-10 suit smooth motion; "
+                "a contact or a switching controller is not smooth), give max_step, or raise the budget"
+            )
+        raise SimulationError(
+            f"the integration used up {stop.what} at t = {stop.t:.6g} s of {t_end:.6g} s "
+            f"(state q = ({stop.state[0]:.6g}, {stop.state[1]:.6g}) rad, qd = ({stop.state[2]:.6g}, "
+            f"{stop.state[3]:.6g}) rad/s); {advice}"
+        ) from None
     if solution.status < 0 or not np.all(np.isfinite(solution.y)):
         reached = solution.t[-1] if solution.t.size else 0.0
         raise SimulationError(
@@ -205,7 +402,7 @@ def simulate(arm, q0, qd0, t_end, torque=None, t_eval=None, **solver_options):
         qd=_frozen(qd),
         tau=_frozen(tau),
         status=int(solution.status),
-        message=str(solution.message),
+        message=str(solution.message) + note,
         nfev=int(solution.nfev),
         t_events=solution.t_events,
         y_events=solution.y_events,

@@ -29,8 +29,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ._validate import as_finite_scalar, as_pairs
-from .errors import SingularityError, UnreachableError
+from ._validate import as_count, as_finite_scalar, as_pairs
+from .errors import SimulationError, SingularityError, UnreachableError
+from .simulate import DEFAULT_MAX_EVALUATIONS
 from .kinematics import fk
 from .velocity import joint_rates, joint_rates_dls
 from .workspace import LIMIT_TOL, describe_limits, require_reachable, solutions_within_limits
@@ -405,7 +406,10 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     return JointTrajectory(arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=_BRANCHES[branch], method="closed form")
 
 
-def resolved_rate_trajectory(arm, path, n=50, q_start=None, elbow="auto", gain=10.0, damping=0.0, rtol=1e-8):
+def resolved_rate_trajectory(
+    arm, path, n=50, q_start=None, elbow="auto", gain=10.0, damping=0.0, rtol=1e-8, method=None,
+    max_evaluations=DEFAULT_MAX_EVALUATIONS,
+):
     """Follow a path by resolved-rate control: integrate ``qd = J^-1 (v_ref + gain (p_ref - fk(q)))``.
 
     The joint rates come from :func:`twolink.velocity.joint_rates` (exact
@@ -432,6 +436,14 @@ def resolved_rate_trajectory(arm, path, n=50, q_start=None, elbow="auto", gain=1
         Damped-least-squares damping, m/rad (>= 0); 0 uses the exact inverse.
     rtol : float
         Relative tolerance of the integrator.
+    method : str, optional
+        ``solve_ivp``'s method.  ``None`` chooses: ``"RK45"``, or the
+        stiffness-switching ``"LSODA"`` when the feedback is stiff (the tracking error
+        decays at the rate ``gain``, so an explicit method would need about
+        ``gain * duration`` steps; above 1e4 of them LSODA is used).
+    max_evaluations : int
+        Budget of rate evaluations (default 1e6); when it runs out a
+        :class:`twolink.SimulationError` says where and what to change.
 
     Returns
     -------
@@ -444,6 +456,8 @@ def resolved_rate_trajectory(arm, path, n=50, q_start=None, elbow="auto", gain=1
         If the sampled path leaves the workspace (checked before integrating).
     twolink.SingularityError
         If the exact inverse meets a singularity (the message gives the time).
+    twolink.SimulationError
+        If the integration fails or uses up ``max_evaluations``.
 
     Examples
     --------
@@ -458,6 +472,7 @@ def resolved_rate_trajectory(arm, path, n=50, q_start=None, elbow="auto", gain=1
     gain = as_finite_scalar(gain, "gain (1/s)", minimum=0.0)
     damping = as_finite_scalar(damping, "damping (m/rad)", minimum=0.0)
     rtol = as_finite_scalar(rtol, "rtol", minimum=0.0, strictly=True)
+    max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
     t, points, _ = path.sample(n)
     start_branch = elbow
     if q_start is None:
@@ -480,9 +495,24 @@ def resolved_rate_trajectory(arm, path, n=50, q_start=None, elbow="auto", gain=1
         except SingularityError as exc:
             raise SingularityError(f"resolved rate met a singularity at t = {time:.6g} s: {exc}") from exc
 
-    solution = solve_ivp(rates, (t[0], t[-1]), q_start, t_eval=t, rtol=rtol, atol=rtol * 1e-2)
+    if method is None:
+        method = "LSODA" if gain * (t[-1] - t[0]) / 3.3 > 1e4 else "RK45"
+    evaluations = 0
+
+    def budgeted_rates(time, q):
+        nonlocal evaluations
+        evaluations += 1
+        if evaluations > max_evaluations:
+            raise SimulationError(
+                f"resolved rate used up its budget of max_evaluations = {max_evaluations} at t = {time:.6g} s "
+                f"(method {method!r}, gain {gain:.3g} 1/s): "
+                + ("pass method='LSODA' or 'Radau' (the feedback is stiff)" if method in ("RK23", "RK45", "DOP853") else "loosen rtol or lower the gain")
+            )
+        return rates(time, q)
+
+    solution = solve_ivp(budgeted_rates, (t[0], t[-1]), q_start, t_eval=t, rtol=rtol, atol=rtol * 1e-2, method=method)
     if not solution.success:
-        raise RuntimeError(f"the integration failed: {solution.message}")
+        raise SimulationError(f"resolved rate: the integration failed at t = {solution.t[-1]:.6g} s: {solution.message}")
     q = solution.y.T
     qd = np.array([rates(time, q_now) for time, q_now in zip(t, q)])
     return JointTrajectory(arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=start_branch, method="resolved rate")
