@@ -262,6 +262,11 @@ class JointTrajectory:
         ``"down"`` or ``"up"``: the branch followed (at the start, for resolved rate).
     method : str
         ``"closed form"`` or ``"resolved rate"``.
+    branch_switches : tuple of int
+        Samples at which the elbow branch changes, where the path passes a
+        singular point (through the base of an equal-link arm the only
+        continuous joint path switches branch there, ``q2`` passing
+        through ``+-pi``); empty for a path on one branch.
     """
 
     arm: object
@@ -271,6 +276,7 @@ class JointTrajectory:
     p_ref: np.ndarray
     elbow: str
     method: str
+    branch_switches: tuple = ()
 
     @property
     def p_tip(self):
@@ -335,6 +341,63 @@ def _continuous(q_branch):
     return np.unwrap(q_branch, axis=0)
 
 
+#: Largest joint change (rad) accepted between two consecutive samples of
+#: :func:`ik_trajectory`: a larger one is a jump (no continuous joint path
+#: joins the samples, or they are too far apart to tell).
+JUMP_TOL = np.pi / 2
+
+#: ``|sin q2|`` below which the two elbow branches meet (a stretched or folded
+#: pose) and :func:`ik_trajectory` may switch from one to the other.
+BRANCH_MEET_TOL = 1e-6
+
+
+def _nearest_turn(angles, reference):
+    """``angles`` shifted by multiples of 2 pi (per joint) to lie nearest ``reference``."""
+    return angles - 2.0 * np.pi * np.round((angles - reference) / (2.0 * np.pi))
+
+
+def _switching_path(arm, points, q_both, valid, start_branch):
+    """A continuous joint path that may change branch where the branches meet, or None.
+
+    At each sample the branch stays the same unless the pose is singular
+    (``|sin q2| <= BRANCH_MEET_TOL``), where the other branch is taken when
+    it is the nearer one, or unless staying would jump by more than
+    ``JUMP_TOL`` while the other branch is a smaller step (the samples
+    straddle a singular pose); at the base of an equal-link arm (where ``q1`` is
+    free) ``q1`` is kept from the previous sample.
+    """
+    count = len(points)
+    q = np.empty((count, 2))
+    branches = np.empty(count, dtype=int)
+    branch = start_branch
+    q[0] = q_both[0, branch]
+    branches[0] = branch
+    r_min = arm.reach[0]
+    for k in range(1, count):
+        candidates = _nearest_turn(q_both[k], q[k - 1])
+        at_base = r_min == 0.0 and not np.hypot(*points[k]) > 0.0
+        if at_base:  # every q1 puts the tip there: keep the previous one
+            candidates[:, 0] = q[k - 1, 0]
+        steps = np.max(np.abs(candidates - q[k - 1]), axis=-1)
+        steps = np.where(valid[k], steps, np.inf)
+        meet = abs(np.sin(q[k - 1, 1])) <= BRANCH_MEET_TOL or abs(np.sin(candidates[branch, 1])) <= BRANCH_MEET_TOL
+        # switch at a singular pose when the other branch is nearer, or between two samples that
+        # straddle one (staying would jump, the other branch is a small step away)
+        if (meet and steps[1 - branch] < steps[branch]) or (steps[branch] > JUMP_TOL >= steps[1 - branch]):
+            branch = 1 - branch
+        q[k] = candidates[branch]
+        branches[k] = branch
+    if not np.all(valid[np.arange(count), branches]):
+        return None
+    return q, branches
+
+
+def _first_jump(q):
+    steps = np.max(np.abs(np.diff(q, axis=0)), axis=-1)
+    jumps = np.flatnonzero(steps > JUMP_TOL)
+    return (int(jumps[0]), float(steps[jumps[0]])) if jumps.size else None
+
+
 #: Below this ``|sin q2|`` :func:`ik_trajectory` takes finite-difference joint
 #: rates instead of ``J^-1 v`` (whose size grows as ``1 / |sin q2|``).
 RATE_SINGULARITY_TOL = 1e-3
@@ -346,6 +409,12 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     Each sample is solved in closed form (:func:`twolink.workspace.solutions_within_limits`,
     both branches), then one branch is kept for every sample, so the elbow never
     flips mid-path, and the angles are unwrapped so they never jump by ``2 pi``.
+    Where one branch is not continuous (a line through the base of an
+    equal-link arm: ``q1`` would jump by ``pi``) or not within the limits,
+    the branch changes where the two branches meet (a singular pose,
+    ``q2`` passing ``0`` or ``+-pi``) if that gives a continuous path;
+    ``branch_switches`` lists those samples.  No joint ever changes by more
+    than ``JUMP_TOL`` between two samples: otherwise the error names them.
     Joint rates are exact, ``J^-1 v`` from the path's own velocity, for a
     path object; for a list of points, and at samples within
     ``RATE_SINGULARITY_TOL`` of a singular circle (where ``J^-1 v`` blows up),
@@ -372,8 +441,10 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     ------
     twolink.UnreachableError
         If a sample is outside the workspace (the message names the first one:
-        index, coordinates, distance, reach or limits), or if no single branch
-        (or not the requested one) stays within the limits along the path.
+        index, coordinates, distance, reach or limits), if no branch (single,
+        or switching where the branches meet) stays within the limits along
+        the path, or if no continuous joint path joins two samples (the
+        message names them and the jump).
 
     Examples
     --------
@@ -390,8 +461,38 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     t, points, v_path = _path_samples(path, n)
     require_reachable(arm, points, what="path point")
     q_both, valid = solutions_within_limits(arm, points)
-    branch = _choose_branch(arm, points, valid, elbow)
-    q = _continuous(q_both[:, branch, :])
+    switches = ()
+    try:
+        branch = _choose_branch(arm, points, valid, elbow)
+        q = _continuous(q_both[:, branch, :])
+        jump = _first_jump(q)
+    except UnreachableError as exc:
+        branch, q, jump, no_single_branch = None, None, None, exc
+    if branch is None or jump is not None:
+        # one branch throughout is not continuous (or not within limits): switch where the branches meet
+        starts = [_BRANCHES.index(elbow)] if elbow in _BRANCHES else [0, 1]
+        found = None
+        for start in starts:
+            if not valid[0, start]:
+                continue
+            candidate = _switching_path(arm, points, q_both, valid, start)
+            if candidate is not None and _first_jump(candidate[0]) is None:
+                found = (start, *candidate)
+                break
+        if found is None:
+            if branch is None:
+                raise no_single_branch
+            k, size = jump
+            raise UnreachableError(
+                f"no continuous joint path follows the path: between path points {k} and {k + 1} "
+                f"({points[k][0]:.6g}, {points[k][1]:.6g}) -> ({points[k + 1][0]:.6g}, {points[k + 1][1]:.6g}) "
+                f"the joints would jump by {np.degrees(size):.4g} deg (more than JUMP_TOL = "
+                f"{np.degrees(JUMP_TOL):.4g} deg) on the elbow-{_BRANCHES[branch]} branch, and switching branch "
+                "where the branches meet does not help: sample the path more finely or keep it away from "
+                "the singular points"
+            )
+        branch, q, branches = found
+        switches = tuple(int(k) for k in np.flatnonzero(np.diff(branches)) + 1)
     if arm.has_limits and not np.all(arm.within_limits(q, tol=LIMIT_TOL)):
         first = int(np.flatnonzero(~arm.within_limits(q, tol=LIMIT_TOL))[0])
         raise UnreachableError(
@@ -403,7 +504,10 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
         regular = np.abs(np.sin(q[:, 1])) > RATE_SINGULARITY_TOL
         if np.any(regular):
             qd[regular] = joint_rates(arm, q[regular], v_path[regular])
-    return JointTrajectory(arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=_BRANCHES[branch], method="closed form")
+    return JointTrajectory(
+        arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=_BRANCHES[branch], method="closed form",
+        branch_switches=switches,
+    )
 
 
 def resolved_rate_trajectory(
