@@ -15,15 +15,24 @@ GRID_CHUNK = 1 << 15
 
 
 def grid_axis(low, high, step):
-    """Grid values ``low, low + step, ...`` up to ``high`` (inclusive within round-off).
+    """Grid values ``low, low + step, ...`` and always ``high`` itself.
+
+    When the range is not a whole number of steps the last spacing is
+    shorter: both ends of a joint range are always on the grid (a solution
+    on a joint limit is found exactly).
 
     Examples
     --------
     >>> np.degrees(grid_axis(0.0, np.radians(90.0), np.radians(30.0))).round(9)
     array([ 0., 30., 60., 90.])
+    >>> np.degrees(grid_axis(0.0, np.radians(90.0), np.radians(40.0))).round(9)
+    array([ 0., 40., 80., 90.])
     """
     count = int(np.floor((high - low) / step + 1e-9)) + 1
-    return low + step * np.arange(count)
+    axis = low + step * np.arange(count)
+    if high - axis[-1] > 1e-9 * step:
+        axis = np.append(axis, high)
+    return axis
 
 
 def _joint_ranges(arm, q1_range, q2_range):
@@ -87,11 +96,13 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
     number of grid points grows as ``1 / step^2``; the time approaches that
     growth once the grid work dominates the fixed cost of a call.
 
-    A grid point lies within ``step / 2`` of the exact solution in each joint,
-    so the tip error is at most ``(l1 + 2 l2) * step / 2``: ``success`` is
-    true when the residual is within that bound (the exact solution lies in
-    the grid's range), false when the best grid point is further (the target
-    needs angles outside the range or the limits).
+    Both ends of each range are on the grid (the last spacing may be
+    shorter), so a grid point lies within ``step / 2`` of the exact solution
+    in each joint and the tip error is at most ``(l1 + 2 l2) * step / 2``:
+    ``success`` is true when the residual is within that bound, the grid
+    point respects the joint limits and the target lies in the workspace the
+    limits leave (:func:`twolink.workspace.is_reachable`); false otherwise
+    (the target needs angles outside the range or the limits).
 
     Parameters
     ----------
@@ -141,11 +152,26 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
 
     bound = (arm.l1 + 2.0 * arm.l2) * step / 2.0
     grid_points = len(q1_axis) * len(q2_axis)
-    return assemble_result(
-        arm, p, q, np.full(len(q), grid_points), bound + distance_outside_reach(arm, p_flat), "brute-force",
-        solved_message=f"all {len(q)} targets within the grid bound {bound:.3g} m ({grid_points} points)",
-        failure_detail=lambda index, residual: (
+    from ..workspace import is_reachable  # late import: workspace builds on ik
+
+    # success needs a grid point within the bound, the point within the limits, and the target
+    # inside the workspace the limits leave (a target just outside it is near a limit's grid point)
+    within = arm.within_limits(q)
+    reachable = np.ravel(is_reachable(arm, p_flat))
+    threshold = np.where(within & reachable, bound + distance_outside_reach(arm, p_flat), -np.inf)
+
+    def failure_detail(index, residual):
+        if not reachable[index]:
+            return f"the target is outside the workspace the joint limits leave (best residual {residual:.3g} m)"
+        if not within[index]:
+            return "no grid point within the joint limits (the searched range and the limits do not meet)"
+        return (
             f"best residual {residual:.3g} m, above the grid bound {bound:.3g} m: "
-            "the solution lies outside the searched range or limits"
-        ),
+            "the solution lies outside the searched range"
+        )
+
+    return assemble_result(
+        arm, p, q, np.full(len(q), grid_points), threshold, "brute-force",
+        solved_message=f"all {len(q)} targets within the grid bound {bound:.3g} m ({grid_points} points)",
+        failure_detail=failure_detail,
     )

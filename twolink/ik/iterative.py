@@ -31,7 +31,11 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
     after a bad one (tending to a short gradient step).  Angles are wrapped to
     ``[-pi, pi)`` after each step.  Plain full Newton steps from a cold start
     overshoot or stall near singular configurations; this control makes the
-    iteration converge from any start.
+    iteration converge from almost every start, not from all: a stretched
+    or folded start whose arm points along the target (``q0 = (0, 0)`` for
+    ``p = (3, 0)`` on the 2 m arm) has a zero gradient, and the iteration
+    stops there with ``success`` false.  Joint limits are not applied: read
+    the result's ``within_limits``.
 
     Parameters
     ----------

@@ -53,7 +53,10 @@ def minimize(arm, p, q0=(0.5, 1.0), constrained=False, tol=1e-9):
     poses the ``fmincon`` feasibility problem: minimise a constant subject to
     the equality constraint ``fk(q) - p = 0``, solved with SLSQP; relative
     joint limits of the arm become bounds there.  (Absolute-angle limits are
-    not passed as bounds.)  The unconstrained form ignores joint limits.
+    not passed as bounds.)  The unconstrained form ignores joint limits; the
+    result's ``within_limits`` says whether each answer respects them.
+    Like :func:`twolink.ik.newton`, neither form converges from every start
+    (a stretched start pointing at the target has a zero gradient).
 
     Parameters
     ----------

@@ -32,6 +32,10 @@ class IKResult:
         Which solver produced this result.
     message : str
         A sentence on the outcome: why it failed, where.
+    within_limits : numpy.ndarray of bool, shape (...)
+        Whether each ``q`` respects the arm's joint limits (all true for an
+        arm without limits).  :func:`twolink.ik.newton` and the unconstrained
+        :func:`twolink.ik.minimize` ignore the limits: check this field.
 
     Examples
     --------
@@ -49,6 +53,7 @@ class IKResult:
     residual: np.ndarray
     method: str
     message: str
+    within_limits: np.ndarray = None
 
     @property
     def all_success(self):
@@ -88,6 +93,9 @@ def assemble_result(arm, p, q_flat, iterations, threshold, method, solved_messag
     else:
         message = solved_message
     shape = p.shape[:-1]
+    within = arm.within_limits(q_flat)
+    if arm.has_limits and not np.all(within):
+        message += f"; {int(np.count_nonzero(~within))} of {within.size} answers violate the joint limits (see within_limits)"
     return IKResult(
         q=q_flat.reshape(p.shape),
         success=success.reshape(shape),
@@ -95,4 +103,5 @@ def assemble_result(arm, p, q_flat, iterations, threshold, method, solved_messag
         residual=residual.reshape(shape),
         method=method,
         message=message,
+        within_limits=within.reshape(shape),
     )

@@ -1,0 +1,66 @@
+"""Edges of inverse kinematics: honest results (class 5), empty and odd batches (class 6)."""
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from twolink import TwoLinkArm, arms, ik, workspace
+
+LIMITED = TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(np.pi / 2, np.pi / 2))
+
+
+# ----------------------------------------------------------------- class 5: honest results
+def test_brute_force_never_claims_a_target_outside_the_limited_workspace():
+    p_outside = LIMITED.fk(np.radians([-1.0, 60.0]))  # 1 deg below q1's limit, closer than the grid bound
+    assert not workspace.is_reachable(LIMITED, p_outside)
+    result = ik.brute_force(LIMITED, p_outside, step=np.radians(2.0))
+    assert not result.success
+    assert "outside the workspace the joint limits leave" in result.message
+
+
+@settings(max_examples=60)
+@given(
+    q=st.tuples(st.floats(-np.pi, np.pi), st.floats(-np.pi, np.pi)),
+    step_deg=st.floats(0.5, 10.0),
+    which=st.sampled_from(["ten", "two_metre_limited", "limited"]),
+)
+def test_brute_force_success_implies_within_limits_reachable_and_within_the_bound(q, step_deg, which):
+    arm = {"ten": arms.ten, "two_metre_limited": arms.two_metre_limited, "limited": LIMITED}[which]
+    p = arm.fk(np.array(q))
+    result = ik.brute_force(arm, p, step=np.radians(step_deg))
+    assert bool(result.within_limits) == bool(arm.within_limits(result.q))
+    if result.success:
+        assert arm.within_limits(result.q) and workspace.is_reachable(arm, p)
+        assert result.residual <= (arm.l1 + 2 * arm.l2) * np.radians(step_deg) / 2 * (1 + 1e-9)
+    elif workspace.is_reachable(arm, p) and arm.limits == "relative":
+        pytest.fail(f"a reachable target was not solved: {result.message}")
+
+
+@pytest.mark.parametrize("step_deg", [7.0, 13.0, 40.0, 89.0])
+def test_the_grid_includes_both_ends_of_each_joint_range_whatever_the_step(step_deg):
+    result = ik.brute_force(arms.ten, [10.0, 10.0], step=np.radians(step_deg))  # exactly (0, 90) deg: two range ends
+    assert np.allclose(np.degrees(result.q), [0.0, 90.0], atol=1e-9)
+    assert result.success and result.residual < 1e-12
+    axis = ik.grid_search.grid_axis(0.0, 1.0, 0.3)
+    assert axis[0] == 0.0 and axis[-1] == 1.0 and np.all(np.diff(axis) <= 0.3 + 1e-15)
+
+
+def test_newton_and_minimize_say_whether_they_respect_the_limits():
+    p = [10.0, -5.0]  # reachable by the annulus, not within arms.ten's limits
+    for result in (
+        ik.newton(arms.ten, p, q0=[-0.5, 1.0]),
+        ik.minimize(arms.ten, p, q0=[-0.5, 1.0]),
+    ):
+        assert result.success  # the tip is there ...
+        assert not result.within_limits  # ... but with angles the arm cannot take
+        assert "violate the joint limits" in result.message
+    ok = ik.newton(arms.ten, [10.0, 10.0], q0=[0.5, 1.0])
+    assert ok.within_limits and "violate" not in ok.message
+
+
+def test_newton_from_a_stretched_start_pointing_at_the_target_does_not_claim_success():
+    """The zero-gradient start the docstring used to deny: the result says it failed."""
+    result = ik.newton(arms.two_metre, [3.0, 0.0], q0=[0.0, 0.0])
+    assert not result.success and "did not converge" in result.message
+    assert "converge from any start" not in ik.newton.__doc__
