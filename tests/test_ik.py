@@ -205,7 +205,7 @@ def test_brute_force_agrees_with_closed_form_to_its_grid_step(fraction, heading)
 def test_brute_force_fails_honestly_outside_its_limits():
     result = ik.brute_force(arms.ten, [-12.0, -5.0], step=np.radians(2.0))
     assert not result.success
-    assert "outside the searched range or limits" in result.message
+    assert "outside the workspace the joint limits leave" in result.message
 
 
 def test_brute_force_respects_absolute_limits():
