@@ -64,3 +64,58 @@ def test_newton_from_a_stretched_start_pointing_at_the_target_does_not_claim_suc
     result = ik.newton(arms.two_metre, [3.0, 0.0], q0=[0.0, 0.0])
     assert not result.success and "did not converge" in result.message
     assert "converge from any start" not in ik.newton.__doc__
+
+
+# ----------------------------------------------------------------- class 6: empty and odd batches
+EMPTY_SHAPES = [(0, 2), (3, 0, 2), (0, 0, 2)]
+
+
+@pytest.mark.parametrize("shape", EMPTY_SHAPES)
+@pytest.mark.parametrize(
+    "solve",
+    [
+        lambda p: ik.newton(arms.ten, p),
+        lambda p: ik.minimize(arms.ten, p),
+        lambda p: ik.minimize(arms.ten, p, constrained=True),
+        lambda p: ik.brute_force(arms.ten, p, step=np.radians(5.0)),
+    ],
+    ids=["newton", "minimize", "minimize-constrained", "brute-force"],
+)
+def test_an_empty_batch_gives_an_empty_result(solve, shape):
+    result = solve(np.empty(shape))
+    assert result.q.shape == shape and result.success.shape == shape[:-1]
+    assert result.residual.shape == shape[:-1] and result.within_limits.shape == shape[:-1]
+    assert result.all_success
+
+
+@pytest.mark.parametrize("shape", EMPTY_SHAPES)
+def test_empty_batches_through_the_vectorised_functions(shape):
+    from twolink import velocity
+
+    arm, empty = arms.ten, np.empty(shape)
+    lead = shape[:-1]
+    assert ik.closed_form(arm, empty).shape == shape
+    assert ik.closed_form(arm, empty, elbow="both").shape == lead + (2, 2)
+    assert arm.fk(empty).shape == shape and arm.jacobian(empty).shape == lead + (2, 2)
+    assert arm.forward_dynamics(empty, empty, empty).shape == shape
+    assert arm.forward_dynamics(empty, empty, empty, force=empty).shape == shape
+    assert arm.inverse_dynamics(empty, empty, empty).shape == shape
+    assert arm.joint_rates(empty, empty).shape == shape
+    assert arm.joint_rates_dls(empty, empty, 0.1).shape == shape
+    assert velocity.velocity_ellipse(arm, empty).semi_axes.shape == shape
+    assert workspace.is_reachable(arm, empty).shape == lead
+
+
+@pytest.mark.parametrize(
+    "solve", [ik.newton, ik.minimize], ids=["newton", "minimize"]
+)
+def test_a_start_of_the_wrong_shape_names_both_shapes(solve):
+    with pytest.raises(ValueError, match=r"q0 of shape \(3, 2\) does not match target p of shape \(2, 2\)"):
+        solve(arms.ten, [[10.0, 10.0], [5.0, 12.0]], q0=np.full((3, 2), 0.5))
+
+
+def test_timing_an_empty_batch_is_refused_clearly():
+    from twolink import timing
+
+    with pytest.raises(ValueError, match=r"n >= 1"):
+        timing.compare_ik_methods(arms.ten, np.empty((0, 2)), methods=["closed form"], repeat=1)

@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-__all__ = ["as_pairs", "as_finite_scalar", "as_count"]
+__all__ = ["as_pairs", "as_finite_scalar", "as_count", "broadcast_start"]
 
 
 def as_pairs(values, name):
@@ -126,3 +126,25 @@ def as_count(value, name, *, minimum=1, maximum=None):
     if maximum is not None and count > maximum:
         raise ValueError(f"{name} must be an integer <= {maximum}; got {count}")
     return count
+
+
+def broadcast_start(start, shape, name, against="target p"):
+    """``start`` (pairs) broadcast to ``shape``, or a message naming both shapes.
+
+    Examples
+    --------
+    >>> broadcast_start([0.5, 1.0], (3, 2), "q0").shape
+    (3, 2)
+    >>> broadcast_start([[0.5, 1.0]] * 3, (2, 2), "q0")
+    Traceback (most recent call last):
+    ...
+    ValueError: q0 of shape (3, 2) does not match target p of shape (2, 2): give one start of shape (2,) or one per target, shape (2, 2)
+    """
+    start = as_pairs(start, name)
+    try:
+        return np.broadcast_to(start, shape)
+    except ValueError:
+        raise ValueError(
+            f"{name} of shape {start.shape} does not match {against} of shape {shape}: "
+            f"give one start of shape (2,) or one per target, shape {shape}"
+        ) from None

@@ -92,8 +92,8 @@ def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), method
     ('closed form', 1.0, True)
     """
     targets = ik.check_reachable(arm, targets)
-    if targets.ndim != 2:
-        raise ValueError(f"targets must have shape (n, 2); got {targets.shape}")
+    if targets.ndim != 2 or len(targets) == 0:
+        raise ValueError(f"targets must have shape (n, 2) with n >= 1 (nothing to time otherwise); got {targets.shape}")
     solvers = _solvers(tuple(q0), step)
     unknown = [name for name in methods if name not in solvers]
     if unknown:

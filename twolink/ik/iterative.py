@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from .._validate import as_finite_scalar, as_pairs
+from .._validate import as_finite_scalar, broadcast_start
 from ..conventions import wrap_angle
 from ..kinematics import fk, jacobian
 from .result import assemble_result
@@ -75,9 +75,8 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
     if int(max_iter) < 1:
         raise ValueError(f"max_iter must be a positive integer; got {max_iter!r}")
-    q0 = as_pairs(q0, "q0")
     p_flat = p.reshape(-1, 2)
-    q = wrap_angle(np.broadcast_to(q0, p.shape)).reshape(-1, 2).copy()
+    q = wrap_angle(broadcast_start(q0, p.shape, "q0")).reshape(-1, 2).copy()
 
     scale = arm.l1 + arm.l2
     threshold = tol * scale + distance_outside_reach(arm, p_flat)
@@ -111,7 +110,7 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
 
     return assemble_result(
         arm, p, q, iterations, threshold, "newton",
-        solved_message=f"converged for all {len(q)} targets (max {iterations.max()} iterations)",
+        solved_message=f"converged for all {len(q)} targets (max {iterations.max(initial=0)} iterations)",
         failure_detail=lambda index, residual: (
             f"did not converge: residual {residual:.3g} m after {iterations[index]} iterations"
         ),

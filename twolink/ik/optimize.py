@@ -7,7 +7,7 @@ Two formulations from the source coursework (MATLAB ``fminunc`` and
 import numpy as np
 import scipy.optimize
 
-from .._validate import as_finite_scalar, as_pairs
+from .._validate import as_finite_scalar, broadcast_start
 from ..kinematics import fk, jacobian
 from .iterative import distance_outside_reach
 from .result import assemble_result
@@ -95,7 +95,7 @@ def minimize(arm, p, q0=(0.5, 1.0), constrained=False, tol=1e-9):
     """
     p = check_reachable(arm, p)
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
-    q0 = np.broadcast_to(as_pairs(q0, "q0"), p.shape).reshape(-1, 2)
+    q0 = broadcast_start(q0, p.shape, "q0").reshape(-1, 2)
     p_flat = p.reshape(-1, 2)
     bounds = None
     if constrained and arm.has_limits and arm.limits == "relative":
