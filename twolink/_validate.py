@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-__all__ = ["as_pairs", "as_finite_scalar", "as_count", "broadcast_start"]
+__all__ = ["as_pairs", "as_finite_scalar", "as_count", "broadcast_start", "broadcast_shape"]
 
 
 def as_pairs(values, name):
@@ -148,3 +148,23 @@ def broadcast_start(start, shape, name, against="target p"):
             f"{name} of shape {start.shape} does not match {against} of shape {shape}: "
             f"give one start of shape (2,) or one per target, shape {shape}"
         ) from None
+
+
+def broadcast_shape(**arrays):
+    """The broadcast shape of named ``(..., 2)`` arrays, or a message naming each and its shape.
+
+    Examples
+    --------
+    >>> broadcast_shape(q=np.zeros((3, 2)), qd=np.zeros(2))
+    (3, 2)
+    >>> broadcast_shape(q=np.zeros((3, 2)), qd=np.zeros((4, 2)))
+    Traceback (most recent call last):
+    ...
+    ValueError: q of shape (3, 2) and qd of shape (4, 2) do not broadcast together: leading axes must be equal or 1
+    """
+    try:
+        return np.broadcast_shapes(*(array.shape for array in arrays.values()))
+    except ValueError:
+        names = [f"{name} of shape {array.shape}" for name, array in arrays.items()]
+        listed = ", ".join(names[:-1]) + f" and {names[-1]}"
+        raise ValueError(f"{listed} do not broadcast together: leading axes must be equal or 1") from None

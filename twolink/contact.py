@@ -134,18 +134,32 @@ class TipForce:
             object.__setattr__(self, "force", constant)
 
     def tip_force(self, t, q, qd):
-        """The force on the tip, N, at one state."""
+        """The force on the tip, N, at one state (``q``, ``qd`` of shape ``(2,)``)."""
+        q, qd = _one_state(q, qd)
         if not callable(self.force):
             return self.force
-        q = as_pairs(q, "q")
-        v_tip = self.arm.jacobian(q) @ as_pairs(qd, "qd")
-        return np.asarray(self.force(t, self.arm.fk(q), v_tip), dtype=float)
+        v_tip = self.arm.jacobian(q) @ qd
+        force = as_pairs(self.force(t, self.arm.fk(q), v_tip), "force(t, p_tip, v_tip)")
+        if force.shape != (2,):
+            raise ValueError(f"force(t, p_tip, v_tip) must return shape (2,) (Fx, Fy in N); got shape {force.shape}")
+        return force
 
     def motor_torque(self, t, q, qd):
         """The controller's torques alone, N m (zeros without a controller)."""
         if self.controller is None:
             return np.zeros(2)
-        return np.asarray(self.controller(t, q, qd), dtype=float)
+        tau = as_pairs(self.controller(t, q, qd), "controller(t, q, qd)")
+        if tau.shape != (2,):
+            raise ValueError(f"controller(t, q, qd) must return shape (2,) (N m); got shape {tau.shape}")
+        return tau
 
     def __call__(self, t, q, qd):
+        q, qd = _one_state(q, qd)
         return self.motor_torque(t, q, qd) + self.arm.jacobian(q).T @ self.tip_force(t, q, qd)
+
+
+def _one_state(q, qd):
+    q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
+    if q.shape != (2,) or qd.shape != (2,):
+        raise ValueError(f"TipForce works on one state: q and qd of shape (2,); got q of shape {q.shape} and qd of shape {qd.shape}")
+    return q, qd

@@ -37,7 +37,7 @@ from typing import Callable
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from ._validate import as_finite_scalar, as_pairs
+from ._validate import as_finite_scalar, as_pairs, broadcast_shape
 from .dynamics import _constants
 
 __all__ = [
@@ -279,7 +279,9 @@ class Impedance:
     def force(self, q, qd):
         """The force the controller puts on the tip, ``K (x0 - x) - D xdot``, N."""
         q = as_pairs(q, "q")
-        tip_velocity = np.einsum("...ij,...j->...i", self.arm.jacobian(q), as_pairs(qd, "qd"))
+        qd = as_pairs(qd, "qd")
+        broadcast_shape(q=q, qd=qd)
+        tip_velocity = np.einsum("...ij,...j->...i", self.arm.jacobian(q), qd)
         return (self.rest_point - self.arm.fk(q)) @ self.stiffness.T - tip_velocity @ self.damping.T
 
     def torque(self, q, qd):

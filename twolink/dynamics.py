@@ -35,7 +35,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import kinematics
-from ._validate import as_pairs
+from ._validate import as_pairs, broadcast_shape
 from .errors import SimulationError
 
 __all__ = [
@@ -163,13 +163,7 @@ def _blockwise(formula, constants, q, qd, last):
     ``formula`` is :func:`_forward` (``last`` is ``tau``) or :func:`_inverse`
     (``last`` is ``qdd``).
     """
-    try:
-        shape = np.broadcast_shapes(q.shape, qd.shape, last.shape)
-    except ValueError:
-        raise ValueError(
-            f"the arguments' shapes {q.shape}, {qd.shape} and {last.shape} do not broadcast "
-            "together: leading axes must be equal or 1"
-        ) from None
+    shape = broadcast_shape(**{"q": q, "qd": qd, "tau" if formula is _forward else "qdd": last})
     q_flat, qd_flat, last_flat = (np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last))
     result = np.empty(shape)
     result_flat = result.reshape(-1, 2)
@@ -294,8 +288,9 @@ def coriolis(arm, q, qd):
     """
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
+    shape = broadcast_shape(q=q, qd=qd)
     c11, c12, c21 = _coriolis_terms(_constants(arm), np.sin(q[..., 1]), qd[..., 0], qd[..., 1])
-    C = np.zeros(np.broadcast_shapes(q.shape, qd.shape)[:-1] + (2, 2))
+    C = np.zeros(shape[:-1] + (2, 2))
     C[..., 0, 0] = c11
     C[..., 0, 1] = c12
     C[..., 1, 0] = c21
@@ -369,10 +364,11 @@ def inverse_dynamics(arm, q, qd, qdd, force=None):
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     qdd = as_pairs(qdd, "qdd")
-    tau = _blockwise(_inverse, _constants(arm), q, qd, qdd)
-    if force is not None:
-        tau += kinematics.joint_torques(arm, q, force)
-    return tau
+    if force is None:
+        return _blockwise(_inverse, _constants(arm), q, qd, qdd)
+    force = as_pairs(force, "force")
+    broadcast_shape(q=q, qd=qd, qdd=qdd, force=force)
+    return _blockwise(_inverse, _constants(arm), q, qd, qdd) + kinematics.joint_torques(arm, q, force)
 
 
 def forward_dynamics(arm, q, qd, tau, force=None):
@@ -428,6 +424,8 @@ def forward_dynamics(arm, q, qd, tau, force=None):
     qd = as_pairs(qd, "qd")
     tau = as_pairs(tau, "tau")
     if force is not None:
+        force = as_pairs(force, "force")
+        broadcast_shape(q=q, qd=qd, tau=tau, force=force)
         tau = tau - kinematics.joint_torques(arm, q, force)
     return _blockwise(_forward, _invertible_constants(arm), q, qd, tau)
 
@@ -461,12 +459,12 @@ def energy(arm, q, qd):
     """
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
+    shape = broadcast_shape(q=q, qd=qd)[:-1]
     constants = _constants(arm)
     m11, m12, m22 = _mass_terms(constants, np.cos(q[..., 1]))
     qd1, qd2 = qd[..., 0], qd[..., 1]
     kinetic = 0.5 * (m11 * qd1 * qd1 + 2.0 * m12 * qd1 * qd2 + m22 * qd2 * qd2)
     potential = constants.gamma1 * np.sin(q[..., 0]) + constants.gamma2 * np.sin(q[..., 0] + q[..., 1])
-    shape = np.broadcast_shapes(q.shape, qd.shape)[:-1]
     return np.broadcast_to(kinetic, shape).copy(), np.broadcast_to(potential, shape).copy()
 
 

@@ -8,7 +8,7 @@ joint angles in the DH / relative convention: ``q1`` is link 1 from the x-axis,
 
 import numpy as np
 
-from ._validate import as_pairs
+from ._validate import as_pairs, broadcast_shape
 
 __all__ = ["fk", "joint_positions", "jacobian", "joint_torques", "reach"]
 
@@ -146,7 +146,9 @@ def joint_torques(arm, q, force):
     >>> TwoLinkArm(2.0, 2.0).joint_torques([0.0, 0.0], [0.0, 10.0]).round(12)
     array([40., 20.])
     """
+    q = as_pairs(q, "q")
     force = as_pairs(force, "force")
+    broadcast_shape(q=q, force=force)
     J = jacobian(arm, q)
     return np.einsum("...ji,...j->...i", J, force)
 
