@@ -11,7 +11,10 @@ also correct:
 
 Then they tabulated joint angles and a joint rate for the tip on the line
 ``y = 50`` at ``x = 10, 20, ..., 100`` (bare numbers; the arm is not stated).
-The arm ``a1 = 100``, ``a2 = 50`` reproduces both printed angle columns.
+The arm ``a1 = 100``, ``a2 = 50`` reproduces both printed angle columns to within
+0.08 deg: every quoted value to rounding except the last q1, where the method
+gives -3.379 deg (-3.4 rounded) and the quoted value is -3.3 (a cut value, or a
+slip in the transcription).
 The table has three faults, reproduced here:
 
 1. :func:`ik_as_written`: ``q2 = acosd(...)`` (degrees, right), then
@@ -99,7 +102,7 @@ def ik_as_written(x, y=Y_LINE, a1=A1, a2=A2):
     --------
     >>> ik_as_written(10.0).round(2)      # printed: 49, 172; right: (70.74, 171.89)
     array([ 49.1 , 171.89])
-    >>> ik_as_written(100.0).round(3)     # printed: -3.3, 90; right: (0, 90)
+    >>> ik_as_written(100.0).round(3)     # quoted -3.3 (rounds from -3.379 to -3.4), 90; right: (0, 90)
     array([-3.379, 90.   ])
     """
     x, y = np.broadcast_arrays(_array(x, "x"), _array(y, "y"))

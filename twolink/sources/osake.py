@@ -222,7 +222,7 @@ def cpp_fk_tip(q, l1_typed="10", l2_typed="11.5", d=D_CM, *, int_lengths=True, d
     Parameters
     ----------
     q : array_like, shape (2,)
-        Joint angles, radians (the angles themselves were handled correctly).
+        Joint angles, radians (this reproduction passes them on as given).
     l1_typed, l2_typed : str
         The link lengths as the user typed them, cm.
     d : float
@@ -259,7 +259,10 @@ def cpp_fk_tip(q, l1_typed="10", l2_typed="11.5", d=D_CM, *, int_lengths=True, d
 
 
 def velocity_program_speed(t, l1=L1_CM, l2=L2_CM, step=1e-3):
-    """The number the source's C++ velocity program printed as the "end-tip angular velocity".
+    """The number the source's C++ velocity program prints as its "end-tip angular velocity", reproduced.
+
+    The coursework's printed value is not known to the course; this is what the
+    program described below gives, under the assumptions stated.
 
     The program set ``theta1 = 3 t`` and ``theta2 = 60``, both meant in
     degrees, and passed them to ``cos``/``sin``, which take radians; it
@@ -285,8 +288,8 @@ def velocity_program_speed(t, l1=L1_CM, l2=L2_CM, step=1e-3):
     Returns
     -------
     float
-        The printed number, cm/s (a linear speed; the source called it an
-        angular velocity).
+        The number the program would print, cm/s, under the assumptions
+        above (a linear speed; the source called it an angular velocity).
 
     Examples
     --------
