@@ -323,7 +323,7 @@ def test_power_balance(arm, q, qd, tau):
         (lambda arm: arm.mass_matrix([0.0, 1.0, 2.0]), r"q must have shape \(\.\.\., 2\)"),
         (lambda arm: arm.mass_matrix([np.nan, 1.0]), "q must be finite"),
         (lambda arm: arm.coriolis([0.0, 0.0], [1.0]), "qd must have shape"),
-        (lambda arm: arm.gravity("up"), "q must be numbers"),
+        (lambda arm: arm.gravity("up"), "q must be real numbers"),
         (lambda arm: arm.inverse_dynamics([0.0, 0.0], [0.0, np.inf], [0.0, 0.0]), "qd must be finite"),
         (lambda arm: arm.inverse_dynamics([0.0, 0.0], [0.0, 0.0], [[1.0, 2.0, 3.0]]), "qdd must have shape"),
         (lambda arm: arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [np.nan, 0.0]), "tau must be finite"),

@@ -160,7 +160,7 @@ def test_frames_pick_evenly_with_first_and_last():
     assert len(frames) == 50 and frames[0] == 0 and frames[-1] == 500
     assert np.all(np.diff(frames) > 0)
     assert len(result.frames(1000)) == 501
-    with pytest.raises(ValueError, match="max_frames must be >= 2"):
+    with pytest.raises(ValueError, match="max_frames must be an integer >= 2"):
         result.frames(1)
 
 

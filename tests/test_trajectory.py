@@ -94,7 +94,7 @@ def test_paths_refuse_bad_input():
         CirclePath([0.0, 0.0], -1.0, 1.0)
     with pytest.raises(ValueError, match="turns"):
         CirclePath([0.0, 0.0], 1.0, 1.0, turns=0.0)
-    with pytest.raises(ValueError, match="n must be an integer >= 2"):
+    with pytest.raises(ValueError, match=r"n \(samples, both ends included\) must be an integer >= 2"):
         LinePath([0.0, 0.0], [1.0, 1.0], 1.0).sample(1)
 
 

@@ -153,7 +153,7 @@ def test_bad_input_is_refused():
         workspace.is_reachable(arms.ten, [np.nan, 1.0])
     with pytest.raises(ValueError, match="shape"):
         workspace.is_reachable(arms.ten, [1.0, 2.0, 3.0])
-    with pytest.raises(ValueError, match="positive integer"):
+    with pytest.raises(ValueError, match=r"n \(samples\) must be an integer >= 1"):
         workspace.sample_reachable(arms.ten, n=0)
 
 

@@ -9,7 +9,12 @@ import math
 
 import numpy as np
 
-__all__ = ["as_pairs", "as_finite_scalar", "as_count", "broadcast_start", "broadcast_shape"]
+from .errors import InputTypeError
+
+#: Python and numpy scalar types accepted where a real number belongs (bool excluded).
+_REAL_TYPES = (int, float, np.integer, np.floating)
+
+__all__ = ["InputTypeError", "real_array", "require_arm", "as_pairs", "as_finite_scalar", "as_count", "broadcast_start", "broadcast_shape"]
 
 
 def as_pairs(values, name):
@@ -41,10 +46,7 @@ def as_pairs(values, name):
     ...
     ValueError: q must have shape (..., 2) (two joint angles or an x, y pair per row); got shape (3,)
     """
-    try:
-        array = np.asarray(values, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be numbers of shape (..., 2); got {values!r}") from exc
+    array = real_array(values, name, "real numbers of shape (..., 2)")
     if array.ndim == 0 or array.shape[-1] != 2:
         raise ValueError(
             f"{name} must have shape (..., 2) (two joint angles or an x, y pair per row); "
@@ -82,11 +84,13 @@ def as_finite_scalar(value, name, *, minimum=None, strictly=False):
     ...
     ValueError: l1 must be > 0.0; got 0.0
     """
-    try:
+    if isinstance(value, _REAL_TYPES) and not isinstance(value, (bool, np.bool_)):
         number = float(value)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be a real number; got {value!r}") from exc
-    if not np.isfinite(number):
+    elif type(value) is np.ndarray and value.ndim == 0 and value.dtype.kind in "iuf":
+        number = float(value)
+    else:
+        raise InputTypeError(f"{name} must be a real number; got {value!r} ({type(value).__name__})")
+    if not math.isfinite(number):
         raise ValueError(f"{name} must be finite; got {number}")
     if minimum is not None:
         if strictly and not number > minimum:
@@ -114,10 +118,10 @@ def as_count(value, name, *, minimum=1, maximum=None):
     >>> as_count(True, "n")
     Traceback (most recent call last):
     ...
-    TypeError: n must be an integer >= 1; got True (bool)
+    twolink.errors.InputTypeError: n must be an integer >= 1; got True (bool)
     """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise TypeError(f"{name} must be an integer >= {minimum}; got {value!r} ({type(value).__name__})")
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, _REAL_TYPES):
+        raise InputTypeError(f"{name} must be an integer >= {minimum}; got {value!r} ({type(value).__name__})")
     if isinstance(value, (float, np.floating)) and not (math.isfinite(value) and float(value).is_integer()):
         raise ValueError(f"{name} must be an integer >= {minimum}; got {value!r}")
     count = int(value)
@@ -168,3 +172,58 @@ def broadcast_shape(**arrays):
         names = [f"{name} of shape {array.shape}" for name, array in arrays.items()]
         listed = ", ".join(names[:-1]) + f" and {names[-1]}"
         raise ValueError(f"{listed} do not broadcast together: leading axes must be equal or 1") from None
+
+
+_BAD_ELEMENT = (bool, np.bool_, complex, np.complexfloating, str, bytes, type(None))
+
+
+def real_array(values, name, what="real numbers"):
+    """``values`` as a float64 array, refusing anything that is not real numbers.
+
+    Booleans, complex numbers (whose imaginary part would be dropped),
+    strings, ``None`` and other objects raise :class:`InputTypeError`
+    naming the argument; numpy would coerce several of them silently.
+    (Inside nested lists numpy turns a boolean among floats into a float
+    before it can be seen; flat sequences are checked element by element.)
+
+    Examples
+    --------
+    >>> real_array([1, 2.5], "q")
+    array([1. , 2.5])
+    >>> real_array([1.0, 2j], "q")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: q must be real numbers; got [1.0, 2j] (an entry is complex)
+    """
+    kind = type(values)
+    if kind is np.ndarray:
+        array = values
+    else:
+        if kind is list or kind is tuple:
+            for element in values:
+                if isinstance(element, _BAD_ELEMENT):
+                    raise InputTypeError(f"{name} must be {what}; got {values!r} (an entry is {type(element).__name__})")
+        elif isinstance(values, _BAD_ELEMENT):
+            raise InputTypeError(f"{name} must be {what}; got {values!r} ({type(values).__name__})")
+        try:
+            array = np.asarray(values)
+        except (TypeError, ValueError) as exc:
+            raise InputTypeError(f"{name} must be {what}; got {values!r}") from exc
+    if array.dtype.kind not in "iuf":
+        raise InputTypeError(f"{name} must be {what}; got {values!r} ({array.dtype} entries)")
+    return array if array.dtype == np.float64 else array.astype(float)
+
+
+def require_arm(arm, who="arm"):
+    """Refuse anything that is not an arm (``None``, numbers, ...) with an error naming ``arm``.
+
+    Examples
+    --------
+    >>> require_arm(None)
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: arm must be a twolink.TwoLinkArm; got None (NoneType)
+    """
+    if not (hasattr(arm, "l1") and hasattr(arm, "l2") and hasattr(arm, "inertias")):
+        raise InputTypeError(f"{who} must be a twolink.TwoLinkArm; got {arm!r} ({type(arm).__name__})")
+    return arm

@@ -10,7 +10,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_pairs
+from .errors import InputTypeError
+from ._validate import as_count, as_finite_scalar, as_pairs, real_array
+
+#: Most points :meth:`Arc.points` makes (memory budget: 1e7 x 2 floats, 160 MB).
+MAX_POINTS = 10_000_000
 
 __all__ = ["Arc", "circle_intersections"]
 
@@ -65,10 +69,13 @@ class Arc:
         if abs(sweep) > _TWO_PI * (1.0 + 1e-12):
             raise ValueError(f"sweep must satisfy |sweep| <= 2 pi; got {sweep}")
         object.__setattr__(self, "sweep", sweep)
+        for name in ("label", "kind"):
+            if not isinstance(getattr(self, name), str):
+                raise InputTypeError(f"{name} must be a string; got {getattr(self, name)!r}")
 
     def point_at(self, fraction):
         """Points at ``fraction`` (0 = start, 1 = end) along the arc, shape ``(..., 2)``."""
-        angle = self.start + self.sweep * np.asarray(fraction, dtype=float)
+        angle = self.start + self.sweep * real_array(fraction, "fraction")
         points = np.empty(angle.shape + (2,))
         points[..., 0] = self.centre[0] + self.radius * np.cos(angle)
         points[..., 1] = self.centre[1] + self.radius * np.sin(angle)
@@ -76,9 +83,8 @@ class Arc:
 
     def points(self, n=100):
         """``n`` equally spaced points from start to end (both included), shape ``(n, 2)``."""
-        if int(n) < 2:
-            raise ValueError(f"n must be an integer >= 2; got {n!r}")
-        return self.point_at(np.linspace(0.0, 1.0, int(n)))
+        n = as_count(n, "n", minimum=2, maximum=MAX_POINTS)
+        return self.point_at(np.linspace(0.0, 1.0, n))
 
     @property
     def end_points(self):
@@ -139,7 +145,7 @@ class Arc:
         >>> [round(piece.sweep / np.pi, 12) for piece in pieces]
         [0.5, 0.5]
         """
-        cuts = np.unique(np.clip(np.asarray(fractions, dtype=float).ravel(), 0.0, 1.0))
+        cuts = np.unique(np.clip(real_array(fractions, "fractions").ravel(), 0.0, 1.0))
         cuts = cuts[(cuts > 1e-9) & (cuts < 1.0 - 1e-9)]
         edges = np.concatenate([[0.0], cuts, [1.0]])
         return [
@@ -162,8 +168,10 @@ def circle_intersections(centre_a, radius_a, centre_b, radius_b):
     >>> circle_intersections((0.0, 0.0), 1.0, (3.0, 0.0), 1.0).shape
     (0, 2)
     """
-    centre_a = np.asarray(centre_a, dtype=float)
-    centre_b = np.asarray(centre_b, dtype=float)
+    centre_a = as_pairs(centre_a, "centre_a")
+    centre_b = as_pairs(centre_b, "centre_b")
+    radius_a = as_finite_scalar(radius_a, "radius_a (m)", minimum=0.0)
+    radius_b = as_finite_scalar(radius_b, "radius_b (m)", minimum=0.0)
     between = centre_b - centre_a
     distance = float(np.hypot(*between))
     scale = max(radius_a, radius_b, distance, 1e-300)

@@ -12,7 +12,7 @@ import numpy as np
 from . import dh, kinematics
 from . import velocity
 from . import dynamics
-from ._validate import as_finite_scalar, as_pairs
+from ._validate import as_finite_scalar, as_pairs, real_array
 from .conventions import to_absolute
 
 __all__ = ["TwoLinkArm"]
@@ -23,11 +23,8 @@ _LIMIT_CONVENTIONS = ("relative", "absolute")
 def _as_limit_pair(value, name):
     if value is None:
         return None
-    try:
-        pair = tuple(float(v) for v in value)
-    except TypeError as exc:
-        raise ValueError(f"{name} must be None or two angles in radians; got {value!r}") from exc
-    if len(pair) != 2:
+    pair = tuple(real_array(value, name, "None or two angles in radians").ravel().tolist())
+    if np.ndim(value) != 1 or len(pair) != 2:
         raise ValueError(f"{name} must be None or two angles in radians; got {value!r}")
     if not all(np.isfinite(pair)):
         raise ValueError(f"{name} must be finite angles in radians; got {pair}")
@@ -120,7 +117,7 @@ class TwoLinkArm:
                     f"q_min must be <= q_max component-wise; got q_min={checked['q_min']}, "
                     f"q_max={checked['q_max']} (radians)"
                 )
-        if self.limits not in _LIMIT_CONVENTIONS:
+        if not isinstance(self.limits, str) or self.limits not in _LIMIT_CONVENTIONS:
             raise ValueError(f"limits must be one of {_LIMIT_CONVENTIONS}; got {self.limits!r}")
         for name, value in checked.items():
             object.__setattr__(self, name, value)
@@ -175,6 +172,7 @@ class TwoLinkArm:
         array([ True, False])
         """
         q = as_pairs(q, "q")
+        tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
         if not self.has_limits:
             return np.ones(q.shape[:-1], dtype=bool)
         angles = to_absolute(q) if self.limits == "absolute" else q

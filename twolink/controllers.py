@@ -37,7 +37,7 @@ from typing import Callable
 import numpy as np
 from scipy.interpolate import CubicSpline
 
-from ._validate import as_finite_scalar, as_pairs, broadcast_shape
+from ._validate import InputTypeError, as_finite_scalar, as_pairs, broadcast_shape, real_array
 from .dynamics import _constants
 
 __all__ = [
@@ -95,10 +95,7 @@ def gain_matrix(value, name):
         scalar = as_finite_scalar(value, name, minimum=0.0)
         matrix = scalar * np.eye(2)
     else:
-        try:
-            matrix = np.array(value, dtype=float)
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"{name} must be a number >= 0 or a 2x2 matrix; got {value!r}") from exc
+        matrix = np.array(real_array(value, name, "a number >= 0 or a 2x2 matrix of real numbers"), dtype=float)
         if matrix.shape != (2, 2):
             raise ValueError(f"{name} must be a number >= 0 or a 2x2 matrix; got shape {matrix.shape}")
         if not np.all(np.isfinite(matrix)):
@@ -128,7 +125,7 @@ def _point(value, name):
 
 def _require_arm(arm, who):
     if not all(hasattr(arm, attribute) for attribute in ("fk", "jacobian", "mass_matrix", "gravity")):
-        raise ValueError(f"{who} needs a twolink.TwoLinkArm as its arm; got {type(arm).__name__}")
+        raise InputTypeError(f"{who} needs a twolink.TwoLinkArm as its arm; got {arm!r} ({type(arm).__name__})")
 
 
 def _transpose_times(J, force):
@@ -413,7 +410,7 @@ class JointReference:
         >>> reference(2.0)[0], reference(2.0)[1]
         (array([ 1., -1.]), array([0., 0.]))
         """
-        t = np.asarray(t, dtype=float)
+        t = real_array(t, "t (s)")
         if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or not np.all(np.diff(t) > 0):
             raise ValueError("t must be a 1-D array of at least 2 finite, strictly increasing times (s)")
         q = as_pairs(q, "q samples")

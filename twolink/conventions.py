@@ -7,7 +7,7 @@ q2``), as for a belt or parallel drive with motor 2 on the ground.
 
 import numpy as np
 
-from ._validate import as_pairs
+from ._validate import as_pairs, real_array
 
 __all__ = ["to_absolute", "to_relative", "wrap_angle"]
 
@@ -68,4 +68,7 @@ def wrap_angle(angle):
     >>> float(wrap_angle(3 * np.pi / 2) / np.pi)
     -0.5
     """
-    return (np.asarray(angle, dtype=float) + np.pi) % (2.0 * np.pi) - np.pi
+    angle = real_array(angle, "angle (rad)")
+    if not np.all(np.isfinite(angle)):
+        raise ValueError("angle must be finite (radians); NaN or infinity has no wrapped value")
+    return (angle + np.pi) % (2.0 * np.pi) - np.pi

@@ -15,7 +15,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._validate import as_pairs
+from ._validate import as_finite_scalar, as_pairs, real_array, require_arm
 
 __all__ = ["DHRow", "dh_matrix", "dh_table", "transforms", "geometric_jacobian"]
 
@@ -55,7 +55,12 @@ def dh_matrix(theta, d, a, alpha):
            [ 0. ,  0. ,  1. ,  0.5],
            [ 0. ,  0. ,  0. ,  1. ]])
     """
-    theta = np.asarray(theta, dtype=float)
+    theta = real_array(theta, "theta (rad)")
+    d = as_finite_scalar(d, "d (m)")
+    a = as_finite_scalar(a, "a (m)")
+    alpha = as_finite_scalar(alpha, "alpha (rad)")
+    if not np.all(np.isfinite(theta)):
+        raise ValueError("theta must be finite angles in radians")
     ct, st = np.cos(theta), np.sin(theta)
     ca, sa = np.cos(alpha), np.sin(alpha)
     A = np.zeros(theta.shape + (4, 4))
@@ -85,6 +90,7 @@ def dh_table(arm):
     DHRow(joint='q1', theta_offset=0.0, d=0.065, a=0.1, alpha=0.0)
     DHRow(joint='q2', theta_offset=0.0, d=0.0, a=0.115, alpha=0.0)
     """
+    require_arm(arm)
     return (
         DHRow("q1", 0.0, arm.d, arm.l1, 0.0),
         DHRow("q2", 0.0, 0.0, arm.l2, 0.0),

@@ -35,7 +35,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import kinematics
-from ._validate import as_pairs, broadcast_shape
+from ._validate import as_pairs, broadcast_shape, require_arm
 from .errors import SimulationError
 
 __all__ = [
@@ -62,7 +62,11 @@ class _Constants(NamedTuple):
 
 
 def _constants(arm):
-    inertia_1, inertia_2 = arm.inertias
+    try:
+        inertia_1, inertia_2 = arm.inertias
+    except AttributeError:
+        require_arm(arm)
+        raise
     lc1, lc2 = arm.l1 / 2.0, arm.l2 / 2.0
     link_1_about_base = inertia_1 + arm.m1 * lc1 * lc1
     delta = inertia_2 + arm.m2 * lc2 * lc2

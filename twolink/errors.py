@@ -5,7 +5,7 @@ catches ``ValueError`` for bad input keeps working; :class:`SimulationError`
 (integrator trouble, not bad input) is a :class:`RuntimeError`.
 """
 
-__all__ = ["UnreachableError", "SingularityError", "SimulationError"]
+__all__ = ["UnreachableError", "SingularityError", "SimulationError", "InputTypeError"]
 
 
 class UnreachableError(ValueError):
@@ -29,4 +29,12 @@ class SimulationError(RuntimeError):
     Raised for a solver failure, a blow-up of the state (NaN, infinity or
     overflowing rates, with the time and the state), and a stiff loop that
     used up its budget of evaluations or wall time (with the method to use).
+    """
+
+
+class InputTypeError(TypeError, ValueError):
+    """An argument of the wrong type: a string, ``None``, a boolean, a complex number or an object where numbers belong, or not an arm where an arm belongs.
+
+    A :class:`TypeError`, and also a :class:`ValueError` so that code
+    catching ``ValueError`` for bad input keeps working.
     """

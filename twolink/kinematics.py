@@ -8,7 +8,7 @@ joint angles in the DH / relative convention: ``q1`` is link 1 from the x-axis,
 
 import numpy as np
 
-from ._validate import as_pairs, broadcast_shape
+from ._validate import as_pairs, broadcast_shape, require_arm
 
 __all__ = ["fk", "joint_positions", "jacobian", "joint_torques", "reach"]
 
@@ -35,13 +35,14 @@ def fk(arm, q):
     array([2., 1.])
     """
     q = as_pairs(q, "q")
+    l1, l2 = _lengths(arm)
     q1 = q[..., 0]
     q12 = q1 + q[..., 1]
     p_tip = np.empty(q.shape)
-    p_tip[..., 0] = arm.l1 * np.cos(q1)
-    p_tip[..., 0] += arm.l2 * np.cos(q12)
-    p_tip[..., 1] = arm.l1 * np.sin(q1)
-    p_tip[..., 1] += arm.l2 * np.sin(q12)
+    p_tip[..., 0] = l1 * np.cos(q1)
+    p_tip[..., 0] += l2 * np.cos(q12)
+    p_tip[..., 1] = l1 * np.sin(q1)
+    p_tip[..., 1] += l2 * np.sin(q12)
     return p_tip
 
 
@@ -68,6 +69,7 @@ def joint_positions(arm, q):
            [1., 1.]])
     """
     q = as_pairs(q, "q")
+    _lengths(arm)
     points = np.zeros(q.shape[:-1] + (3, 2))
     q1 = q[..., 0]
     q12 = q1 + q[..., 1]
@@ -106,6 +108,7 @@ def jacobian(arm, q):
     1.0
     """
     q = as_pairs(q, "q")
+    _lengths(arm)
     q1 = q[..., 0]
     q12 = q1 + q[..., 1]
     c12 = arm.l2 * np.cos(q12)
@@ -162,4 +165,14 @@ def reach(arm):
     >>> [round(r, 12) for r in reach(TwoLinkArm(0.1, 0.115))]
     [0.015, 0.215]
     """
-    return (abs(arm.l1 - arm.l2), arm.l1 + arm.l2)
+    l1, l2 = _lengths(arm)
+    return (abs(l1 - l2), l1 + l2)
+
+
+def _lengths(arm):
+    """``(l1, l2)``, or an error naming ``arm`` when it is not an arm (free when it is one)."""
+    try:
+        return arm.l1, arm.l2
+    except AttributeError:
+        require_arm(arm)
+        raise

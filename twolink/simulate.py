@@ -185,9 +185,7 @@ class SimulationResult:
         >>> result.frames(5)
         array([  0,  25,  50,  75, 100])
         """
-        if int(max_frames) < 2:
-            raise ValueError(f"max_frames must be >= 2; got {max_frames}")
-        count = min(int(max_frames), len(self.t))
+        count = min(as_count(max_frames, "max_frames", minimum=2), len(self.t))
         return np.unique(np.linspace(0, len(self.t) - 1, count).round().astype(int))
 
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_pairs
+from ._validate import InputTypeError, as_finite_scalar, as_pairs, require_arm
 from .errors import UnreachableError
 from .ik.targets import REACH_RTOL
 from .kinematics import fk, joint_torques
@@ -217,6 +217,9 @@ def wall_contact(arm, wall, force_magnitude, include_gravity=False):
     array([[ 910.18,    0.  ],
            [-910.18,    0.  ]])
     """
+    require_arm(arm)
+    if not isinstance(include_gravity, (bool, np.bool_)):
+        raise InputTypeError(f"include_gravity must be True or False; got {include_gravity!r}")
     if not isinstance(wall, Wall):
         raise ValueError(
             "wall must be a twolink.statics.Wall (Wall(point, normal) or Wall.through(p_a, p_b)); "

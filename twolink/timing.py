@@ -10,6 +10,10 @@ import timeit
 import numpy as np
 
 from . import ik
+from ._validate import InputTypeError, as_count, as_finite_scalar
+
+#: Longest measurement :func:`median_time` accepts per batch, seconds.
+MAX_SECONDS = 60.0
 
 __all__ = ["median_time", "IK_METHODS", "compare_ik_methods", "brute_force_sweep"]
 
@@ -29,8 +33,12 @@ def median_time(function, repeat=5, min_seconds=0.05):
     >>> 0 < seconds < 1e-3
     True
     """
-    if repeat < 1:
-        raise ValueError(f"repeat must be >= 1; got {repeat}")
+    repeat = as_count(repeat, "repeat", minimum=1, maximum=1000)
+    min_seconds = as_finite_scalar(min_seconds, "min_seconds (s)", minimum=0.0, strictly=True)
+    if min_seconds > MAX_SECONDS:
+        raise ValueError(f"min_seconds must be at most {MAX_SECONDS} s (a timing budget, not a wait); got {min_seconds}")
+    if not callable(function):
+        raise InputTypeError(f"function must be a callable of no arguments; got {function!r}")
     timer = timeit.Timer(function)
     number = 1
     while True:  # 1, 10, 100, ... calls until a run lasts a tenth of min_seconds
@@ -92,6 +100,7 @@ def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), method
     ('closed form', 1.0, True)
     """
     targets = ik.check_reachable(arm, targets)
+    repeat = as_count(repeat, "repeat", minimum=1, maximum=1000)
     if targets.ndim != 2 or len(targets) == 0:
         raise ValueError(f"targets must have shape (n, 2) with n >= 1 (nothing to time otherwise); got {targets.shape}")
     solvers = _solvers(tuple(q0), step)

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from ._validate import as_count, as_finite_scalar, as_pairs
+from ._validate import as_count, as_finite_scalar, as_pairs, real_array, require_arm
 from .errors import SimulationError, SingularityError, UnreachableError
 from .simulate import DEFAULT_MAX_EVALUATIONS
 from .kinematics import fk
@@ -90,7 +90,7 @@ def time_scaling(t, duration, law="quintic", with_acceleration=False):
     duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
     if law not in TIME_LAWS:
         raise ValueError(f"law must be one of {TIME_LAWS}; got {law!r}")
-    t = np.asarray(t, dtype=float)
+    t = real_array(t, "t (s)")
     if not np.all(np.isfinite(t)):
         raise ValueError("t must be finite times in seconds")
     tau = np.clip(t / duration, 0.0, 1.0)
@@ -117,9 +117,12 @@ def _point(value, name):
 
 
 def _sample_times(duration, n):
-    if isinstance(n, bool) or int(n) != n or int(n) < 2:
-        raise ValueError(f"n must be an integer >= 2 (samples, both ends included); got {n!r}")
-    return np.linspace(0.0, duration, int(n))
+    n = as_count(n, "n (samples, both ends included)", minimum=2, maximum=MAX_SAMPLES)
+    return np.linspace(0.0, duration, n)
+
+
+#: Most samples a path may be cut into (memory budget: a few arrays of n x 2 floats, ~100 MB).
+MAX_SAMPLES = 10_000_000
 
 
 @dataclass(frozen=True)
@@ -458,6 +461,7 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     ...
     twolink.errors.UnreachableError: path point 3 (of 5) at (15, 15) is 21.2132 m from the base, outside the reach [0, 20] m of this arm (l1=10, l2=10)
     """
+    require_arm(arm)
     t, points, v_path = _path_samples(path, n)
     require_reachable(arm, points, what="path point")
     q_both, valid = solutions_within_limits(arm, points)
@@ -571,6 +575,7 @@ def resolved_rate_trajectory(
     >>> bool(motion.tracking_error.max() < 1e-6)
     True
     """
+    require_arm(arm)
     if not hasattr(path, "at"):
         raise ValueError("resolved_rate_trajectory needs a path object with at(t) (LinePath or CirclePath)")
     gain = as_finite_scalar(gain, "gain (1/s)", minimum=0.0)

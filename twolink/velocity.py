@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_finite_scalar, as_pairs
+from ._validate import as_count, as_finite_scalar, as_pairs, require_arm
 from .errors import SingularityError
 from .kinematics import fk, jacobian
 
@@ -113,6 +113,7 @@ def joint_rates(arm, q, v_tip, tol=SINGULARITY_TOL):
     ...
     twolink.errors.SingularityError: q = (0.3, 0) rad is singular: |sin q2| = 0 <= tol = 1e-06 (|det J| = 0 m^2, the arm is stretched or folded); the joint rates are unbounded there: use joint_rates_dls
     """
+    require_arm(arm)
     q, v_tip = _broadcast_pairs(q, v_tip, "v_tip")
     tol = as_finite_scalar(tol, "tol (smallest |sin q2|)", minimum=0.0)
     distance = np.abs(_sin_q2(q))
@@ -240,6 +241,7 @@ def manipulability(arm, q):
     array([3., 0.])
     """
     q = as_pairs(q, "q")
+    require_arm(arm)
     return np.abs(arm.l1 * arm.l2 * _sin_q2(q))
 
 
@@ -292,8 +294,7 @@ class Ellipse:
                [-0., -1.],
                [ 1., -0.]])
         """
-        if int(n) < 3:
-            raise ValueError(f"n must be >= 3 boundary points; got {n!r}")
+        n = as_count(n, "n (boundary points)", minimum=3, maximum=10_000_000)
         scale = as_finite_scalar(scale, "scale", minimum=0.0, strictly=True)
         lengths = np.asarray(self.semi_axes, dtype=float) * scale
         if clip is not None:

@@ -24,7 +24,7 @@ array([ True, False, False])
 import numpy as np
 import scipy.optimize
 
-from ._validate import as_finite_scalar, as_pairs
+from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
 from .arcs import Arc, circle_intersections
 from .conventions import to_absolute, to_relative, wrap_angle
 from .errors import UnreachableError
@@ -52,6 +52,9 @@ __all__ = [
 LIMIT_TOL = 1e-7
 
 _TWO_PI = 2.0 * np.pi
+
+#: Most samples or points a workspace helper makes (memory budget: 1e7 x 2 floats, 160 MB per array).
+MAX_SAMPLES = 10_000_000
 
 
 def describe_limits(arm):
@@ -121,6 +124,7 @@ def solutions_within_limits(arm, p, tol=LIMIT_TOL):
     >>> solutions_within_limits(arms.ten, [5.0, -15.0])[1]
     array([False, False])
     """
+    require_arm(arm)
     p = as_pairs(p, "p")
     tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
     r_min, r_max = arm.reach
@@ -278,14 +282,15 @@ def sample_reachable(arm, n=2000, seed=0):
     >>> p.shape, bool(np.all(arms.ten.within_limits(q))), bool(np.all(is_reachable(arms.ten, p)))
     ((500, 2), True, True)
     """
-    if int(n) < 1:
-        raise ValueError(f"n must be a positive integer; got {n!r}")
+    n = as_count(n, "n (samples)", minimum=1, maximum=MAX_SAMPLES)
+    if not (seed is None or isinstance(seed, (int, np.integer)) and not isinstance(seed, (bool, np.bool_))):
+        raise InputTypeError(f"seed must be an integer (or None); got {seed!r}")
     rng = np.random.default_rng(seed)
     if arm.has_limits:
         low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)
     else:
         low, high = np.full(2, -np.pi), np.full(2, np.pi)
-    angles = rng.uniform(low, high, size=(int(n), 2))
+    angles = rng.uniform(low, high, size=(n, 2))
     q = to_relative(angles) if arm.has_limits and arm.limits == "absolute" else angles
     return arm.fk(q), q
 
@@ -611,7 +616,6 @@ def circle_points(centre, radius, n, start_angle=0.0):
         raise ValueError(f"centre must be one (x, y) pair; got shape {centre.shape}")
     radius = as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True)
     start_angle = as_finite_scalar(start_angle, "start_angle (rad)")
-    if isinstance(n, bool) or int(n) != n or int(n) < 1:
-        raise ValueError(f"n must be an integer >= 1; got {n!r}")
-    angle = start_angle + _TWO_PI * np.arange(int(n)) / int(n)
+    n = as_count(n, "n (points)", minimum=1, maximum=MAX_SAMPLES)
+    angle = start_angle + _TWO_PI * np.arange(n) / n
     return centre + radius * np.c_[np.cos(angle), np.sin(angle)]

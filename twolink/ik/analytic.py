@@ -2,6 +2,7 @@
 
 import numpy as np
 
+from .._validate import require_arm
 from .targets import REACH_RTOL, as_targets, raise_unreachable
 
 __all__ = ["closed_form", "ELBOW_BRANCHES"]
@@ -70,6 +71,10 @@ def closed_form(arm, p, elbow="down"):
     if elbow not in ELBOW_BRANCHES:
         raise ValueError(f"elbow must be one of {ELBOW_BRANCHES}; got {elbow!r}")
     p = as_targets(p)
+    try:
+        arm.l1, arm.l2
+    except AttributeError:
+        require_arm(arm)
     if p.ndim == 1:  # one target: solve as a batch of one (keeps every temporary an array)
         return closed_form(arm, p[None, :], elbow)[0]
     l1, l2 = arm.l1, arm.l2

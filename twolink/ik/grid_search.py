@@ -7,11 +7,17 @@ from .iterative import distance_outside_reach
 from .result import assemble_result
 from .targets import check_reachable
 
-__all__ = ["brute_force", "grid_axis", "GRID_CHUNK"]
+__all__ = ["brute_force", "grid_axis", "GRID_CHUNK", "MAX_AXIS_POINTS", "MAX_GRID_POINTS"]
 
 #: Grid points evaluated at once: bounds memory however fine the step, and keeps
 #: each chunk (a few 256 KB arrays) in cache; larger chunks measured 2-3x slower.
 GRID_CHUNK = 1 << 15
+
+#: Most values on one grid axis (memory budget: a few arrays of this many floats, ~80 MB each).
+MAX_AXIS_POINTS = 10_000_000
+
+#: Most grid points searched per target (time budget: about a minute at ~50 ns per point).
+MAX_GRID_POINTS = 1_000_000_000
 
 
 def grid_axis(low, high, step):
@@ -28,7 +34,13 @@ def grid_axis(low, high, step):
     >>> np.degrees(grid_axis(0.0, np.radians(90.0), np.radians(40.0))).round(9)
     array([ 0., 40., 80., 90.])
     """
-    count = int(np.floor((high - low) / step + 1e-9)) + 1
+    intervals = (high - low) / step
+    if not intervals < MAX_AXIS_POINTS:
+        raise ValueError(
+            f"a grid axis over [{low:.6g}, {high:.6g}] rad with step {step:.3g} rad would hold "
+            f"{intervals + 1:.3g} points, more than MAX_AXIS_POINTS = {MAX_AXIS_POINTS:.0e}: use a larger step"
+        )
+    count = int(np.floor(intervals + 1e-9)) + 1
     axis = low + step * np.arange(count)
     if high - axis[-1] > 1e-9 * step:
         axis = np.append(axis, high)
@@ -140,6 +152,12 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
     (q1_low, q1_high), (q2_low, q2_high) = _joint_ranges(arm, q1_range, q2_range)
     q1_axis = grid_axis(q1_low, q1_high, step)
     q2_axis = grid_axis(q2_low, q2_high, step)
+    if len(q1_axis) * len(q2_axis) > MAX_GRID_POINTS:
+        raise ValueError(
+            f"a step of {step:.3g} rad makes a grid of {len(q1_axis)} x {len(q2_axis)} = "
+            f"{len(q1_axis) * len(q2_axis):.3g} points per target, more than MAX_GRID_POINTS = "
+            f"{MAX_GRID_POINTS:.0e}: use a larger step"
+        )
     absolute_limits = None
     if arm.has_limits and arm.limits == "absolute":
         absolute_limits = (arm.q_min[1], arm.q_max[1])

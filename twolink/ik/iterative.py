@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from .._validate import as_finite_scalar, broadcast_start
+from .._validate import as_count, as_finite_scalar, broadcast_start
 from ..conventions import wrap_angle
 from ..kinematics import fk, jacobian
 from .result import assemble_result
@@ -73,8 +73,7 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
     """
     p = check_reachable(arm, p)
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
-    if int(max_iter) < 1:
-        raise ValueError(f"max_iter must be a positive integer; got {max_iter!r}")
+    max_iter = as_count(max_iter, "max_iter", minimum=1)
     p_flat = p.reshape(-1, 2)
     q = wrap_angle(broadcast_start(q0, p.shape, "q0")).reshape(-1, 2).copy()
 
@@ -86,7 +85,7 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
     iterations = np.zeros(len(q), dtype=int)
     identity = np.eye(2)
     active = np.flatnonzero(error > threshold)
-    for _ in range(int(max_iter)):
+    for _ in range(max_iter):
         if active.size == 0:
             break
         J = jacobian(arm, q[active])

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from .._validate import as_pairs
+from .._validate import as_pairs, require_arm
 from ..errors import UnreachableError
 
 __all__ = ["REACH_RTOL", "as_targets", "raise_unreachable", "check_reachable"]
@@ -45,6 +45,7 @@ def check_reachable(arm, p):
     twolink.errors.UnreachableError: target (3, 4) is 5 m from the base; this arm reaches distances in [0, 2] m (l1=1, l2=1)
     """
     p = as_targets(p)
+    require_arm(arm)
     r_min, r_max = arm.reach
     slack = REACH_RTOL * r_max
     distance = np.hypot(p[..., 0], p[..., 1])
