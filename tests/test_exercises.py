@@ -62,7 +62,7 @@ def _right_answers():
     answers["2.1"] = {"q_elbow_up": ik.closed_form(ten, [12.0, 4.0], elbow="up"), "up_within_limits": False}
     step = 2 * 0.01 / 30.0
     answers["2.2"] = {"step_1cm_deg": np.degrees(step),
-                      "grid_points_1cm": (np.floor(np.pi / 2 / step) + 1) * (np.floor(np.pi / step) + 1)}
+                      "grid_points_1cm": (np.ceil(np.pi / 2 / step) + 1) * (np.ceil(np.pi / step) + 1)}  # both ends on the grid
     try:
         ik.closed_form(ten, [15.0, 16.0])
     except ValueError as error:
@@ -159,6 +159,8 @@ WRONG = {
             ("factor 2 missing", {"step_1cm_deg": lambda r: r["step_1cm_deg"] / 2}),
             ("a1 + a2 for a1 + 2 a2", {"step_1cm_deg": lambda r: r["step_1cm_deg"] * 1.5}),
             ("the missing +1", {"grid_points_1cm": lambda r: np.floor(np.pi / 2 / (0.02 / 30)) * np.floor(np.pi / (0.02 / 30))}),
+            ("the upper ends missed (floor + 1)", {"grid_points_1cm": lambda r: (np.floor(np.pi / 2 / (0.02 / 30)) + 1)
+                                                   * (np.floor(np.pi / (0.02 / 30)) + 1)}),
             ("range / step, not whole", {"grid_points_1cm": lambda r: (np.pi / 2 / (0.02 / 30)) * (np.pi / (0.02 / 30))})],
     "2.3": [("the error object", {"unreachable_message": lambda r: ValueError(r["unreachable_message"])}),
             ("another target's message", {"unreachable_message": lambda r: r["unreachable_message"].replace("21.9", "22.9")}),

@@ -45,7 +45,7 @@ def step_2_2():
 
 @reference
 def grid_counts_2_2():
-    """Points along each joint's axis at that step (ik.brute_force's grid)."""
+    """Points along each joint's axis at that step (ik.brute_force's grid, both ends of each range on it)."""
     step = step_2_2()
     return tuple(len(grid_axis(*np.radians(limits), step)) for limits in (Q1_RANGE_DEG_2_2, Q2_RANGE_DEG_2_2))
 
@@ -60,10 +60,14 @@ def judge_step_2_2(answer, siblings):
 def judge_points_2_2(answer, siblings):
     points = scalar(answer)
     if abs(points - round(points)) > 1e-6:
-        raise Wrong(f"{points:.6g} is not a whole number of grid points: count points, floor(range / step) + 1")
+        raise Wrong(f"{points:.6g} is not a whole number of grid points: count points, not range / step")
     count_1, count_2 = grid_counts_2_2()
     if round(points) == (count_1 - 1) * (count_2 - 1):
-        raise Wrong("one point short on each axis: the grid includes both ends, floor(range / step) + 1 points")
+        raise Wrong("one point short on each axis: the grid holds both ends of each range "
+                    "(its last spacing is shorter when the range is not a whole number of steps)")
+    if round(points) == (count_1 - 2) * (count_2 - 2):
+        raise Wrong("two points short on each axis: floor(range / step) counts steps, not points, "
+                    "and the grid holds both ends of each range")
     if round(points) != count_1 * count_2:
         raise Wrong(f"not the grid's size (off by {abs(round(points) - count_1 * count_2)} points)")
 
@@ -106,7 +110,7 @@ register(
     Part("step_1cm_deg", "step", judge_step_2_2,
          "solve (a1 + 2 a2) step / 2 = 0.01 m for the step, in radians, then convert"),
     Part("grid_points_1cm", "grid points", judge_points_2_2,
-         "points per joint = floor(range / step) + 1; multiply the two"),
+         "points per joint = ceil(range / step) + 1 (both ends of each range are on the grid); multiply the two"),
     chapter=CHAPTER,
 )
 register(
