@@ -14,7 +14,7 @@ from .errors import InputTypeError
 #: Python and numpy scalar types accepted where a real number belongs (bool excluded).
 _REAL_TYPES = (int, float, np.integer, np.floating)
 
-__all__ = ["InputTypeError", "real_array", "require_arm", "as_pairs", "as_finite_scalar", "as_count", "broadcast_start", "broadcast_shape"]
+__all__ = ["finite_result", "InputTypeError", "real_array", "require_arm", "as_pairs", "as_finite_scalar", "as_count", "broadcast_start", "broadcast_shape"]
 
 
 def as_pairs(values, name):
@@ -227,3 +227,19 @@ def require_arm(arm, who="arm"):
     if not (hasattr(arm, "l1") and hasattr(arm, "l2") and hasattr(arm, "inertias")):
         raise InputTypeError(f"{who} must be a twolink.TwoLinkArm; got {arm!r} ({type(arm).__name__})")
     return arm
+
+
+def finite_result(array, what, cause):
+    """``array`` if every entry is finite, else an error saying the result overflows float64.
+
+    Examples
+    --------
+    >>> finite_result(np.array([1.0, np.inf]), "joint rates qd (rad/s)", "v_tip is too large for this pose")
+    Traceback (most recent call last):
+    ...
+    OverflowError: the joint rates qd (rad/s) overflow float64 (|value| > 1.8e308) at index (1,): v_tip is too large for this pose
+    """
+    if np.all(np.isfinite(array)):
+        return array
+    index = tuple(int(i) for i in np.argwhere(~np.isfinite(array))[0])
+    raise OverflowError(f"the {what} overflow float64 (|value| > 1.8e308) at index {index}: {cause}")

@@ -19,6 +19,25 @@ __all__ = ["TwoLinkArm"]
 
 _LIMIT_CONVENTIONS = ("relative", "absolute")
 
+#: Representable ranges of the parameters: within them every square and
+#: product the kinematics and dynamics form (up to l^4 m^2) stays a normal
+#: float64, so nothing overflows to inf or underflows to 0.
+LENGTH_RANGE = (1e-50, 1e50)
+MASS_MAX = 1e50
+INERTIA_MAX = 1e150
+G_MAX = 1e50
+OFFSET_MAX = 1e150
+
+
+def _within(value, name, low, high):
+    if value != 0.0 and not low <= abs(value) <= high:
+        allowed = f"[{low:.0e}, {high:.0e}]" if low > 0.0 else f"0 or up to {high:.0e} in size"
+        raise ValueError(
+            f"{name} = {value:.6g} is outside the representable range {allowed} "
+            "(its squares and products in the dynamics would overflow or underflow); rescale the units"
+        )
+    return value
+
 
 def _as_limit_pair(value, name):
     if value is None:
@@ -65,7 +84,10 @@ class TwoLinkArm:
     ------
     ValueError
         For non-positive or non-finite lengths, negative or non-finite masses
-        or inertias, non-finite ``g`` or ``d``, limits given on one side only,
+        or inertias, non-finite ``g`` or ``d``, parameters outside the
+        representable ranges (lengths in ``LENGTH_RANGE`` = [1e-50, 1e50] m,
+        masses up to 1e50 kg, inertias up to 1e150 kg m^2, ``|g|`` up to
+        1e50 m/s^2), limits given on one side only,
         ``q_min > q_max``, or an unknown ``limits`` convention.
 
     Examples
@@ -108,6 +130,13 @@ class TwoLinkArm:
             value = getattr(self, name)
             if value is not None:
                 checked[name] = as_finite_scalar(value, f"{name} (inertia, kg m^2)", minimum=0.0)
+                _within(checked[name], f"{name} (inertia, kg m^2)", 0.0, INERTIA_MAX)
+        _within(checked["l1"], "l1 (link 1 length, m)", *LENGTH_RANGE)
+        _within(checked["l2"], "l2 (link 2 length, m)", *LENGTH_RANGE)
+        _within(checked["m1"], "m1 (link 1 mass, kg)", 0.0, MASS_MAX)
+        _within(checked["m2"], "m2 (link 2 mass, kg)", 0.0, MASS_MAX)
+        _within(checked["g"], "g (m/s^2)", 0.0, G_MAX)
+        _within(checked["d"], "d (base offset, m)", 0.0, OFFSET_MAX)
         if (checked["q_min"] is None) != (checked["q_max"] is None):
             raise ValueError("q_min and q_max must be given together (or both None)")
         if checked["q_min"] is not None:

@@ -35,7 +35,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import kinematics
-from ._validate import as_pairs, broadcast_shape, require_arm
+from ._validate import as_pairs, broadcast_shape, finite_result, require_arm
 from .errors import SimulationError
 
 __all__ = [
@@ -91,6 +91,7 @@ def _invertible_constants(arm):
     if not constants.det_min > 0.0:
         raise ValueError(
             "forward dynamics needs an invertible mass matrix, but this arm's mass matrix is singular "
+            "(or so light that its determinant underflows) "
             f"(at least when stretched or folded; m1={arm.m1}, m2={arm.m2}, inertias={arm.inertias}): "
             "give link 2 mass and inertia, and link 1 mass or inertia"
         )
@@ -171,6 +172,12 @@ def _blockwise(formula, constants, q, qd, last):
     q_flat, qd_flat, last_flat = (np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last))
     result = np.empty(shape)
     result_flat = result.reshape(-1, 2)
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is reported by the caller, not warned
+        _fill_blocks(formula, constants, q_flat, qd_flat, last_flat, result_flat)
+    return result
+
+
+def _fill_blocks(formula, constants, q_flat, qd_flat, last_flat, result_flat):
     for start in range(0, len(result_flat), _BLOCK):
         block = slice(start, start + _BLOCK)
         q_block, qd_block, last_block = q_flat[block], qd_flat[block], last_flat[block]
@@ -185,7 +192,6 @@ def _blockwise(formula, constants, q, qd, last):
             last_block[:, 0],
             last_block[:, 1],
         )
-    return result
 
 
 # ---------------------------------------------------------------- input checks
@@ -364,15 +370,19 @@ def inverse_dynamics(arm, q, qd, qdd, force=None):
     if force is None:
         state = _single_state(q, qd, qdd)
         if state is not None:
-            return np.array(_inverse(_constants(arm), math.cos, math.sin, *state))
+            tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
+            if math.isfinite(tau1 + tau2):
+                return np.array((tau1, tau2))
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     qdd = as_pairs(qdd, "qdd")
     if force is None:
-        return _blockwise(_inverse, _constants(arm), q, qd, qdd)
-    force = as_pairs(force, "force")
-    broadcast_shape(q=q, qd=qd, qdd=qdd, force=force)
-    return _blockwise(_inverse, _constants(arm), q, qd, qdd) + kinematics.joint_torques(arm, q, force)
+        tau = _blockwise(_inverse, _constants(arm), q, qd, qdd)
+    else:
+        force = as_pairs(force, "force")
+        broadcast_shape(q=q, qd=qd, qdd=qdd, force=force)
+        tau = _blockwise(_inverse, _constants(arm), q, qd, qdd) + kinematics.joint_torques(arm, q, force)
+    return finite_result(tau, "joint torques tau (N m)", "the rates or accelerations are too large for this arm")
 
 
 def forward_dynamics(arm, q, qd, tau, force=None):
@@ -423,7 +433,9 @@ def forward_dynamics(arm, q, qd, tau, force=None):
     if force is None:
         state = _single_state(q, qd, tau)
         if state is not None:
-            return np.array(_forward(_invertible_constants(arm), math.cos, math.sin, *state))
+            qdd1, qdd2 = _forward(_invertible_constants(arm), math.cos, math.sin, *state)
+            if math.isfinite(qdd1 + qdd2):
+                return np.array((qdd1, qdd2))
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     tau = as_pairs(tau, "tau")
@@ -431,7 +443,8 @@ def forward_dynamics(arm, q, qd, tau, force=None):
         force = as_pairs(force, "force")
         broadcast_shape(q=q, qd=qd, tau=tau, force=force)
         tau = tau - kinematics.joint_torques(arm, q, force)
-    return _blockwise(_forward, _invertible_constants(arm), q, qd, tau)
+    qdd = _blockwise(_forward, _invertible_constants(arm), q, qd, tau)
+    return finite_result(qdd, "joint accelerations qdd (rad/s^2)", "the torques or rates are too large for this arm")
 
 
 def energy(arm, q, qd):

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._validate import as_count, as_finite_scalar, as_pairs, require_arm
+from ._validate import as_count, as_finite_scalar, as_pairs, finite_result, require_arm
 from .errors import SingularityError
 from .kinematics import fk, jacobian
 
@@ -65,7 +65,9 @@ def tip_velocity(arm, q, qd):
     array([-1.,  1.])
     """
     q, qd = _broadcast_pairs(q, qd, "qd")
-    return np.einsum("...ij,...j->...i", jacobian(arm, q), qd)
+    with np.errstate(over="ignore", invalid="ignore"):
+        v_tip = np.einsum("...ij,...j->...i", jacobian(arm, q), qd)
+    return finite_result(v_tip, "tip velocities (m/s)", "qd is too large for this arm")
 
 
 def _sin_q2(q):
@@ -128,7 +130,9 @@ def joint_rates(arm, q, v_tip, tol=SINGULARITY_TOL):
             "the arm is stretched or folded); the joint rates are unbounded there: use joint_rates_dls"
         )
     scale = _row_scale(v_tip)
-    return np.linalg.solve(jacobian(arm, q), (v_tip / scale)[..., None])[..., 0] * scale
+    with np.errstate(over="ignore", invalid="ignore"):
+        qd = np.linalg.solve(jacobian(arm, q), (v_tip / scale)[..., None])[..., 0] * scale
+    return finite_result(qd, "joint rates qd (rad/s)", "v_tip is too large for this (near-singular) pose")
 
 
 def _row_scale(v_tip):
@@ -214,7 +218,9 @@ def joint_rates_dls(arm, q, v_tip, damping):
     # s / (s^2 + lambda^2) as (s / r) / r with r = hypot(s, lambda): no overflow or underflow of the squares
     radius = np.hypot(singular_values, damping)
     weights *= singular_values / radius / radius
-    return np.einsum("...ji,...j->...i", Vt, weights) * scale
+    with np.errstate(over="ignore", invalid="ignore"):
+        qd = np.einsum("...ji,...j->...i", Vt, weights) * scale
+    return finite_result(qd, "joint rates qd (rad/s)", "v_tip is too large for this damping")
 
 
 def manipulability(arm, q):
