@@ -425,10 +425,6 @@ def _run(sources, namespace):
         plt.close("all")
 
 
-def _migrated(cells, number):
-    return any(f'selfcheck.check("{number}"' in "".join(cell["source"]) for cell in cells)
-
-
 @pytest.mark.parametrize("number", NUMBERS)
 def test_notebook_solution_passes_and_its_stub_is_not_solved(number):
     path, cells, index = _exercise_cells(number)
@@ -442,9 +438,7 @@ def test_notebook_solution_passes_and_its_stub_is_not_solved(number):
     _run([solution], namespace)
     parts = [part.name for part in exercises.get(number).parts]
     missing = [name for name in parts if name not in namespace]
-    if missing:
-        assert not _migrated(cells, number), f"{path.name} checks {number} but its solution does not set {missing}"
-        pytest.skip(f"{path.name} not migrated yet: its solution does not set {missing}")
+    assert not missing, f"{path.name}: the solution of exercise {number} does not set {missing}"
     status, lines = statuses(number, {name: namespace[name] for name in parts})
     assert set(status.values()) == {"correct"}, lines
     stub = editions.stub_source(solution, set(parts))
@@ -453,3 +447,33 @@ def test_notebook_solution_passes_and_its_stub_is_not_solved(number):
     _run([stub], student)
     status, lines = statuses(number, {name: student.get(name, ...) for name in parts})
     assert set(status.values()) == {"not solved yet"}, lines
+
+
+def _check_cells(cells):
+    return [(index, "".join(cell["source"])) for index, cell in enumerate(cells)
+            if cell["cell_type"] == "code" and "selfcheck." in "".join(cell["source"])]
+
+
+@pytest.mark.parametrize("chapter", sorted(NOTEBOOKS), ids=[NOTEBOOKS[c].name for c in sorted(NOTEBOOKS)])
+def test_check_cells_hold_no_reference(chapter):
+    """Each check cell is one ``selfcheck.check("N.M", answer, ...)`` on the answers' names, nothing computed."""
+    path = NOTEBOOKS[chapter]
+    cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+    checked = []
+    for index, source in _check_cells(cells):
+        tree = ast.parse(source)
+        assert len(tree.body) == 1, f"{path.name} cell {index}: a check cell is one call, got:\n{source}"
+        statement = tree.body[0]
+        call = statement.value if isinstance(statement, (ast.Assign, ast.Expr)) else None
+        assert isinstance(call, ast.Call) and ast.unparse(call.func) == "selfcheck.check", f"{path.name} cell {index}: {source}"
+        if isinstance(statement, ast.Expr):
+            assert source.rstrip().endswith(";"), f"{path.name} cell {index}: end the check with ; (no stray output)"
+        number, *answers = call.args
+        assert isinstance(number, ast.Constant) and number.value in NUMBERS, f"{path.name} cell {index}: {source}"
+        assert all(isinstance(answer, ast.Name) for answer in answers) and not call.keywords, (
+            f"{path.name} cell {index}: the check passes the answers' names only, nothing computed: {source}")
+        assert [answer.id for answer in answers] == [part.name for part in exercises.get(number.value).parts], (
+            f"{path.name} cell {index}: exercise {number.value}'s parts in order")
+        checked.append(number.value)
+    chapter_numbers = [n for n in NUMBERS if n.split(".")[0] == str(int(chapter))]
+    assert checked == chapter_numbers, f"{path.name} checks {checked}, its exercises are {chapter_numbers}"
