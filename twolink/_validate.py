@@ -201,17 +201,24 @@ def real_array(values, name, what="real numbers"):
     else:
         if kind is list or kind is tuple:
             for element in values:
-                if isinstance(element, _BAD_ELEMENT):
-                    raise InputTypeError(f"{name} must be {what}; got {values!r} (an entry is {type(element).__name__})")
+                element_type = type(element)
+                if element_type is not float and element_type is not int and isinstance(element, _BAD_ELEMENT):
+                    raise InputTypeError(f"{name} must be {what}; got {values!r} (an entry is {element_type.__name__})")
         elif isinstance(values, _BAD_ELEMENT):
             raise InputTypeError(f"{name} must be {what}; got {values!r} ({type(values).__name__})")
         try:
             array = np.asarray(values)
         except (TypeError, ValueError) as exc:
             raise InputTypeError(f"{name} must be {what}; got {values!r}") from exc
-    if array.dtype.kind not in "iuf":
-        raise InputTypeError(f"{name} must be {what}; got {values!r} ({array.dtype} entries)")
-    return array if array.dtype == np.float64 else array.astype(float)
+    dtype = array.dtype
+    if dtype is _FLOAT64:
+        return array
+    if dtype.kind not in "iuf":
+        raise InputTypeError(f"{name} must be {what}; got {values!r} ({dtype} entries)")
+    return array.astype(float)
+
+
+_FLOAT64 = np.dtype(np.float64)
 
 
 def require_arm(arm, who="arm"):
