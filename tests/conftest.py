@@ -62,3 +62,18 @@ def dynamic_arms(draw):
             "I2": m2 * l2**2 * draw(st.floats(min_value=0.01, max_value=0.5)),
         }
     return TwoLinkArm(l1=l1, l2=l2, m1=m1, m2=m2, g=g, **inertias)
+
+
+# --- checks against MuJoCo (tests/test_export.py, tests/test_mujoco_engine.py)
+
+
+def acceleration_scale(arm, q, qd, tau):
+    """The size of the accelerations each term alone would give (rad/s^2): what 1e-9 is relative to.
+
+    Several terms can cancel exactly in twolink's closed form (e.g. the Coriolis
+    term at q2 = 0) while MuJoCo's recursive algorithm leaves round-off there.
+    """
+    q, qd, tau = (np.asarray(v, dtype=float) for v in (q, qd, tau))
+    from_torque = arm.forward_dynamics(q, np.zeros(2), tau) - arm.forward_dynamics(q, np.zeros(2), np.zeros(2))
+    parts = [arm.forward_dynamics(q, qd, tau), from_torque, arm.forward_dynamics(q, qd, np.zeros(2)), qd * qd]
+    return max(float(np.max(np.abs(part))) for part in parts)

@@ -4,7 +4,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from conftest import dynamic_arms
+from conftest import acceleration_scale, dynamic_arms
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -29,18 +29,6 @@ def mujoco_qacc(model, q, qd, tau, *, applied=False):
         data.ctrl[:] = tau
     mujoco.mj_forward(model, data)
     return data.qacc.copy()
-
-
-def acceleration_scale(arm, q, qd, tau):
-    """The size of the accelerations each term alone would give (rad/s^2): what 1e-9 is relative to.
-
-    Several terms can cancel exactly in twolink's closed form (e.g. the Coriolis
-    term at q2 = 0) while MuJoCo's recursive algorithm leaves round-off there.
-    """
-    q, qd, tau = (np.asarray(v, dtype=float) for v in (q, qd, tau))
-    from_torque = arm.forward_dynamics(q, np.zeros(2), tau) - arm.forward_dynamics(q, np.zeros(2), np.zeros(2))
-    parts = [arm.forward_dynamics(q, qd, tau), from_torque, arm.forward_dynamics(q, qd, np.zeros(2)), qd * qd]
-    return max(float(np.max(np.abs(part))) for part in parts)
 
 
 def relative_error(got, expected, scale=None):

@@ -5,7 +5,7 @@ import sys
 
 import numpy as np
 import pytest
-from conftest import dynamic_arms
+from conftest import acceleration_scale, dynamic_arms
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -23,18 +23,6 @@ WALL = Wall.through([4.0, 0.0], [0.0, 4.0])
 def mujoco_log_in_tmp(tmp_path, monkeypatch):
     """MuJoCo appends its warnings to MUJOCO_LOG.TXT in the working folder: keep that out of the checkout."""
     monkeypatch.chdir(tmp_path)
-
-
-def acceleration_scale(arm, q, qd, tau):
-    """The size of the accelerations each term alone would give (rad/s^2): what 1e-9 is relative to.
-
-    Several terms can cancel exactly in twolink's closed form (e.g. the Coriolis
-    term at q2 = 0) while MuJoCo's recursive algorithm leaves round-off there.
-    """
-    q, qd, tau = (np.asarray(v, dtype=float) for v in (q, qd, tau))
-    from_torque = arm.forward_dynamics(q, np.zeros(2), tau) - arm.forward_dynamics(q, np.zeros(2), np.zeros(2))
-    parts = [arm.forward_dynamics(q, qd, tau), from_torque, arm.forward_dynamics(q, qd, np.zeros(2)), qd * qd]
-    return max(float(np.max(np.abs(part))) for part in parts)
 
 
 @settings(max_examples=30, deadline=None)
