@@ -7,7 +7,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
 
-.PHONY: help install lock lab test notebooks bench student grade site browser-test clean
+.PHONY: help install lock lab test notebooks bench bench-peers student grade site browser-test clean
 
 help:
 	@echo "make lab        open the course in JupyterLab (creates .venv on first use);"
@@ -15,6 +15,7 @@ help:
 	@echo "make test       unit tests, doctests, notebook hygiene and every notebook under strict nbval"
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables"
+	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"
 	@echo "make student    write the student edition (solutions stubbed) to build/student/"
 	@echo "make grade SUBMISSIONS=folder  run returned notebooks headless; CSV + one line per notebook"
 	@echo "make site       render the executed chapters to static HTML in build/site/"
@@ -74,6 +75,17 @@ notebooks: $(STAMP)
 
 bench: $(STAMP)
 	@for script in benchmarks/bench_*.py; do $(BIN)/python "$$script" || exit 1; done
+
+# Optional: the peers are not course requirements, so they go into their own venv.
+# A peer that will not install is reported by benchmarks/peers.py, not fatal.
+PEERS_VENV := build/peers-venv
+bench-peers:
+	@test -x $(PEERS_VENV)/bin/python || $(PYTHON) -m venv $(PEERS_VENV)
+	$(PEERS_VENV)/bin/python -m pip install --quiet --upgrade pip
+	$(PEERS_VENV)/bin/python -m pip install --quiet .
+	-$(PEERS_VENV)/bin/python -m pip install --quiet roboticstoolbox-python
+	-$(PEERS_VENV)/bin/python -m pip install --quiet pin
+	cd build && ../$(PEERS_VENV)/bin/python ../benchmarks/peers.py
 
 student: $(STAMP)
 	$(BIN)/python tools/editions.py student --out build/student

@@ -10,9 +10,12 @@ force at four grid resolutions, all timed with :func:`twolink.timing.median_time
 (an optional extra, never a requirement of the course) the same targets are
 also solved with its ``ik_LM``.
 
-Run with ``make bench`` or ``.venv/bin/python benchmarks/bench_ik_methods.py``.
+Run with ``make bench`` or ``.venv/bin/python benchmarks/bench_ik_methods.py``
+(``--quick`` for a smoke run with tiny sizes, used by the test suite: it
+checks that the script runs, not the speed).
 """
 
+import argparse
 import platform
 
 import numpy as np
@@ -29,28 +32,29 @@ Q0 = (0.5, 1.0)
 BRUTE_FORCE_STEPS_DEG = (1.0, 0.5, 0.25, 0.1)
 
 
-def twolink_rows(arm, targets):
+def twolink_rows(arm, targets, steps_deg=BRUTE_FORCE_STEPS_DEG, repeat=3):
     rows = []
     for per_call in (True, False):
         mode = "per call" if per_call else "vectorised"
         methods = [name for name in timing.IK_METHODS if name != "brute force"]
-        for row in timing.compare_ik_methods(arm, targets, q0=Q0, methods=methods, per_call=per_call):
+        for row in timing.compare_ik_methods(arm, targets, q0=Q0, methods=methods, repeat=repeat, per_call=per_call):
             rows.append((row["method"], mode, row["seconds_per_target"], row["max_residual"], row["solved"]))
-        for step_deg in BRUTE_FORCE_STEPS_DEG:
+        for step_deg in steps_deg:
             (row,) = timing.compare_ik_methods(
-                arm, targets, step=np.radians(step_deg), methods=["brute force"], per_call=per_call
+                arm, targets, step=np.radians(step_deg), methods=["brute force"], repeat=repeat, per_call=per_call
             )
             rows.append((f"brute force, {step_deg:g} deg grid", mode, row["seconds_per_target"], row["max_residual"], row["solved"]))
     return rows
 
 
-def robotics_toolbox_rows(arm, targets):
+def robotics_toolbox_rows(arm, targets, repeat=3):
     """``ik_LM`` of the Robotics Toolbox on the same targets, or no rows if it is not installed."""
     try:
         import roboticstoolbox as rtb
     except ImportError:
         return [], "roboticstoolbox-python is not installed: no ik_LM row (optional extra)"
     robot = rtb.DHRobot([rtb.RevoluteDH(a=arm.l1), rtb.RevoluteDH(a=arm.l2)], name="two-link")
+    ets = robot.ets()  # built once: robot.ik_LM rebuilds it on every call (~20x the C++ solve)
     poses = []
     for x, y in targets:
         pose = np.eye(4)
@@ -61,27 +65,31 @@ def robotics_toolbox_rows(arm, targets):
     for label, tol in (("default tol 1e-6", 1e-6), ("tol 1e-20", 1e-20)):
 
         def solve_all(tol=tol):
-            return [robot.ik_LM(pose, q0=np.array(Q0), mask=mask, tol=tol) for pose in poses]
+            return [ets.ik_LM(pose, q0=np.array(Q0), mask=mask, tol=tol) for pose in poses]
 
         solutions = solve_all()
         q = np.array([solution[0] for solution in solutions])
         residual = np.hypot(*(arm.fk(q) - targets).T)
-        seconds = timing.median_time(solve_all, repeat=3) / len(targets)
+        seconds = timing.median_time(solve_all, repeat=repeat) / len(targets)
         solved = float(np.mean(residual <= 1e-9 * (arm.l1 + arm.l2)))
         rows.append((f"roboticstoolbox ik_LM ({label})", "per call", seconds, float(residual.max()), solved))
     return rows, f"roboticstoolbox-python {rtb.__version__}"
 
 
-def main():
+def main(argv=None):
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="tiny sizes: checks the script runs, not the speed")
+    quick = parser.parse_args(argv).quick
+    points, steps_deg, repeat = (3, (2.0,), 1) if quick else (CIRCLE_POINTS, BRUTE_FORCE_STEPS_DEG, 3)
     arm = arms.ten
-    targets = workspace.circle_points(CIRCLE_CENTRE, CIRCLE_RADIUS, CIRCLE_POINTS)
-    rows = twolink_rows(arm, targets)
-    extra_rows, extra_note = robotics_toolbox_rows(arm, targets)
+    targets = workspace.circle_points(CIRCLE_CENTRE, CIRCLE_RADIUS, points)
+    rows = twolink_rows(arm, targets, steps_deg, repeat)
+    extra_rows, extra_note = robotics_toolbox_rows(arm, targets, repeat)
     rows += extra_rows
     budget = 1.0 / CONTROL_RATE_HZ
     print(
         f"# IK methods on the source circle (a1 = a2 = 10, centre {CIRCLE_CENTRE}, radius {CIRCLE_RADIUS:g}, "
-        f"{CIRCLE_POINTS} points)\n"
+        f"{points} points)\n"
     )
     print(
         f"Python {platform.python_version()}, numpy {np.__version__}, {platform.machine()}; {extra_note}. "

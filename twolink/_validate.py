@@ -14,7 +14,16 @@ from .errors import InputTypeError
 #: Python and numpy scalar types accepted where a real number belongs (bool excluded).
 _REAL_TYPES = (int, float, np.integer, np.floating)
 
-__all__ = ["finite_result", "InputTypeError", "real_array", "require_arm", "as_pairs", "as_finite_scalar", "as_count", "broadcast_start", "broadcast_shape"]
+__all__ = [
+    "finite_result", "InputTypeError", "real_array", "require_arm", "as_pairs", "pair_floats", "as_finite_scalar",
+    "as_count", "broadcast_start", "broadcast_shape",
+]
+
+#: Scalar types the one-input fast path converts itself (``float`` is tested
+#: first); anything else (bool, complex, str, None, Fraction, ...) is left to
+#: :func:`as_pairs`, whose message then names the argument.
+_FAST_SCALARS = frozenset((int, np.float64, np.float32, np.int64, np.int32))
+_FLOAT64 = np.dtype(np.float64)
 
 
 def as_pairs(values, name):
@@ -59,6 +68,55 @@ def as_pairs(values, name):
             f"is {array[tuple(bad)]}"
         )
     return array
+
+
+def pair_floats(values):
+    """Two finite Python floats when ``values`` is plainly one pair of real numbers, else ``None``.
+
+    The fast path of the public functions for one configuration, target or
+    state: a list or tuple of two floats or ints (or numpy float/int
+    scalars), or a float64 array of shape ``(2,)``, is read without array
+    machinery.  Everything else returns ``None`` (other shapes or types,
+    booleans, complex numbers, strings, ``None``, NaN, infinity, an int too
+    large for a float) and the caller takes its vectorised path, whose
+    :func:`as_pairs` accepts or refuses it with the package's messages.  So
+    the fast path accepts a subset of what :func:`as_pairs` accepts, with the
+    same values, and refuses nothing itself.
+
+    Examples
+    --------
+    >>> pair_floats([1, 2.5])
+    (1.0, 2.5)
+    >>> pair_floats(np.array([0.5, 1.0]))
+    (0.5, 1.0)
+    >>> pair_floats([True, 1.0]) is None, pair_floats([float("nan"), 1.0]) is None
+    (True, True)
+    """
+    kind = type(values)
+    if kind is list or kind is tuple:
+        if len(values) != 2:
+            return None
+        first, second = values
+        try:
+            if type(first) is not float:
+                if type(first) not in _FAST_SCALARS:
+                    return None
+                first = float(first)
+            if type(second) is not float:
+                if type(second) not in _FAST_SCALARS:
+                    return None
+                second = float(second)
+        except OverflowError:  # an int beyond the float range
+            return None
+    elif kind is np.ndarray:
+        if values.shape != (2,) or values.dtype is not _FLOAT64:
+            return None
+        first, second = values.tolist()
+    else:
+        return None
+    if math.isfinite(first) and math.isfinite(second):
+        return first, second
+    return None
 
 
 def as_finite_scalar(value, name, *, minimum=None, strictly=False):

@@ -12,7 +12,7 @@ import numpy as np
 from . import dh, kinematics
 from . import velocity
 from . import dynamics
-from ._validate import as_finite_scalar, as_pairs, real_array
+from ._validate import as_finite_scalar, as_pairs, pair_floats, real_array
 from .conventions import to_absolute
 
 __all__ = ["TwoLinkArm"]
@@ -150,6 +150,9 @@ class TwoLinkArm:
             raise ValueError(f"limits must be one of {_LIMIT_CONVENTIONS}; got {self.limits!r}")
         for name, value in checked.items():
             object.__setattr__(self, name, value)
+        # derived constants, computed on first use by the modules that need them
+        # (dynamics); not a dataclass field, so equality, hashing and repr ignore it
+        object.__setattr__(self, "_derived", {})
 
     # ------------------------------------------------------------------ parameters
     @property
@@ -200,6 +203,15 @@ class TwoLinkArm:
         >>> arms.ten.within_limits([[0.5, 1.0], [-0.5, 1.0]])
         array([ True, False])
         """
+        pair = pair_floats(q)
+        if pair is not None:  # one configuration: the same checks and comparisons on floats
+            tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
+            if self.q_min is None:
+                return np.ones((), dtype=bool)
+            q1, q2 = pair
+            (low_1, low_2), (high_1, high_2) = self.q_min, self.q_max
+            angle_2 = q1 + q2 if self.limits == "absolute" else q2
+            return np.bool_(low_1 - tol <= q1 <= high_1 + tol and low_2 - tol <= angle_2 <= high_2 + tol)
         q = as_pairs(q, "q")
         tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
         if not self.has_limits:

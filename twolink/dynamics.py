@@ -35,7 +35,7 @@ from typing import NamedTuple
 import numpy as np
 
 from . import kinematics
-from ._validate import as_pairs, broadcast_shape, finite_result, require_arm
+from ._validate import as_pairs, broadcast_shape, finite_result, pair_floats, require_arm
 from .errors import SimulationError
 
 __all__ = [
@@ -62,6 +62,17 @@ class _Constants(NamedTuple):
 
 
 def _constants(arm):
+    """The arm's :class:`_Constants`, computed once per :class:`twolink.TwoLinkArm` (cached on it)."""
+    derived = getattr(arm, "_derived", None)
+    if derived is None:  # not a TwoLinkArm (an object with the same attributes, or not an arm)
+        return _compute_constants(arm)
+    constants = derived.get("dynamics")
+    if constants is None:
+        constants = derived["dynamics"] = _compute_constants(arm)
+    return constants
+
+
+def _compute_constants(arm):
     try:
         inertia_1, inertia_2 = arm.inertias
     except AttributeError:
@@ -117,13 +128,6 @@ def _gravity_terms(constants, cos_q1, cos_q12):
     return constants.gamma1 * cos_q1 + g2, g2
 
 
-def _bias_terms(constants, cos_q1, cos_q12, sin_q2, qd1, qd2):
-    """``C qd + g`` as two components."""
-    c11, c12, c21 = _coriolis_terms(constants, sin_q2, qd1, qd2)
-    g1, g2 = _gravity_terms(constants, cos_q1, cos_q12)
-    return c11 * qd1 + c12 * qd2 + g1, c21 * qd1 + g2
-
-
 def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
     """Joint accelerations ``(qdd1, qdd2)``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays).
 
@@ -137,23 +141,34 @@ def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
     ``qdd1 = (delta d1 - beta c2 r2) / det``,
     ``qdd2 = ((A1 + beta c2) r2 - (delta + beta c2) d1) / det``.
     """
-    h = -constants.beta * sin(q2)
+    _, beta, delta, gamma1, gamma2, det_min, link1 = constants
+    h = -beta * sin(q2)
     qd12 = qd1 + qd2
-    r2 = tau2 + h * qd1 * qd1 - constants.gamma2 * cos(q1 + q2)
-    d1 = tau1 - tau2 - h * qd12 * qd12 - constants.gamma1 * cos(q1)
-    beta_cos = constants.beta * cos(q2)
-    det = constants.det_min + h * h
+    r2 = tau2 + h * qd1 * qd1 - gamma2 * cos(q1 + q2)
+    d1 = tau1 - tau2 - h * qd12 * qd12 - gamma1 * cos(q1)
+    beta_cos = beta * cos(q2)
+    det = det_min + h * h
     return (
-        (constants.delta * d1 - beta_cos * r2) / det,
-        ((constants.link1 + beta_cos) * r2 - (constants.delta + beta_cos) * d1) / det,
+        (delta * d1 - beta_cos * r2) / det,
+        ((link1 + beta_cos) * r2 - (delta + beta_cos) * d1) / det,
     )
 
 
 def _inverse(constants, cos, sin, q1, q2, qd1, qd2, qdd1, qdd2):
-    """Joint torques ``(tau1, tau2)``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays)."""
-    bias1, bias2 = _bias_terms(constants, cos(q1), cos(q1 + q2), sin(q2), qd1, qd2)
-    m11, m12, m22 = _mass_terms(constants, cos(q2))
-    return m11 * qdd1 + m12 * qdd2 + bias1, m12 * qdd1 + m22 * qdd2 + bias2
+    """Joint torques ``(tau1, tau2)``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays).
+
+    ``M qdd + C qd + g`` with the terms of :func:`_mass_terms`,
+    :func:`_coriolis_terms` and :func:`_gravity_terms` written out (one
+    function call instead of five for a single state).
+    """
+    alpha, beta, delta, gamma1, gamma2 = constants[:5]
+    beta_cos = beta * cos(q2)
+    h = -beta * sin(q2)
+    g2 = gamma2 * cos(q1 + q2)
+    m12 = delta + beta_cos
+    bias1 = h * qd2 * qd1 + h * (qd1 + qd2) * qd2 + (gamma1 * cos(q1) + g2)
+    bias2 = -h * qd1 * qd1 + g2
+    return (alpha + 2.0 * beta_cos) * qdd1 + m12 * qdd2 + bias1, m12 * qdd1 + delta * qdd2 + bias2
 
 
 #: States per block in the vectorised paths: the temporaries of one block
@@ -195,37 +210,22 @@ def _fill_blocks(formula, constants, q_flat, qd_flat, last_flat, result_flat):
 
 
 # ---------------------------------------------------------------- input checks
-_FAST_SCALARS = (float, np.float64)
-_FLOAT64 = np.dtype(np.float64)
-
-
-def _pair_floats(value):
-    """``value`` as a list of two numbers on the cheap, or None (then the vectorised path checks it)."""
-    kind = type(value)
-    if kind is np.ndarray:
-        if value.shape == (2,) and value.dtype is _FLOAT64:
-            return value.tolist()
-    elif (kind is list or kind is tuple) and len(value) == 2:
-        if type(value[0]) in _FAST_SCALARS and type(value[1]) in _FAST_SCALARS:
-            return value
-    return None
-
-
 def _single_state(q, qd, last):
-    """Six floats when each argument is one pair of finite floats, else None.
+    """Six floats when each argument is one pair of finite real numbers, else None.
 
     Anything unusual (other shapes or types, a NaN, an infinity) returns None
     and goes down the vectorised path, whose checks raise the clear errors.
     """
-    pairs = (_pair_floats(q), _pair_floats(qd), _pair_floats(last))
-    if None in pairs:
+    q_pair = pair_floats(q)
+    if q_pair is None:
         return None
-    state = (*pairs[0], *pairs[1], *pairs[2])
-    # One test for all six: a NaN or an infinity makes the sum non-finite
-    # (so may a huge finite sum; the vectorised path then does the work).
-    if not math.isfinite(sum(state)):
+    qd_pair = pair_floats(qd)
+    if qd_pair is None:
         return None
-    return state
+    last_pair = pair_floats(last)
+    if last_pair is None:
+        return None
+    return q_pair + qd_pair + last_pair
 
 
 # ---------------------------------------------------------------- public functions

@@ -1,8 +1,17 @@
-"""Closed-form inverse kinematics of the planar 2R arm (cosine rule + atan2)."""
+"""Closed-form inverse kinematics of the planar 2R arm (cosine rule + atan2).
+
+One target given as a pair of floats is solved on Python floats with the
+:mod:`math` module, evaluating the same expressions in the same order as the
+vectorised path (the tests compare the two to 1e-12, at the reach boundary
+too); anything else, and every error, goes through the vectorised path.
+"""
+
+import math
 
 import numpy as np
 
-from .._validate import require_arm
+from .._validate import pair_floats, require_arm
+from ..kinematics import _lengths
 from .targets import REACH_RTOL, as_targets, raise_unreachable
 
 __all__ = ["closed_form", "ELBOW_BRANCHES"]
@@ -70,6 +79,15 @@ def closed_form(arm, p, elbow="down"):
     """
     if elbow not in ELBOW_BRANCHES:
         raise ValueError(f"elbow must be one of {ELBOW_BRANCHES}; got {elbow!r}")
+    target = pair_floats(p)
+    if target is not None:
+        derived = getattr(arm, "_derived", None)
+        terms = derived.get("closed_form") if derived is not None else None
+        l1, l2 = _lengths(arm)
+        q = _closed_form_pair(l1, l2, terms or _reach_terms(arm), target[0], target[1], elbow)
+        if q is not None:
+            return q
+        # out of reach: the vectorised path raises the UnreachableError
     p = as_targets(p)
     try:
         arm.l1, arm.l2
@@ -78,10 +96,9 @@ def closed_form(arm, p, elbow="down"):
     if p.ndim == 1:  # one target: solve as a batch of one (keeps every temporary an array)
         return closed_form(arm, p[None, :], elbow)[0]
     l1, l2 = arm.l1, arm.l2
-    r_min, r_max = arm.reach
+    r_min, r_max, inverse, low_outer, low_inner = _reach_terms(arm)
     x = p[..., 0]
     y = p[..., 1]
-    inverse = 1.0 / (2.0 * l1 * l2)
 
     # 1 - cos q2 and 1 + cos q2 straight from r^2, without forming cos q2 first:
     # (r_max^2 - r^2) and (r^2 - r_min^2) keep their relative accuracy at full
@@ -93,7 +110,6 @@ def closed_form(arm, p, elbow="down"):
     one_plus_c2 = r_squared
     one_plus_c2 -= r_min * r_min
     one_plus_c2 *= inverse
-    low_outer, low_inner = _reach_slack(arm)
     if one_minus_c2.size and (one_minus_c2.min() < low_outer or one_plus_c2.min() < low_inner):
         raise_unreachable(arm, p, (one_minus_c2 < low_outer) | (one_plus_c2 < low_inner))
     np.maximum(one_minus_c2, 0.0, out=one_minus_c2)
@@ -136,11 +152,54 @@ def closed_form(arm, p, elbow="down"):
     return q
 
 
-def _reach_slack(arm):
-    """Lowest accepted ``1 - cos q2`` and ``1 + cos q2``: the annulus widened by ``REACH_RTOL * r_max``."""
-    r_min, r_max = arm.reach
+def _reach_terms(arm):
+    """``(r_min, r_max, 1 / (2 l1 l2), low_outer, low_inner)`` of the cosine rule, cached per arm.
+
+    ``low_outer`` and ``low_inner`` are the lowest accepted ``1 - cos q2`` and
+    ``1 + cos q2``: the annulus widened by ``REACH_RTOL * r_max``.
+    """
+    derived = getattr(arm, "_derived", None)
+    if derived is None:  # not a TwoLinkArm
+        return _compute_reach_terms(arm.l1, arm.l2)
+    terms = derived.get("closed_form")
+    if terms is None:
+        terms = derived["closed_form"] = _compute_reach_terms(arm.l1, arm.l2)
+    return terms
+
+
+def _compute_reach_terms(l1, l2):
+    r_min, r_max = abs(l1 - l2), l1 + l2
     slack = REACH_RTOL * r_max
-    inverse = 1.0 / (2.0 * arm.l1 * arm.l2)
+    inverse = 1.0 / (2.0 * l1 * l2)
     low_outer = (r_max * r_max - (r_max + slack) ** 2) * inverse
     low_inner = (max(r_min - slack, 0.0) ** 2 - r_min * r_min) * inverse
-    return low_outer, low_inner
+    return r_min, r_max, inverse, low_outer, low_inner
+
+
+def _closed_form_pair(l1, l2, terms, x, y, elbow):
+    """:func:`closed_form` of one target on floats (same steps as the vectorised path), or None if out of reach.
+
+    ``terms`` are the arm's :func:`_reach_terms`.
+    """
+    r_min, r_max, inverse, low_outer, low_inner = terms
+    r_squared = x * x + y * y
+    one_minus_c2 = (r_max * r_max - r_squared) * inverse
+    one_plus_c2 = (r_squared - r_min * r_min) * inverse
+    if one_minus_c2 < low_outer or one_plus_c2 < low_inner:
+        return None
+    if one_minus_c2 < 0.0:
+        one_minus_c2 = 0.0
+    if one_plus_c2 < 0.0:
+        one_plus_c2 = 0.0
+    s2 = math.sqrt(one_minus_c2 * one_plus_c2)  # sin q2 of the down branch, >= 0
+    k1 = one_plus_c2 * l2 + (l1 - l2)  # l1 + l2 cos q2, accurate near full fold
+    q2_down = math.atan2(s2, (one_plus_c2 - one_minus_c2) * 0.5)
+    s2 *= l2
+    xk1, yk1, xk2, yk2 = x * k1, y * k1, x * s2, y * s2
+    if elbow == "down":
+        return np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down])
+    if elbow == "up":
+        return np.array([math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
+    q_both = np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down, math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
+    q_both.shape = (2, 2)
+    return q_both

@@ -1,12 +1,19 @@
-"""Newton's method on the forward-kinematics equations, vectorised over targets."""
+"""Newton's method on the forward-kinematics equations, vectorised over targets.
+
+One target and one start given as pairs of floats are solved by a plain
+Python loop with the :mod:`math` module: the same step formula
+(:func:`_lm_step`, written once for floats and arrays), the same acceptance
+and damping schedule, the same result.
+"""
+
+import math
 
 import numpy as np
 
-from .._validate import as_count, as_finite_scalar, broadcast_start
+from .._validate import as_count, as_finite_scalar, broadcast_start, pair_floats, require_arm
 from ..conventions import wrap_angle
-from ..kinematics import fk, jacobian
-from .result import assemble_result
-from .targets import check_reachable
+from .result import assemble_pair_result, assemble_result
+from .targets import REACH_RTOL, check_reachable
 
 __all__ = ["newton", "distance_outside_reach"]
 
@@ -71,46 +78,172 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
     >>> bool(np.all(result.residual < 1e-10))
     True
     """
+    target = pair_floats(p)
+    start = pair_floats(q0) if target is not None else None
+    if start is not None:
+        require_arm(arm)
+        distance = math.hypot(target[0], target[1])
+        r_min, r_max = abs(arm.l1 - arm.l2), arm.l1 + arm.l2
+        slack = REACH_RTOL * r_max
+        # one target well inside the reach (a target on the edge of the tolerance is left to
+        # check_reachable, whose np.hypot may round differently) and one start: solve on floats
+        if (r_min - slack) * _INSIDE_UP < distance < (r_max + slack) * _INSIDE_DOWN:
+            tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
+            return _newton_pair(arm, target, start, distance, tol, as_count(max_iter, "max_iter", minimum=1))
     p = check_reachable(arm, p)
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
     max_iter = as_count(max_iter, "max_iter", minimum=1)
     p_flat = p.reshape(-1, 2)
-    q = wrap_angle(broadcast_start(q0, p.shape, "q0")).reshape(-1, 2).copy()
+    q = wrap_angle(broadcast_start(q0, p.shape, "q0")).reshape(-1, 2)
+    q1, q2 = q[:, 0].copy(), q[:, 1].copy()
+    x, y = p_flat[:, 0], p_flat[:, 1]
 
-    scale = arm.l1 + arm.l2
+    l1, l2 = arm.l1, arm.l2
+    scale = l1 + l2
     threshold = tol * scale + distance_outside_reach(arm, p_flat)
-    residual_vec = fk(arm, q) - p_flat
-    error = np.hypot(residual_vec[:, 0], residual_vec[:, 1])
-    damping = np.full(len(q), 1e-3 * scale**2)
-    iterations = np.zeros(len(q), dtype=int)
-    identity = np.eye(2)
+    # per target: the angles, their sines and cosines (shared by fk and J), residual and error
+    c1, s1, c12, s12, s2 = _trig(np.cos, np.sin, q1, q2)
+    rx, ry = _residual(l1, l2, c1, s1, c12, s12, x, y)
+    error = np.sqrt(rx * rx + ry * ry)
+    damping = np.full(len(q1), DAMPING_START * scale**2)
+    damping_cap = DAMPING_CAP * scale**2
+    iterations = np.zeros(len(q1), dtype=int)
     active = np.flatnonzero(error > threshold)
-    for _ in range(max_iter):
-        if active.size == 0:
-            break
-        J = jacobian(arm, q[active])
-        JT = np.swapaxes(J, -1, -2)
-        normal = JT @ J + damping[active, None, None] * identity
-        gradient = (JT @ residual_vec[active, :, None])[..., 0]
-        step = np.linalg.solve(normal, -gradient[..., None])[..., 0]
-        q_trial = wrap_angle(q[active] + step)
-        residual_trial = fk(arm, q_trial) - p_flat[active]
-        error_trial = np.hypot(residual_trial[:, 0], residual_trial[:, 1])
-        better = error_trial < error[active]
-        accepted = active[better]
-        q[accepted] = q_trial[better]
-        residual_vec[accepted] = residual_trial[better]
-        error[accepted] = error_trial[better]
-        damping[accepted] *= 0.2
-        damping[active[~better]] *= 10.0
-        iterations[active] += 1
-        still = (error[active] > threshold[active]) & (damping[active] < 1e12 * scale**2)
-        active = active[still]
+    with np.errstate(divide="ignore", invalid="ignore"):  # det = 0 (damping underflowed at a singular J): rejected
+        for _ in range(max_iter):
+            if active.size == 0:
+                break
+            dq1, dq2 = _lm_step(
+                l1, l2, c1[active], s1[active], c12[active], s12[active], s2[active], rx[active], ry[active],
+                damping[active],
+            )
+            t1 = _wrap(q1[active] + dq1)
+            t2 = _wrap(q2[active] + dq2)
+            trial = _trig(np.cos, np.sin, t1, t2)
+            trx, try_ = _residual(l1, l2, *trial[:4], x[active], y[active])
+            error_trial = np.sqrt(trx * trx + try_ * try_)
+            better = error_trial < error[active]
+            accepted = active[better]
+            q1[accepted], q2[accepted] = t1[better], t2[better]
+            for cached, new in zip((c1, s1, c12, s12, s2), trial):
+                cached[accepted] = new[better]
+            rx[accepted], ry[accepted], error[accepted] = trx[better], try_[better], error_trial[better]
+            damping[accepted] *= DAMPING_DOWN
+            damping[active[~better]] *= DAMPING_UP
+            iterations[active] += 1
+            still = (error[active] > threshold[active]) & (damping[active] < damping_cap)
+            active = active[still]
 
+    q = np.stack([q1, q2], axis=-1)
     return assemble_result(
         arm, p, q, iterations, threshold, "newton",
-        solved_message=f"converged for all {len(q)} targets (max {iterations.max(initial=0)} iterations)",
-        failure_detail=lambda index, residual: (
-            f"did not converge: residual {residual:.3g} m after {iterations[index]} iterations"
-        ),
+        solved_message=_solved_message(len(q), iterations.max(initial=0)),
+        failure_detail=lambda index, residual: _failure_detail(residual, iterations[index]),
+    )
+
+
+_INSIDE_UP, _INSIDE_DOWN = 1.0 + 1e-15, 1.0 - 1e-15
+
+# The damping schedule of Levenberg-Marquardt, in units of (l1 + l2)^2.
+DAMPING_START, DAMPING_CAP, DAMPING_DOWN, DAMPING_UP = 1e-3, 1e12, 0.2, 10.0
+
+
+def _solved_message(count, most_iterations):
+    return f"converged for all {count} targets (max {most_iterations} iterations)"
+
+
+def _failure_detail(residual, iterations):
+    return f"did not converge: residual {residual:.3g} m after {iterations} iterations"
+
+
+# ---------------------------------------------------------------- the formulas (floats or arrays)
+def _wrap(angle):
+    """Angles wrapped to ``[-pi, pi)`` (as :func:`twolink.wrap_angle`), floats or arrays."""
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+def _trig(cos, sin, q1, q2):
+    """``(cos q1, sin q1, cos q12, sin q12, sin q2)``; ``cos``/``sin`` from :mod:`math` or numpy."""
+    q12 = q1 + q2
+    return cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
+
+
+def _residual(l1, l2, c1, s1, c12, s12, x, y):
+    """``fk(q) - p`` as two components (the expressions of :func:`twolink.kinematics.fk`)."""
+    return l1 * c1 + l2 * c12 - x, l1 * s1 + l2 * s12 - y
+
+
+def _lm_step(l1, l2, c1, s1, c12, s12, s2, rx, ry, damping):
+    """The damped Newton step ``-(J^T J + lam I)^(-1) J^T r`` as two components, floats or arrays.
+
+    The 2x2 system is solved with its adjugate; its determinant
+    ``det(J)^2 + lam (|J|_F^2 + lam)`` with ``det J = l1 l2 sin q2`` is a sum
+    of non-negative terms (no cancellation near a singular ``J``).
+    """
+    j12 = -l2 * s12
+    j11 = -l1 * s1 + j12
+    j22 = l2 * c12
+    j21 = l1 * c1 + j22
+    a = j11 * j11 + j21 * j21
+    d = j12 * j12 + j22 * j22
+    b = j11 * j12 + j21 * j22
+    g1 = j11 * rx + j21 * ry
+    g2 = j12 * rx + j22 * ry
+    det_j = l1 * l2 * s2
+    det = det_j * det_j + damping * (a + d + damping)
+    return (b * g2 - (d + damping) * g1) / det, (b * g1 - (a + damping) * g2) / det
+
+
+def _newton_pair(arm, target, start, distance, tol, max_iter):
+    """:func:`newton` for one target on floats: the same iteration as the vectorised path."""
+    l1, l2 = arm.l1, arm.l2
+    x, y = target
+    scale = l1 + l2
+    cos, sin, sqrt = math.cos, math.sin, math.sqrt
+    threshold = tol * scale + max(0.0, distance - scale, abs(l1 - l2) - distance)
+    # _wrap and _trig written out: a function call costs as much as the arithmetic here
+    two_pi, pi, l1l2 = 2.0 * math.pi, math.pi, l1 * l2
+    q1, q2 = (start[0] + pi) % two_pi - pi, (start[1] + pi) % two_pi - pi
+    q12 = q1 + q2
+    c1, s1, c12, s12, s2 = cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
+    rx, ry = l1 * c1 + l2 * c12 - x, l1 * s1 + l2 * s12 - y
+    error = sqrt(rx * rx + ry * ry)
+    damping = DAMPING_START * scale * scale
+    damping_cap = DAMPING_CAP * scale * scale
+    iterations = 0
+    if error > threshold:
+        for iterations in range(1, max_iter + 1):
+            # _lm_step, written out (the tests hold this loop to the vectorised one)
+            j12 = -l2 * s12
+            j11 = -l1 * s1 + j12
+            j22 = l2 * c12
+            j21 = l1 * c1 + j22
+            a = j11 * j11 + j21 * j21
+            d = j12 * j12 + j22 * j22
+            b = j11 * j12 + j21 * j22
+            g1 = j11 * rx + j21 * ry
+            g2 = j12 * rx + j22 * ry
+            det_j = l1l2 * s2
+            det = det_j * det_j + damping * (a + d + damping)
+            if det > 0.0:
+                dq1, dq2 = (b * g2 - (d + damping) * g1) / det, (b * g1 - (a + damping) * g2) / det
+            else:  # det = 0: the damping underflowed at a singular J; the step is rejected
+                dq1 = dq2 = math.nan
+            t1, t2 = (q1 + dq1 + pi) % two_pi - pi, (q2 + dq2 + pi) % two_pi - pi
+            t12 = t1 + t2
+            tc1, ts1, tc12, ts12 = cos(t1), sin(t1), cos(t12), sin(t12)
+            trx, try_ = l1 * tc1 + l2 * tc12 - x, l1 * ts1 + l2 * ts12 - y
+            error_trial = sqrt(trx * trx + try_ * try_)
+            if error_trial < error:
+                q1, q2, c1, s1, c12, s12, s2 = t1, t2, tc1, ts1, tc12, ts12, sin(t2)
+                rx, ry, error = trx, try_, error_trial
+                damping *= DAMPING_DOWN
+            else:
+                damping *= DAMPING_UP
+            if not (error > threshold and damping < damping_cap):
+                break
+    return assemble_pair_result(
+        arm, target, q1, q2, iterations, threshold, "newton",
+        solved_message=_solved_message(1, iterations),
+        failure_detail=lambda residual: _failure_detail(residual, iterations),
     )

@@ -1,12 +1,13 @@
 """The result object shared by every inverse-kinematics solver."""
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..kinematics import fk
 
-__all__ = ["IKResult", "assemble_result"]
+__all__ = ["IKResult", "assemble_result", "assemble_pair_result"]
 
 
 @dataclass(frozen=True)
@@ -105,3 +106,37 @@ def assemble_result(arm, p, q_flat, iterations, threshold, method, solved_messag
         message=message,
         within_limits=within.reshape(shape),
     )
+
+
+def assemble_pair_result(arm, target, q1, q2, iterations, threshold, method, solved_message, failure_detail):
+    """:func:`assemble_result` for one target solved on floats: the same fields, types and message.
+
+    The residual is recomputed from ``(q1, q2)`` by forward kinematics (the
+    expressions of :func:`twolink.kinematics.fk`); ``success``,
+    ``iterations``, ``residual`` and ``within_limits`` are 0-d arrays, ``q``
+    has shape ``(2,)``, as for a target of shape ``(2,)`` on the vectorised
+    path.  ``failure_detail(residual)`` describes a failure.
+    """
+    l1, l2 = arm.l1, arm.l2
+    q12 = q1 + q2
+    residual = math.hypot(
+        l1 * math.cos(q1) + l2 * math.cos(q12) - target[0], l1 * math.sin(q1) + l2 * math.sin(q12) - target[1]
+    )
+    success = residual <= threshold
+    message = solved_message if success else f"failed for 1 of 1 targets (first: flat index 0, {failure_detail(residual)})"
+    within = bool(arm.within_limits((q1, q2))) if arm.has_limits else True
+    if not within:
+        message += "; 1 of 1 answers violate the joint limits (see within_limits)"
+    # IKResult(...) field by field, without the frozen dataclass's seven object.__setattr__ calls
+    # (IKResult has no __post_init__; the instance is the same)
+    result = object.__new__(IKResult)
+    result.__dict__.update(
+        q=np.array([q1, q2]),
+        success=np.array(success),
+        iterations=np.array(iterations),
+        residual=np.array(residual),
+        method=method,
+        message=message,
+        within_limits=np.array(within),
+    )
+    return result
