@@ -306,3 +306,28 @@ def test_fast_path_results_are_fresh_writable_arrays(q1, q2):
     result = ik.newton(ARM, ARM.fk([q1, q2]).tolist())
     result.q[0] = 5.0  # the arrays of a result are its own
     assert ik.newton(ARM, ARM.fk([q1, q2]).tolist()).q[0] != 5.0
+
+
+@pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)
+def test_single_input_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(not_an_arm):
+    one, batch_of_one = [0.3, 0.4], np.array([[0.3, 0.4]])
+    calls = [
+        lambda q: kinematics.fk(not_an_arm, q),
+        lambda q: kinematics.jacobian(not_an_arm, q),
+        lambda p: ik.closed_form(not_an_arm, p),
+        lambda p: ik.newton(not_an_arm, p),
+        lambda q: dynamics.forward_dynamics(not_an_arm, q, q, q),
+        lambda q: dynamics.inverse_dynamics(not_an_arm, q, q, q),
+    ]
+    for call in calls:
+        fast, slow = outcome(lambda: call(one)), outcome(lambda: call(batch_of_one))
+        assert fast[0] == slow[0] == "error"
+        assert fast[1] == slow[1]
+        assert "arm" in fast[1][1]
+
+
+@pytest.mark.parametrize("tol", [-1e-3, float("nan"), "0.1", None], ids=repr)
+def test_within_limits_checks_its_tolerance_on_the_fast_path(tol):
+    fast = outcome(lambda: arms.ten.within_limits([0.1, 0.2], tol=tol))
+    slow = outcome(lambda: arms.ten.within_limits(np.array([[0.1, 0.2]]), tol=tol))
+    assert fast[0] == slow[0] == "error" and fast[1] == slow[1]
