@@ -41,7 +41,7 @@ def main(argv=None):
     quick = parser.parse_args(argv).quick
 
     def median_time(function, repeat, min_seconds=0.05):
-        return _median_time(function, repeat=1 if quick else repeat, min_seconds=0.0 if quick else min_seconds)
+        return _median_time(function, repeat=1 if quick else repeat, min_seconds=1e-9 if quick else min_seconds)
 
     arm = arms.two_metre
     rng = np.random.default_rng(5)

@@ -11,11 +11,14 @@ with a plain-Python one.
 
 Run with ``make bench`` or ``.venv/bin/python benchmarks/bench_single_call.py``
 (``--quick`` for a smoke run with tiny sizes, used by the test suite).
+Each pair (twolink, plain) is timed in alternating batches, so that both
+see the same load on a shared machine; the table gives the medians.
 """
 
 import argparse
 import math
 import platform
+import timeit
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -147,6 +150,31 @@ def check_references_agree(arm, q, qd, tau, p):
     assert np.allclose(plain_inverse_dynamics(arm, *q, *qd, *qdd), tau, rtol=1e-9, atol=1e-9)
 
 
+def interleaved_medians(first, second, repeat, min_seconds):
+    """Median time of one call of ``first()`` and of ``second()``, measured in alternation.
+
+    On a shared machine the load changes from second to second; timing the
+    two one after the other in alternating batches (each lasting about
+    ``min_seconds``) lets both see the same load, so their ratio is steadier
+    than that of two separate :func:`median_time` runs.
+    """
+    timers = [timeit.Timer(first), timeit.Timer(second)]
+    numbers = []
+    for timer in timers:  # calls per batch, calibrated as median_time does
+        number = 1
+        while True:
+            elapsed = timer.timeit(number=number)
+            if elapsed >= min_seconds / 10 or number >= 10**9:
+                break
+            number *= 10
+        numbers.append(max(1, int(math.ceil(number * min_seconds / max(elapsed, 1e-12)))))
+    samples = ([], [])
+    for _ in range(repeat):
+        for timer, number, sample in zip(timers, numbers, samples):
+            sample.append(timer.timeit(number=number) / number)
+    return float(np.median(samples[0])), float(np.median(samples[1]))
+
+
 def single_call_rows(arm, repeat, min_seconds, batch):
     rng = np.random.default_rng(13)
     q = np.array([0.4, 1.1])
@@ -193,8 +221,7 @@ def single_call_rows(arm, repeat, min_seconds, batch):
     ]
     rows = []
     for name, twolink_call, plain_call, batch_call in cases:
-        t_twolink = median_time(twolink_call, repeat=repeat, min_seconds=min_seconds)
-        t_plain = median_time(plain_call, repeat=repeat, min_seconds=min_seconds)
+        t_twolink, t_plain = interleaved_medians(twolink_call, plain_call, repeat, min_seconds)
         t_batch = median_time(batch_call, repeat=repeat, min_seconds=min_seconds) / batch
         ratio = t_twolink / t_plain
         rows.append((name, t_twolink, t_plain, ratio, TARGET_RATIO[name], t_batch))
@@ -206,8 +233,12 @@ def simulate_row(arm, t_end, repeat):
     options = dict(method="DOP853", rtol=1e-10, atol=1e-10)
     plain_rhs = plain_state_derivative(arm)
     state0 = np.concatenate([q0, qd0])
-    t_twolink = median_time(lambda: simulate(arm, q0, qd0, t_end, **options), repeat=repeat, min_seconds=0.0)
-    t_plain = median_time(lambda: solve_ivp(plain_rhs, (0.0, t_end), state0, **options), repeat=repeat, min_seconds=0.0)
+    t_twolink, t_plain = interleaved_medians(
+        lambda: simulate(arm, q0, qd0, t_end, **options),
+        lambda: solve_ivp(plain_rhs, (0.0, t_end), state0, **options),
+        repeat,
+        1e-9,
+    )
     return t_twolink, t_plain, t_twolink / t_plain
 
 
@@ -215,7 +246,7 @@ def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="tiny sizes: checks the script runs, not the speed")
     args = parser.parse_args(argv)
-    repeat, min_seconds, batch, t_end = (1, 0.0, 100, 0.2) if args.quick else (7, 0.05, 100_000, 10.0)
+    repeat, min_seconds, batch, t_end = (1, 1e-9, 100, 0.2) if args.quick else (15, 0.02, 100_000, 10.0)
 
     arm = TwoLinkArm(l1=1.0, l2=0.7, m1=2.0, m2=1.2)
     rows = single_call_rows(arm, repeat, min_seconds, batch)

@@ -45,7 +45,10 @@ def fk(arm, q):
     if pair is not None:
         q1, q2 = pair
         q12 = q1 + q2
-        l1, l2 = _lengths(arm)
+        try:
+            l1, l2 = arm.l1, arm.l2
+        except AttributeError:
+            l1, l2 = _lengths(arm)  # not an arm: raises, naming it
         return np.array([l1 * math.cos(q1) + l2 * math.cos(q12), l1 * math.sin(q1) + l2 * math.sin(q12)])
     q = as_pairs(q, "q")
     l1, l2 = _lengths(arm)
@@ -124,7 +127,10 @@ def jacobian(arm, q):
     if pair is not None:
         q1, q2 = pair
         q12 = q1 + q2
-        l1, l2 = _lengths(arm)
+        try:
+            l1, l2 = arm.l1, arm.l2
+        except AttributeError:
+            l1, l2 = _lengths(arm)  # not an arm: raises, naming it
         c12 = l2 * math.cos(q12)
         s12 = l2 * math.sin(q12)
         J = np.array([-l1 * math.sin(q1) - s12, -s12, l1 * math.cos(q1) + c12, c12])

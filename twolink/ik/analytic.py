@@ -80,14 +80,35 @@ def closed_form(arm, p, elbow="down"):
     if elbow not in ELBOW_BRANCHES:
         raise ValueError(f"elbow must be one of {ELBOW_BRANCHES}; got {elbow!r}")
     target = pair_floats(p)
-    if target is not None:
+    if target is not None:  # one target on floats: the steps below, written out (a call costs as much)
         derived = getattr(arm, "_derived", None)
         terms = derived.get("closed_form") if derived is not None else None
-        l1, l2 = _lengths(arm)
-        q = _closed_form_pair(l1, l2, terms or _reach_terms(arm), target[0], target[1], elbow)
-        if q is not None:
-            return q
-        # out of reach: the vectorised path raises the UnreachableError
+        try:
+            l1, l2 = arm.l1, arm.l2
+        except AttributeError:
+            l1, l2 = _lengths(arm)  # not an arm: raises, naming it
+        r_min_squared, r_max_squared, inverse, low_outer, low_inner = terms or _reach_terms(arm)
+        x, y = target
+        r_squared = x * x + y * y
+        one_minus_c2 = (r_max_squared - r_squared) * inverse
+        one_plus_c2 = (r_squared - r_min_squared) * inverse
+        if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner:  # else the vectorised path raises
+            if one_minus_c2 < 0.0:
+                one_minus_c2 = 0.0
+            if one_plus_c2 < 0.0:
+                one_plus_c2 = 0.0
+            s2 = math.sqrt(one_minus_c2 * one_plus_c2)  # sin q2 of the down branch, >= 0
+            k1 = one_plus_c2 * l2 + (l1 - l2)  # l1 + l2 cos q2, accurate near full fold
+            q2_down = math.atan2(s2, (one_plus_c2 - one_minus_c2) * 0.5)
+            s2 *= l2
+            xk1, yk1, xk2, yk2 = x * k1, y * k1, x * s2, y * s2
+            if elbow == "down":
+                return np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down])
+            if elbow == "up":
+                return np.array([math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
+            q_both = np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down, math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
+            q_both.shape = (2, 2)
+            return q_both
     p = as_targets(p)
     try:
         arm.l1, arm.l2
@@ -96,7 +117,7 @@ def closed_form(arm, p, elbow="down"):
     if p.ndim == 1:  # one target: solve as a batch of one (keeps every temporary an array)
         return closed_form(arm, p[None, :], elbow)[0]
     l1, l2 = arm.l1, arm.l2
-    r_min, r_max, inverse, low_outer, low_inner = _reach_terms(arm)
+    r_min_squared, r_max_squared, inverse, low_outer, low_inner = _reach_terms(arm)
     x = p[..., 0]
     y = p[..., 1]
 
@@ -105,10 +126,10 @@ def closed_form(arm, p, elbow="down"):
     # stretch and full fold, where 1 -+ cos q2 would cancel catastrophically.
     r_squared = x * x
     r_squared += y * y
-    one_minus_c2 = r_max * r_max - r_squared
+    one_minus_c2 = r_max_squared - r_squared
     one_minus_c2 *= inverse
     one_plus_c2 = r_squared
-    one_plus_c2 -= r_min * r_min
+    one_plus_c2 -= r_min_squared
     one_plus_c2 *= inverse
     if one_minus_c2.size and (one_minus_c2.min() < low_outer or one_plus_c2.min() < low_inner):
         raise_unreachable(arm, p, (one_minus_c2 < low_outer) | (one_plus_c2 < low_inner))
@@ -153,7 +174,7 @@ def closed_form(arm, p, elbow="down"):
 
 
 def _reach_terms(arm):
-    """``(r_min, r_max, 1 / (2 l1 l2), low_outer, low_inner)`` of the cosine rule, cached per arm.
+    """``(r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner)`` of the cosine rule, cached per arm.
 
     ``low_outer`` and ``low_inner`` are the lowest accepted ``1 - cos q2`` and
     ``1 + cos q2``: the annulus widened by ``REACH_RTOL * r_max``.
@@ -173,33 +194,5 @@ def _compute_reach_terms(l1, l2):
     inverse = 1.0 / (2.0 * l1 * l2)
     low_outer = (r_max * r_max - (r_max + slack) ** 2) * inverse
     low_inner = (max(r_min - slack, 0.0) ** 2 - r_min * r_min) * inverse
-    return r_min, r_max, inverse, low_outer, low_inner
+    return r_min * r_min, r_max * r_max, inverse, low_outer, low_inner
 
-
-def _closed_form_pair(l1, l2, terms, x, y, elbow):
-    """:func:`closed_form` of one target on floats (same steps as the vectorised path), or None if out of reach.
-
-    ``terms`` are the arm's :func:`_reach_terms`.
-    """
-    r_min, r_max, inverse, low_outer, low_inner = terms
-    r_squared = x * x + y * y
-    one_minus_c2 = (r_max * r_max - r_squared) * inverse
-    one_plus_c2 = (r_squared - r_min * r_min) * inverse
-    if one_minus_c2 < low_outer or one_plus_c2 < low_inner:
-        return None
-    if one_minus_c2 < 0.0:
-        one_minus_c2 = 0.0
-    if one_plus_c2 < 0.0:
-        one_plus_c2 = 0.0
-    s2 = math.sqrt(one_minus_c2 * one_plus_c2)  # sin q2 of the down branch, >= 0
-    k1 = one_plus_c2 * l2 + (l1 - l2)  # l1 + l2 cos q2, accurate near full fold
-    q2_down = math.atan2(s2, (one_plus_c2 - one_minus_c2) * 0.5)
-    s2 *= l2
-    xk1, yk1, xk2, yk2 = x * k1, y * k1, x * s2, y * s2
-    if elbow == "down":
-        return np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down])
-    if elbow == "up":
-        return np.array([math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
-    q_both = np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down, math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
-    q_both.shape = (2, 2)
-    return q_both

@@ -81,15 +81,20 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
     target = pair_floats(p)
     start = pair_floats(q0) if target is not None else None
     if start is not None:
-        require_arm(arm)
+        if getattr(arm, "_derived", None) is None:  # every TwoLinkArm has it (and is an arm)
+            require_arm(arm)
         distance = math.hypot(target[0], target[1])
         r_min, r_max = abs(arm.l1 - arm.l2), arm.l1 + arm.l2
         slack = REACH_RTOL * r_max
         # one target well inside the reach (a target on the edge of the tolerance is left to
         # check_reachable, whose np.hypot may round differently) and one start: solve on floats
         if (r_min - slack) * _INSIDE_UP < distance < (r_max + slack) * _INSIDE_DOWN:
-            tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
-            return _newton_pair(arm, target, start, distance, tol, as_count(max_iter, "max_iter", minimum=1))
+            # the checks of the vectorised path, short-cut for the usual positive float and int
+            if not (type(tol) is float and 0.0 < tol < math.inf):
+                tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
+            if not (type(max_iter) is int and max_iter >= 1):
+                max_iter = as_count(max_iter, "max_iter", minimum=1)
+            return _newton_pair(arm, target, start, distance, tol, max_iter)
     p = check_reachable(arm, p)
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
     max_iter = as_count(max_iter, "max_iter", minimum=1)
