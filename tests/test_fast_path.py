@@ -331,3 +331,19 @@ def test_within_limits_checks_its_tolerance_on_the_fast_path(tol):
     fast = outcome(lambda: arms.ten.within_limits([0.1, 0.2], tol=tol))
     slow = outcome(lambda: arms.ten.within_limits(np.array([[0.1, 0.2]]), tol=tol))
     assert fast[0] == slow[0] == "error" and fast[1] == slow[1]
+
+
+@pytest.mark.parametrize("rates", [[1e200, 1e200], [1e155, -1e155], [3e153, 0.0]], ids=repr)
+def test_overflowing_single_state_is_refused_as_in_a_batch(rates):
+    """Finite inputs whose dynamics overflow float64: the same OverflowError (or the same finite answer)."""
+    for call in (
+        lambda q, qd: dynamics.forward_dynamics(ARM, q, qd, np.zeros_like(q)),
+        lambda q, qd: dynamics.inverse_dynamics(ARM, q, qd, np.zeros_like(q)),
+    ):
+        fast = outcome(lambda: call([0.3, 0.4], rates))
+        slow = outcome(lambda: call(np.array([[0.3, 0.4]]), np.array([rates]))[0])
+        assert fast[0] == slow[0]
+        if fast[0] == "error":  # the messages differ only in the index of the overflowing entry
+            assert fast[1][0] is slow[1][0] is OverflowError
+        else:
+            assert_same_outcome(fast, slow)
