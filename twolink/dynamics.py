@@ -372,7 +372,9 @@ def inverse_dynamics(arm, q, qd, qdd, force=None):
         if state is not None:
             tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
             if math.isfinite(tau1 + tau2):
-                return np.array((tau1, tau2))
+                tau = np.empty(2)  # then two item assignments: faster than np.array of a tuple
+                tau[0], tau[1] = tau1, tau2
+                return tau
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     qdd = as_pairs(qdd, "qdd")
@@ -435,7 +437,9 @@ def forward_dynamics(arm, q, qd, tau, force=None):
         if state is not None:
             qdd1, qdd2 = _forward(_invertible_constants(arm), math.cos, math.sin, *state)
             if math.isfinite(qdd1 + qdd2):
-                return np.array((qdd1, qdd2))
+                qdd = np.empty(2)  # then two item assignments: faster than np.array of a tuple
+                qdd[0], qdd[1] = qdd1, qdd2
+                return qdd
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     tau = as_pairs(tau, "tau")

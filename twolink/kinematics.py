@@ -49,7 +49,10 @@ def fk(arm, q):
             l1, l2 = arm.l1, arm.l2
         except AttributeError:
             l1, l2 = _lengths(arm)  # not an arm: raises, naming it
-        return np.array([l1 * math.cos(q1) + l2 * math.cos(q12), l1 * math.sin(q1) + l2 * math.sin(q12)])
+        p_tip = np.empty(2)  # then two item assignments: faster than np.array of a list
+        p_tip[0] = l1 * math.cos(q1) + l2 * math.cos(q12)
+        p_tip[1] = l1 * math.sin(q1) + l2 * math.sin(q12)
+        return p_tip
     q = as_pairs(q, "q")
     l1, l2 = _lengths(arm)
     q1 = q[..., 0]

@@ -102,10 +102,13 @@ def closed_form(arm, p, elbow="down"):
             q2_down = math.atan2(s2, (one_plus_c2 - one_minus_c2) * 0.5)
             s2 *= l2
             xk1, yk1, xk2, yk2 = x * k1, y * k1, x * s2, y * s2
-            if elbow == "down":
-                return np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down])
-            if elbow == "up":
-                return np.array([math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
+            if elbow != "both":
+                q = np.empty(2)  # then two item assignments: faster than np.array of a list
+                if elbow == "down":
+                    q[0], q[1] = math.atan2(yk1 - xk2, xk1 + yk2), q2_down
+                else:
+                    q[0], q[1] = math.atan2(yk1 + xk2, xk1 - yk2), -q2_down
+                return q
             q_both = np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down, math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
             q_both.shape = (2, 2)
             return q_both

@@ -129,9 +129,11 @@ def assemble_pair_result(arm, target, q1, q2, iterations, threshold, method, sol
         message += "; 1 of 1 answers violate the joint limits (see within_limits)"
     # IKResult(...) field by field, without the frozen dataclass's seven object.__setattr__ calls
     # (IKResult has no __post_init__; the instance is the same)
+    q = np.empty(2)
+    q[0], q[1] = q1, q2
     result = object.__new__(IKResult)
     result.__dict__.update(
-        q=np.array([q1, q2]),
+        q=q,
         success=np.array(success),
         iterations=np.array(iterations),
         residual=np.array(residual),
