@@ -276,9 +276,6 @@ def real_array(values, name, what="real numbers"):
     return array.astype(float)
 
 
-_FLOAT64 = np.dtype(np.float64)
-
-
 def require_arm(arm, who="arm"):
     """Refuse anything that is not an arm (``None``, numbers, ...) with an error naming ``arm``.
 
