@@ -359,6 +359,12 @@ def _nearest_turn(angles, reference):
     return angles - 2.0 * np.pi * np.round((angles - reference) / (2.0 * np.pi))
 
 
+#: A path point closer to the base than this fraction of ``l1 + l2`` counts as the
+#: base itself (on an equal-link arm, where ``q1`` is free there): a sample
+#: meant to be the base often misses it by round-off, in an arbitrary direction.
+BASE_ROUNDOFF = 1e-12
+
+
 def _switching_path(arm, points, q_both, valid, start_branch):
     """A continuous joint path that may change branch where the branches meet, or None.
 
@@ -378,7 +384,8 @@ def _switching_path(arm, points, q_both, valid, start_branch):
     r_min = arm.reach[0]
     for k in range(1, count):
         candidates = _nearest_turn(q_both[k], q[k - 1])
-        at_base = r_min == 0.0 and not np.hypot(*points[k]) > 0.0
+        # within round-off of the base the point's direction (and so q1) means nothing
+        at_base = r_min == 0.0 and not np.hypot(*points[k]) > BASE_ROUNDOFF * (arm.l1 + arm.l2)
         if at_base:  # every q1 puts the tip there: keep the previous one
             candidates[:, 0] = q[k - 1, 0]
         steps = np.max(np.abs(candidates - q[k - 1]), axis=-1)
