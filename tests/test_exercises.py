@@ -25,6 +25,7 @@ import sys
 
 import numpy as np
 import pytest
+from IPython.core.inputtransformer2 import TransformerManager
 
 from twolink import arms, controllers, exercises, ik, linearization, selfcheck, simulate, to_relative, trajectory, workspace
 from twolink.exercises import ch3, ch5, ch6, ch7
@@ -397,8 +398,8 @@ def _backward_slice(cells, index):
     for cell in reversed(cells[:index]):
         if cell["cell_type"] != "code":
             continue
-        source = "".join(cell["source"])
-        if source.lstrip().startswith(("%", "!")):
+        source = TransformerManager().transform_cell("".join(cell["source"]))  # IPython syntax (%pip) as Python
+        if source.lstrip().startswith(("%", "!", "get_ipython()")):
             continue
         stored, loaded = _cell_names(source)
         if stored & needed:
