@@ -4,6 +4,7 @@ import os
 
 import matplotlib
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
@@ -77,3 +78,15 @@ def acceleration_scale(arm, q, qd, tau):
     from_torque = arm.forward_dynamics(q, np.zeros(2), tau) - arm.forward_dynamics(q, np.zeros(2), np.zeros(2))
     parts = [arm.forward_dynamics(q, qd, tau), from_torque, arm.forward_dynamics(q, qd, np.zeros(2)), qd * qd]
     return max(float(np.max(np.abs(part))) for part in parts)
+
+
+# --- the environment nbval's kernels inherit
+
+
+@pytest.fixture(autouse=True)
+def matplotlib_backend_left_as_found():
+    """A test must not set MPLBACKEND for the worker: the notebook kernels nbval starts later in the same
+    worker would inherit it and store no figures (strict nbval then fails far from the cause)."""
+    before = os.environ.get("MPLBACKEND")
+    yield
+    assert os.environ.get("MPLBACKEND") == before, "this test changed MPLBACKEND in os.environ; use matplotlib.use()"

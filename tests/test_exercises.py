@@ -409,7 +409,6 @@ def _backward_slice(cells, index):
 
 
 def _run(sources, namespace):
-    os.environ["MPLBACKEND"] = "Agg"
     import matplotlib
 
     matplotlib.use("Agg")
