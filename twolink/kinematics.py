@@ -45,10 +45,7 @@ def fk(arm, q):
     if pair is not None:
         q1, q2 = pair
         q12 = q1 + q2
-        try:
-            l1, l2 = arm.l1, arm.l2
-        except AttributeError:
-            l1, l2 = _lengths(arm)  # not an arm: raises, naming it
+        l1, l2 = _lengths(arm)
         p_tip = np.empty(2)  # then two item assignments: faster than np.array of a list
         p_tip[0] = l1 * math.cos(q1) + l2 * math.cos(q12)
         p_tip[1] = l1 * math.sin(q1) + l2 * math.sin(q12)
@@ -130,10 +127,7 @@ def jacobian(arm, q):
     if pair is not None:
         q1, q2 = pair
         q12 = q1 + q2
-        try:
-            l1, l2 = arm.l1, arm.l2
-        except AttributeError:
-            l1, l2 = _lengths(arm)  # not an arm: raises, naming it
+        l1, l2 = _lengths(arm)
         c12 = l2 * math.cos(q12)
         s12 = l2 * math.sin(q12)
         J = np.array([-l1 * math.sin(q1) - s12, -s12, l1 * math.cos(q1) + c12, c12])
