@@ -44,7 +44,7 @@ def test_uniform_rod_inertias_and_override():
         ({"l1": 1.0, "l2": 1.0, "q_min": (0.0,), "q_max": (1.0, 1.0)}, "two angles"),
         ({"l1": 1.0, "l2": 1.0, "q_min": (0.0, float("nan")), "q_max": (1.0, 1.0)}, "finite"),
         ({"l1": 1.0, "l2": 1.0, "I1": -0.1}, "I1 (inertia, kg m^2) must be >= 0"),
-        ({"l1": 1.0, "l2": 1.0, "limits": "degrees"}, "limits must be one of"),
+        ({"l1": 1.0, "l2": 1.0, "limit_convention": "degrees"}, "limit_convention must be one of"),
         ({"l1": "one", "l2": 1.0}, "must be a real number"),
     ],
 )
@@ -59,7 +59,7 @@ def test_presets_match_the_sources():
     assert np.allclose(np.degrees(arms.ten.q_min), [0.0, -90.0])
     assert np.allclose(np.degrees(arms.ten.q_max), [90.0, 90.0])
     assert (arms.osake.l1, arms.osake.l2, arms.osake.d) == (0.10, 0.115, 0.065)
-    assert arms.two_metre_limited.limits == "absolute"
+    assert arms.two_metre_limited.limit_convention == "absolute"
     assert np.allclose(np.degrees(arms.two_metre_limited.q_min), [35.0, 35.0])
     assert np.allclose(np.degrees(arms.two_metre_limited.q_max), [145.0, 145.0])
 

@@ -33,7 +33,7 @@ def test_brute_force_success_implies_within_limits_reachable_and_within_the_boun
     if result.success:
         assert arm.within_limits(result.q) and workspace.is_reachable(arm, p)
         assert result.residual <= (arm.l1 + 2 * arm.l2) * np.radians(step_deg) / 2 * (1 + 1e-9)
-    elif workspace.is_reachable(arm, p) and arm.limits == "relative":
+    elif workspace.is_reachable(arm, p) and arm.limit_convention == "relative":
         pytest.fail(f"a reachable target was not solved: {result.message}")
 
 

@@ -52,8 +52,8 @@ def test_joint_limits_refuse_strings_and_other_non_angles(bad):
 
 @pytest.mark.parametrize("bad", [None, 1, ["relative"]], ids=stable_id)
 def test_limit_convention_must_be_a_name(bad):
-    with pytest.raises(ValueError, match="limits must be one of"):
-        TwoLinkArm(1.0, 1.0, limits=bad)
+    with pytest.raises(ValueError, match="limit_convention must be one of"):
+        TwoLinkArm(1.0, 1.0, limit_convention=bad)
 
 
 PAIR_FUNCTIONS = {

@@ -285,7 +285,7 @@ def test_dynamics_constants_are_cached_per_arm_and_follow_replace():
 @settings(max_examples=200, deadline=None)
 @given(angles, angles, st.sampled_from(["relative", "absolute"]))
 def test_within_limits_paths_agree(q1, q2, convention):
-    arm = TwoLinkArm(1.0, 1.0, q_min=(-1.0, -2.0), q_max=(1.5, 2.5), limits=convention)
+    arm = TwoLinkArm(1.0, 1.0, q_min=(-1.0, -2.0), q_max=(1.5, 2.5), limit_convention=convention)
     assert bool(arm.within_limits([q1, q2])) == bool(arm.within_limits(np.array([[q1, q2]]))[0])
     assert bool(TwoLinkArm(1.0, 1.0).within_limits([q1, q2]))
     # a configuration exactly on a limit counts as inside on both paths

@@ -19,13 +19,13 @@ def limited_arms(draw):
     l2 = draw(st.floats(min_value=max(0.05, l1 / 20), max_value=min(20.0, l1 * 20)))
     low = np.array([draw(angles), draw(angles)])
     width = np.array([draw(st.floats(0.05, 2 * np.pi)), draw(st.floats(0.05, 2 * np.pi))])
-    return TwoLinkArm(l1, l2, q_min=tuple(low), q_max=tuple(low + width), limits=draw(st.sampled_from(["relative", "absolute"])))
+    return TwoLinkArm(l1, l2, q_min=tuple(low), q_max=tuple(low + width), limit_convention=draw(st.sampled_from(["relative", "absolute"])))
 
 
 def configuration_within(arm, fractions):
     """The configuration at ``fractions`` (each in [0, 1]) across the limit box, in relative angles."""
     angles_in_box = np.asarray(arm.q_min) + np.asarray(fractions) * (np.asarray(arm.q_max) - np.asarray(arm.q_min))
-    if arm.limits == "absolute":
+    if arm.limit_convention == "absolute":
         return np.array([angles_in_box[0], angles_in_box[1] - angles_in_box[0]])
     return angles_in_box
 
@@ -86,7 +86,7 @@ def test_the_two_branch_workspaces_of_the_ten_arm_are_mirror_images():
         workspace.is_reachable(arms.ten, p, elbow="both")
 
 
-@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited, arms.two_metre], ids=lambda arm: str(arm.limits))
+@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited, arms.two_metre], ids=lambda arm: str(arm.limit_convention))
 def test_every_point_returned_as_reachable_is_reached_by_ik_within_limits(arm):
     rng = np.random.default_rng(3)
     scale = arm.reach[1] * 1.2

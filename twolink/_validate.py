@@ -291,6 +291,22 @@ def require_arm(arm, who="arm"):
     return arm
 
 
+def arm_lengths(arm):
+    """``(l1, l2)`` of ``arm``, or the :func:`require_arm` error naming it (free when it is an arm).
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> arm_lengths(TwoLinkArm(1.0, 2.0))
+    (1.0, 2.0)
+    """
+    try:
+        return arm.l1, arm.l2
+    except AttributeError:
+        require_arm(arm)
+        raise
+
+
 def finite_result(array, what, cause):
     """``array`` if every entry is finite, else an error saying the result overflows float64.
 
@@ -305,3 +321,24 @@ def finite_result(array, what, cause):
         return array
     index = tuple(int(i) for i in np.argwhere(~np.isfinite(array))[0])
     raise OverflowError(f"the {what} overflow float64 (|value| > 1.8e308) at index {index}: {cause}")
+
+
+def as_configuration(q, name="q", what="one configuration", unit="radians"):
+    """``q`` as a float array of shape ``(2,)``, or a ``ValueError`` naming its shape.
+
+    The one check for functions that work on a single configuration (or a
+    single point: ``what="one (x, y) point"``, ``unit="metres"``).
+
+    Examples
+    --------
+    >>> as_configuration([0.5, 1.0])
+    array([0.5, 1. ])
+    >>> as_configuration([[0.5, 1.0]], "q_eq")
+    Traceback (most recent call last):
+    ...
+    ValueError: q_eq must be one configuration of shape (2,) (radians); got shape (1, 2)
+    """
+    values = as_pairs(q, name)
+    if values.shape != (2,):
+        raise ValueError(f"{name} must be {what} of shape (2,) ({unit}); got shape {values.shape}")
+    return values

@@ -72,11 +72,11 @@ class TwoLinkArm:
         Base offset along z (the first DH row's ``d``), metres.
     q_min, q_max : pair of float, optional
         Joint limits in radians, ``q_min <= q_max`` component-wise; ``None``
-        for no limits.  Read in the convention named by ``limits``.
+        for no limits.  Read in the convention named by ``limit_convention``.
     I1, I2 : float, optional
         Link inertias about their centres of mass (kg m^2); ``None`` gives the
         uniform rod value ``m l^2 / 12``.
-    limits : {"relative", "absolute"}
+    limit_convention : {"relative", "absolute"}
         Whether ``q_min``/``q_max`` bound the relative angles ``(q1, q2)`` or
         the absolute link angles ``(q1, q1 + q2)`` (a belt-driven arm).
 
@@ -88,7 +88,7 @@ class TwoLinkArm:
         representable ranges (lengths in ``LENGTH_RANGE`` = [1e-50, 1e50] m,
         masses up to 1e50 kg, inertias up to 1e150 kg m^2, ``|g|`` up to
         1e50 m/s^2), limits given on one side only,
-        ``q_min > q_max``, or an unknown ``limits`` convention.
+        ``q_min > q_max``, or an unknown ``limit_convention``.
 
     Examples
     --------
@@ -113,7 +113,7 @@ class TwoLinkArm:
     q_max: tuple | None = None
     I1: float | None = None
     I2: float | None = None
-    limits: str = "relative"
+    limit_convention: str = "relative"
 
     def __post_init__(self):
         checked = {
@@ -146,8 +146,8 @@ class TwoLinkArm:
                     f"q_min must be <= q_max component-wise; got q_min={checked['q_min']}, "
                     f"q_max={checked['q_max']} (radians)"
                 )
-        if not isinstance(self.limits, str) or self.limits not in _LIMIT_CONVENTIONS:
-            raise ValueError(f"limits must be one of {_LIMIT_CONVENTIONS}; got {self.limits!r}")
+        if not isinstance(self.limit_convention, str) or self.limit_convention not in _LIMIT_CONVENTIONS:
+            raise ValueError(f"limit_convention must be one of {_LIMIT_CONVENTIONS}; got {self.limit_convention!r}")
         for name, value in checked.items():
             object.__setattr__(self, name, value)
         # derived constants, computed on first use by the modules that need them
@@ -187,7 +187,7 @@ class TwoLinkArm:
         ----------
         q : array_like, shape (..., 2)
             Relative joint angles in radians (converted to absolute link
-            angles first when ``limits == "absolute"``).
+            angles first when ``limit_convention == "absolute"``).
         tol : float
             Slack in radians, so that a configuration exactly on a limit
             counts as inside.
@@ -210,13 +210,13 @@ class TwoLinkArm:
                 return np.ones((), dtype=bool)
             q1, q2 = pair
             (low_1, low_2), (high_1, high_2) = self.q_min, self.q_max
-            angle_2 = q1 + q2 if self.limits == "absolute" else q2
+            angle_2 = q1 + q2 if self.limit_convention == "absolute" else q2
             return np.bool_(low_1 - tol <= q1 <= high_1 + tol and low_2 - tol <= angle_2 <= high_2 + tol)
         q = as_pairs(q, "q")
         tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
         if not self.has_limits:
             return np.ones(q.shape[:-1], dtype=bool)
-        angles = to_absolute(q) if self.limits == "absolute" else q
+        angles = to_absolute(q) if self.limit_convention == "absolute" else q
         low, high = np.asarray(self.q_min), np.asarray(self.q_max)
         return np.all((angles >= low - tol) & (angles <= high + tol), axis=-1)
 

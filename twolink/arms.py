@@ -36,7 +36,7 @@ two_metre_limited = TwoLinkArm(
     l2=2.0,
     q_min=(np.radians(35.0), np.radians(35.0)),
     q_max=(np.radians(145.0), np.radians(145.0)),
-    limits="absolute",
+    limit_convention="absolute",
 )
 
 ten = TwoLinkArm(

@@ -3,13 +3,69 @@
 The package works in the DH / relative convention: ``q2`` is link 2 measured
 from link 1.  One source measures both links from the x-axis (``q2_abs = q1 +
 q2``), as for a belt or parallel drive with motor 2 on the ground.
+
+It also holds the package's one vocabulary for the elbow branch,
+:data:`ELBOW_WORDS`, which every ``elbow`` parameter (in ``ik``,
+``trajectory``, ``workspace``) reads through :func:`check_elbow`.
 """
 
 import numpy as np
 
 from ._validate import as_pairs, real_array
 
-__all__ = ["to_absolute", "to_relative", "wrap_angle"]
+__all__ = ["to_absolute", "to_relative", "wrap_angle", "ELBOW_WORDS", "check_elbow"]
+
+#: The words of every ``elbow`` parameter, with one meaning everywhere:
+#:
+#: - ``"down"``: the branch with ``q2 >= 0`` (the elbow below the line from the
+#:   base to the tip when the tip is to the right of the base);
+#: - ``"up"``: the branch with ``q2 <= 0``;
+#: - ``"both"``: both branches, stacked on a new first axis, ``"down"`` first;
+#: - ``"auto"``: the function chooses a branch (each says how: within the joint
+#:   limits, continuous along a path, or either branch for a reachability test).
+#:
+#: A function that cannot give one of them a meaning refuses it with a
+#: ``ValueError`` that says why and which words it accepts.
+ELBOW_WORDS = ("down", "up", "both", "auto")
+
+
+def check_elbow(elbow, accepted=ELBOW_WORDS, why=""):
+    """Return ``elbow`` when it is one of ``accepted`` (a subset of :data:`ELBOW_WORDS`).
+
+    Parameters
+    ----------
+    elbow : object
+        The caller's ``elbow`` argument.
+    accepted : tuple of str
+        The words this function gives a meaning to.
+    why : str, optional
+        Why a word of :data:`ELBOW_WORDS` outside ``accepted`` has no meaning
+        here; added to the error.
+
+    Raises
+    ------
+    ValueError
+        Naming the accepted words (and ``why``, for a known but refused word).
+
+    Examples
+    --------
+    >>> check_elbow("up")
+    'up'
+    >>> check_elbow("both", ("down", "up", "auto"), why="a path follows one branch")
+    Traceback (most recent call last):
+    ...
+    ValueError: elbow must be one of ('down', 'up', 'auto') here; got 'both' (a path follows one branch)
+    >>> check_elbow("elbow-up")
+    Traceback (most recent call last):
+    ...
+    ValueError: elbow must be one of ('down', 'up', 'both', 'auto'); got 'elbow-up'
+    """
+    if isinstance(elbow, str) and elbow in accepted:
+        return elbow
+    if isinstance(elbow, str) and elbow in ELBOW_WORDS:
+        reason = f" ({why})" if why else ""
+        raise ValueError(f"elbow must be one of {accepted} here; got {elbow!r}{reason}")
+    raise ValueError(f"elbow must be one of {accepted}; got {elbow!r}")
 
 
 def to_absolute(q):

@@ -19,7 +19,7 @@ the same dynamics (the tests check MuJoCo's joint accelerations against
   (N m) of ``M qdd + C qd + g = tau``, with no control limits;
 * no joint damping, armature, friction or springs;
 * joint limits as joint ranges (the relative convention), or, for an arm with
-  ``limits="absolute"``, a range on joint 1 and a range on the fixed tendon
+  ``limit_convention="absolute"``, a range on joint 1 and a range on the fixed tendon
   ``q1 + q2`` (the absolute angle of link 2).
 
 Names in the models: bodies ``link1``, ``link2``; joints ``q1``, ``q2``;
@@ -66,7 +66,7 @@ def _nums(*values):
 
 
 def _require_arm(arm, who):
-    needed = ("l1", "l2", "m1", "m2", "g", "d", "inertias", "has_limits", "limits")
+    needed = ("l1", "l2", "m1", "m2", "g", "d", "inertias", "has_limits", "limit_convention")
     if not all(hasattr(arm, name) for name in needed):
         raise ValueError(f"{who} needs a twolink.TwoLinkArm as its arm; got {type(arm).__name__}")
 
@@ -228,7 +228,7 @@ def to_mjcf(
     if arm.has_limits:
         low, high = arm.q_min, arm.q_max
         joint_ranges[0] = f'limited="true" range="{_nums(low[0], high[0])}"'
-        if arm.limits == "relative":
+        if arm.limit_convention == "relative":
             joint_ranges[1] = f'limited="true" range="{_nums(low[1], high[1])}"'
         else:  # q1 + q2, the absolute angle of link 2, is bounded: a fixed tendon with a range
             tendon = (
@@ -324,7 +324,7 @@ def to_urdf(
     ----------
     arm : TwoLinkArm
         Its limits must be relative (URDF limits are per joint; an arm with
-        ``limits="absolute"`` bounds ``q1 + q2``, which URDF cannot say).
+        ``limit_convention="absolute"`` bounds ``q1 + q2``, which URDF cannot say).
     z_up : bool
         Turn the arm's plane upright as described above.
     effort_limit, velocity_limit : float
@@ -357,7 +357,7 @@ def to_urdf(
     """
     _require_arm(arm, "to_urdf")
     (m1, inertia_1), (m2, inertia_2) = _link_inertias(arm, "to_urdf")
-    if arm.has_limits and arm.limits != "relative":
+    if arm.has_limits and arm.limit_convention != "relative":
         raise ValueError(
             "to_urdf: this arm's limits bound the absolute angles (q1, q1 + q2), which URDF's per-joint "
             "limits cannot express; use an arm with relative limits (or none) and enforce the absolute ones "

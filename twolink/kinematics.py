@@ -15,9 +15,30 @@ import math
 
 import numpy as np
 
-from ._validate import as_pairs, broadcast_shape, pair_floats, require_arm
+from ._validate import arm_lengths, as_finite_scalar, as_pairs, broadcast_shape, pair_floats, require_arm
+from .errors import SingularityError, UnreachableError
 
-__all__ = ["fk", "joint_positions", "jacobian", "joint_torques", "reach"]
+__all__ = [
+    "fk",
+    "joint_positions",
+    "jacobian",
+    "joint_torques",
+    "reach",
+    "REACH_RTOL",
+    "distance_outside_reach",
+    "require_within_reach",
+    "SINGULARITY_TOL",
+    "require_nonsingular",
+]
+
+#: Points up to ``REACH_RTOL * (l1 + l2)`` outside the reach annulus count as
+#: inside it (round-off at full stretch or full fold); anything further is
+#: out of reach (:func:`require_within_reach`).
+REACH_RTOL = 1e-10
+
+#: Configurations with ``|sin q2|`` at most this are treated as singular
+#: (stretched or folded) by :func:`require_nonsingular`.
+SINGULARITY_TOL = 1e-6
 
 
 def fk(arm, q):
@@ -45,13 +66,13 @@ def fk(arm, q):
     if pair is not None:
         q1, q2 = pair
         q12 = q1 + q2
-        l1, l2 = _lengths(arm)
+        l1, l2 = arm_lengths(arm)
         p_tip = np.empty(2)  # then two item assignments: faster than np.array of a list
         p_tip[0] = l1 * math.cos(q1) + l2 * math.cos(q12)
         p_tip[1] = l1 * math.sin(q1) + l2 * math.sin(q12)
         return p_tip
     q = as_pairs(q, "q")
-    l1, l2 = _lengths(arm)
+    l1, l2 = arm_lengths(arm)
     q1 = q[..., 0]
     q12 = q1 + q[..., 1]
     p_tip = np.empty(q.shape)
@@ -85,7 +106,7 @@ def joint_positions(arm, q):
            [1., 1.]])
     """
     q = as_pairs(q, "q")
-    _lengths(arm)
+    arm_lengths(arm)
     points = np.zeros(q.shape[:-1] + (3, 2))
     q1 = q[..., 0]
     q12 = q1 + q[..., 1]
@@ -127,14 +148,14 @@ def jacobian(arm, q):
     if pair is not None:
         q1, q2 = pair
         q12 = q1 + q2
-        l1, l2 = _lengths(arm)
+        l1, l2 = arm_lengths(arm)
         c12 = l2 * math.cos(q12)
         s12 = l2 * math.sin(q12)
         J = np.array([-l1 * math.sin(q1) - s12, -s12, l1 * math.cos(q1) + c12, c12])
         J.shape = (2, 2)
         return J
     q = as_pairs(q, "q")
-    _lengths(arm)
+    arm_lengths(arm)
     q1 = q[..., 0]
     q12 = q1 + q[..., 1]
     c12 = arm.l2 * np.cos(q12)
@@ -191,14 +212,118 @@ def reach(arm):
     >>> [round(r, 12) for r in reach(TwoLinkArm(0.1, 0.115))]
     [0.015, 0.215]
     """
-    l1, l2 = _lengths(arm)
+    l1, l2 = arm_lengths(arm)
     return (abs(l1 - l2), l1 + l2)
 
 
-def _lengths(arm):
-    """``(l1, l2)``, or an error naming ``arm`` when it is not an arm (free when it is one)."""
-    try:
-        return arm.l1, arm.l2
-    except AttributeError:
-        require_arm(arm)
-        raise
+def distance_outside_reach(arm, p):
+    """How far each point lies outside the reach annulus ``[r_min, r_max]`` (0 inside), metres.
+
+    This is the smallest tip error any configuration can achieve.
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> distance_outside_reach(TwoLinkArm(1.0, 1.0), [[3.0, 4.0], [1.0, 0.0]])
+    array([3., 0.])
+    """
+    p = as_pairs(p, "p")
+    r_min, r_max = reach(arm)
+    distance = np.hypot(p[..., 0], p[..., 1])
+    return np.maximum(0.0, np.maximum(distance - r_max, r_min - distance))
+
+
+def require_within_reach(arm, p, what="target"):
+    """Return points ``p`` as an array, or raise naming the first one outside the reach annulus.
+
+    The package's one reach test and one message: the point, its distance
+    from the base, the reach interval and the link lengths.  Points within
+    ``REACH_RTOL * (l1 + l2)`` of the annulus count as inside (round-off).
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    p : array_like, shape (..., 2)
+        Points in metres (finite).
+    what : str
+        What a point is called in the message (``"target"``, ``"path point"``).
+
+    Raises
+    ------
+    twolink.UnreachableError
+        Naming the first point out of reach (its index in a batch, and how
+        many are out).
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> require_within_reach(TwoLinkArm(1.0, 1.0), [3.0, 4.0])
+    Traceback (most recent call last):
+    ...
+    twolink.errors.UnreachableError: target (3, 4) is 5 m from the base; this arm reaches distances in [0, 2] m (l1=1, l2=1)
+    >>> require_within_reach(TwoLinkArm(1.0, 1.0), [[1.0, 0.0], [0.0, 2.5]], what="path point")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.UnreachableError: path point (0, 2.5) (index (1,), first of 1) is 2.5 m from the base; this arm reaches distances in [0, 2] m (l1=1, l2=1)
+    """
+    p = as_pairs(p, what if what == "target" else f"{what} p")
+    l1, l2 = arm_lengths(arm)
+    r_min, r_max = abs(l1 - l2), l1 + l2
+    slack = REACH_RTOL * r_max
+    distance = np.hypot(p[..., 0], p[..., 1])
+    outside = (distance > r_max + slack) | (distance < r_min - slack)
+    if np.any(outside):
+        index = tuple(int(i) for i in np.argwhere(outside)[0]) if np.ndim(outside) else ()
+        x, y = p[index]
+        where = f" (index {index}, first of {int(np.count_nonzero(outside))})" if np.ndim(outside) else ""
+        raise UnreachableError(
+            f"{what} ({x:.6g}, {y:.6g}){where} is {float(distance[index]):.6g} m from the base; "
+            f"this arm reaches distances in [{r_min:.6g}, {r_max:.6g}] m (l1={l1:.6g}, l2={l2:.6g})"
+        )
+    return p
+
+
+def require_nonsingular(arm, q, what, tol=SINGULARITY_TOL):
+    """Raise :class:`~twolink.SingularityError` where ``|sin q2| <= tol`` (stretched or folded arm).
+
+    The package's one singularity test and one message.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+    what : str
+        What needs the Jacobian invertible, for the message (e.g.
+        ``"the tip mass"``); the advice, if any, can follow a colon.
+    tol : float
+        Smallest ``|sin q2|`` accepted.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        ``q`` as an array.
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> require_nonsingular(TwoLinkArm(1.0, 1.0), [0.3, 0.0], "the tip stiffness")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.SingularityError: the tip stiffness needs J invertible, but q = (0.3, 0) rad is singular: |sin q2| = 0 <= tol = 1e-06 (|det J| = 0 m^2, the arm is stretched or folded)
+    """
+    q = as_pairs(q, "q")
+    tol = as_finite_scalar(tol, "tol (smallest |sin q2|)", minimum=0.0)
+    l1, l2 = arm_lengths(arm)
+    sin_q2 = np.abs(np.sin(q[..., 1]))
+    near = sin_q2 <= tol
+    if np.any(near):
+        index = tuple(int(i) for i in np.argwhere(near)[0]) if near.ndim else ()
+        q1, q2 = q[index]
+        where = f" (index {index}, first of {int(np.count_nonzero(near))})" if near.ndim else ""
+        raise SingularityError(
+            f"{what} needs J invertible, but q = ({q1:.6g}, {q2:.6g}) rad{where} is singular: |sin q2| = "
+            f"{float(sin_q2[index]):.3g} <= tol = {tol:.3g} (|det J| = {l1 * l2 * float(sin_q2[index]):.3g} m^2, "
+            "the arm is stretched or folded)"
+        )
+    return q

@@ -2,8 +2,8 @@
 
 Without limits a 2R arm reaches the annulus ``|l1 - l2| <= |p| <= l1 + l2``.
 Joint limits cut that down.  The module answers, for either limit convention
-of :class:`~twolink.TwoLinkArm` (``limits="relative"`` bounds ``(q1, q2)``,
-``limits="absolute"`` bounds the link angles ``(q1, q1 + q2)``):
+of :class:`~twolink.TwoLinkArm` (``limit_convention="relative"`` bounds ``(q1, q2)``,
+``limit_convention="absolute"`` bounds the link angles ``(q1, q1 + q2)``):
 
 - :func:`is_reachable`: is a point reached by a configuration within limits?
 - :func:`sample_reachable`: random configurations within limits and their tips.
@@ -71,7 +71,7 @@ def describe_limits(arm):
     if not arm.has_limits:
         return "no joint limits"
     low, high = np.degrees(arm.q_min), np.degrees(arm.q_max)
-    if arm.limits == "relative":
+    if arm.limit_convention == "relative":
         return (
             f"q1 in [{low[0]:.6g}, {high[0]:.6g}] deg, q2 in [{low[1]:.6g}, {high[1]:.6g}] deg "
             "(relative joint angles)"
@@ -140,7 +140,7 @@ def solutions_within_limits(arm, p, tol=LIMIT_TOL):
     if not arm.has_limits:
         return q_both, valid
     low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)
-    if arm.limits == "relative":
+    if arm.limit_convention == "relative":
         q_both, inside = _shift_into_range(q_both, low, high, tol)
     else:
         q_abs, inside = _shift_into_range(to_absolute(q_both), low, high, tol)
@@ -241,10 +241,10 @@ def require_reachable(arm, p, what="point", tol=LIMIT_TOL):
         )
     # each angle shown as the turn nearest the middle of its limit interval: how far outside it is
     q_plain = closed_form(arm, flat[index], elbow="both")
-    angles = to_absolute(q_plain) if arm.limits == "absolute" else q_plain
+    angles = to_absolute(q_plain) if arm.limit_convention == "absolute" else q_plain
     middle = (np.asarray(arm.q_min) + np.asarray(arm.q_max)) / 2.0
     down, up = np.degrees(middle + wrap_angle(angles - middle))
-    needs = "link angles (q1, q1 + q2)" if arm.limits == "absolute" else "q"
+    needs = "link angles (q1, q1 + q2)" if arm.limit_convention == "absolute" else "q"
     raise UnreachableError(
         f"{where}, inside the reach [{r_min:.6g}, {r_max:.6g}] m but outside the joint limits: "
         f"{describe_limits(arm)}; elbow down needs {needs} = ({down[0]:.4g}, {down[1]:.4g}) deg, "
@@ -291,7 +291,7 @@ def sample_reachable(arm, n=2000, seed=0):
     else:
         low, high = np.full(2, -np.pi), np.full(2, np.pi)
     angles = rng.uniform(low, high, size=(n, 2))
-    q = to_relative(angles) if arm.has_limits and arm.limits == "absolute" else angles
+    q = to_relative(angles) if arm.has_limits and arm.limit_convention == "absolute" else angles
     return arm.fk(q), q
 
 
@@ -360,7 +360,7 @@ def candidate_arcs(arm):
         convention = "relative"
     else:
         low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)
-        convention = arm.limits
+        convention = arm.limit_convention
     span = np.minimum(high - low, _TWO_PI)
     bounded = high - low < _TWO_PI
     arcs = []

@@ -10,8 +10,7 @@ import math
 
 import numpy as np
 
-from .._validate import pair_floats, require_arm
-from ..kinematics import _lengths
+from .._validate import arm_lengths, pair_floats, require_arm
 from .targets import REACH_RTOL, as_targets, raise_unreachable
 
 __all__ = ["closed_form", "ELBOW_BRANCHES"]
@@ -86,7 +85,7 @@ def closed_form(arm, p, elbow="down"):
         try:
             l1, l2 = arm.l1, arm.l2
         except AttributeError:
-            l1, l2 = _lengths(arm)  # not an arm: raises, naming it
+            l1, l2 = arm_lengths(arm)  # not an arm: raises, naming it
         r_min_squared, r_max_squared, inverse, low_outer, low_inner = terms or _reach_terms(arm)
         x, y = target
         r_squared = x * x + y * y

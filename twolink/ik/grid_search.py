@@ -53,7 +53,7 @@ def _joint_ranges(arm, q1_range, q2_range):
         low, high = (-np.pi, np.pi) if given is None else given
         low = as_finite_scalar(low, f"q{joint + 1}_range[0]")
         high = as_finite_scalar(high, f"q{joint + 1}_range[1]")
-        if arm.has_limits and arm.limits == "relative":
+        if arm.has_limits and arm.limit_convention == "relative":
             low, high = max(low, arm.q_min[joint]), min(high, arm.q_max[joint])
         elif arm.has_limits and joint == 0:
             low, high = max(low, arm.q_min[0]), min(high, arm.q_max[0])
@@ -159,7 +159,7 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
             f"{MAX_GRID_POINTS:.0e}: use a larger step"
         )
     absolute_limits = None
-    if arm.has_limits and arm.limits == "absolute":
+    if arm.has_limits and arm.limit_convention == "absolute":
         absolute_limits = (arm.q_min[1], arm.q_max[1])
 
     p_flat = p.reshape(-1, 2)

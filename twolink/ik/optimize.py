@@ -98,7 +98,7 @@ def minimize(arm, p, q0=(0.5, 1.0), constrained=False, tol=1e-9):
     q0 = broadcast_start(q0, p.shape, "q0").reshape(-1, 2)
     p_flat = p.reshape(-1, 2)
     bounds = None
-    if constrained and arm.has_limits and arm.limits == "relative":
+    if constrained and arm.has_limits and arm.limit_convention == "relative":
         bounds = list(zip(arm.q_min, arm.q_max))
         q0 = np.clip(q0, arm.q_min, arm.q_max)
 
