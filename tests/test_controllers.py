@@ -9,7 +9,7 @@ from conftest import configurations, dynamic_arms
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from twolink import TwoLinkArm, arms, ik, simulate, statics
+from twolink import TwoLinkArm, arms, dynamics, ik, simulate, statics
 from twolink.contact import SpringWall, TipForce
 from twolink.controllers import CartesianSpring, ComputedTorque, Impedance, JointPD, JointReference, gain_matrix
 from twolink.linearization import critical_damping, equilibrium
@@ -103,7 +103,7 @@ def test_spring_torque_is_J_transpose_K_times_stretch(arm, q, K, rest_point):
     expected = J.T @ K @ (rest_point - arm.fk(q))
     scale = np.linalg.norm(J) * np.linalg.norm(K) * (np.linalg.norm(rest_point) + arm.l1 + arm.l2) + 1.0
     assert np.allclose(spring(0.0, q, ZERO), expected, rtol=0.0, atol=1e-6 * scale)
-    assert np.allclose(spring.force(q), K @ (rest_point - arm.fk(q)), rtol=1e-12, atol=1e-9 * scale)
+    assert np.allclose(spring.force_on_tip(q), K @ (rest_point - arm.fk(q)), rtol=1e-12, atol=1e-9 * scale)
 
 
 @given(arm_strategy(), configurations(), psd_matrices(), points)
@@ -114,6 +114,32 @@ def test_spring_torque_is_minus_the_gradient_of_its_energy(arm, q, K, rest_point
     gradient = np.array([(spring.potential_energy(q + step * e) - spring.potential_energy(q - step * e)) / (2 * step) for e in np.eye(2)])
     scale = np.linalg.norm(K) * (np.linalg.norm(rest_point) + arm.l1 + arm.l2) ** 2 + 1.0
     assert np.allclose(spring.torque(q), -gradient, rtol=0.0, atol=1e-6 * scale)
+
+
+@pytest.mark.parametrize(
+    "build",
+    [
+        lambda arm: CartesianSpring(arm, [[600.0, 100.0], [100.0, 300.0]], [2.5, 1.5]),
+        lambda arm: Impedance(arm, [[600.0, 100.0], [100.0, 300.0]], [[40.0, 5.0], [5.0, 20.0]], [2.5, 1.5]),
+        lambda arm: Impedance(arm, 600.0, 30.0, [2.5, 1.5], gravity_compensation=False),
+        lambda arm: JointPD(arm, [[80.0, 10.0], [10.0, 40.0]], [[9.0, 1.0], [1.0, 4.0]], [0.2, 0.9]),
+        lambda arm: ComputedTorque(arm, 100.0, 12.0, JointReference(
+            lambda t: np.array([0.2 + np.sin(t), 0.9]), lambda t: np.array([np.cos(t), 0.0]),
+            lambda t: np.array([-np.sin(t), 0.3]))),
+    ],
+    ids=["spring", "impedance", "impedance without compensation", "joint PD", "computed torque"],
+)
+@pytest.mark.parametrize("q", [[0.4, 1.3], [-2.0, -0.5], [1.0, 2.5]])
+def test_torque_derivatives_are_the_derivatives_of_the_torque(build, q):
+    """Each controller's analytic (dtau/dq, dtau/dqd) at qd = 0 against central differences of its torque."""
+    arm = TwoLinkArm(1.0, 0.6, m1=3.0, m2=1.0, I2=0.1, g=-4.0)
+    controller, q, t, step = build(arm), np.array(q), 0.7, 1e-6
+    by_q, by_qd = controller.torque_derivatives(t, q)
+    columns_q = [(controller(t, q + step * e, ZERO) - controller(t, q - step * e, ZERO)) / (2 * step) for e in np.eye(2)]
+    columns_qd = [(controller(t, q, step * e) - controller(t, q, -step * e)) / (2 * step) for e in np.eye(2)]
+    scale = 1.0 + np.max(np.abs(by_q)) + np.max(np.abs(by_qd))
+    assert np.allclose(by_q, np.column_stack(columns_q), rtol=0.0, atol=1e-7 * scale)
+    assert np.allclose(by_qd, np.column_stack(columns_qd), rtol=0.0, atol=1e-7 * scale)
 
 
 def test_spring_is_vectorised_and_matches_single_states():
@@ -311,23 +337,56 @@ def test_spring_wall_pushes_out_only_from_inside():
     wall = SpringWall(WALL, stiffness=1e4, damping=100.0)
     normal = np.array([1.0, 1.0]) / np.sqrt(2.0)
     outside, on_wall, inside = [2.0, 1.0], [2.0, 2.0], [2.0, 2.0] + 0.01 * normal
-    assert np.array_equal(wall.force(outside, [5.0, 5.0]), ZERO)
-    assert np.array_equal(wall.force(on_wall, ZERO), ZERO)
-    assert np.allclose(wall.force(inside, ZERO), -100.0 * normal)  # k s = 1e4 * 0.01
-    assert np.allclose(wall.force(inside, 0.5 * normal), -150.0 * normal)  # moving in: damping adds
-    assert np.array_equal(wall.force(inside, -5.0 * normal), ZERO)  # leaving fast: never pulls
+    assert np.array_equal(wall.force_on_tip(outside, [5.0, 5.0]), ZERO)
+    assert np.array_equal(wall.force_on_tip(on_wall, ZERO), ZERO)
+    assert np.allclose(wall.force_on_tip(inside, ZERO), -100.0 * normal)  # k s = 1e4 * 0.01
+    assert np.allclose(wall.force_on_tip(inside, 0.5 * normal), -150.0 * normal)  # moving in: damping adds
+    assert np.array_equal(wall.force_on_tip(inside, -5.0 * normal), ZERO)  # leaving fast: never pulls
     assert wall.penetration([[2.0, 1.0], inside]).tolist() == pytest.approx([0.0, 0.01])
 
 
 @given(dynamic_arms(), configurations(), st.tuples(st.floats(-50, 50), st.floats(-50, 50)).map(np.array))
-def test_tip_force_matches_the_dynamics_force_argument(arm, q, push):
+def test_a_constant_force_on_tip_is_the_dynamics_force_by_tip_of_the_opposite_sign(arm, q, push):
     """A push F on the tip is the same as the tip exerting -F (dynamics' convention)."""
     qd = np.array([0.3, -0.2])
     pushed = TipForce(arm, lambda t, q_now, qd_now: arm.gravity(q_now), push)
     via_tip_force = arm.forward_dynamics(q, qd, pushed(0.0, q, qd))
-    via_dynamics = arm.forward_dynamics(q, qd, arm.gravity(q), force=-push)
+    via_dynamics = dynamics.forward_dynamics(arm, q, qd, arm.gravity(q), force_by_tip=-push)
     assert np.allclose(via_tip_force, via_dynamics, rtol=1e-9, atol=1e-9)
-    assert np.array_equal(pushed.tip_force(0.0, q, qd), push)
+    assert np.array_equal(pushed.force_on_tip_at(0.0, q, qd), push)
+
+
+@given(dynamic_arms(), configurations(), st.tuples(st.floats(-3, 3), st.floats(-3, 3)).map(np.array),
+       st.floats(0.05, 0.5), st.floats(1.0, 1e4), st.floats(0.0, 100.0))
+def test_a_spring_walls_force_on_tip_and_force_by_tip_give_the_same_dynamics(arm, q, qd, depth, k, c):
+    """The two conventions agree: the wall's force_on_tip F enters as + J^T F, force_by_tip = -F as - J^T (-F)."""
+    p_tip = arm.fk(q)
+    distance = float(np.hypot(*p_tip))
+    assume(distance > 1e-3 * (arm.l1 + arm.l2))
+    normal = p_tip / distance  # the wall across the radius, the tip depth * |p| inside it
+    wall = SpringWall(statics.Wall(p_tip - depth * distance * normal, normal), stiffness=k, damping=c)
+    v_tip = arm.jacobian(q) @ qd
+    F = wall.force_on_tip(p_tip, v_tip)
+    assume(np.any(F != 0.0))
+    assert F @ normal < 0.0  # the wall pushes the tip back out, towards the base's side
+    world = TipForce(arm, None, wall)
+    assert np.array_equal(world.force_on_tip_at(0.0, q, qd), F)
+    tau_motor = np.array([0.7, -0.4]) * (1.0 + np.abs(arm.gravity(q)))
+    scale = 1.0 + np.abs(tau_motor).sum() + (arm.l1 + arm.l2) * np.abs(F).sum()
+    # forward: the surroundings' push adds J^T F to the motors' torques ...
+    with_push = arm.forward_dynamics(q, qd, tau_motor + world(0.0, q, qd))
+    as_exerted = dynamics.forward_dynamics(arm, q, qd, tau_motor, force_by_tip=-F)
+    M_inverse = np.abs(np.linalg.inv(arm.mass_matrix(q))).max()
+    assert np.allclose(with_push, as_exerted, rtol=0.0, atol=1e-12 * M_inverse * scale)
+    # ... and inverse: that motion needs the motors' torques less J^T F
+    qdd = np.array([0.5, -1.5])
+    needed = dynamics.inverse_dynamics(arm, q, qd, qdd, force_by_tip=-F)
+    assert np.allclose(needed, arm.inverse_dynamics(q, qd, qdd) - world(0.0, q, qd), rtol=0.0, atol=1e-12 * scale)
+    # statics: the motors hold a force_on_tip F with tau = -J^T F = J^T force_by_tip
+    held = arm.joint_torques(q, -F) + arm.gravity(q)
+    at_rest = np.zeros(2)
+    still = arm.forward_dynamics(q, at_rest, held + TipForce(arm, None, F)(0.0, q, at_rest))
+    assert np.allclose(still, 0.0, atol=1e-12 * M_inverse * scale)
 
 
 def test_bad_contact_parameters_raise():
@@ -337,8 +396,14 @@ def test_bad_contact_parameters_raise():
         SpringWall(WALL, stiffness=1.0, damping=np.nan)
     with pytest.raises(ValueError, match="must be a twolink.statics.Wall"):
         SpringWall("x + y = 4", stiffness=1.0)
-    with pytest.raises(ValueError, match=r"force \(N\) must have shape"):
+    with pytest.raises(ValueError, match="TipForce's arm must be a twolink.TwoLinkArm"):
+        TipForce("arm", None, [1.0, 2.0])
+    with pytest.raises(ValueError, match="CartesianSpring's arm must be a twolink.TwoLinkArm"):
+        CartesianSpring(None, 600.0, [3.0, 1.0])
+    with pytest.raises(ValueError, match=r"force_on_tip must have shape \(\.\.\., 2\)"):
         TipForce(arms.two_metre, None, [1.0, 2.0, 3.0])
+    with pytest.raises(ValueError, match=r"force_on_tip must be one force \(Fx, Fy\) of shape \(2,\) \(N\); got shape \(1, 2\)"):
+        TipForce(arms.two_metre, None, [[1.0, 2.0]])
     with pytest.raises(ValueError, match="controller must be None or a callable"):
         TipForce(arms.two_metre, 3.0, [1.0, 2.0])
 
@@ -359,7 +424,7 @@ def test_impedance_pushing_on_a_stiff_wall_reproduces_the_statics_answer():
     world = TipForce(arm, control, SpringWall(WALL, k_wall, damping=2000.0))
     result = simulate(arm, q_start, ZERO, 3.0, torque=world, t_eval=[0.0, 3.0], **TIGHT)
     q_end = result.q[-1]
-    contact_force = -world.tip_force(3.0, q_end, result.qd[-1]) @ normal  # what the tip exerts on the wall
+    contact_force = -world.force_on_tip_at(3.0, q_end, result.qd[-1]) @ normal  # what the tip exerts on the wall
     assert contact_force == pytest.approx(push, rel=1e-6)
     assert np.allclose(q_end, statics_answer.q[statics_answer.branch("down")], atol=1e-7)
     assert np.allclose(control(3.0, q_end, ZERO), statics_answer.tau[statics_answer.branch("down")], rtol=1e-6, atol=1e-4)

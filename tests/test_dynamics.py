@@ -284,10 +284,10 @@ def test_static_torques_plus_gravity_equal_inverse_dynamics_at_rest(arm, q, forc
     held = arm.joint_torques(q, force) + arm.gravity(q)
     at_rest = np.zeros(2)
     scale = gravity_scale(arm) + (arm.l1 + arm.l2) * np.abs(force).sum()
-    assert_within(arm.inverse_dynamics(q, at_rest, at_rest, force=force), held, 1e-12 * scale)
+    assert_within(dynamics.inverse_dynamics(arm, q, at_rest, at_rest, force_by_tip=force), held, 1e-12 * scale)
     # Forward: with those torques the arm pushing with F stays at rest.
     M_inverse = np.abs(np.linalg.inv(arm.mass_matrix(q))).max()
-    assert_within(arm.forward_dynamics(q, at_rest, held, force=force), at_rest, 1e-13 * M_inverse * scale)
+    assert_within(dynamics.forward_dynamics(arm, q, at_rest, held, force_by_tip=force), at_rest, 1e-13 * M_inverse * scale)
 
 
 # ----------------------------------------------------------------- energy
@@ -329,7 +329,7 @@ def test_power_balance(arm, q, qd, tau):
         (lambda arm: arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [np.nan, 0.0]), "tau must be finite"),
         (lambda arm: arm.forward_dynamics([0.0, np.nan], [0.0, 0.0], [0.0, 0.0]), "q must be finite"),
         (lambda arm: arm.forward_dynamics(np.zeros((3, 2)), np.zeros((4, 2)), np.zeros(2)), "broadcast"),
-        (lambda arm: arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [0.0, 0.0], force=[1.0]), "force must have shape"),
+        (lambda arm: dynamics.forward_dynamics(arm, [0.0, 0.0], [0.0, 0.0], [0.0, 0.0], force_by_tip=[1.0]), "force_by_tip must have shape"),
         (lambda arm: arm.energy([0.0, 0.0], [[0.0, 0.0, 0.0]]), "qd must have shape"),
     ],
 )
@@ -360,3 +360,65 @@ def test_lambdify_takes_a_derivation_or_a_model_name():
     assert from_derivation.model == NUMERIC["absolute"].model == "absolute"
     assert np.array_equal(from_derivation.coriolis(arm, q, qd), NUMERIC["absolute"].coriolis(arm, q, qd))
     assert NUMERIC["relative"].gravity(arm, q).shape == (2,)
+
+
+# ----------------------------------------------------------------- derivatives of M and g
+def _symbolic_derivatives():
+    """dM/dq (index k last) and dg/dq from the Euler-Lagrange derivation, as functions of (q, parameters)."""
+    eom = equations_of_motion("relative")
+    q = list(eom.q)
+    dM = [[[sp.diff(eom.M[i, j], q[k]) for k in range(2)] for j in range(2)] for i in range(2)]
+    dg = eom.g.jacobian(q)
+    arguments = (*q, *eom.parameters)
+    return sp.lambdify(arguments, dM, "numpy"), sp.lambdify(arguments, dg, "numpy")
+
+
+SYMBOLIC_DM, SYMBOLIC_DG = _symbolic_derivatives()
+
+
+def parameters(arm):
+    """The arm's values of EquationsOfMotion.parameters: (l1, l2, m1, m2, I1, I2, g)."""
+    return (arm.l1, arm.l2, arm.m1, arm.m2, *arm.inertias, arm.g)
+
+
+@given(dynamic_arms(), configurations())
+def test_mass_matrix_derivative_is_sympys_derivative_of_M(arm, q):
+    expected = np.array(SYMBOLIC_DM(*q, *parameters(arm)), dtype=float)
+    assert_within(dynamics.mass_matrix_derivative(arm, q), expected, 1e-12 * mass_scale(arm))
+
+
+@given(dynamic_arms(), configurations())
+def test_gravity_jacobian_is_sympys_derivative_of_g(arm, q):
+    expected = np.array(SYMBOLIC_DG(*q, *parameters(arm)), dtype=float)
+    assert_within(dynamics.gravity_jacobian(arm, q), expected, 1e-12 * gravity_scale(arm))
+
+
+@given(dynamic_arms(), configurations())
+def test_derivatives_of_M_and_g_match_finite_differences(arm, q):
+    step = 1e-6
+    dM = np.stack([(arm.mass_matrix(q + step * e) - arm.mass_matrix(q - step * e)) / (2 * step) for e in np.eye(2)], axis=-1)
+    assert_within(dynamics.mass_matrix_derivative(arm, q), dM, 1e-8 * mass_scale(arm))
+    dg = np.column_stack([(arm.gravity(q + step * e) - arm.gravity(q - step * e)) / (2 * step) for e in np.eye(2)])
+    G = dynamics.gravity_jacobian(arm, q)
+    assert_within(G, dg, 1e-8 * gravity_scale(arm))
+    assert np.array_equal(G, G.T)  # the Hessian of the potential energy
+
+
+def test_derivatives_of_M_and_g_are_vectorised():
+    arm = arms.two_metre
+    q = np.random.default_rng(4).uniform(-np.pi, np.pi, (5, 3, 2))
+    dM, G = dynamics.mass_matrix_derivative(arm, q), dynamics.gravity_jacobian(arm, q)
+    assert dM.shape == (5, 3, 2, 2, 2) and G.shape == (5, 3, 2, 2)
+    for index in np.ndindex(5, 3):
+        assert np.array_equal(dM[index], dynamics.mass_matrix_derivative(arm, q[index]))
+        assert np.array_equal(G[index], dynamics.gravity_jacobian(arm, q[index]))
+    with pytest.raises(ValueError, match=r"q must have shape \(\.\.\., 2\)"):
+        dynamics.gravity_jacobian(arm, [0.0, 1.0, 2.0])
+
+
+@given(dynamic_arms(), configurations(), pairs)
+def test_coriolis_is_built_from_the_mass_matrix_derivative(arm, q, qd):
+    """C_ij = sum_k (dM_ij/dq_k + dM_ik/dq_j - dM_jk/dq_i) qd_k / 2 (Christoffel symbols of dM/dq)."""
+    dM = dynamics.mass_matrix_derivative(arm, q)
+    christoffel = 0.5 * (dM + np.swapaxes(dM, 1, 2) - np.transpose(dM, (2, 0, 1)))
+    assert_within(arm.coriolis(q, qd), christoffel @ qd, 1e-12 * mass_scale(arm) * (1 + np.abs(qd).sum()))

@@ -98,7 +98,7 @@ def test_empty_batches_through_the_vectorised_functions(shape):
     assert ik.closed_form(arm, empty, elbow="both").shape == lead + (2, 2)
     assert arm.fk(empty).shape == shape and arm.jacobian(empty).shape == lead + (2, 2)
     assert arm.forward_dynamics(empty, empty, empty).shape == shape
-    assert arm.forward_dynamics(empty, empty, empty, force=empty).shape == shape
+    assert arm.forward_dynamics(empty, empty, empty, empty).shape == shape
     assert arm.inverse_dynamics(empty, empty, empty).shape == shape
     assert arm.joint_rates(empty, empty).shape == shape
     assert arm.joint_rates_dls(empty, empty, 0.1).shape == shape

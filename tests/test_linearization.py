@@ -189,7 +189,7 @@ def test_tip_mass_turns_a_tip_force_into_the_tip_acceleration(arm, q1, q2, push)
     """At rest, with gravity off, a push F accelerates the tip at Lambda^-1 F (the arm's own dynamics say so)."""
     arm = dataclasses.replace(arm, g=0.0)
     q = np.array([q1, q2])
-    qdd = arm.forward_dynamics(q, ZERO, ZERO, force=-np.array(push))  # the tip exerts -F when pushed with F
+    qdd = dynamics.forward_dynamics(arm, q, ZERO, ZERO, force_by_tip=-np.array(push))  # the tip exerts -F when pushed with F
     tip_acceleration = arm.jacobian(q) @ qdd
     expected = np.linalg.solve(tip_mass(arm, q), push)
     assert np.allclose(tip_acceleration, expected, rtol=1e-7, atol=1e-9 * (1 + np.max(np.abs(expected))))

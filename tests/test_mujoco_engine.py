@@ -53,7 +53,7 @@ def test_free_motion_matches_twolink_simulate(arm, q0, qd0):
     assert np.max(np.abs(mj.q - reference.q)) < 1e-7
     assert np.max(np.abs(mj.qd - reference.qd)) < 1e-6
     assert np.allclose(mj.p_tip, arm.fk(mj.q), atol=1e-12)  # MuJoCo's tip site is twolink's fk
-    assert np.all(mj.force_on_wall == 0.0)
+    assert np.all(mj.force_by_tip == 0.0)
 
 
 def test_rk4_error_shrinks_with_the_step():
@@ -126,13 +126,14 @@ def test_simulate_rejects_bad_arguments(kwargs, message):
 def test_wall_push_gives_the_statics_force(arm, elbow):
     push = engine.wall_push(arm, WALL, 500.0, elbow=elbow)
     assert push.elbow == elbow
-    assert np.allclose(push.force_expected, 500.0 * np.array([1.0, 1.0]) / np.sqrt(2.0))
+    assert np.allclose(push.force_by_tip_expected, 500.0 * np.array([1.0, 1.0]) / np.sqrt(2.0))
     assert push.relative_error < 1e-5
-    assert abs(push.force_tangential) < 0.05
+    assert abs(push.force_by_tip_tangential) < 0.05
+    assert push.force_by_tip_normal == pytest.approx(500.0, rel=1e-5)
     assert 0.0 < push.penetration < 1e-4
     # MuJoCo's force is the one that balances the torques at its own (settled) configuration
-    assert np.max(np.abs(push.force_on_wall - push.force_statics_settled)) < 1e-2
-    assert np.max(np.abs(push.qd_settled)) < 1e-6 and push.force_drift < 1e-3
+    assert np.max(np.abs(push.force_by_tip - push.force_by_tip_balancing)) < 1e-2
+    assert np.max(np.abs(push.qd_settled)) < 1e-6 and push.normal_drift < 1e-3
 
 
 def test_mujoco_default_contact_sinks_further_and_reads_further_from_the_statics():
@@ -144,16 +145,27 @@ def test_mujoco_default_contact_sinks_further_and_reads_further_from_the_statics
     assert default.penetration > 100.0 * stiff.penetration
     assert default.relative_error > 10.0 * stiff.relative_error
     # still the force that balances the torques where MuJoCo's arm came to rest
-    assert np.max(np.abs(default.force_on_wall - default.force_statics_settled)) < 0.1
+    assert np.max(np.abs(default.force_by_tip - default.force_by_tip_balancing)) < 0.1
 
 
-def test_wall_push_rejects_a_missing_branch_and_an_unreachable_wall():
-    with pytest.raises(ValueError, match="no 'left' configuration"):
+def test_wall_push_rejects_a_word_outside_the_vocabulary_both_and_an_unreachable_wall():
+    with pytest.raises(ValueError, match=r"elbow must be one of \('down', 'up', 'auto'\); got 'left'"):
         engine.wall_push(arms.two_metre, WALL, 500.0, elbow="left")
+    with pytest.raises(ValueError, match=r"got 'both' \(wall_push simulates one configuration\)"):
+        engine.wall_push(arms.two_metre, WALL, 500.0, elbow="both")
     with pytest.raises(ValueError, match="the wall is"):
         engine.wall_push(arms.two_metre, Wall.through([9.0, 0.0], [0.0, 9.0]), 500.0)
-    with pytest.raises(ValueError, match="needs a wall"):
+    with pytest.raises(ValueError, match="wall must be a twolink.statics.Wall or two points"):
         engine.wall_push(arms.two_metre, None, 500.0)
+
+
+def test_wall_push_auto_is_down_and_a_wall_at_full_reach_has_one_configuration_on_both_branches():
+    auto = engine.wall_push(arms.two_metre, WALL, 100.0, elbow="auto", duration=0.01)
+    assert auto.elbow == "down" and np.array_equal(auto.q_contact, engine.wall_push(arms.two_metre, WALL, 100.0, duration=0.01).q_contact)
+    far = Wall([4.0, 0.0], [1.0, 0.0])  # x = 4: only the stretched arm touches it with link 2 perpendicular
+    pushes = [engine.wall_push(arms.two_metre, far, 100.0, elbow=word, duration=0.01) for word in ("down", "up", "auto")]
+    assert {push.elbow for push in pushes} == {"stretched"}
+    assert all(np.array_equal(push.q_contact, [0.0, 0.0]) for push in pushes)
 
 
 def test_without_mujoco_the_error_names_the_function_and_the_install(monkeypatch):

@@ -256,7 +256,7 @@ BARE_SCRIPT = textwrap.dedent("""
     arm = twolink.TwoLinkArm(l1=2.0, l2=2.0, m1=1.0, m2=1.0)
     q = ik.closed_form(arm, [3.0, 1.0], elbow="down")
     assert np.allclose(arm.fk(q), [3.0, 1.0])
-    assert np.allclose(arm.joint_torques(q, force=[0.0, -10.0]), arm.jacobian(q).T @ [0.0, -10.0])
+    assert np.allclose(arm.joint_torques(q, [0.0, -10.0]), arm.jacobian(q).T @ [0.0, -10.0])
     result = simulate(arm, [0.5, 0.0], [0.0, 0.0], 0.2)
     assert np.all(np.isfinite(result.q))
     html = plot.animation_html(plot.animate_arm(arm, [[0.0, 0.0], [0.2, 0.3]]))._repr_html_()

@@ -45,7 +45,7 @@ def test_the_contact_lies_on_the_wall_with_link_2_perpendicular(data, arm, force
     scale = arm.l1 + arm.l2
     normal_in = expected_push_direction(contact, normal, distance, scale)
     assert len(contact.elbow) == len(contact.q) in (1, 2)
-    assert np.allclose(contact.force, force * normal_in, atol=1e-12 * (1 + force))
+    assert np.allclose(contact.force_by_tip, force * normal_in, atol=1e-12 * (1 + force))
     points = arm.joint_positions(contact.q)
     for elbow_point, tip in zip(points[:, 1], points[:, 2]):
         assert abs(wall.signed_distance(tip)) <= 1e-9 * scale  # the tip touches the wall
@@ -73,13 +73,13 @@ def test_torques_are_the_free_body_moments(data, arm, force):
     wall, _, _ = data.draw(reachable_walls(arm))
     contact = wall_contact(arm, wall, force)
     points = arm.joint_positions(contact.q)
-    tau1 = cross(points[:, 2], contact.force)
-    tau2 = cross(points[:, 2] - points[:, 1], contact.force)
+    tau1 = cross(points[:, 2], contact.force_by_tip)
+    tau2 = cross(points[:, 2] - points[:, 1], contact.force_by_tip)
     tolerance = 1e-9 * (arm.l1 + arm.l2) * (1 + force)
     assert np.allclose(contact.tau_wall[:, 0], tau1, atol=tolerance)
     assert np.allclose(contact.tau_wall[:, 1], tau2, atol=tolerance)
     assert np.allclose(contact.tau_wall[:, 1], 0.0, atol=tolerance)
-    assert np.allclose(contact.tau_wall, arm.joint_torques(contact.q, np.broadcast_to(contact.force, contact.q.shape)))
+    assert np.allclose(contact.tau_wall, arm.joint_torques(contact.q, np.broadcast_to(contact.force_by_tip, contact.q.shape)))
     assert np.array_equal(contact.tau, contact.tau_wall) and not contact.tau_gravity.any()
 
 
@@ -89,7 +89,7 @@ def test_the_course_wall_by_hand():
     angle = np.arccos(np.sqrt(2.0) - 1.0)
     assert np.allclose(contact.q, [[np.pi / 4 - angle, angle], [np.pi / 4 + angle, -angle]])
     assert np.allclose(contact.p_contact.sum(axis=1), 4.0)
-    assert np.allclose(contact.force, 500.0 / np.sqrt(2.0) * np.ones(2))  # into the wall, away from the base
+    assert np.allclose(contact.force_by_tip, 500.0 / np.sqrt(2.0) * np.ones(2))  # into the wall, away from the base
     tau1 = 500.0 * 2.0 * np.sin(angle)  # F times the lever arm l1 sin(angle) of link 1
     assert np.allclose(contact.tau, [[tau1, 0.0], [-tau1, 0.0]], atol=1e-9)
     assert contact.within_limits.tolist() == [True, True]
@@ -119,7 +119,7 @@ def test_the_wall_at_full_reach_gives_one_stretched_configuration_without_torque
 
 def test_a_wall_through_the_base_uses_the_given_normal():
     contact = wall_contact(TwoLinkArm(2.0, 1.0), Wall([0.0, 0.0], [0.0, -1.0]), 10.0)
-    assert np.allclose(contact.force, [0.0, -10.0])
+    assert np.allclose(contact.force_by_tip, [0.0, -10.0])
     assert np.allclose(contact.p_contact[:, 1], 0.0, atol=1e-12)
 
 

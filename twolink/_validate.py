@@ -342,3 +342,41 @@ def as_configuration(q, name="q", what="one configuration", unit="radians"):
     if values.shape != (2,):
         raise ValueError(f"{name} must be {what} of shape (2,) ({unit}); got shape {values.shape}")
     return values
+
+
+class NonFiniteTorque(ValueError):
+    """A torque callable returned NaN or infinity (the message names the time)."""
+
+
+def torque_floats(value: object, t: float) -> tuple[float, float]:
+    """A torque callable's result ``torque(t, q, qd)`` as two finite floats, or a clear error.
+
+    Shared by :func:`twolink.dynamics.state_derivative`, :func:`twolink.simulate`
+    and :func:`twolink.engine.simulate`.
+
+    Raises
+    ------
+    ValueError
+        When the result is not two numbers.
+    NonFiniteTorque
+        (a ``ValueError``) when one is NaN or infinite.
+
+    Examples
+    --------
+    >>> torque_floats([1, 2.5], 0.0)
+    (1.0, 2.5)
+    >>> torque_floats([1.0, float("nan")], 0.25)
+    Traceback (most recent call last):
+    ...
+    twolink._validate.NonFiniteTorque: torque(t, q, qd) returned non-finite torques [ 1. nan] at t = 0.25
+    """
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"torque(t, q, qd) must return two numbers (N m); got {value!r} at t = {t}") from exc
+    if array.shape != (2,):
+        raise ValueError(f"torque(t, q, qd) must return shape (2,) (N m); got shape {array.shape} at t = {t}")
+    tau1, tau2 = array.tolist()
+    if not (math.isfinite(tau1) and math.isfinite(tau2)):
+        raise NonFiniteTorque(f"torque(t, q, qd) returned non-finite torques {array} at t = {t}")
+    return tau1, tau2

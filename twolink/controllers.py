@@ -18,27 +18,44 @@ Joint references (:class:`JointReference`) are callables of time or samples
 interpolated by a cubic spline.  Why ``tau = J^T F`` makes the tip feel a
 force ``F``: by virtual work (chapter 4), motor torques ``J^T F`` do the same
 work as a force ``F`` applied at the tip, so in ``M qdd + C qd + g = tau``
-they act exactly like that force.
+they act exactly like that force.  The Cartesian controllers' ``F`` is
+therefore a ``force_on_tip`` (a virtual force acting on the tip); their
+torques are :func:`twolink.kinematics.joint_torques` of it.  (Were the tip
+held still by a wall, it would push on the wall with that same ``F``.)
+
+Each controller also gives its derivatives at rest,
+``torque_derivatives(t, q) -> (dtau/dq, dtau/dqd)``, from which
+:func:`twolink.linearization.closed_loop_matrices` builds the linear model.
 
 Examples
 --------
 >>> from twolink import arms, ik
 >>> spring = CartesianSpring(arms.two_metre, stiffness=600.0, rest_point=[3.0, 1.0])
 >>> q = ik.closed_form(arms.two_metre, [3.0, 0.0])
->>> spring.force(q).round(9) + 0.0          # tip 1 m below the rest point: pulled up
+>>> spring.force_on_tip(q).round(9) + 0.0          # tip 1 m below the rest point: pulled up
 array([  0., 600.])
 >>> spring(0.0, q, [0.0, 0.0]).round(6)     # tau = J^T F: x F_y about the shoulder, 1.5 m x F_y about the elbow
 array([1800.,  900.])
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
-from typing import Callable
+from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-from ._validate import InputTypeError, as_finite_scalar, as_pairs, broadcast_shape, real_array
-from .dynamics import _constants
+from ._validate import as_configuration, as_finite_scalar, as_pairs, broadcast_shape, real_array, require_arm
+from .dynamics import gravity_jacobian, mass_matrix_derivative
+from .kinematics import jacobian_derivative, joint_torques
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
+
+#: A function of time giving a pair (radians, rad/s or rad/s^2).
+TimeFunction = Callable[[float], ArrayLike]
 
 __all__ = [
     "gain_matrix",
@@ -54,7 +71,7 @@ __all__ = [
 GAIN_RTOL = 1e-9
 
 
-def gain_matrix(value, name):
+def gain_matrix(value: ArrayLike, name: str) -> NDArray[np.float64]:
     """A stiffness or damping gain as a symmetric positive semi-definite 2x2 matrix.
 
     Parameters
@@ -114,30 +131,23 @@ def gain_matrix(value, name):
     return matrix
 
 
-def _point(value, name):
-    point = as_pairs(value, name)
-    if point.shape != (2,):
-        raise ValueError(f"{name} must be one (x, y) pair in metres; got shape {point.shape}")
-    point = point.copy()
+def _point(value: ArrayLike, name: str) -> NDArray[np.float64]:
+    point = as_configuration(value, name, what="one (x, y) point", unit="metres").copy()
     point.setflags(write=False)
     return point
 
 
-def _require_arm(arm, who):
-    if not all(hasattr(arm, attribute) for attribute in ("fk", "jacobian", "mass_matrix", "gravity")):
-        raise InputTypeError(f"{who} needs a twolink.TwoLinkArm as its arm; got {arm!r} ({type(arm).__name__})")
+def _flag(value: object, name: str) -> bool:
+    if not isinstance(value, (bool, np.bool_)):
+        raise ValueError(f"{name} must be True or False; got {value!r}")
+    return bool(value)
 
 
-def _transpose_times(J, force):
-    """``J^T F`` over leading axes."""
-    return np.einsum("...ki,...k->...i", J, force)
-
-
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class CartesianSpring:
     """A virtual spring between the tip and a rest point: ``tau = J(q)^T K (x0 - x)``.
 
-    The force on the tip is ``F = K (x0 - x)``, pulling it towards the rest
+    The force on the tip is ``force_on_tip = K (x0 - x)``, pulling it towards the rest
     point ``x0``; the potential energy stored in the spring is
     ``(x0 - x)^T K (x0 - x) / 2`` and ``tau = -dV/dq``.  Nothing damps it
     and gravity is not compensated: on the simulated arm it oscillates.
@@ -168,60 +178,71 @@ class CartesianSpring:
     ValueError: stiffness K (N/m) must be finite; got nan
     """
 
-    arm: object
-    stiffness: object
-    rest_point: object
+    arm: TwoLinkArm
+    stiffness: NDArray[np.float64]
+    rest_point: NDArray[np.float64]
 
-    def __post_init__(self):
-        _require_arm(self.arm, type(self).__name__)
-        object.__setattr__(self, "stiffness", gain_matrix(self.stiffness, "stiffness K (N/m)"))
-        object.__setattr__(self, "rest_point", _point(self.rest_point, "rest_point x0"))
+    def __init__(self, arm: TwoLinkArm, stiffness: ArrayLike, rest_point: ArrayLike) -> None:
+        object.__setattr__(self, "arm", require_arm(arm, "CartesianSpring's arm"))
+        object.__setattr__(self, "stiffness", gain_matrix(stiffness, "stiffness K (N/m)"))
+        object.__setattr__(self, "rest_point", _point(rest_point, "rest_point x0"))
 
-    def force(self, q):
-        """The spring's force on the tip, ``K (x0 - x)``, N; ``q`` of shape ``(..., 2)``."""
+    def force_on_tip(self, q: ArrayLike) -> NDArray[np.float64]:
+        """The spring's force acting on the tip, ``K (x0 - x)``, N; ``q`` of shape ``(..., 2)``."""
         return (self.rest_point - self.arm.fk(q)) @ self.stiffness.T
 
-    def torque(self, q):
-        """The joint torques ``J(q)^T K (x0 - x)``, N m; vectorised over ``q`` ``(..., 2)``."""
-        q = as_pairs(q, "q")
-        return _transpose_times(self.arm.jacobian(q), self.force(q))
+    def torque(self, q: ArrayLike) -> NDArray[np.float64]:
+        """The joint torques ``J(q)^T force_on_tip``, N m; vectorised over ``q`` ``(..., 2)``."""
+        return joint_torques(self.arm, q, self.force_on_tip(q))
 
-    def potential_energy(self, q):
+    def potential_energy(self, q: ArrayLike) -> NDArray[np.float64]:
         """Energy stored in the spring, ``(x0 - x)^T K (x0 - x) / 2``, joules; shape ``(...)``."""
         stretch = self.rest_point - self.arm.fk(q)
         return 0.5 * np.einsum("...i,ij,...j->...", stretch, self.stiffness, stretch)
 
-    def __call__(self, t, q, qd):
+    def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+        """The motor torques at time ``t`` (unused) and state ``(q, qd)``, N m."""
         return self.torque(q)
 
-    def _linear_terms(self, t, q):
-        """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``."""
-        return _spring_stiffness(self.arm, q, self.force(q), self.stiffness), np.zeros((2, 2))
+    def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``, each 2x2 (N m/rad, N m s/rad).
+
+        ``dtau/dq = sum_k dJ_ki/dq_j F_k - J^T K J`` (the spring's geometric
+        stiffness and its stiffness felt at the joints); the spring does not
+        depend on ``qd``.  What :func:`twolink.linearization.closed_loop_matrices`
+        linearises with.
+
+        Examples
+        --------
+        At the rest point only ``-J^T K J`` is left:
+
+        >>> from twolink import arms, ik
+        >>> q = ik.closed_form(arms.two_metre, [3.0, 1.0])
+        >>> spring = CartesianSpring(arms.two_metre, 600.0, [3.0, 1.0])
+        >>> by_q, by_qd = spring.torque_derivatives(0.0, q)
+        >>> J = arms.two_metre.jacobian(q)
+        >>> bool(np.allclose(by_q, -600.0 * J.T @ J)), bool(np.all(by_qd == 0.0))
+        (True, True)
+        """
+        q = as_configuration(q)
+        return _spring_stiffness(self.arm, q, self.force_on_tip(q), self.stiffness), np.zeros((2, 2))
 
 
-def _jacobian_derivatives(arm, q):
-    """``dJ/dq1`` and ``dJ/dq2`` (each 2x2) at one configuration ``q``."""
-    q1, q12 = q[0], q[0] + q[1]
-    x2, y2 = arm.l2 * np.cos(q12), arm.l2 * np.sin(q12)
-    x1, y1 = arm.l1 * np.cos(q1), arm.l1 * np.sin(q1)
-    by_q1 = -np.array([[x1 + x2, x2], [y1 + y2, y2]])
-    by_q2 = -np.array([[x2, x2], [y2, y2]])
-    return by_q1, by_q2
-
-
-def _spring_stiffness(arm, q, force, stiffness):
-    """``d(J^T F)/dq`` for ``F = K (x0 - x(q))``: ``sum_k dJ_ki/dq_j F_k - J^T K J``."""
+def _spring_stiffness(
+    arm: TwoLinkArm, q: NDArray[np.float64], force_on_tip: NDArray[np.float64], stiffness: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """``d(J^T F)/dq`` for ``F = K (x0 - x(q))`` at one ``q``: ``sum_k dJ_ki/dq_j F_k - J^T K J``."""
     J = arm.jacobian(q)
-    by_q1, by_q2 = _jacobian_derivatives(arm, q)
-    geometric = np.column_stack([by_q1.T @ force, by_q2.T @ force])
+    geometric = np.einsum("kij,k->ij", jacobian_derivative(arm, q), force_on_tip)
     return geometric - J.T @ stiffness @ J
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class Impedance:
     """Impedance control: a tip spring, Cartesian damping and gravity compensation.
 
-    ``tau = J(q)^T (K (x0 - x) - D J(q) qd) [+ g(q)]``: the tip behaves like
+    ``tau = J(q)^T (K (x0 - x) - D J(q) qd) [+ g(q)]``, the joint torques
+    of the force on the tip ``force_on_tip = K (x0 - x) - D xdot``: the tip behaves like
     a mass on a spring ``K`` (N/m) and a damper ``D`` (N s/m) anchored at
     ``x0``; with ``gravity_compensation`` the motors also carry the arm's
     weight, so the rest point is where the tip comes to rest.
@@ -254,71 +275,78 @@ class Impedance:
     ValueError: damping D (N s/m) must be positive semi-definite (no direction with a negative gain); got [[10.0, 20.0], [20.0, 10.0]] with eigenvalue -10
     """
 
-    arm: object
-    stiffness: object
-    damping: object
-    rest_point: object
+    arm: TwoLinkArm
+    stiffness: NDArray[np.float64]
+    damping: NDArray[np.float64]
+    rest_point: NDArray[np.float64]
     gravity_compensation: bool = True
 
-    def __post_init__(self):
-        _require_arm(self.arm, type(self).__name__)
-        object.__setattr__(self, "stiffness", gain_matrix(self.stiffness, "stiffness K (N/m)"))
-        object.__setattr__(self, "damping", gain_matrix(self.damping, "damping D (N s/m)"))
-        object.__setattr__(self, "rest_point", _point(self.rest_point, "rest_point x0"))
-        if not isinstance(self.gravity_compensation, (bool, np.bool_)):
-            raise ValueError(f"gravity_compensation must be True or False; got {self.gravity_compensation!r}")
+    def __init__(
+        self,
+        arm: TwoLinkArm,
+        stiffness: ArrayLike,
+        damping: ArrayLike,
+        rest_point: ArrayLike,
+        gravity_compensation: bool = True,
+    ) -> None:
+        object.__setattr__(self, "arm", require_arm(arm, "Impedance's arm"))
+        object.__setattr__(self, "stiffness", gain_matrix(stiffness, "stiffness K (N/m)"))
+        object.__setattr__(self, "damping", gain_matrix(damping, "damping D (N s/m)"))
+        object.__setattr__(self, "rest_point", _point(rest_point, "rest_point x0"))
+        object.__setattr__(self, "gravity_compensation", _flag(gravity_compensation, "gravity_compensation"))
 
     @property
-    def spring(self):
+    def spring(self) -> CartesianSpring:
         """The spring part alone, a :class:`CartesianSpring`."""
         return CartesianSpring(self.arm, self.stiffness, self.rest_point)
 
-    def force(self, q, qd):
-        """The force the controller puts on the tip, ``K (x0 - x) - D xdot``, N."""
+    def force_on_tip(self, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+        """The force the controller makes act on the tip, ``K (x0 - x) - D xdot``, N; shape ``(..., 2)``."""
         q = as_pairs(q, "q")
         qd = as_pairs(qd, "qd")
         broadcast_shape(q=q, qd=qd)
         tip_velocity = np.einsum("...ij,...j->...i", self.arm.jacobian(q), qd)
         return (self.rest_point - self.arm.fk(q)) @ self.stiffness.T - tip_velocity @ self.damping.T
 
-    def torque(self, q, qd):
-        """The motor torques, N m; vectorised over ``q`` and ``qd`` ``(..., 2)``."""
-        q = as_pairs(q, "q")
-        tau = _transpose_times(self.arm.jacobian(q), self.force(q, qd))
+    def torque(self, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+        """The motor torques ``J^T force_on_tip [+ g(q)]``, N m; vectorised over ``q`` and ``qd`` ``(..., 2)``."""
+        tau = joint_torques(self.arm, q, self.force_on_tip(q, qd))
         if self.gravity_compensation:
             tau = tau + self.arm.gravity(q)
         return tau
 
-    def potential_energy(self, q):
+    def potential_energy(self, q: ArrayLike) -> NDArray[np.float64]:
         """Energy stored in the virtual spring, joules (see :meth:`CartesianSpring.potential_energy`)."""
         return self.spring.potential_energy(q)
 
-    def __call__(self, t, q, qd):
+    def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+        """The motor torques at time ``t`` (unused) and state ``(q, qd)``, N m."""
         return self.torque(q, qd)
 
-    def _linear_terms(self, t, q):
+    def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``, each 2x2.
+
+        The spring's (see :meth:`CartesianSpring.torque_derivatives`) plus
+        ``dg/dq`` with gravity compensation; ``dtau/dqd = -J^T D J``.
+
+        Examples
+        --------
+        >>> from twolink import arms
+        >>> control = Impedance(arms.two_metre, 600.0, 50.0, [3.0, 1.0])
+        >>> by_q, by_qd = control.torque_derivatives(0.0, [0.3, 1.2])
+        >>> J = arms.two_metre.jacobian([0.3, 1.2])
+        >>> bool(np.allclose(by_qd, -50.0 * J.T @ J))
+        True
+        """
+        q = as_configuration(q)
         J = self.arm.jacobian(q)
-        by_q = _spring_stiffness(self.arm, q, self.spring.force(q), self.stiffness)
+        by_q = _spring_stiffness(self.arm, q, self.spring.force_on_tip(q), self.stiffness)
         if self.gravity_compensation:
-            by_q = by_q + _gravity_jacobian(self.arm, q)
+            by_q = by_q + gravity_jacobian(self.arm, q)
         return by_q, -J.T @ self.damping @ J
 
 
-def _gravity_jacobian(arm, q):
-    """``dg/dq`` (2x2, symmetric) at one configuration."""
-    constants = _constants(arm)
-    s1, s12 = np.sin(q[0]), np.sin(q[0] + q[1])
-    g12 = -constants.gamma2 * s12
-    return np.array([[-constants.gamma1 * s1 + g12, g12], [g12, g12]])
-
-
-def _mass_matrix_derivative(arm, q):
-    """``dM/dq2`` (``M`` does not depend on ``q1``)."""
-    change = -_constants(arm).beta * np.sin(q[1])
-    return np.array([[2.0 * change, change], [change, 0.0]])
-
-
-def _pair_function(function, name):
+def _pair_function(function: object, name: str) -> TimeFunction:
     if not callable(function):
         raise ValueError(f"{name} must be a callable of time t -> array of shape (2,); got {function!r}")
     return function
@@ -347,15 +375,15 @@ class JointReference:
     [array([0., 0.]), array([1., 0.]), array([-0., 0.])]
     """
 
-    position: Callable
-    velocity: Callable
-    acceleration: Callable
+    position: TimeFunction
+    velocity: TimeFunction
+    acceleration: TimeFunction
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         for name in ("position", "velocity", "acceleration"):
             _pair_function(getattr(self, name), name)
 
-    def __call__(self, t):
+    def __call__(self, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """``(q_ref, qd_ref, qdd_ref)`` at time ``t``, each an array of shape (2,)."""
         return (
             np.asarray(self.position(t), dtype=float),
@@ -364,7 +392,7 @@ class JointReference:
         )
 
     @classmethod
-    def constant(cls, q_ref):
+    def constant(cls, q_ref: ArrayLike) -> JointReference:
         """Hold ``q_ref`` (radians, shape (2,)) for ever: zero rate and acceleration.
 
         Examples
@@ -372,17 +400,14 @@ class JointReference:
         >>> JointReference.constant([0.5, 1.0])(3.0)[0]
         array([0.5, 1. ])
         """
-        q_ref = as_pairs(q_ref, "q_ref")
-        if q_ref.shape != (2,):
-            raise ValueError(f"q_ref must be one configuration of shape (2,); got {q_ref.shape}")
-        held = q_ref.copy()
+        held = as_configuration(q_ref, "q_ref").copy()
         held.setflags(write=False)
         zeros = np.zeros(2)
         zeros.setflags(write=False)
         return cls(lambda t: held, lambda t: zeros, lambda t: zeros)
 
     @classmethod
-    def from_samples(cls, t, q, qd=None):
+    def from_samples(cls, t: ArrayLike, q: ArrayLike, qd: ArrayLike | None = None) -> JointReference:
         """A cubic-spline reference through samples ``q`` at times ``t``.
 
         The spline has continuous rate and acceleration (what a controller
@@ -410,34 +435,36 @@ class JointReference:
         >>> reference(2.0)[0], reference(2.0)[1]
         (array([ 1., -1.]), array([0., 0.]))
         """
-        t = real_array(t, "t (s)")
-        if t.ndim != 1 or len(t) < 2 or not np.all(np.isfinite(t)) or not np.all(np.diff(t) > 0):
+        times = real_array(t, "t (s)")
+        if times.ndim != 1 or len(times) < 2 or not np.all(np.isfinite(times)) or not np.all(np.diff(times) > 0):
             raise ValueError("t must be a 1-D array of at least 2 finite, strictly increasing times (s)")
-        q = as_pairs(q, "q samples")
-        if q.shape != (len(t), 2):
-            raise ValueError(f"q must have shape ({len(t)}, 2), one configuration per time; got {q.shape}")
+        samples = as_pairs(q, "q samples")
+        if samples.shape != (len(times), 2):
+            raise ValueError(
+                f"q must have shape ({len(times)}, 2), one configuration per time; got {samples.shape}"
+            )
         if qd is None:
-            if len(t) < 4:
+            if len(times) < 4:
                 raise ValueError("a not-a-knot spline needs at least 4 samples; give more, or the end rates qd")
-            spline = CubicSpline(t, q, axis=0)
+            spline = CubicSpline(times, samples, axis=0)
         else:
-            qd = as_pairs(qd, "qd samples")
-            if qd.shape != q.shape:
-                raise ValueError(f"qd must have the shape of q, {q.shape}; got {qd.shape}")
-            spline = CubicSpline(t, q, axis=0, bc_type=((1, qd[0]), (1, qd[-1])))
+            rates = as_pairs(qd, "qd samples")
+            if rates.shape != samples.shape:
+                raise ValueError(f"qd must have the shape of q, {samples.shape}; got {rates.shape}")
+            spline = CubicSpline(times, samples, axis=0, bc_type=((1, rates[0]), (1, rates[-1])))
         rate, acceleration = spline.derivative(1), spline.derivative(2)
-        start, end = float(t[0]), float(t[-1])
-        q_start, q_end = q[0].copy(), q[-1].copy()
+        start, end = float(times[0]), float(times[-1])
+        q_start, q_end = samples[0].copy(), samples[-1].copy()
 
-        def position(time):
+        def position(time: float) -> NDArray[np.float64]:
             if time <= start:
                 return q_start
             if time >= end:
                 return q_end
             return spline(time)
 
-        def inside(derivative):
-            def evaluate(time):
+        def inside(derivative: Any) -> TimeFunction:
+            def evaluate(time: float) -> NDArray[np.float64]:
                 return derivative(time) if start < time < end else np.zeros(2)
 
             return evaluate
@@ -445,7 +472,7 @@ class JointReference:
         return cls(position, inside(rate), inside(acceleration))
 
 
-def _as_reference(reference):
+def _as_reference(reference: JointReference | ArrayLike) -> JointReference:
     if isinstance(reference, JointReference):
         return reference
     if callable(reference):
@@ -456,7 +483,7 @@ def _as_reference(reference):
     return JointReference.constant(reference)
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class JointPD:
     """Joint-space PD control with gravity compensation.
 
@@ -484,21 +511,28 @@ class JointPD:
     array([-10., -20.])
     """
 
-    arm: object
-    kp: object
-    kd: object
-    reference: object
+    arm: TwoLinkArm
+    kp: NDArray[np.float64]
+    kd: NDArray[np.float64]
+    reference: JointReference
     gravity_compensation: bool = True
 
-    def __post_init__(self):
-        _require_arm(self.arm, type(self).__name__)
-        object.__setattr__(self, "kp", gain_matrix(self.kp, "kp (joint stiffness, N m/rad)"))
-        object.__setattr__(self, "kd", gain_matrix(self.kd, "kd (joint damping, N m s/rad)"))
-        object.__setattr__(self, "reference", _as_reference(self.reference))
-        if not isinstance(self.gravity_compensation, (bool, np.bool_)):
-            raise ValueError(f"gravity_compensation must be True or False; got {self.gravity_compensation!r}")
+    def __init__(
+        self,
+        arm: TwoLinkArm,
+        kp: ArrayLike,
+        kd: ArrayLike,
+        reference: JointReference | ArrayLike,
+        gravity_compensation: bool = True,
+    ) -> None:
+        object.__setattr__(self, "arm", require_arm(arm, "JointPD's arm"))
+        object.__setattr__(self, "kp", gain_matrix(kp, "kp (joint stiffness, N m/rad)"))
+        object.__setattr__(self, "kd", gain_matrix(kd, "kd (joint damping, N m s/rad)"))
+        object.__setattr__(self, "reference", _as_reference(reference))
+        object.__setattr__(self, "gravity_compensation", _flag(gravity_compensation, "gravity_compensation"))
 
-    def __call__(self, t, q, qd):
+    def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+        """The motor torques at time ``t`` and state ``(q, qd)``, N m."""
         q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
         q_ref, qd_ref, _ = self.reference(t)
         tau = self.kp @ (q_ref - q) + self.kd @ (qd_ref - qd)
@@ -506,12 +540,24 @@ class JointPD:
             tau = tau + self.arm.gravity(q)
         return tau
 
-    def _linear_terms(self, t, q):
-        by_q = -self.kp + (_gravity_jacobian(self.arm, q) if self.gravity_compensation else 0.0)
+    def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``(dtau/dq, dtau/dqd) = (-Kp [+ dg/dq], -Kd)`` at ``(q, qd = 0)``.
+
+        Examples
+        --------
+        >>> from twolink import TwoLinkArm
+        >>> pd = JointPD(TwoLinkArm(1.0, 1.0, g=0.0), kp=10.0, kd=2.0, reference=[0.0, 1.0])
+        >>> [derivative.round(12) + 0.0 for derivative in pd.torque_derivatives(0.0, [0.0, 1.0])]
+        [array([[-10.,   0.],
+               [  0., -10.]]), array([[-2.,  0.],
+               [ 0., -2.]])]
+        """
+        q = as_configuration(q)
+        by_q = -self.kp + gravity_jacobian(self.arm, q) if self.gravity_compensation else -self.kp
         return by_q, -self.kd
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, init=False)
 class ComputedTorque:
     """Computed-torque control (feedback linearisation) tracking a joint reference.
 
@@ -546,34 +592,57 @@ class ComputedTorque:
     True
     """
 
-    arm: object
-    kp: object
-    kd: object
-    reference: object
-    model: object = None
+    arm: TwoLinkArm
+    kp: NDArray[np.float64]
+    kd: NDArray[np.float64]
+    reference: JointReference
+    model: TwoLinkArm
 
-    def __post_init__(self):
-        _require_arm(self.arm, type(self).__name__)
-        object.__setattr__(self, "kp", gain_matrix(self.kp, "kp (1/s^2)"))
-        object.__setattr__(self, "kd", gain_matrix(self.kd, "kd (1/s)"))
-        object.__setattr__(self, "reference", _as_reference(self.reference))
-        if self.model is None:
-            object.__setattr__(self, "model", self.arm)
-        _require_arm(self.model, "ComputedTorque's model")
+    def __init__(
+        self,
+        arm: TwoLinkArm,
+        kp: ArrayLike,
+        kd: ArrayLike,
+        reference: JointReference | ArrayLike,
+        model: TwoLinkArm | None = None,
+    ) -> None:
+        object.__setattr__(self, "arm", require_arm(arm, "ComputedTorque's arm"))
+        object.__setattr__(self, "kp", gain_matrix(kp, "kp (1/s^2)"))
+        object.__setattr__(self, "kd", gain_matrix(kd, "kd (1/s)"))
+        object.__setattr__(self, "reference", _as_reference(reference))
+        object.__setattr__(self, "model", arm if model is None else require_arm(model, "ComputedTorque's model"))
 
-    def commanded_acceleration(self, t, q, qd):
+    def commanded_acceleration(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """``v = qdd_ref + Kd (qd_ref - qd) + Kp (q_ref - q)``, rad/s^2."""
         q_ref, qd_ref, qdd_ref = self.reference(t)
-        return qdd_ref + self.kd @ (qd_ref - qd) + self.kp @ (q_ref - q)
+        return qdd_ref + self.kd @ (qd_ref - np.asarray(qd)) + self.kp @ (q_ref - np.asarray(q))
 
-    def __call__(self, t, q, qd):
+    def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+        """The motor torques at time ``t`` and state ``(q, qd)``, N m."""
         q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
         return self.model.inverse_dynamics(q, qd, self.commanded_acceleration(t, q, qd))
 
-    def _linear_terms(self, t, q):
-        zero = np.zeros(2)
-        acceleration = self.commanded_acceleration(t, q, zero)
+    def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``, from the model.
+
+        ``dtau/dq = dM/dq v - M Kp + dg/dq`` (``v`` the commanded
+        acceleration, ``(dM/dq v)[:, k] = dM/dq_k v``) and
+        ``dtau/dqd = -M Kd`` (the Coriolis term is quadratic in ``qd``).
+
+        Examples
+        --------
+        On the reference at rest, with ``v = 0``: ``(-M Kp + dg/dq, -M Kd)``.
+
+        >>> from twolink import arms, dynamics
+        >>> control = ComputedTorque(arms.two_metre, kp=100.0, kd=20.0, reference=[0.3, 0.6])
+        >>> by_q, by_qd = control.torque_derivatives(0.0, [0.3, 0.6])
+        >>> M = arms.two_metre.mass_matrix([0.3, 0.6])
+        >>> bool(np.allclose(by_q, -100.0 * M + dynamics.gravity_jacobian(arms.two_metre, [0.3, 0.6])))
+        True
+        """
+        q = as_configuration(q)
+        acceleration = self.commanded_acceleration(t, q, np.zeros(2))
         M = self.model.mass_matrix(q)
-        by_q = -M @ self.kp + _gravity_jacobian(self.model, q)
-        by_q[:, 1] += _mass_matrix_derivative(self.model, q) @ acceleration
+        by_q = -M @ self.kp + gravity_jacobian(self.model, q)
+        by_q += np.einsum("ijk,j->ik", mass_matrix_derivative(self.model, q), acceleration)
         return by_q, -M @ self.kd

@@ -29,19 +29,27 @@ links (length ratios from 1e-9 to 1e9) keep full accuracy; the tests check it
 against a 50-digit mpmath reference.
 """
 
+from __future__ import annotations
+
 import math
-from typing import NamedTuple
+from typing import TYPE_CHECKING, Any, Callable, NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import kinematics
-from ._validate import as_pairs, broadcast_shape, finite_result, pair_floats, require_arm
+from ._validate import NonFiniteTorque, as_pairs, broadcast_shape, finite_result, pair_floats, require_arm, torque_floats
 from .errors import SimulationError
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 __all__ = [
     "mass_matrix",
     "coriolis",
     "gravity",
+    "mass_matrix_derivative",
+    "gravity_jacobian",
     "inverse_dynamics",
     "forward_dynamics",
     "energy",
@@ -229,7 +237,7 @@ def _single_state(q, qd, last):
 
 
 # ---------------------------------------------------------------- public functions
-def mass_matrix(arm, q):
+def mass_matrix(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """The mass (inertia) matrix ``M(q)``, symmetric positive definite.
 
     Parameters
@@ -264,7 +272,7 @@ def mass_matrix(arm, q):
     return M
 
 
-def coriolis(arm, q, qd):
+def coriolis(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
     """The Coriolis and centrifugal matrix ``C(q, qd)`` (Christoffel form).
 
     ``C[i, j] = sum_k Gamma_ijk qd_k`` with the Christoffel symbols
@@ -307,7 +315,7 @@ def coriolis(arm, q, qd):
     return C
 
 
-def gravity(arm, q):
+def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """The gravity torques ``g(q) = dV/dq``, the ``g`` of ``M qdd + C qd + g = tau``.
 
     The torques the motors must supply to hold the arm still at ``q``
@@ -340,8 +348,93 @@ def gravity(arm, q):
     return torques
 
 
-def inverse_dynamics(arm, q, qd, qdd, force=None):
-    """Joint torques for a motion: ``tau = M(q) qdd + C(q, qd) qd + g(q) [+ J^T F]``.
+def mass_matrix_derivative(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
+    """The derivative of the mass matrix with respect to the joint angles, ``dM/dq``.
+
+    ``dM[..., i, j, k] = d M_ij / d q_k`` (index ``k`` last, as in
+    :func:`twolink.kinematics.jacobian_derivative`).  ``M`` depends on
+    ``q2`` only: ``dM/dq1 = 0`` and
+    ``dM/dq2 = -beta sin q2 [[2, 1], [1, 0]]`` with ``beta = m2 l1 lc2``.
+    The Christoffel symbols of :func:`coriolis` are built from it.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2, 2)
+        In kg m^2 per radian.
+
+    Examples
+    --------
+    Two 2 m, 3 kg rods with the elbow at a right angle (``beta = 6`` kg m^2):
+
+    >>> from twolink import TwoLinkArm
+    >>> dM = mass_matrix_derivative(TwoLinkArm(2.0, 2.0, m1=3.0, m2=3.0), [0.0, np.pi / 2])
+    >>> dM[..., 1].round(12)
+    array([[-12.,  -6.],
+           [ -6.,   0.]])
+    >>> bool(np.all(dM[..., 0] == 0.0))
+    True
+    """
+    q = as_pairs(q, "q")
+    change = -_constants(arm).beta * np.sin(q[..., 1])
+    dM = np.zeros(q.shape[:-1] + (2, 2, 2))
+    dM[..., 0, 0, 1] = 2.0 * change
+    dM[..., 0, 1, 1] = change
+    dM[..., 1, 0, 1] = change
+    return dM
+
+
+def gravity_jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
+    """The derivative of the gravity torques, ``dg/dq`` (symmetric: the Hessian of the potential energy).
+
+    ``G[..., i, j] = d g_i / d q_j``:
+    ``[[-gamma1 sin q1 - gamma2 sin q12, -gamma2 sin q12], [-gamma2 sin q12, -gamma2 sin q12]]``
+    with ``gamma1 = (m1 lc1 + m2 l1) g`` and ``gamma2 = m2 lc2 g``.  It is
+    the gravity part of the stiffness of the linearised arm (see
+    :mod:`twolink.linearization`): ``-dg/dq`` acts as a joint spring.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2)
+        In newton-metres per radian.
+
+    Examples
+    --------
+    Straight up, the weight is balanced, and tipping either joint away
+    lowers the potential energy (``dg/dq`` negative definite: unstable):
+
+    >>> from twolink import TwoLinkArm
+    >>> gravity_jacobian(TwoLinkArm(2.0, 2.0, m1=1.0, m2=1.0, g=10.0), [np.pi / 2, 0.0]).round(12)
+    array([[-40., -10.],
+           [-10., -10.]])
+    """
+    q = as_pairs(q, "q")
+    constants = _constants(arm)
+    q1 = q[..., 0]
+    by_q2 = -constants.gamma2 * np.sin(q1 + q[..., 1])
+    G = np.empty(q.shape[:-1] + (2, 2))
+    G[..., 0, 0] = -constants.gamma1 * np.sin(q1) + by_q2
+    G[..., 0, 1] = by_q2
+    G[..., 1, 0] = by_q2
+    G[..., 1, 1] = by_q2
+    return G
+
+
+def inverse_dynamics(
+    arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, force_by_tip: ArrayLike | None = None
+) -> NDArray[np.float64]:
+    """Joint torques for a motion: ``tau = M(q) qdd + C(q, qd) qd + g(q) [+ J^T force_by_tip]``.
 
     Parameters
     ----------
@@ -349,9 +442,12 @@ def inverse_dynamics(arm, q, qd, qdd, force=None):
     q, qd, qdd : array_like, shape (..., 2)
         Joint angles (rad), rates (rad/s) and accelerations (rad/s^2);
         leading axes broadcast.
-    force : array_like, shape (..., 2), optional
+    force_by_tip : array_like, shape (..., 2), optional
         Force the tip exerts on its surroundings (N), as in
-        :func:`twolink.kinematics.joint_torques`; adds ``J(q)^T F``.
+        :func:`twolink.kinematics.joint_torques`: the surroundings push
+        back on the tip with ``-force_by_tip``, and the motors pay
+        ``J(q)^T force_by_tip`` more.  For a force ``force_on_tip`` acting
+        on the tip, pass ``force_by_tip=-force_on_tip``.
 
     Returns
     -------
@@ -360,14 +456,17 @@ def inverse_dynamics(arm, q, qd, qdd, force=None):
 
     Examples
     --------
-    At rest the motors only hold the weight, ``tau = g(q)``:
+    At rest the motors only hold the weight, ``tau = g(q)``; pressing down
+    on a table with 10 N at the tip costs ``J^T (0, -10)`` more:
 
     >>> from twolink import TwoLinkArm
     >>> arm = TwoLinkArm(2.0, 2.0, m1=1.0, m2=1.0, g=10.0)
     >>> inverse_dynamics(arm, [0.0, 0.0], [0.0, 0.0], [0.0, 0.0]).round(12)
     array([40., 10.])
+    >>> inverse_dynamics(arm, [0.0, 0.0], [0.0, 0.0], [0.0, 0.0], force_by_tip=[0.0, -10.0]).round(12)
+    array([  0., -10.])
     """
-    if force is None:
+    if force_by_tip is None:
         state = _single_state(q, qd, qdd)
         if state is not None:
             tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
@@ -378,17 +477,19 @@ def inverse_dynamics(arm, q, qd, qdd, force=None):
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     qdd = as_pairs(qdd, "qdd")
-    if force is None:
+    if force_by_tip is None:
         tau = _blockwise(_inverse, _constants(arm), q, qd, qdd)
     else:
-        force = as_pairs(force, "force")
-        broadcast_shape(q=q, qd=qd, qdd=qdd, force=force)
-        tau = _blockwise(_inverse, _constants(arm), q, qd, qdd) + kinematics.joint_torques(arm, q, force)
+        force_by_tip = as_pairs(force_by_tip, "force_by_tip")
+        broadcast_shape(q=q, qd=qd, qdd=qdd, force_by_tip=force_by_tip)
+        tau = _blockwise(_inverse, _constants(arm), q, qd, qdd) + kinematics.joint_torques(arm, q, force_by_tip)
     return finite_result(tau, "joint torques tau (N m)", "the rates or accelerations are too large for this arm")
 
 
-def forward_dynamics(arm, q, qd, tau, force=None):
-    """Joint accelerations ``qdd = M(q)^-1 (tau - C(q, qd) qd - g(q) [- J^T F])``.
+def forward_dynamics(
+    arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike, tau: ArrayLike, force_by_tip: ArrayLike | None = None
+) -> NDArray[np.float64]:
+    """Joint accelerations ``qdd = M(q)^-1 (tau - C(q, qd) qd - g(q) [- J^T force_by_tip])``.
 
     ``M qdd = rhs`` is solved with the closed-form inverse of the 2x2 mass
     matrix, its determinant written as a sum of non-negative terms (positive
@@ -405,9 +506,12 @@ def forward_dynamics(arm, q, qd, tau, force=None):
         Joint angles (rad) and rates (rad/s).
     tau : array_like, shape (..., 2)
         Motor torques (N m).  Leading axes of all arguments broadcast.
-    force : array_like, shape (..., 2), optional
+    force_by_tip : array_like, shape (..., 2), optional
         Force the tip exerts on its surroundings (N); the surroundings push
-        back with ``-F``, which costs the motors ``J^T F``.
+        back on the tip with ``-force_by_tip``, which costs the motors
+        ``J^T force_by_tip``.  A force ``force_on_tip`` acting on the tip
+        (a push, a spring, see :mod:`twolink.contact`) adds
+        ``J^T force_on_tip`` to ``tau``: pass ``force_by_tip=-force_on_tip``.
 
     Returns
     -------
@@ -432,7 +536,7 @@ def forward_dynamics(arm, q, qd, tau, force=None):
     >>> forward_dynamics(arm, [0.0, 0.0], [0.0, 0.0], arm.gravity([0.0, 0.0])).round(12)
     array([0., 0.])
     """
-    if force is None:
+    if force_by_tip is None:
         state = _single_state(q, qd, tau)
         if state is not None:
             qdd1, qdd2 = _forward(_invertible_constants(arm), math.cos, math.sin, *state)
@@ -443,15 +547,15 @@ def forward_dynamics(arm, q, qd, tau, force=None):
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     tau = as_pairs(tau, "tau")
-    if force is not None:
-        force = as_pairs(force, "force")
-        broadcast_shape(q=q, qd=qd, tau=tau, force=force)
-        tau = tau - kinematics.joint_torques(arm, q, force)
+    if force_by_tip is not None:
+        force_by_tip = as_pairs(force_by_tip, "force_by_tip")
+        broadcast_shape(q=q, qd=qd, tau=tau, force_by_tip=force_by_tip)
+        tau = tau - kinematics.joint_torques(arm, q, force_by_tip)
     qdd = _blockwise(_forward, _invertible_constants(arm), q, qd, tau)
     return finite_result(qdd, "joint accelerations qdd (rad/s^2)", "the torques or rates are too large for this arm")
 
 
-def energy(arm, q, qd):
+def energy(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Kinetic and potential energy ``(T, V)`` of the arm.
 
     ``T = qd^T M(q) qd / 2`` and ``V = g (m1 y_c1 + m2 y_c2)``, zero with
@@ -489,7 +593,9 @@ def energy(arm, q, qd):
     return np.broadcast_to(kinetic, shape).copy(), np.broadcast_to(potential, shape).copy()
 
 
-def state_derivative(arm, torque=None):
+def state_derivative(
+    arm: TwoLinkArm, torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | None = None
+) -> Callable[[float, NDArray[np.float64]], list[float]]:
     """The right-hand side ``f(t, x)`` of ``dx/dt = (qd, qdd)`` for an ODE solver.
 
     The state is ``x = (q1, q2, qd1, qd2)``.  The arm is checked once, here;
@@ -538,7 +644,7 @@ def state_derivative(arm, torque=None):
         q1, q2, qd1, qd2 = state.tolist()
         if not math.isfinite(q1 + q2 + qd1 + qd2):
             _raise_blow_up(t, state)
-        tau1, tau2 = _torque_floats(torque(t, state[:2].copy(), state[2:].copy()), t)
+        tau1, tau2 = torque_floats(torque(t, state[:2].copy(), state[2:].copy()), t)
         qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2)
         return [qd1, qd2, qdd1, qdd2]
 
@@ -552,19 +658,7 @@ def _raise_blow_up(t, state):
     )
 
 
-class NonFiniteTorque(ValueError):
-    """A torque callable returned NaN or infinity (the message names the time)."""
-
-
-def _torque_floats(value, t):
-    """A torque callable's result as two finite floats, or a clear error."""
-    try:
-        array = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"torque(t, q, qd) must return two numbers (N m); got {value!r} at t = {t}") from exc
-    if array.shape != (2,):
-        raise ValueError(f"torque(t, q, qd) must return shape (2,) (N m); got shape {array.shape} at t = {t}")
-    tau1, tau2 = array.tolist()
-    if not (math.isfinite(tau1) and math.isfinite(tau2)):
-        raise NonFiniteTorque(f"torque(t, q, qd) returned non-finite torques {array} at t = {t}")
-    return tau1, tau2
+#: The check of a torque callable's result lives in :mod:`twolink._validate` (engine and
+#: simulate share it); ``NonFiniteTorque`` is imported above and this private alias kept
+#: only until simulate.py imports ``torque_floats`` from there.
+_torque_floats = torque_floats

@@ -18,9 +18,9 @@ the install command when it is missing.
   configuration of :func:`twolink.statics.wall_contact`, the statics torques
   applied, MuJoCo's contact force once settled.
 
-Force conventions are twolink's: ``force`` is what the tip exerts on the
-wall; the wall pushes back with ``-force``; ``tau = J^T force`` holds it
-(:func:`twolink.kinematics.joint_torques`).
+Force conventions are twolink's: ``force_by_tip`` is what the tip exerts on
+the wall; the wall pushes back on the tip with ``-force_by_tip``;
+``tau = J^T force_by_tip`` holds it (:func:`twolink.kinematics.joint_torques`).
 
 Examples
 --------
@@ -31,18 +31,25 @@ Examples
 True
 """
 
+from __future__ import annotations
+
 import math
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable, Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import export
 from ._optional import require
-from ._validate import as_finite_scalar, as_pairs
-from .dynamics import _torque_floats
+from ._validate import as_configuration, as_finite_scalar, torque_floats
+from .conventions import check_elbow
 from .kinematics import jacobian
 from .simulate import SimulationError, SimulationResult
-from .statics import wall_contact
+from .statics import Wall, as_wall, wall_contact
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 __all__ = [
     "build_model",
@@ -70,17 +77,17 @@ WALL_SOLIMP = (0.99, 0.99, 0.001, 0.5, 2.0)
 MAX_STEPS = 2_000_000
 
 
-_WARNING_TYPE = None  # mujoco.mjtWarning, set at the first import
+_WARNING_TYPE: Any = None  # mujoco.mjtWarning, set at the first import
 
 
-def _mujoco(function):
+def _mujoco(function: str) -> Any:
     global _WARNING_TYPE
     mujoco = require("mujoco", f"twolink.engine.{function}")
     _WARNING_TYPE = mujoco.mjtWarning
     return mujoco
 
 
-def build_model(arm, **mjcf_options):
+def build_model(arm: TwoLinkArm, **mjcf_options: Any) -> Any:
     """The ``mujoco.MjModel`` of the arm, from :func:`twolink.export.to_mjcf`.
 
     Parameters
@@ -115,19 +122,27 @@ def build_model(arm, **mjcf_options):
     return model
 
 
-def _one_pair(value, name):
-    pair = as_pairs(value, name)
-    if pair.shape != (2,):
-        raise ValueError(f"{name} must be one pair of shape (2,); got shape {pair.shape}")
-    return pair
+#: What each single-state argument is, for :func:`twolink._validate.as_configuration`'s message.
+_ONE = {
+    "q": {"what": "one configuration", "unit": "radians"},
+    "q0": {"what": "one configuration", "unit": "radians"},
+    "qd": {"what": "one pair of joint rates", "unit": "rad/s"},
+    "qd0": {"what": "one pair of joint rates", "unit": "rad/s"},
+    "tau": {"what": "one pair of torques", "unit": "N m"},
+    "torque (N m)": {"what": "one pair of constant torques", "unit": "N m"},
+}
 
 
-def _check_model(model, who):
+def _one(value: ArrayLike, name: str) -> NDArray[np.float64]:
+    return as_configuration(value, name, **_ONE[name])
+
+
+def _check_model(model: Any, who: str) -> None:
     if not (hasattr(model, "nq") and hasattr(model, "opt")) or model.nq != 2 or model.nu != 2:
         raise ValueError(f"{who} needs the mujoco.MjModel of a two-link arm (engine.build_model(arm)); got {model!r}")
 
 
-def joint_accelerations(model, q, qd, tau):
+def joint_accelerations(model: Any, q: ArrayLike, qd: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
     """MuJoCo's joint accelerations ``qdd`` for a state and motor torques.
 
     Sets ``qpos = q``, ``qvel = qd``, ``ctrl = tau`` on fresh data and calls
@@ -160,14 +175,14 @@ def joint_accelerations(model, q, qd, tau):
     mujoco = _mujoco("joint_accelerations")
     _check_model(model, "joint_accelerations")
     data = mujoco.MjData(model)
-    data.qpos[:] = _one_pair(q, "q")
-    data.qvel[:] = _one_pair(qd, "qd")
-    data.ctrl[:] = _one_pair(tau, "tau")
+    data.qpos[:] = _one(q, "q")
+    data.qvel[:] = _one(qd, "qd")
+    data.ctrl[:] = _one(tau, "tau")
     mujoco.mj_forward(model, data)
     return data.qacc.copy()
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class EngineResult(SimulationResult):
     """A motion computed by MuJoCo: a :class:`twolink.SimulationResult` plus the tip and the contact.
 
@@ -176,25 +191,26 @@ class EngineResult(SimulationResult):
     ----------
     p_tip : numpy.ndarray, shape (n, 2)
         The tip position MuJoCo computes (site ``tip``), metres.
-    force_on_wall : numpy.ndarray, shape (n, 2)
+    force_by_tip : numpy.ndarray, shape (n, 2)
         The force the tip exerts on the wall (N), from ``mj_contactForce``;
-        zeros without contact.
+        zeros without contact.  The wall pushes on the tip with
+        ``-force_by_tip``.
     timestep : float
         MuJoCo's fixed step, seconds.
     """
 
-    p_tip: np.ndarray = None
-    force_on_wall: np.ndarray = None
-    timestep: float = None
+    p_tip: NDArray[np.float64]
+    force_by_tip: NDArray[np.float64]
+    timestep: float
 
 
-def _frozen(array):
+def _frozen(array: ArrayLike) -> NDArray[np.float64]:
     array = np.array(array, dtype=float)
     array.setflags(write=False)
     return array
 
 
-def _force_on_wall(mujoco, model, data, wall_id, buffer):
+def _force_by_tip(mujoco: Any, model: Any, data: Any, wall_id: int, buffer: NDArray[np.float64]) -> NDArray[np.float64]:
     """Sum over active contacts of the force the tip exerts on the wall, world (x, y), N."""
     total = np.zeros(3)
     for index in range(data.ncon):
@@ -213,7 +229,7 @@ def _force_on_wall(mujoco, model, data, wall_id, buffer):
 _BAD_STATE_WARNINGS = ("mjWARN_BADQPOS", "mjWARN_BADQVEL", "mjWARN_BADQACC", "mjWARN_BADCTRL")
 
 
-def _check_state(data, t, who):
+def _check_state(data: Any, t: float, who: str) -> None:
     qpos, qvel = data.qpos, data.qvel
     warnings = data.warning
     bad = [name for name in _BAD_STATE_WARNINGS if warnings[int(getattr(_WARNING_TYPE, name))].number]
@@ -227,16 +243,16 @@ def _check_state(data, t, who):
 
 
 def simulate(
-    arm,
-    q0,
-    qd0,
-    t_end,
-    torque=None,
+    arm: TwoLinkArm,
+    q0: ArrayLike,
+    qd0: ArrayLike,
+    t_end: float,
+    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | ArrayLike | None = None,
     *,
     timestep: float = DEFAULT_TIMESTEP,
     sample_every: int = 1,
     integrator: str = "RK4",
-    **mjcf_options,
+    **mjcf_options: Any,
 ) -> EngineResult:
     """Move the arm in MuJoCo from ``(q0, qd0)`` at ``t = 0`` to ``t_end``, fixed step.
 
@@ -303,7 +319,7 @@ def simulate(
     True
     """
     mujoco = _mujoco("simulate")
-    q0, qd0 = _one_pair(q0, "q0"), _one_pair(qd0, "qd0")
+    start, rate_start = _one(q0, "q0"), _one(qd0, "qd0")
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
     if isinstance(sample_every, bool) or not isinstance(sample_every, (int, np.integer)) or sample_every < 1:
@@ -313,14 +329,15 @@ def simulate(
         raise ValueError(
             f"t_end / timestep = {t_end:.6g} / {timestep:.6g} s gives {n_steps} steps; allowed 1 to {MAX_STEPS}"
         )
-    constant = None
+    constant: tuple[float, float] | None = None
     if torque is None:
         constant = (0.0, 0.0)
     elif not callable(torque):
-        constant = tuple(_one_pair(torque, "torque (N m)").tolist())
+        tau1, tau2 = _one(torque, "torque (N m)").tolist()
+        constant = (tau1, tau2)
     model = build_model(arm, timestep=timestep, integrator=integrator, **mjcf_options)
     data = mujoco.MjData(model)
-    data.qpos[:], data.qvel[:] = q0, qd0
+    data.qpos[:], data.qvel[:] = start, rate_start
     tip_id = model.site("tip").id
     wall_id = model.geom("wall").id if "wall" in mjcf_options and mjcf_options["wall"] is not None else None
     buffer = np.zeros(6)
@@ -330,16 +347,17 @@ def simulate(
     times = np.empty(n_samples)
     q, qd, tau, p_tip, force = (np.zeros((n_samples, 2)) for _ in range(5))
 
-    def record(row, t, tau_now):
+    def record(row: int, t: float, tau_now: tuple[float, float]) -> None:
         times[row], q[row], qd[row], tau[row] = t, data.qpos, data.qvel, tau_now
         p_tip[row] = data.site_xpos[tip_id][:2]
         if wall_id is not None:
-            force[row] = _force_on_wall(mujoco, model, data, wall_id, buffer)
+            force[row] = _force_by_tip(mujoco, model, data, wall_id, buffer)
 
-    def torques_now(t):
+    def torques_now(t: float) -> tuple[float, float]:
         if constant is not None:
             return constant
-        return _torque_floats(torque(t, data.qpos.copy(), data.qvel.copy()), t)
+        assert callable(torque)  # constant is None only for a callable torque
+        return torque_floats(torque(t, data.qpos.copy(), data.qvel.copy()), t)
 
     if wall_id is None and not arm.has_limits:
         # no limit, no wall: nothing for MuJoCo's constraint solver to do (halves the cost of a step)
@@ -378,7 +396,7 @@ def simulate(
         message=f"MuJoCo {integrator}, fixed step {timestep:.6g} s, {(n_samples - 1) * sample_every} steps",
         nfev=(n_samples - 1) * sample_every,
         p_tip=_frozen(p_tip),
-        force_on_wall=_frozen(force),
+        force_by_tip=_frozen(force),
         timestep=timestep,
     )
 
@@ -387,69 +405,100 @@ def simulate(
 class WallPush:
     """The arm pushing on a wall in MuJoCo, settled (see :func:`wall_push`).
 
+    All forces are ``force_by_tip``: what the tip exerts on the wall (the
+    wall pushes back on the tip with the opposite).
+
     Attributes
     ----------
+    arm : TwoLinkArm
+        The arm simulated.
+    wall : twolink.statics.Wall
+        The wall pushed on.
     elbow : str
-        The branch of :func:`twolink.statics.wall_contact` used.
+        The branch of :func:`twolink.statics.wall_contact` used
+        (``"down"``, ``"up"``, or ``"stretched"``/``"folded"`` for a wall
+        with one contact configuration).
+    force_magnitude : float
+        The normal force the statics torques are computed for, N.
     q_contact : numpy.ndarray, shape (2,)
         The statics' contact configuration (the start), rad.
     tau : numpy.ndarray, shape (2,)
-        The constant motor torques applied: ``J^T F`` plus the arm's gravity
-        torques ``g(q_contact)``, N m.
-    force_expected : numpy.ndarray, shape (2,)
-        The force the statics says the tip exerts on the wall (magnitude
-        ``force_magnitude`` along the normal into the wall), N.
+        The constant motor torques applied: ``J^T force_by_tip_expected``
+        plus the arm's gravity torques ``g(q_contact)``, N m.
     q_settled, qd_settled : numpy.ndarray, shape (2,)
         MuJoCo's configuration (rad) and rates (rad/s) at the end.
-    force_on_wall : numpy.ndarray, shape (2,)
-        The force MuJoCo's contact puts on the wall at the end
-        (``mj_contactForce``), N.
-    force_normal, force_tangential : float
-        Its components along the normal into the wall and along the wall, N.
-    force_statics_settled : numpy.ndarray, shape (2,)
-        The force that exactly balances ``tau`` at MuJoCo's settled
-        configuration, ``J(q_settled)^-T (tau - g(q_settled))``, N: what
-        MuJoCo's force should be for a settled arm.
+    force_by_tip : numpy.ndarray, shape (2,)
+        The force MuJoCo's contact says the tip exerts on the wall at the
+        end (``mj_contactForce``), N.
     penetration : float
         How far the tip point is beyond the wall's line at the end, metres.
-    force_drift : float
-        Change of ``force_normal`` over the last tenth of the run, N (small
-        when settled).
+    normal_drift : float
+        Change of :attr:`force_by_tip_normal` over the last tenth of the
+        run, N (small when settled).
     steps : int
         MuJoCo steps taken.
     """
 
+    arm: TwoLinkArm
+    wall: Wall
     elbow: str
-    q_contact: np.ndarray
-    tau: np.ndarray
-    force_expected: np.ndarray
-    q_settled: np.ndarray
-    qd_settled: np.ndarray
-    force_on_wall: np.ndarray
-    force_normal: float
-    force_tangential: float
-    force_statics_settled: np.ndarray
+    force_magnitude: float
+    q_contact: NDArray[np.float64]
+    tau: NDArray[np.float64]
+    q_settled: NDArray[np.float64]
+    qd_settled: NDArray[np.float64]
+    force_by_tip: NDArray[np.float64]
     penetration: float
-    force_drift: float
+    normal_drift: float
     steps: int
 
     @property
-    def relative_error(self):
-        """``|force_normal - force_magnitude| / force_magnitude`` (the agreement with the statics)."""
-        magnitude = float(np.hypot(*self.force_expected))
-        return abs(self.force_normal - magnitude) / magnitude
+    def normal(self) -> NDArray[np.float64]:
+        """The wall's unit normal from the base's side into the wall."""
+        return self.wall.into_wall()
+
+    @property
+    def force_by_tip_expected(self) -> NDArray[np.float64]:
+        """The force the statics says the tip exerts on the wall, ``force_magnitude * normal``, N."""
+        return self.force_magnitude * self.normal
+
+    @property
+    def force_by_tip_normal(self) -> float:
+        """:attr:`force_by_tip`'s component along the normal into the wall, N."""
+        return float(self.force_by_tip @ self.normal)
+
+    @property
+    def force_by_tip_tangential(self) -> float:
+        """:attr:`force_by_tip`'s component along the wall (the normal turned +90 degrees), N."""
+        normal = self.normal
+        return float(self.force_by_tip @ np.array([-normal[1], normal[0]]))
+
+    @property
+    def force_by_tip_balancing(self) -> NDArray[np.float64]:
+        """The force that exactly balances ``tau`` at MuJoCo's settled configuration, N.
+
+        ``J(q_settled)^-T (tau - g(q_settled))``: what MuJoCo's
+        :attr:`force_by_tip` should be for a settled arm.
+        """
+        q = self.q_settled
+        return np.linalg.solve(jacobian(self.arm, q).T, self.tau - self.arm.gravity(q))
+
+    @property
+    def relative_error(self) -> float:
+        """``|force_by_tip_normal - force_magnitude| / force_magnitude`` (the agreement with the statics)."""
+        return abs(self.force_by_tip_normal - self.force_magnitude) / self.force_magnitude
 
 
 def wall_push(
-    arm,
-    wall,
-    force_magnitude,
+    arm: TwoLinkArm,
+    wall: Wall | ArrayLike,
+    force_magnitude: float,
     elbow: str = "down",
     *,
     duration: float = 0.2,
     timestep: float = DEFAULT_TIMESTEP,
-    contact_solref=None,
-    contact_solimp=WALL_SOLIMP,
+    contact_solref: tuple[float, float] | None = None,
+    contact_solimp: Sequence[float] = WALL_SOLIMP,
     impratio: float = 100.0,
 ) -> WallPush:
     """The course's wall problem in MuJoCo: statics torques applied, the contact force read back.
@@ -457,7 +506,7 @@ def wall_push(
     The arm starts at rest at the contact configuration of
     :func:`twolink.statics.wall_contact` (link 2 perpendicular to the wall,
     the tip on it), with the wall as a MuJoCo plane, and the motors apply the
-    constant torques ``tau = J^T F + g(q)`` that, by the statics, push with
+    constant torques ``tau = J^T force_by_tip + g(q)`` that, by the statics, push with
     ``force_magnitude`` along the normal (``g(q)`` holds the arm's weight;
     zero for a horizontal arm).  MuJoCo steps for ``duration`` seconds and
     the contact force it computes is reported.
@@ -485,13 +534,16 @@ def wall_push(
     Parameters
     ----------
     arm : TwoLinkArm
-    wall : Wall or pair of points
-        The wall (see :func:`twolink.export.to_mjcf`).
+    wall : Wall or array_like, shape (2, 2)
+        The wall, or two points on it (see :func:`twolink.statics.as_wall`).
     force_magnitude : float
         The normal force the statics torques are computed for, N (>= 0).
-    elbow : str
-        The branch: ``"down"``, ``"up"``, or ``"stretched"``/``"folded"``
-        when the wall allows only one configuration.
+    elbow : {"down", "up", "auto"}
+        The branch of :func:`twolink.statics.wall_contact`: ``"down"``
+        (``q2 >= 0``) or ``"up"`` (``q2 <= 0``); ``"auto"`` is ``"down"``.
+        A wall at the edge of the reach has one contact configuration
+        (stretched or folded), on both branches: every word gives it.
+        ``"both"`` is refused (one simulation is one configuration).
     duration : float
         Simulated time, seconds (> 0); at most :data:`MAX_STEPS` steps.
     timestep : float
@@ -513,7 +565,7 @@ def wall_push(
     twolink.UnreachableError
         When no configuration has link 2 perpendicular to the wall.
     ValueError
-        For bad arguments or an ``elbow`` this wall does not have.
+        For bad arguments.
     SimulationError
         When MuJoCo's state blows up.
     ImportError
@@ -525,55 +577,51 @@ def wall_push(
 
     >>> from twolink import arms, engine
     >>> push = engine.wall_push(arms.two_metre, [[4.0, 0.0], [0.0, 4.0]], 500.0, elbow="up")
-    >>> round(push.force_normal, 2), bool(push.relative_error < 1e-4), bool(push.penetration < 1e-4)
+    >>> round(push.force_by_tip_normal, 2), bool(push.relative_error < 1e-4), bool(push.penetration < 1e-4)
     (500.0, True, True)
     """
     mujoco = _mujoco("wall_push")
-    wall = export._as_wall(wall)
-    if wall is None:
-        raise ValueError("wall_push needs a wall (a twolink.statics.Wall or two points on it); got None")
+    elbow = check_elbow(elbow, ("down", "up", "auto"), why="wall_push simulates one configuration")
+    the_wall = as_wall(wall)
     duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
     timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
     impratio = as_finite_scalar(impratio, "impratio", minimum=1.0)
     n_steps = int(round(duration / timestep))
     if not 10 <= n_steps <= MAX_STEPS:
         raise ValueError(f"duration / timestep gives {n_steps} steps; allowed 10 to {MAX_STEPS}")
-    contact = wall_contact(arm, wall, force_magnitude, include_gravity=True)
-    row = contact.branch(elbow)
+    contact = wall_contact(arm, the_wall, force_magnitude, include_gravity=True)
+    row = contact.branch("down" if elbow == "auto" else elbow) if len(contact.elbow) > 1 else 0
     q_contact, tau = contact.q[row], contact.tau[row]
     solref = (2.0 * timestep, 1.0) if contact_solref is None else contact_solref
-    model = build_model(arm, wall=wall, timestep=timestep, contact_solref=solref, contact_solimp=contact_solimp)
+    model = build_model(arm, wall=the_wall, timestep=timestep, contact_solref=solref, contact_solimp=contact_solimp)
     model.opt.impratio = impratio
     data = mujoco.MjData(model)
     data.qpos[:] = q_contact
     data.ctrl[:] = tau
     wall_id = model.geom("wall").id
     buffer = np.zeros(6)
-    normal = wall.into_wall()
+    normal = the_wall.into_wall()
     last_tenth = n_steps - max(1, n_steps // 10)
     mujoco.mj_step(model, data, last_tenth)
     _check_state(data, last_tenth * timestep, "engine.wall_push")
     mujoco.mj_forward(model, data)
-    force_before = float(_force_on_wall(mujoco, model, data, wall_id, buffer) @ normal)
+    normal_before = float(_force_by_tip(mujoco, model, data, wall_id, buffer) @ normal)
     mujoco.mj_step(model, data, n_steps - last_tenth)
     _check_state(data, n_steps * timestep, "engine.wall_push")
     mujoco.mj_forward(model, data)
-    force = _force_on_wall(mujoco, model, data, wall_id, buffer)
+    force_by_tip = _force_by_tip(mujoco, model, data, wall_id, buffer)
     q_settled = data.qpos.copy()
-    force_statics = np.linalg.solve(jacobian(arm, q_settled).T, tau - arm.gravity(q_settled))
-    along = np.array([-normal[1], normal[0]])
     return WallPush(
+        arm=arm,
+        wall=the_wall,
         elbow=contact.elbow[row],
+        force_magnitude=contact.force_magnitude,
         q_contact=q_contact.copy(),
         tau=tau.copy(),
-        force_expected=contact.force.copy(),
         q_settled=q_settled,
         qd_settled=data.qvel.copy(),
-        force_on_wall=force,
-        force_normal=float(force @ normal),
-        force_tangential=float(force @ along),
-        force_statics_settled=force_statics,
-        penetration=float((arm.fk(q_settled) - wall.point) @ normal),
-        force_drift=abs(float(force @ normal) - force_before),
+        force_by_tip=force_by_tip,
+        penetration=float((arm.fk(q_settled) - the_wall.point) @ normal),
+        normal_drift=abs(float(force_by_tip @ normal) - normal_before),
         steps=n_steps,
     )

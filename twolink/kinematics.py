@@ -11,17 +11,26 @@ controller calls thousands of times); it computes the same expressions, in
 the same order, as the vectorised path (the tests compare the two to 1e-12).
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validate import arm_lengths, as_finite_scalar, as_pairs, broadcast_shape, pair_floats, require_arm
 from .errors import SingularityError, UnreachableError
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 __all__ = [
     "fk",
     "joint_positions",
     "jacobian",
+    "jacobian_derivative",
+    "jacobian_rate",
     "joint_torques",
     "reach",
     "REACH_RTOL",
@@ -41,7 +50,7 @@ REACH_RTOL = 1e-10
 SINGULARITY_TOL = 1e-6
 
 
-def fk(arm, q):
+def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """Tip position ``x = l1 c1 + l2 c12``, ``y = l1 s1 + l2 s12``.
 
     Parameters
@@ -73,17 +82,17 @@ def fk(arm, q):
         return p_tip
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    q1 = q[..., 0]
-    q12 = q1 + q[..., 1]
-    p_tip = np.empty(q.shape)
-    p_tip[..., 0] = l1 * np.cos(q1)
-    p_tip[..., 0] += l2 * np.cos(q12)
-    p_tip[..., 1] = l1 * np.sin(q1)
-    p_tip[..., 1] += l2 * np.sin(q12)
-    return p_tip
+    angle1 = q[..., 0]
+    angle12 = angle1 + q[..., 1]
+    p_tips = np.empty(q.shape)
+    p_tips[..., 0] = l1 * np.cos(angle1)
+    p_tips[..., 0] += l2 * np.cos(angle12)
+    p_tips[..., 1] = l1 * np.sin(angle1)
+    p_tips[..., 1] += l2 * np.sin(angle12)
+    return p_tips
 
 
-def joint_positions(arm, q):
+def joint_positions(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """Positions of the base, the elbow and the tip.
 
     Parameters
@@ -117,7 +126,7 @@ def joint_positions(arm, q):
     return points
 
 
-def jacobian(arm, q):
+def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """Analytic Jacobian ``d(x, y) / d(q1, q2)``.
 
     ``J = [[-l1 s1 - l2 s12, -l2 s12], [l1 c1 + l2 c12, l2 c12]]`` and
@@ -156,34 +165,44 @@ def jacobian(arm, q):
         return J
     q = as_pairs(q, "q")
     arm_lengths(arm)
-    q1 = q[..., 0]
-    q12 = q1 + q[..., 1]
-    c12 = arm.l2 * np.cos(q12)
-    s12 = arm.l2 * np.sin(q12)
-    J = np.empty(q.shape[:-1] + (2, 2))
-    J[..., 0, 0] = -arm.l1 * np.sin(q1)
-    J[..., 0, 0] -= s12
-    J[..., 0, 1] = -s12
-    J[..., 1, 0] = arm.l1 * np.cos(q1)
-    J[..., 1, 0] += c12
-    J[..., 1, 1] = c12
-    return J
+    angle1 = q[..., 0]
+    angle12 = angle1 + q[..., 1]
+    x2 = arm.l2 * np.cos(angle12)
+    y2 = arm.l2 * np.sin(angle12)
+    Js = np.empty(q.shape[:-1] + (2, 2))
+    Js[..., 0, 0] = -arm.l1 * np.sin(angle1)
+    Js[..., 0, 0] -= y2
+    Js[..., 0, 1] = -y2
+    Js[..., 1, 0] = arm.l1 * np.cos(angle1)
+    Js[..., 1, 0] += x2
+    Js[..., 1, 1] = x2
+    return Js
 
 
-def joint_torques(arm, q, force):
-    """Static joint torques ``tau = J(q)^T F`` that hold a tip force.
+def joint_torques(arm: TwoLinkArm, q: ArrayLike, force_by_tip: ArrayLike) -> NDArray[np.float64]:
+    """Static joint torques ``tau = J(q)^T force_by_tip`` that hold a tip force.
 
-    ``force`` is the force the tip exerts on the environment (for example on a
-    wall), in newtons.  The motors must supply ``tau`` to hold it; the
-    environment pushes back on the tip with ``-F``.  Gravity is not included.
+    ``force_by_tip`` is the force the tip exerts on the environment (for
+    example on a wall), in newtons; the environment pushes back on the tip
+    with ``-force_by_tip``.  The motors must supply ``tau`` to hold it (with
+    the arm at rest; gravity is not included: add ``arm.gravity(q)``).
+
+    This is the package's one computation of ``J^T F``.  By virtual work
+    (``tau . qd = F . v_tip``) the same product is also the joint torque
+    that a force ``force_on_tip`` acting on the tip from outside puts on the
+    joints: it enters ``M qdd + C qd + g = tau + J^T force_on_tip``, so
+    holding it at rest takes ``tau = -J^T force_on_tip``, consistent with
+    ``force_by_tip = -force_on_tip``.  :mod:`twolink.contact` and
+    :mod:`twolink.controllers` call this function with a ``force_on_tip``.
 
     Parameters
     ----------
     arm : TwoLinkArm
     q : array_like, shape (..., 2)
         Joint angles in radians.
-    force : array_like, shape (..., 2)
-        Force ``(Fx, Fy)`` exerted by the tip, in newtons.
+    force_by_tip : array_like, shape (..., 2)
+        Force ``(Fx, Fy)`` the tip exerts on the environment, in newtons;
+        leading axes broadcast with ``q``'s.
 
     Returns
     -------
@@ -192,18 +211,131 @@ def joint_torques(arm, q, force):
 
     Examples
     --------
+    The straight 4 m arm pushing up with 10 N on a ceiling at its tip:
+
     >>> from twolink import TwoLinkArm
-    >>> TwoLinkArm(2.0, 2.0).joint_torques([0.0, 0.0], [0.0, 10.0]).round(12)
+    >>> joint_torques(TwoLinkArm(2.0, 2.0), [0.0, 0.0], [0.0, 10.0]).round(12)
     array([40., 20.])
     """
+    pair = pair_floats(q)
+    if pair is not None:
+        force_pair = pair_floats(force_by_tip)
+        if force_pair is not None:
+            q1, q2 = pair
+            fx, fy = force_pair
+            q12 = q1 + q2
+            l1, l2 = arm_lengths(arm)
+            c12 = l2 * math.cos(q12)
+            s12 = l2 * math.sin(q12)
+            tau = np.empty(2)  # then two item assignments: faster than np.array of a list
+            tau[0] = (-l1 * math.sin(q1) - s12) * fx + (l1 * math.cos(q1) + c12) * fy
+            tau[1] = -s12 * fx + c12 * fy
+            return tau
     q = as_pairs(q, "q")
-    force = as_pairs(force, "force")
-    broadcast_shape(q=q, force=force)
+    force_by_tip = as_pairs(force_by_tip, "force_by_tip")
+    shape = broadcast_shape(q=q, force_by_tip=force_by_tip)
     J = jacobian(arm, q)
-    return np.einsum("...ji,...j->...i", J, force)
+    force_x, force_y = force_by_tip[..., 0], force_by_tip[..., 1]
+    taus = np.empty(shape)
+    taus[..., 0] = J[..., 0, 0] * force_x + J[..., 1, 0] * force_y
+    taus[..., 1] = J[..., 0, 1] * force_x + J[..., 1, 1] * force_y
+    return taus
 
 
-def reach(arm):
+def jacobian_derivative(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
+    """The derivative of the Jacobian with respect to the joint angles, ``dJ/dq``.
+
+    ``dJ[..., i, j, k] = d J_ij / d q_k = d^2 p_i / (d q_j d q_k)``: index
+    ``i`` is the tip coordinate (x, y), ``j`` the Jacobian's column (joint)
+    and ``k`` the joint differentiated by; symmetric in ``j`` and ``k``.
+    With ``(x2, y2) = l2 (cos q12, sin q12)`` the tip relative to the elbow
+    and ``(x, y)`` the tip,
+
+    ``dJ/dq1 = -[[x, x2], [y, y2]]`` and ``dJ/dq2 = -[[x2, x2], [y2, y2]]``.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Joint angles in radians.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2, 2)
+        In metres per radian squared; ``dJ[..., k]`` is ``dJ/dq_k``.
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> dJ = jacobian_derivative(TwoLinkArm(1.0, 1.0), [0.0, np.pi / 2])
+    >>> dJ[..., 0].round(12) + 0.0      # dJ/dq1: tip at (1, 1), elbow at (1, 0)
+    array([[-1.,  0.],
+           [-1., -1.]])
+    >>> dJ[..., 1].round(12) + 0.0      # dJ/dq2
+    array([[ 0.,  0.],
+           [-1., -1.]])
+    """
+    q = as_pairs(q, "q")
+    l1, l2 = arm_lengths(arm)
+    q1 = q[..., 0]
+    q12 = q1 + q[..., 1]
+    x2, y2 = l2 * np.cos(q12), l2 * np.sin(q12)
+    dJ = np.empty(q.shape[:-1] + (2, 2, 2))
+    dJ[..., 0, 0, 0] = -(l1 * np.cos(q1) + x2)
+    dJ[..., 1, 0, 0] = -(l1 * np.sin(q1) + y2)
+    for i, relative in ((0, x2), (1, y2)):
+        dJ[..., i, 0, 1] = dJ[..., i, 1, 0] = dJ[..., i, 1, 1] = -relative
+    return dJ
+
+
+def jacobian_rate(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+    """The time derivative of the Jacobian along a motion, ``Jdot = sum_k dJ/dq_k qd_k``.
+
+    The tip's acceleration is ``a = J qdd + Jdot qd``.  With ``(x, y)`` the
+    tip and ``(x2, y2)`` the tip relative to the elbow,
+    ``Jdot = -[[x qd1 + x2 qd2, x2 (qd1 + qd2)], [y qd1 + y2 qd2, y2 (qd1 + qd2)]]``
+    (see :func:`jacobian_derivative`).
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q, qd : array_like, shape (..., 2)
+        Joint angles (rad) and rates (rad/s); leading axes broadcast.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2, 2)
+        In metres per radian per second.
+
+    Examples
+    --------
+    Link 1 turning at 1 rad/s with the elbow locked: the tip moves on a
+    circle, and ``Jdot qd`` is its centripetal acceleration ``-p``:
+
+    >>> from twolink import TwoLinkArm
+    >>> arm = TwoLinkArm(1.0, 1.0)
+    >>> Jdot = jacobian_rate(arm, [0.0, np.pi / 2], [1.0, 0.0])
+    >>> (Jdot @ [1.0, 0.0]).round(12) + 0.0, arm.fk([0.0, np.pi / 2]).round(12)
+    (array([-1., -1.]), array([1., 1.]))
+    """
+    q = as_pairs(q, "q")
+    qd = as_pairs(qd, "qd")
+    shape = broadcast_shape(q=q, qd=qd)
+    l1, l2 = arm_lengths(arm)
+    q1 = q[..., 0]
+    q12 = q1 + q[..., 1]
+    x2, y2 = l2 * np.cos(q12), l2 * np.sin(q12)
+    qd1, qd2 = qd[..., 0], qd[..., 1]
+    qd12 = qd1 + qd2
+    Jdot = np.empty(shape[:-1] + (2, 2))
+    Jdot[..., 0, 0] = -(l1 * np.cos(q1) * qd1 + x2 * qd12)
+    Jdot[..., 0, 1] = -x2 * qd12
+    Jdot[..., 1, 0] = -(l1 * np.sin(q1) * qd1 + y2 * qd12)
+    Jdot[..., 1, 1] = -y2 * qd12
+    return Jdot
+
+
+def reach(arm: TwoLinkArm) -> tuple[float, float]:
     """Reach interval ``(r_min, r_max) = (|l1 - l2|, l1 + l2)`` in metres.
 
     Examples
@@ -216,7 +348,7 @@ def reach(arm):
     return (abs(l1 - l2), l1 + l2)
 
 
-def distance_outside_reach(arm, p):
+def distance_outside_reach(arm: TwoLinkArm, p: ArrayLike) -> NDArray[np.float64]:
     """How far each point lies outside the reach annulus ``[r_min, r_max]`` (0 inside), metres.
 
     This is the smallest tip error any configuration can achieve.
@@ -233,7 +365,7 @@ def distance_outside_reach(arm, p):
     return np.maximum(0.0, np.maximum(distance - r_max, r_min - distance))
 
 
-def require_within_reach(arm, p, what="target"):
+def require_within_reach(arm: TwoLinkArm, p: ArrayLike, what: str = "target") -> NDArray[np.float64]:
     """Return points ``p`` as an array, or raise naming the first one outside the reach annulus.
 
     The package's one reach test and one message: the point, its distance
@@ -283,7 +415,7 @@ def require_within_reach(arm, p, what="target"):
     return p
 
 
-def require_nonsingular(arm, q, what, tol=SINGULARITY_TOL):
+def require_nonsingular(arm: TwoLinkArm, q: ArrayLike, what: str, tol: float = SINGULARITY_TOL) -> NDArray[np.float64]:
     """Raise :class:`~twolink.SingularityError` where ``|sin q2| <= tol`` (stretched or folded arm).
 
     The package's one singularity test and one message.

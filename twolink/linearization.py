@@ -1,12 +1,14 @@
 """The closed loop near an equilibrium: linear models for python-control, tip mass, critical damping.
 
 An arm driven by a controller ``tau(t, q, qd)`` and pushed at the tip by a
-force ``F`` (N) obeys
+force ``force_on_tip = F`` (N, acting on the tip; the tip exerts
+``force_by_tip = -F`` on whatever pushes it) obeys
 
     ``M(q) qdd + C(q, qd) qd + g(q) = tau(t, q, qd) + J(q)^T F``.
 
-With the state ``x = (q1, q2, qd1, qd2)``, the input ``u = F`` and the output
-the tip position, this is ``xdot = f(x, u)``, ``y = fk(q)``.  At an
+With the state ``x = (q1, q2, qd1, qd2)``, the input ``u = F`` (named
+:data:`INPUTS`, ``Fx_on_tip`` and ``Fy_on_tip``) and the output the tip
+position, this is ``xdot = f(x, u)``, ``y = fk(q)``.  At an
 equilibrium ``(q*, 0)`` (``tau(t, q*, 0) = g(q*)``) the Coriolis term is
 quadratic in ``qd`` and ``M^-1`` multiplies a zero net torque, so
 
@@ -14,8 +16,8 @@ quadratic in ``qd`` and ``M^-1`` multiplies a zero net torque, so
     ``B = [[0], [M^-1 J^T]]``,  ``C = [J, 0]``,  ``D = 0``.
 
 :func:`linearize` builds this from the analytic derivatives of the
-controllers in :mod:`twolink.controllers` (finite differences of the torque
-for any other callable) and returns a :func:`control.ss` system, so poles,
+controllers in :mod:`twolink.controllers` (their ``torque_derivatives``
+method; finite differences of the torque for any other callable) and returns a :func:`control.ss` system, so poles,
 damping ratios, step and frequency responses come from python-control.
 :func:`closed_loop_system` gives the nonlinear system as a
 :func:`control.nlsys` (its ``.linearize`` is an independent, numerical route).
@@ -29,15 +31,26 @@ python-control is imported inside the functions that need it, so
 ``import twolink`` stays light.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Callable
+
 import numpy as np
 import scipy.linalg
 import scipy.optimize
+from numpy.typing import ArrayLike, NDArray
 
 from ._optional import require
-from ._validate import as_finite_scalar, as_pairs
-from .controllers import _gravity_jacobian, gain_matrix
-from .errors import SingularityError
-from .velocity import SINGULARITY_TOL
+from ._validate import as_configuration, as_finite_scalar
+from .controllers import gain_matrix
+from .dynamics import gravity_jacobian
+from .kinematics import joint_torques, require_nonsingular
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
+
+#: ``controller(t, q, qd) -> tau``, two torques in N m.
+Controller = Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
 
 __all__ = [
     "STATES",
@@ -51,31 +64,19 @@ __all__ = [
     "closed_loop_system",
 ]
 
-#: Names of the state, input and output signals of the systems built here.
+#: Names of the state, input and output signals of the systems built here:
+#: states ``q1 q2`` (rad) and ``qd1 qd2`` (rad/s); inputs the force acting on
+#: the tip, ``Fx_on_tip Fy_on_tip`` (N; a ``force_on_tip``); outputs the tip
+#: position ``x y`` (m).
 STATES = ("q1", "q2", "qd1", "qd2")
-INPUTS = ("Fx", "Fy")
+INPUTS = ("Fx_on_tip", "Fy_on_tip")
 OUTPUTS = ("x", "y")
 
 
-def _configuration(q, name="q"):
-    q = as_pairs(q, name)
-    if q.shape != (2,):
-        raise ValueError(f"{name} must be one configuration of shape (2,) (radians); got {q.shape}")
-    return q
-
-
-def _require_nonsingular(arm, q, what):
-    if abs(np.sin(q[1])) <= SINGULARITY_TOL:
-        raise SingularityError(
-            f"{what} needs J invertible, but q = ({q[0]:.6g}, {q[1]:.6g}) rad is singular "
-            f"(|sin q2| = {abs(np.sin(q[1])):.3g}): the arm is stretched or folded"
-        )
-
-
-def tip_mass(arm, q):
+def tip_mass(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """The mass felt at the tip, ``Lambda = J^-T M J^-1 = (J M^-1 J^T)^-1``, kg.
 
-    A force ``F`` on the tip of the arm at rest gives the tip the
+    A force ``force_on_tip = F`` on the tip of the arm at rest gives the tip the
     acceleration ``Lambda^-1 F``.  ``Lambda`` is symmetric positive definite
     and depends on the pose: heavy along some directions, light along others.
 
@@ -108,8 +109,7 @@ def tip_mass(arm, q):
     array([[1., 0.],
            [0., 4.]])
     """
-    q = _configuration(q)
-    _require_nonsingular(arm, q, "the tip mass")
+    q = require_nonsingular(arm, as_configuration(q), "the tip mass")
     J = arm.jacobian(q)
     J_inverse = np.linalg.inv(J)
     Lambda = J_inverse.T @ arm.mass_matrix(q) @ J_inverse
@@ -119,7 +119,7 @@ def tip_mass(arm, q):
 _DAMPING_KINDS = ("scalar", "matrix")
 
 
-def critical_damping(arm, q, stiffness, kind="scalar"):
+def critical_damping(arm: TwoLinkArm, q: ArrayLike, stiffness: ArrayLike, kind: str = "scalar") -> float | NDArray[np.float64]:
     """Damping that makes the linearised impedance loop at ``q`` critically damped.
 
     At the rest point (gravity compensated) the loop is
@@ -174,17 +174,19 @@ def critical_damping(arm, q, stiffness, kind="scalar"):
     return (D + D.T) / 2.0
 
 
-def _net_torque(arm, controller, t, q):
+def _net_torque(arm: TwoLinkArm, controller: Controller, t: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
     tau = np.asarray(controller(t, q, np.zeros(2)), dtype=float)
     if tau.shape != (2,) or not np.all(np.isfinite(tau)):
         raise ValueError(f"the controller must return two finite torques (N m); got {tau!r} at q = {q}")
     return tau - arm.gravity(q)
 
 
-def equilibrium(arm, controller, q_guess, t=0.0, tol=1e-12):
+def equilibrium(
+    arm: TwoLinkArm, controller: Controller, q0: ArrayLike, t: float = 0.0, tol: float = 1e-12
+) -> NDArray[np.float64]:
     """A configuration where the controller holds the arm at rest: ``tau(t, q, 0) = g(q)``.
 
-    Solved with :func:`scipy.optimize.root` from ``q_guess``.  For impedance
+    Solved with :func:`scipy.optimize.root` from ``q0``.  For impedance
     control without gravity compensation this is where the tip sags to:
     the spring's pull balances the weight.
 
@@ -193,7 +195,7 @@ def equilibrium(arm, controller, q_guess, t=0.0, tol=1e-12):
     arm : TwoLinkArm
     controller : callable
         ``controller(t, q, qd) -> tau``.
-    q_guess : array_like, shape (2,)
+    q0 : array_like, shape (2,)
         Where to start looking, radians (picks the elbow branch).
     t : float
         Time at which the controller is evaluated.
@@ -207,7 +209,7 @@ def equilibrium(arm, controller, q_guess, t=0.0, tol=1e-12):
     Raises
     ------
     ValueError
-        If the root finder does not converge (no equilibrium near ``q_guess``).
+        If the root finder does not converge (no equilibrium near ``q0``).
 
     Examples
     --------
@@ -217,15 +219,17 @@ def equilibrium(arm, controller, q_guess, t=0.0, tol=1e-12):
     >>> arms.two_metre.fk(q_sag).round(4)      # gravity pulls the tip about 2 cm below the rest point
     array([2.9912, 0.9787])
     """
-    q_guess = _configuration(q_guess, "q_guess")
+    start = as_configuration(q0, "q0")
     t = as_finite_scalar(t, "t (s)")
-    solution = scipy.optimize.root(lambda q: _net_torque(arm, controller, t, q), q_guess, tol=tol)
+    solution = scipy.optimize.root(lambda q: _net_torque(arm, controller, t, q), start, tol=tol)
     if not solution.success:
-        raise ValueError(f"no equilibrium found near q_guess = {q_guess} rad: {solution.message}")
+        raise ValueError(f"no equilibrium found near q0 = {start} rad: {solution.message}")
     return solution.x
 
 
-def _finite_difference(function, x, step):
+def _finite_difference(
+    function: Callable[[NDArray[np.float64]], NDArray[np.float64]], x: NDArray[np.float64], step: float
+) -> NDArray[np.float64]:
     columns = []
     for index in range(len(x)):
         offset = np.zeros(len(x))
@@ -234,30 +238,39 @@ def _finite_difference(function, x, step):
     return np.column_stack(columns)
 
 
-def _torque_derivatives(controller, t, q, step=1e-6):
-    """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``: analytic for twolink's controllers, else central differences."""
-    if hasattr(controller, "_linear_terms"):
-        return controller._linear_terms(t, q)
+def _torque_derivatives(
+    controller: Controller, t: float, q: NDArray[np.float64], step: float = 1e-6
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``: the controller's own ``torque_derivatives``, else central differences."""
+    analytic: Any = getattr(controller, "torque_derivatives", None)
+    if callable(analytic):
+        by_q, by_qd = analytic(t, q)
+        return np.asarray(by_q, dtype=float), np.asarray(by_qd, dtype=float)
     zero = np.zeros(2)
     by_q = _finite_difference(lambda q_trial: np.asarray(controller(t, q_trial, zero), dtype=float), q, step)
     by_qd = _finite_difference(lambda qd_trial: np.asarray(controller(t, q, qd_trial), dtype=float), zero, step)
     return by_q, by_qd
 
 
-def closed_loop_matrices(arm, controller, q_eq, t=0.0, tol=1e-6):
+def closed_loop_matrices(
+    arm: TwoLinkArm, controller: Controller, q_eq: ArrayLike, t: float = 0.0, tol: float = 1e-6
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The matrices ``(A, B, C, D)`` of the closed loop linearised at the equilibrium ``(q_eq, 0)``.
 
     See the module docstring for the formulas; states ``(q1, q2, qd1, qd2)``,
-    inputs the force on the tip ``(Fx, Fy)`` in N, outputs the tip's
-    displacement ``(x, y)`` in m.  Needs no python-control.
+    inputs the force acting on the tip ``force_on_tip = (Fx, Fy)`` in N
+    (``B = [[0], [M^-1 J^T]]``: it adds ``J^T force_on_tip`` to the
+    torques), outputs the tip's displacement ``(x, y)`` in m.  Needs no
+    python-control.
 
     Parameters
     ----------
     arm : TwoLinkArm
     controller : callable
-        ``controller(t, q, qd) -> tau``; the controllers of
-        :mod:`twolink.controllers` are differentiated analytically, any other
-        callable by central differences.
+        ``controller(t, q, qd) -> tau``.  One with a method
+        ``torque_derivatives(t, q) -> (dtau/dq, dtau/dqd)`` at ``qd = 0``
+        (the controllers of :mod:`twolink.controllers`) is differentiated
+        analytically, any other callable by central differences.
     q_eq : array_like, shape (2,)
         The equilibrium configuration, radians (for example from
         :func:`equilibrium`).
@@ -292,7 +305,7 @@ def closed_loop_matrices(arm, controller, q_eq, t=0.0, tol=1e-6):
     ...
     ValueError: q_eq = (0, 0.5) rad is not an equilibrium of the closed loop: at rest there the arm accelerates at qdd = (-3.83, 12.6) rad/s^2 (tolerance 1e-06); find one with twolink.linearization.equilibrium
     """
-    q_eq = _configuration(q_eq, "q_eq")
+    q_eq = as_configuration(q_eq, "q_eq")
     t = as_finite_scalar(t, "t (s)")
     tol = as_finite_scalar(tol, "tol (rad/s^2)", minimum=0.0)
     M = arm.mass_matrix(q_eq)
@@ -307,7 +320,7 @@ def closed_loop_matrices(arm, controller, q_eq, t=0.0, tol=1e-6):
     J = arm.jacobian(q_eq)
     A = np.zeros((4, 4))
     A[:2, 2:] = np.eye(2)
-    A[2:, :2] = np.linalg.solve(M, by_q - _gravity_jacobian(arm, q_eq))
+    A[2:, :2] = np.linalg.solve(M, by_q - gravity_jacobian(arm, q_eq))
     A[2:, 2:] = np.linalg.solve(M, by_qd)
     B = np.zeros((4, 2))
     B[2:, :] = np.linalg.solve(M, J.T)
@@ -316,7 +329,14 @@ def closed_loop_matrices(arm, controller, q_eq, t=0.0, tol=1e-6):
     return A, B, C, np.zeros((2, 2))
 
 
-def linearize(arm, controller, q_eq, t=0.0, tol=1e-6, name=None):
+def linearize(
+    arm: TwoLinkArm,
+    controller: Controller,
+    q_eq: ArrayLike,
+    t: float = 0.0,
+    tol: float = 1e-6,
+    name: str | None = None,
+) -> Any:
     """The closed loop linearised at ``(q_eq, 0)`` as a python-control state-space system.
 
     Parameters are those of :func:`closed_loop_matrices`; ``name`` names the
@@ -325,8 +345,9 @@ def linearize(arm, controller, q_eq, t=0.0, tol=1e-6, name=None):
     Returns
     -------
     control.StateSpace
-        States ``q1 q2 qd1 qd2`` (deviations, rad and rad/s), inputs ``Fx Fy``
-        (force on the tip, N), outputs ``x y`` (tip displacement, m).
+        States ``q1 q2 qd1 qd2`` (deviations, rad and rad/s), inputs
+        ``Fx_on_tip Fy_on_tip`` (the force acting on the tip, N), outputs
+        ``x y`` (tip displacement, m).
         ``control.poles``, ``control.damp``, ``control.step_response``,
         ``control.bode_plot`` all apply.
 
@@ -350,17 +371,18 @@ def linearize(arm, controller, q_eq, t=0.0, tol=1e-6, name=None):
     control = require("control", "twolink.linearization.linearize")
 
     A, B, C, D = closed_loop_matrices(arm, controller, q_eq, t=t, tol=tol)
-    options = {"states": list(STATES), "inputs": list(INPUTS), "outputs": list(OUTPUTS)}
+    options: dict[str, Any] = {"states": list(STATES), "inputs": list(INPUTS), "outputs": list(OUTPUTS)}
     if name is not None:
         options["name"] = str(name)
     return control.ss(A, B, C, D, **options)
 
 
-def closed_loop_system(arm, controller, name=None):
+def closed_loop_system(arm: TwoLinkArm, controller: Controller, name: str | None = None) -> Any:
     """The nonlinear closed loop as a python-control :func:`control.nlsys`.
 
-    ``xdot = (qd, M^-1 (tau(t, q, qd) + J^T F - C qd - g))``, ``y = fk(q)``,
-    with the same signal names as :func:`linearize`; its
+    ``xdot = (qd, M^-1 (tau(t, q, qd) + J^T force_on_tip - C qd - g))``,
+    ``y = fk(q)``, with the input ``force_on_tip`` (the force acting on the
+    tip) and the same signal names as :func:`linearize`; its
     ``.linearize(x_eq, [0, 0])`` is python-control's own (numerical)
     linearisation, and ``control.input_output_response`` simulates it.
 
@@ -376,15 +398,15 @@ def closed_loop_system(arm, controller, name=None):
     """
     control = require("control", "twolink.linearization.closed_loop_system")
 
-    def update(t, state, force, params):
+    def update(t: float, state: NDArray[np.float64], force_on_tip: NDArray[np.float64], params: Any) -> NDArray[np.float64]:
         q, qd = state[:2], state[2:]
-        tau = np.asarray(controller(t, q, qd), dtype=float) + arm.jacobian(q).T @ np.asarray(force, dtype=float)
+        tau = np.asarray(controller(t, q, qd), dtype=float) + joint_torques(arm, q, force_on_tip)
         return np.concatenate([qd, arm.forward_dynamics(q, qd, tau)])
 
-    def output(t, state, force, params):
+    def output(t: float, state: NDArray[np.float64], force_on_tip: NDArray[np.float64], params: Any) -> NDArray[np.float64]:
         return arm.fk(state[:2])
 
-    options = {"states": list(STATES), "inputs": list(INPUTS), "outputs": list(OUTPUTS)}
+    options: dict[str, Any] = {"states": list(STATES), "inputs": list(INPUTS), "outputs": list(OUTPUTS)}
     if name is not None:
         options["name"] = str(name)
     return control.nlsys(update, output, **options)

@@ -1,25 +1,34 @@
 """Statics of the planar 2R arm: pushing on a wall.
 
-The joint torques that hold a tip force ``F`` are ``tau = J(q)^T F``
-(:func:`twolink.kinematics.joint_torques`).  This module solves the course's
-wall problem in closed form: where must the arm touch a straight wall so that
-link 2 is perpendicular to it, and what torques push with a given normal
-force there?
+The joint torques that hold a force ``force_by_tip`` that the tip exerts on
+its surroundings are ``tau = J(q)^T force_by_tip``
+(:func:`twolink.kinematics.joint_torques`); the surroundings push back on the
+tip with ``-force_by_tip``.  This module solves the course's wall problem in
+closed form: where must the arm touch a straight wall so that link 2 is
+perpendicular to it, and what torques push with a given normal force there?
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
-from ._validate import InputTypeError, as_finite_scalar, as_pairs, require_arm
+from ._validate import InputTypeError, as_configuration, as_finite_scalar, as_pairs, require_arm
 from .errors import UnreachableError
-from .ik.targets import REACH_RTOL
-from .kinematics import fk, joint_torques
+from .kinematics import REACH_RTOL, fk, joint_torques
 
-__all__ = ["Wall", "WallContact", "wall_contact"]
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
+
+__all__ = ["Wall", "as_wall", "WallContact", "wall_contact"]
+
+_POINT = {"what": "one (x, y) point", "unit": "metres"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Wall:
     """A straight wall (a line in the arm's plane): a point on it and a normal.
 
@@ -46,24 +55,22 @@ class Wall:
     ValueError: the wall's normal must be a non-zero vector; got (0, 0)
     """
 
-    point: np.ndarray
-    normal: np.ndarray
+    point: NDArray[np.float64]
+    normal: NDArray[np.float64]
 
-    def __post_init__(self):
-        point = as_pairs(self.point, "wall point")
-        normal = as_pairs(self.normal, "wall normal")
-        if point.shape != (2,) or normal.shape != (2,):
-            raise ValueError(
-                f"a wall needs one point and one normal of shape (2,); got {point.shape} and {normal.shape}"
-            )
-        length = float(np.hypot(normal[0], normal[1]))
+    def __init__(self, point: ArrayLike, normal: ArrayLike) -> None:
+        on_wall = as_configuration(point, "wall point", **_POINT)
+        direction = as_configuration(normal, "wall normal", what="one (x, y) vector", unit="any length")
+        length = float(np.hypot(direction[0], direction[1]))
         if not length > 0.0:
-            raise ValueError(f"the wall's normal must be a non-zero vector; got ({normal[0]:.6g}, {normal[1]:.6g})")
-        object.__setattr__(self, "point", point.copy())
-        object.__setattr__(self, "normal", normal / length)
+            raise ValueError(
+                f"the wall's normal must be a non-zero vector; got ({direction[0]:.6g}, {direction[1]:.6g})"
+            )
+        object.__setattr__(self, "point", on_wall.copy())
+        object.__setattr__(self, "normal", direction / length)
 
     @classmethod
-    def through(cls, p_a, p_b):
+    def through(cls, p_a: ArrayLike, p_b: ArrayLike) -> Wall:
         """The wall through two distinct points ``p_a`` and ``p_b`` (metres).
 
         Examples
@@ -73,31 +80,58 @@ class Wall:
         ...
         ValueError: a wall through two points needs two distinct points; got (0, 1) twice
         """
-        p_a = as_pairs(p_a, "wall point p_a")
-        p_b = as_pairs(p_b, "wall point p_b")
-        if p_a.shape != (2,) or p_b.shape != (2,):
-            raise ValueError(f"p_a and p_b must be single points of shape (2,); got {p_a.shape} and {p_b.shape}")
-        along = p_b - p_a
+        first = as_configuration(p_a, "wall point p_a", **_POINT)
+        along = as_configuration(p_b, "wall point p_b", **_POINT) - first
         if not np.hypot(along[0], along[1]) > 0.0:
             raise ValueError(
-                f"a wall through two points needs two distinct points; got ({p_a[0]:.6g}, {p_a[1]:.6g}) twice"
+                f"a wall through two points needs two distinct points; got ({first[0]:.6g}, {first[1]:.6g}) twice"
             )
-        return cls(point=p_a, normal=np.array([along[1], -along[0]]))
+        return cls(point=first, normal=np.array([along[1], -along[0]]))
 
-    def signed_distance(self, p):
+    def signed_distance(self, p: ArrayLike) -> NDArray[np.float64]:
         """``normal . (p - point)`` for points ``p`` ``(..., 2)``, metres (0 on the wall)."""
         return (as_pairs(p, "p") - self.point) @ self.normal
 
-    def distance_from_base(self):
+    def distance_from_base(self) -> float:
         """Distance from the base (the origin) to the wall, metres."""
         return abs(float(self.point @ self.normal))
 
-    def into_wall(self):
+    def into_wall(self) -> NDArray[np.float64]:
         """Unit normal pointing from the base's side into the wall.
 
         The given normal if the wall passes through the base.
         """
         return -self.normal if self.point @ self.normal < 0.0 else self.normal.copy()
+
+
+def as_wall(wall: Wall | ArrayLike) -> Wall:
+    """``wall`` as a :class:`Wall`: a wall itself, or the wall through two points ``((x_a, y_a), (x_b, y_b))``.
+
+    Raises
+    ------
+    ValueError
+        For anything else (also ``None``), naming what is accepted.
+
+    Examples
+    --------
+    >>> as_wall([[4.0, 0.0], [0.0, 4.0]]).normal.round(6)
+    array([0.707107, 0.707107])
+    >>> as_wall("x + y = 4")
+    Traceback (most recent call last):
+    ...
+    ValueError: wall must be a twolink.statics.Wall or two points ((x_a, y_a), (x_b, y_b)) on the line; got 'x + y = 4'
+    """
+    if isinstance(wall, Wall):
+        return wall
+    try:
+        points = np.asarray(wall, dtype=float)
+    except (TypeError, ValueError):
+        points = None
+    if points is not None and points.shape == (2, 2):
+        return Wall.through(points[0], points[1])
+    raise ValueError(
+        f"wall must be a twolink.statics.Wall or two points ((x_a, y_a), (x_b, y_b)) on the line; got {wall!r}"
+    )
 
 
 @dataclass(frozen=True)
@@ -111,10 +145,10 @@ class WallContact:
     wall : Wall
     force_magnitude : float
         Normal force, newtons.
-    force : numpy.ndarray, shape (2,)
+    force_by_tip : numpy.ndarray, shape (2,)
         The force the tip exerts ON the wall, ``force_magnitude * n``, with
         ``n`` the unit normal pointing away from the base into the wall.  The
-        wall pushes back on the tip with ``-force``.
+        wall pushes back on the tip with ``-force_by_tip``.
     elbow : tuple of str
         ``"down"`` (``q2 > 0``), ``"up"`` (``q2 < 0``), or one configuration
         ``"stretched"`` (``q2 = 0``) / ``"folded"`` (``q2 = pi``) where the two
@@ -124,7 +158,7 @@ class WallContact:
     p_contact : numpy.ndarray, shape (k, 2)
         The contact points (tip positions) on the wall, metres.
     tau_wall : numpy.ndarray, shape (k, 2)
-        ``J(q)^T force``: the joint torques that hold the wall force, N m.
+        ``J(q)^T force_by_tip``: the joint torques that hold the wall force, N m.
     tau_gravity : numpy.ndarray, shape (k, 2)
         The arm's own gravity torques ``g(q)`` (zeros unless requested), N m.
     tau : numpy.ndarray, shape (k, 2)
@@ -135,23 +169,23 @@ class WallContact:
 
     wall: Wall
     force_magnitude: float
-    force: np.ndarray
-    elbow: tuple
-    q: np.ndarray
-    p_contact: np.ndarray
-    tau_wall: np.ndarray
-    tau_gravity: np.ndarray
-    tau: np.ndarray
-    within_limits: np.ndarray
+    force_by_tip: NDArray[np.float64]
+    elbow: tuple[str, ...]
+    q: NDArray[np.float64]
+    p_contact: NDArray[np.float64]
+    tau_wall: NDArray[np.float64]
+    tau_gravity: NDArray[np.float64]
+    tau: NDArray[np.float64]
+    within_limits: NDArray[np.bool_]
 
-    def branch(self, elbow):
+    def branch(self, elbow: str) -> int:
         """Row index of the configuration named ``elbow`` (``"down"``, ``"up"``, ...)."""
         if elbow not in self.elbow:
             raise ValueError(f"no {elbow!r} configuration here; this contact has {self.elbow}")
         return self.elbow.index(elbow)
 
 
-def wall_contact(arm, wall, force_magnitude, include_gravity=False):
+def wall_contact(arm: TwoLinkArm, wall: Wall, force_magnitude: float, include_gravity: bool = False) -> WallContact:
     """Contact configurations pushing on ``wall`` with link 2 perpendicular to it, and their torques.
 
     Condition: the tip lies on the wall and link 2 points along the wall's
@@ -165,8 +199,9 @@ def wall_contact(arm, wall, force_magnitude, include_gravity=False):
 
     two configurations (elbow ``"down"`` and ``"up"``) mirrored about the
     normal through the base, one where ``acos`` is 0 or pi.  The torques are
-    ``tau = J(q)^T F`` (the force the tip exerts on the wall, pointing into
-    it); ``tau2 = 0`` because ``F`` acts along link 2.
+    ``tau = J(q)^T force_by_tip`` with ``force_by_tip = F`` the force the
+    tip exerts on the wall, pointing into it (the wall pushes back on the
+    tip with ``-F``); ``tau2 = 0`` because ``F`` acts along link 2.
 
     Parameters
     ----------
@@ -211,7 +246,7 @@ def wall_contact(arm, wall, force_magnitude, include_gravity=False):
     >>> contact.p_contact.round(4)
     array([[3.2872, 0.7128],
            [0.7128, 3.2872]])
-    >>> contact.force.round(3)
+    >>> contact.force_by_tip.round(3)
     array([353.553, 353.553])
     >>> contact.tau.round(2) + 0.0
     array([[ 910.18,    0.  ],
@@ -240,7 +275,8 @@ def wall_contact(arm, wall, force_magnitude, include_gravity=False):
         )
     phi = float(np.arctan2(normal[1], normal[0]))
     if one_minus_c2 <= slack:  # at the reach limit within round-off: one stretched configuration
-        elbow, q2_values = ("stretched",), [0.0]
+        elbow: tuple[str, ...] = ("stretched",)
+        q2_values = [0.0]
     elif one_plus_c2 <= slack:
         elbow, q2_values = ("folded",), [np.pi]
     else:
@@ -249,13 +285,13 @@ def wall_contact(arm, wall, force_magnitude, include_gravity=False):
     q = np.array([[phi - value, value] for value in q2_values])
     q[:, 0] = np.arctan2(np.sin(q[:, 0]), np.cos(q[:, 0]))
     q[:, 0] = np.where(q[:, 0] == -np.pi, np.pi, q[:, 0])
-    force = force_magnitude * normal
-    tau_wall = joint_torques(arm, q, np.broadcast_to(force, q.shape))
+    force_by_tip = force_magnitude * normal
+    tau_wall = joint_torques(arm, q, force_by_tip)
     tau_gravity = np.asarray(arm.gravity(q), dtype=float) if include_gravity else np.zeros_like(tau_wall)
     return WallContact(
         wall=wall,
         force_magnitude=force_magnitude,
-        force=force,
+        force_by_tip=force_by_tip,
         elbow=elbow,
         q=q,
         p_contact=fk(arm, q),

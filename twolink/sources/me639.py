@@ -347,7 +347,7 @@ def correct_spring_torques_dh(q_dh, p_rest, *, k=600.0, l1=2.0, l2=2.0):
     arm = TwoLinkArm(l1=l1, l2=l2)
     q_dh = as_pairs(q_dh, "q_dh")
     force = k * (p_rest - arm.fk(q_dh))
-    return arm.joint_torques(q_dh, force=force)
+    return arm.joint_torques(q_dh, force)
 
 
 def dh_to_motor_torques(tau_dh):
