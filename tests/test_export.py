@@ -9,6 +9,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from twolink import TwoLinkArm, arms, export
+from twolink.errors import InputTypeError
 from twolink.statics import Wall
 
 mujoco = pytest.importorskip("mujoco")
@@ -179,8 +180,12 @@ def test_massless_links_are_refused_with_a_clear_message():
         export.to_mjcf(arm)
     with pytest.raises(ValueError, match="link 1 has mass 0.0 kg"):
         export.to_urdf(arm)
-    with pytest.raises(ValueError, match="needs a twolink.TwoLinkArm"):
-        export.to_mjcf("arm")
+
+
+@pytest.mark.parametrize("to_model", [export.to_mjcf, export.to_urdf])
+def test_anything_but_an_arm_is_refused_naming_arm(to_model):
+    with pytest.raises(InputTypeError, match=r"arm must be a twolink.TwoLinkArm; got 'arm' \(str\)"):
+        to_model("arm")
 
 
 def test_urdf_refuses_absolute_limits():

@@ -19,6 +19,8 @@
 Usage: ``python tools/editions.py student|site [--source notebooks] [--out DIR]``.
 """
 
+from __future__ import annotations
+
 import argparse
 import ast
 import copy
@@ -29,6 +31,8 @@ import re
 import shutil
 import subprocess
 import sys
+from collections.abc import Sequence
+from typing import Any
 
 BEGIN = "### BEGIN SOLUTION"
 END = "### END SOLUTION"
@@ -41,7 +45,7 @@ SOLUTION_BLOCK = re.compile(
 )
 
 
-def assigned_names(code):
+def assigned_names(code: str) -> list[str]:
     r"""Names a solution block binds, in order of first appearance.
 
     Assignments anywhere in the block count (inside ``try``, ``if``, ``for``,
@@ -53,20 +57,20 @@ def assigned_names(code):
     >>> assigned_names("try:\n    pass\nexcept ValueError as error:\n    message = str(error)")
     ['message']
     """
-    names = []
+    names: list[str] = []
 
     class Collector(ast.NodeVisitor):
-        def visit_Name(self, node):
+        def visit_Name(self, node: ast.Name) -> None:
             if isinstance(node.ctx, ast.Store) and node.id not in names:
                 names.append(node.id)
 
-        def visit_FunctionDef(self, node):
+        def visit_FunctionDef(self, node: ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef) -> None:
             if node.name not in names:
                 names.append(node.name)
 
         visit_AsyncFunctionDef = visit_ClassDef = visit_FunctionDef
 
-        def visit_Lambda(self, node):
+        def visit_Lambda(self, node: ast.AST) -> None:
             pass
 
         visit_ListComp = visit_SetComp = visit_DictComp = visit_GeneratorExp = visit_Lambda
@@ -75,7 +79,7 @@ def assigned_names(code):
     return names
 
 
-def stub_source(source, checked_names=None):
+def stub_source(source: str, checked_names: set[str] | None = None) -> str:
     """Replace each solution block of a cell's source by stubs for the names it assigns.
 
     >>> print(stub_source("# Exercise\\n### BEGIN SOLUTION\\np_tip = [1, 2]\\n### END SOLUTION\\n"))
@@ -84,7 +88,7 @@ def stub_source(source, checked_names=None):
     <BLANKLINE>
     """
 
-    def replace(match):
+    def replace(match: re.Match[str]) -> str:
         indent = match.group("indent")
         body = "\n".join(line[len(indent):] if line.startswith(indent) else line for line in match.group("body").splitlines())
         names = assigned_names(body)
@@ -100,7 +104,7 @@ def stub_source(source, checked_names=None):
     return SOLUTION_BLOCK.sub(replace, source)
 
 
-def loaded_names(code):
+def loaded_names(code: str) -> set[str]:
     """Names a piece of code reads.
 
     >>> sorted(loaded_names("check(p_tip, arm.fk(q))"))
@@ -109,7 +113,7 @@ def loaded_names(code):
     return {node.id for node in ast.walk(ast.parse(code)) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
 
 
-def next_selfcheck_names(cells, start):
+def next_selfcheck_names(cells: Sequence[dict[str, Any]], start: int) -> set[str] | None:
     """Names read by the first self-check cell after ``cells[start]``, before the next solution."""
     for cell in cells[start + 1:]:
         if cell["cell_type"] != "code":
@@ -132,7 +136,7 @@ STUDENT_INSTRUCTIONS = (
 )
 
 
-def student_markdown(source):
+def student_markdown(source: str) -> str:
     """The student edition of a Markdown cell's text.
 
     >>> student_markdown("Intro.<!-- BEGIN INSTRUCTOR --> Solutions inside.<!-- END INSTRUCTOR --> <!-- STUDENT: Try. -->")
@@ -145,12 +149,12 @@ def student_markdown(source):
     return WORKED_SOLUTIONS_PARAGRAPH.sub(STUDENT_INSTRUCTIONS, source)
 
 
-def is_selfcheck_cell(cell):
+def is_selfcheck_cell(cell: dict[str, Any]) -> bool:
     """A code cell that calls the self-checks."""
     return cell["cell_type"] == "code" and "selfcheck.check" in "".join(cell["source"])
 
 
-def student_notebook(notebook):
+def student_notebook(notebook: dict[str, Any]) -> dict[str, Any]:
     """A copy of a notebook (as a JSON dict) with solutions stubbed and their outputs cleared.
 
     Each solution block becomes ``name = ...`` stubs for the names the next
@@ -176,11 +180,11 @@ def student_notebook(notebook):
     return student
 
 
-def build_student(source_dir, out_dir):
+def build_student(source_dir: str | pathlib.Path, out_dir: str | pathlib.Path) -> list[pathlib.Path]:
     """Write the student edition of every notebook in ``source_dir`` to ``out_dir``."""
     source_dir, out_dir = pathlib.Path(source_dir), pathlib.Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
-    written = []
+    written: list[pathlib.Path] = []
     for path in sorted(source_dir.glob("*.ipynb")):
         notebook = json.loads(path.read_text(encoding="utf-8"))
         target = out_dir / path.name
@@ -189,7 +193,7 @@ def build_student(source_dir, out_dir):
     return written
 
 
-def chapter_title(notebook, fallback):
+def chapter_title(notebook: dict[str, Any], fallback: str) -> str:
     """The first Markdown heading of a notebook, without the leading #."""
     for cell in notebook["cells"]:
         if cell["cell_type"] == "markdown":
@@ -209,14 +213,14 @@ MathJax.Ajax.loadComplete("[MathJax]/config/local/twolink.js");
 """
 
 
-def mathjax_source():
+def mathjax_source() -> pathlib.Path:
     """Folder of the MathJax 2.7 copy shipped by the jupyter-server-mathjax package."""
     import jupyter_server_mathjax
 
     return pathlib.Path(jupyter_server_mathjax.__file__).parent / "static"
 
 
-def build_site(source_dir, out_dir):
+def build_site(source_dir: str | pathlib.Path, out_dir: str | pathlib.Path) -> list[pathlib.Path]:
     """Render every notebook to HTML (nbconvert) and write an index page linking them in order."""
     source_dir, out_dir = pathlib.Path(source_dir), pathlib.Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -264,8 +268,9 @@ def build_site(source_dir, out_dir):
     return [out_dir / "index.html"] + [out_dir / path.with_suffix(".html").name for path in notebooks]
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def main(argv: Sequence[str] | None = None) -> None:
+    """Build the edition named on the command line (``student`` or ``site``)."""
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("edition", choices=["student", "site"])
     parser.add_argument("--source", default=str(ROOT / "notebooks"))
     parser.add_argument("--out", default=None)

@@ -14,9 +14,13 @@ Usage::
     python tools/install_cell.py --check notebooks/*.ipynb   # exit 1 if a notebook's first code cell differs
 """
 
+from __future__ import annotations
+
 import argparse
 import pathlib
 import sys
+from collections.abc import Sequence
+from typing import Any
 
 import nbformat
 
@@ -30,7 +34,7 @@ SOURCE_VARIABLE = "TWOLINK_SOURCE"
 MARKER = "# Setup: installs twolink only where `import twolink` fails (Colab, a bare Jupyter); in a clone it does nothing."
 
 
-def install_cell_source(default_requirement=None):
+def install_cell_source(default_requirement: str | None = None) -> str:
     """The canonical first code cell, installing ``default_requirement`` unless TWOLINK_SOURCE is set.
 
     Examples
@@ -61,21 +65,21 @@ def install_cell_source(default_requirement=None):
     ])
 
 
-def _first_code_index(notebook):
+def _first_code_index(notebook: Any) -> int | None:
     for index, cell in enumerate(notebook.cells):
         if cell.cell_type == "code":
             return index
     return None
 
 
-def is_up_to_date(notebook, source=None):
+def is_up_to_date(notebook: Any, source: str | None = None) -> bool:
     """Whether the notebook's first code cell is exactly the install cell."""
     source = install_cell_source() if source is None else source
     index = _first_code_index(notebook)
     return index is not None and notebook.cells[index].source == source
 
 
-def apply(notebook, source=None):
+def apply(notebook: Any, source: str | None = None) -> bool:
     """Insert the install cell before the first code cell, or update it if it is already there.
 
     Returns True if the notebook changed.  Applying twice changes nothing the second time.
@@ -96,14 +100,15 @@ def apply(notebook, source=None):
     return True
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def main(argv: Sequence[str] | None = None) -> int:
+    """Write (or with ``--check``, check) the install cell of the notebooks named; 1 if any is stale."""
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--check", action="store_true", help="fail if a notebook's first code cell is not the install cell")
     parser.add_argument("notebooks", nargs="*", type=pathlib.Path)
     args = parser.parse_args(argv)
     paths = args.notebooks or sorted((ROOT / "notebooks").glob("*.ipynb"))
     source = install_cell_source()
-    stale = []
+    stale: list[pathlib.Path] = []
     for path in paths:
         notebook = nbformat.read(path, as_version=4)
         if args.check:

@@ -13,11 +13,14 @@ Usage::
     python tools/links.py --check    # exit 1 if README.md's section is out of date
 """
 
+from __future__ import annotations
+
 import argparse
 import pathlib
 import re
 import sys
 import tomllib
+from collections.abc import Sequence
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PLACEHOLDER_OWNER = "OWNER"
@@ -27,7 +30,7 @@ END = "<!-- END run-online -->"
 FIRST_CHAPTER = "notebooks/01_dh_forward_kinematics.ipynb"
 
 
-def repository_url(pyproject=ROOT / "pyproject.toml"):
+def repository_url(pyproject: str | pathlib.Path = ROOT / "pyproject.toml") -> str:
     """The ``Repository`` URL of ``[project.urls]``, without a trailing slash or ``.git``.
 
     Examples
@@ -41,7 +44,7 @@ def repository_url(pyproject=ROOT / "pyproject.toml"):
     return re.sub(r"(\.git)?/*$", "", urls["Repository"].strip())
 
 
-def github_owner_name(url):
+def github_owner_name(url: str) -> tuple[str, str] | None:
     """``(owner, name)`` of a ``https://github.com/owner/name`` URL, or ``None`` while it is the placeholder.
 
     Examples
@@ -58,7 +61,7 @@ def github_owner_name(url):
     return None if owner == PLACEHOLDER_OWNER else (owner, name)
 
 
-def binder_url(url, branch="main", path=FIRST_CHAPTER):
+def binder_url(url: str, branch: str = "main", path: str = FIRST_CHAPTER) -> str:
     """The mybinder.org link that builds ``url`` and opens ``path`` in JupyterLab.
 
     Examples
@@ -70,7 +73,7 @@ def binder_url(url, branch="main", path=FIRST_CHAPTER):
     return f"https://mybinder.org/v2/gh/{owner}/{name}/{branch}?urlpath=lab/tree/{path}"
 
 
-def colab_url(url, branch="main", path=FIRST_CHAPTER):
+def colab_url(url: str, branch: str = "main", path: str = FIRST_CHAPTER) -> str:
     """The Colab link that opens ``path`` of ``url`` straight from GitHub.
 
     Examples
@@ -82,7 +85,7 @@ def colab_url(url, branch="main", path=FIRST_CHAPTER):
     return f"https://colab.research.google.com/github/{owner}/{name}/blob/{branch}/{path}"
 
 
-def install_requirement(url):
+def install_requirement(url: str) -> str:
     """What the notebooks' install cell installs by default: from the repository, or by name.
 
     Examples
@@ -95,7 +98,7 @@ def install_requirement(url):
     return "twolink[course]" if github_owner_name(url) is None else f"twolink[course] @ git+{url}"
 
 
-def run_online_section(url):
+def run_online_section(url: str) -> str:
     """README's "Run it online" text between the markers, for repository ``url``."""
     known = github_owner_name(url) is not None
     binder, colab = binder_url(url), colab_url(url)
@@ -138,7 +141,7 @@ def run_online_section(url):
     ])
 
 
-def replace_section(readme_text, section):
+def replace_section(readme_text: str, section: str) -> str:
     """``readme_text`` with the text between BEGIN and END replaced by ``section``."""
     pattern = re.compile(re.escape(BEGIN) + r".*?" + re.escape(END), re.S)
     if not pattern.search(readme_text):
@@ -146,8 +149,9 @@ def replace_section(readme_text, section):
     return pattern.sub(lambda _: section, readme_text, count=1)
 
 
-def main(argv=None):
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def main(argv: Sequence[str] | None = None) -> int:
+    """Print, write (``--write``) or check (``--check``) README's "Run it online" section; 1 if stale."""
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--write", action="store_true", help="rewrite README.md's section")
     mode.add_argument("--check", action="store_true", help="fail if README.md's section is out of date")

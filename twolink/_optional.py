@@ -8,9 +8,13 @@ imports it through :func:`require`, so that a user without it gets an
 bare ``ModuleNotFoundError``.
 """
 
-import importlib
+from __future__ import annotations
 
-__all__ = ["COURSE_INSTALL", "require", "html"]
+import importlib
+from types import ModuleType
+from typing import Protocol
+
+__all__ = ["COURSE_INSTALL", "require", "html", "HTMLDisplay"]
 
 #: The command that installs every course-only dependency.
 COURSE_INSTALL = 'pip install "twolink[course]"'
@@ -25,7 +29,7 @@ _DISTRIBUTIONS = {
 }
 
 
-def require(module, function):
+def require(module: str, function: str) -> ModuleType:
     """Import ``module`` for ``function``, or explain how to install it.
 
     Parameters
@@ -66,20 +70,28 @@ def require(module, function):
         ) from error
 
 
+class HTMLDisplay(Protocol):
+    """What Jupyter displays as HTML: an object with ``_repr_html_()`` (``IPython.display.HTML``, ...)."""
+
+    def _repr_html_(self) -> str:
+        """The HTML text Jupyter shows."""
+        ...
+
+
 class _HTML:
     """A minimal stand-in for ``IPython.display.HTML`` when IPython is absent."""
 
-    def __init__(self, data):
+    def __init__(self, data: str) -> None:
         self.data = data
 
-    def _repr_html_(self):
+    def _repr_html_(self) -> str:
         return self.data
 
-    def __repr__(self):
+    def __repr__(self) -> str:
         return f"<HTML: {len(self.data)} characters>"
 
 
-def html(text):
+def html(text: str) -> HTMLDisplay:
     """``IPython.display.HTML(text)``, or an object with the same ``_repr_html_`` without IPython.
 
     Examples

@@ -2,14 +2,24 @@
 
 Every public function funnels its array arguments through these helpers so
 that bad input fails early with a message that says what was wrong and what
-is allowed, instead of propagating NaN.
+is allowed, instead of propagating NaN.  So their inputs are typed
+``object``: they take anything and refuse what is not allowed.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
+from numpy.typing import NDArray
 
 from .errors import InputTypeError
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
+
+_Arm = TypeVar("_Arm")
 
 #: Python and numpy scalar types accepted where a real number belongs (bool excluded).
 _REAL_TYPES = (int, float, np.integer, np.floating)
@@ -26,13 +36,14 @@ _FAST_SCALARS = frozenset((int, np.float64, np.float32, np.int64, np.int32))
 _FLOAT64 = np.dtype(np.float64)
 
 
-def as_pairs(values, name):
+def as_pairs(values: object, name: str) -> NDArray[np.float64]:
     """Return ``values`` as a float array of shape ``(..., 2)``.
 
     Parameters
     ----------
-    values : array_like
-        Anything numpy can turn into floats, with a last axis of length 2.
+    values : object
+        Anything; accepted when numpy can turn it into real floats with a
+        last axis of length 2 (array_like), refused otherwise.
     name : str
         The argument's name, used in error messages.
 
@@ -70,7 +81,7 @@ def as_pairs(values, name):
     return array
 
 
-def pair_floats(values):
+def pair_floats(values: object) -> tuple[float, float] | None:
     """Two finite Python floats when ``values`` is plainly one pair of real numbers, else ``None``.
 
     The fast path of the public functions for one configuration, target or
@@ -92,11 +103,14 @@ def pair_floats(values):
     >>> pair_floats([True, 1.0]) is None, pair_floats([float("nan"), 1.0]) is None
     (True, True)
     """
-    kind = type(values)
+    # the exact type tests below (faster than isinstance) decide what ``values`` is;
+    # mypy does not narrow on them, so the checked value is read through ``items``
+    items: Any = values
+    kind = type(items)
     if kind is list or kind is tuple:
-        if len(values) != 2:
+        if len(items) != 2:
             return None
-        first, second = values
+        first, second = items
         try:
             if type(first) is not float:
                 if type(first) not in _FAST_SCALARS:
@@ -109,9 +123,9 @@ def pair_floats(values):
         except OverflowError:  # an int beyond the float range
             return None
     elif kind is np.ndarray:
-        if values.shape != (2,) or values.dtype is not _FLOAT64:
+        if items.shape != (2,) or items.dtype is not _FLOAT64:
             return None
-        first, second = values.tolist()
+        first, second = items.tolist()
     else:
         return None
     if math.isfinite(first) and math.isfinite(second):
@@ -119,7 +133,7 @@ def pair_floats(values):
     return None
 
 
-def as_finite_scalar(value, name, *, minimum=None, strictly=False):
+def as_finite_scalar(value: object, name: str, *, minimum: float | None = None, strictly: bool = False) -> float:
     """Return ``value`` as a finite float, optionally bounded below.
 
     Parameters
@@ -158,7 +172,7 @@ def as_finite_scalar(value, name, *, minimum=None, strictly=False):
     return number
 
 
-def as_count(value, name, *, minimum=1, maximum=None):
+def as_count(value: object, name: str, *, minimum: int = 1, maximum: int | None = None) -> int:
     """Return ``value`` as a Python ``int`` at least ``minimum`` (and at most ``maximum``).
 
     Integers (Python or numpy) and floats with an integral value (``50.0``)
@@ -190,7 +204,7 @@ def as_count(value, name, *, minimum=1, maximum=None):
     return count
 
 
-def broadcast_start(start, shape, name, against="target p"):
+def broadcast_start(start: object, shape: tuple[int, ...], name: str, against: str = "target p") -> NDArray[np.float64]:
     """``start`` (pairs) broadcast to ``shape``, or a message naming both shapes.
 
     Examples
@@ -212,7 +226,7 @@ def broadcast_start(start, shape, name, against="target p"):
         ) from None
 
 
-def broadcast_shape(**arrays):
+def broadcast_shape(**arrays: NDArray[np.float64]) -> tuple[int, ...]:
     """The broadcast shape of named ``(..., 2)`` arrays, or a message naming each and its shape.
 
     Examples
@@ -235,7 +249,7 @@ def broadcast_shape(**arrays):
 _BAD_ELEMENT = (bool, np.bool_, complex, np.complexfloating, str, bytes, type(None))
 
 
-def real_array(values, name, what="real numbers"):
+def real_array(values: object, name: str, what: str = "real numbers") -> NDArray[np.float64]:
     """``values`` as a float64 array, refusing anything that is not real numbers.
 
     Booleans, complex numbers (whose imaginary part would be dropped),
@@ -253,12 +267,16 @@ def real_array(values, name, what="real numbers"):
     ...
     twolink.errors.InputTypeError: q must be real numbers; got [1.0, 2j] (an entry is complex)
     """
-    kind = type(values)
+    # the exact type tests below (faster than isinstance) decide what ``values`` is;
+    # mypy does not narrow on them, so the checked value is read through ``items``
+    items: Any = values
+    kind = type(items)
+    array: NDArray[Any]
     if kind is np.ndarray:
-        array = values
+        array = items
     else:
         if kind is list or kind is tuple:
-            for element in values:
+            for element in items:
                 element_type = type(element)
                 if element_type is not float and element_type is not int and isinstance(element, _BAD_ELEMENT):
                     raise InputTypeError(f"{name} must be {what}; got {values!r} (an entry is {element_type.__name__})")
@@ -276,7 +294,7 @@ def real_array(values, name, what="real numbers"):
     return array.astype(float)
 
 
-def require_arm(arm, who="arm"):
+def require_arm(arm: _Arm, who: str = "arm") -> _Arm:
     """Refuse anything that is not an arm (``None``, numbers, ...) with an error naming ``arm``.
 
     Examples
@@ -291,7 +309,7 @@ def require_arm(arm, who="arm"):
     return arm
 
 
-def arm_lengths(arm):
+def arm_lengths(arm: TwoLinkArm) -> tuple[float, float]:
     """``(l1, l2)`` of ``arm``, or the :func:`require_arm` error naming it (free when it is an arm).
 
     Examples
@@ -307,7 +325,7 @@ def arm_lengths(arm):
         raise
 
 
-def finite_result(array, what, cause):
+def finite_result(array: NDArray[np.float64], what: str, cause: str) -> NDArray[np.float64]:
     """``array`` if every entry is finite, else an error saying the result overflows float64.
 
     Examples
@@ -323,7 +341,7 @@ def finite_result(array, what, cause):
     raise OverflowError(f"the {what} overflow float64 (|value| > 1.8e308) at index {index}: {cause}")
 
 
-def as_configuration(q, name="q", what="one configuration", unit="radians"):
+def as_configuration(q: object, name: str = "q", what: str = "one configuration", unit: str = "radians") -> NDArray[np.float64]:
     """``q`` as a float array of shape ``(2,)``, or a ``ValueError`` naming its shape.
 
     The one check for functions that work on a single configuration (or a

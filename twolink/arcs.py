@@ -6,9 +6,12 @@ So the boundary of the reachable set is a union of circular arcs, and
 distances to it can be computed exactly instead of from sampled points.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputTypeError
 from ._validate import as_count, as_finite_scalar, as_pairs, real_array
@@ -28,7 +31,8 @@ class Arc:
     Parameters
     ----------
     centre : pair of float
-        Centre of the circle, metres.
+        Centre of the circle, metres (any pair of real numbers, stored as a
+        tuple of two floats).
     radius : float
         Radius (>= 0; 0 makes the arc a single point), metres.
     start : float
@@ -51,14 +55,14 @@ class Arc:
     array([1.        , 2.        , 3.60555128])
     """
 
-    centre: tuple
+    centre: tuple[float, float]
     radius: float
     start: float
     sweep: float
     label: str = ""
     kind: str = ""
 
-    def __post_init__(self):
+    def __post_init__(self) -> None:
         centre = as_pairs(self.centre, "centre")
         if centre.shape != (2,):
             raise ValueError(f"centre must be one (x, y) pair; got shape {centre.shape}")
@@ -73,7 +77,7 @@ class Arc:
             if not isinstance(getattr(self, name), str):
                 raise InputTypeError(f"{name} must be a string; got {getattr(self, name)!r}")
 
-    def point_at(self, fraction):
+    def point_at(self, fraction: ArrayLike) -> NDArray[np.float64]:
         """Points at ``fraction`` (0 = start, 1 = end) along the arc, shape ``(..., 2)``."""
         angle = self.start + self.sweep * real_array(fraction, "fraction")
         points = np.empty(angle.shape + (2,))
@@ -81,17 +85,17 @@ class Arc:
         points[..., 1] = self.centre[1] + self.radius * np.sin(angle)
         return points
 
-    def points(self, n=100):
+    def points(self, n: int = 100) -> NDArray[np.float64]:
         """``n`` equally spaced points from start to end (both included), shape ``(n, 2)``."""
         n = as_count(n, "n", minimum=2, maximum=MAX_POINTS)
         return self.point_at(np.linspace(0.0, 1.0, n))
 
     @property
-    def end_points(self):
+    def end_points(self) -> NDArray[np.float64]:
         """The first and last point, shape ``(2, 2)``."""
         return self.point_at(np.array([0.0, 1.0]))
 
-    def fraction_of(self, p):
+    def fraction_of(self, p: ArrayLike) -> NDArray[np.float64]:
         """Where points on the arc's circle lie along the arc: fractions in ``[0, 1]``.
 
         Points off the arc (outside its angular span) get ``-1``, and so does
@@ -113,7 +117,7 @@ class Arc:
         along = np.where(along > _TWO_PI - 1e-12, 0.0, along)
         return np.where(along <= span * (1.0 + 1e-12), np.minimum(along / span, 1.0), -1.0)
 
-    def distance(self, p):
+    def distance(self, p: ArrayLike) -> NDArray[np.float64]:
         """Euclidean distance from points ``p`` (..., 2) to the arc, exactly.
 
         Inside the arc's angular span the nearest point is the radial
@@ -136,7 +140,7 @@ class Arc:
         radial = np.abs(from_centre - self.radius)
         return np.where(along <= abs(self.sweep), radial, to_ends)
 
-    def split(self, fractions):
+    def split(self, fractions: ArrayLike) -> list[Arc]:
         """Cut the arc at the given fractions (0 < f < 1) into consecutive pieces.
 
         Examples
@@ -154,7 +158,7 @@ class Arc:
         ]
 
 
-def circle_intersections(centre_a, radius_a, centre_b, radius_b):
+def circle_intersections(centre_a: ArrayLike, radius_a: float, centre_b: ArrayLike, radius_b: float) -> NDArray[np.float64]:
     """Intersection points of two circles, shape ``(k, 2)`` with k = 0, 1 or 2.
 
     Concentric circles give no points (identical circles included: the

@@ -5,9 +5,12 @@ The computations live in small modules (:mod:`twolink.kinematics`,
 :mod:`twolink.dh`, ...); the methods here are thin, documented entry points.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import dh, kinematics
 from . import velocity
@@ -29,7 +32,7 @@ G_MAX = 1e50
 OFFSET_MAX = 1e150
 
 
-def _within(value, name, low, high):
+def _within(value: float, name: str, low: float, high: float) -> float:
     if value != 0.0 and not low <= abs(value) <= high:
         allowed = f"[{low:.0e}, {high:.0e}]" if low > 0.0 else f"0 or up to {high:.0e} in size"
         raise ValueError(
@@ -39,12 +42,13 @@ def _within(value, name, low, high):
     return value
 
 
-def _as_limit_pair(value, name):
+def _as_limit_pair(value: ArrayLike | None, name: str) -> tuple[float, float] | None:
     if value is None:
         return None
-    pair = tuple(real_array(value, name, "None or two angles in radians").ravel().tolist())
-    if np.ndim(value) != 1 or len(pair) != 2:
+    values = real_array(value, name, "None or two angles in radians").ravel().tolist()
+    if np.ndim(value) != 1 or len(values) != 2:
         raise ValueError(f"{name} must be None or two angles in radians; got {value!r}")
+    pair = (values[0], values[1])
     if not all(np.isfinite(pair)):
         raise ValueError(f"{name} must be finite angles in radians; got {pair}")
     return pair
@@ -73,6 +77,8 @@ class TwoLinkArm:
     q_min, q_max : pair of float, optional
         Joint limits in radians, ``q_min <= q_max`` component-wise; ``None``
         for no limits.  Read in the convention named by ``limit_convention``.
+        Any pair of real numbers (a list, an array) is accepted and stored as
+        a tuple of two floats.
     I1, I2 : float, optional
         Link inertias about their centres of mass (kg m^2); ``None`` gives the
         uniform rod value ``m l^2 / 12``.
@@ -109,59 +115,57 @@ class TwoLinkArm:
     m2: float = 1.0
     g: float = 9.81
     d: float = 0.0
-    q_min: tuple | None = None
-    q_max: tuple | None = None
+    q_min: tuple[float, float] | None = None
+    q_max: tuple[float, float] | None = None
     I1: float | None = None
     I2: float | None = None
     limit_convention: str = "relative"
 
-    def __post_init__(self):
-        checked = {
+    def __post_init__(self) -> None:
+        scalars = {
             "l1": as_finite_scalar(self.l1, "l1 (link 1 length, m)", minimum=0.0, strictly=True),
             "l2": as_finite_scalar(self.l2, "l2 (link 2 length, m)", minimum=0.0, strictly=True),
             "m1": as_finite_scalar(self.m1, "m1 (link 1 mass, kg)", minimum=0.0),
             "m2": as_finite_scalar(self.m2, "m2 (link 2 mass, kg)", minimum=0.0),
             "g": as_finite_scalar(self.g, "g (m/s^2)"),
             "d": as_finite_scalar(self.d, "d (base offset, m)"),
-            "q_min": _as_limit_pair(self.q_min, "q_min"),
-            "q_max": _as_limit_pair(self.q_max, "q_max"),
         }
+        q_min = _as_limit_pair(self.q_min, "q_min")
+        q_max = _as_limit_pair(self.q_max, "q_max")
         for name in ("I1", "I2"):
             value = getattr(self, name)
             if value is not None:
-                checked[name] = as_finite_scalar(value, f"{name} (inertia, kg m^2)", minimum=0.0)
-                _within(checked[name], f"{name} (inertia, kg m^2)", 0.0, INERTIA_MAX)
-        _within(checked["l1"], "l1 (link 1 length, m)", *LENGTH_RANGE)
-        _within(checked["l2"], "l2 (link 2 length, m)", *LENGTH_RANGE)
-        _within(checked["m1"], "m1 (link 1 mass, kg)", 0.0, MASS_MAX)
-        _within(checked["m2"], "m2 (link 2 mass, kg)", 0.0, MASS_MAX)
-        _within(checked["g"], "g (m/s^2)", 0.0, G_MAX)
-        _within(checked["d"], "d (base offset, m)", 0.0, OFFSET_MAX)
-        if (checked["q_min"] is None) != (checked["q_max"] is None):
-            raise ValueError("q_min and q_max must be given together (or both None)")
-        if checked["q_min"] is not None:
-            low, high = np.array(checked["q_min"]), np.array(checked["q_max"])
-            if np.any(low > high):
-                raise ValueError(
-                    f"q_min must be <= q_max component-wise; got q_min={checked['q_min']}, "
-                    f"q_max={checked['q_max']} (radians)"
-                )
+                scalars[name] = as_finite_scalar(value, f"{name} (inertia, kg m^2)", minimum=0.0)
+                _within(scalars[name], f"{name} (inertia, kg m^2)", 0.0, INERTIA_MAX)
+        _within(scalars["l1"], "l1 (link 1 length, m)", *LENGTH_RANGE)
+        _within(scalars["l2"], "l2 (link 2 length, m)", *LENGTH_RANGE)
+        _within(scalars["m1"], "m1 (link 1 mass, kg)", 0.0, MASS_MAX)
+        _within(scalars["m2"], "m2 (link 2 mass, kg)", 0.0, MASS_MAX)
+        _within(scalars["g"], "g (m/s^2)", 0.0, G_MAX)
+        _within(scalars["d"], "d (base offset, m)", 0.0, OFFSET_MAX)
+        if q_min is None or q_max is None:
+            if q_min is not None or q_max is not None:
+                raise ValueError("q_min and q_max must be given together (or both None)")
+        elif np.any(np.array(q_min) > np.array(q_max)):
+            raise ValueError(f"q_min must be <= q_max component-wise; got q_min={q_min}, q_max={q_max} (radians)")
         if not isinstance(self.limit_convention, str) or self.limit_convention not in _LIMIT_CONVENTIONS:
             raise ValueError(f"limit_convention must be one of {_LIMIT_CONVENTIONS}; got {self.limit_convention!r}")
-        for name, value in checked.items():
+        for name, value in scalars.items():
             object.__setattr__(self, name, value)
+        object.__setattr__(self, "q_min", q_min)
+        object.__setattr__(self, "q_max", q_max)
         # derived constants, computed on first use by the modules that need them
         # (dynamics); not a dataclass field, so equality, hashing and repr ignore it
         object.__setattr__(self, "_derived", {})
 
     # ------------------------------------------------------------------ parameters
     @property
-    def reach(self):
+    def reach(self) -> tuple[float, float]:
         """Reach interval ``(r_min, r_max) = (|l1 - l2|, l1 + l2)`` in metres."""
         return kinematics.reach(self)
 
     @property
-    def inertias(self):
+    def inertias(self) -> tuple[float, float]:
         """Link inertias about their centres of mass, ``(I1, I2)`` in kg m^2.
 
         Uniform rods (``m l^2 / 12``) unless ``I1``/``I2`` were given.
@@ -176,11 +180,11 @@ class TwoLinkArm:
         return (inertia_1, inertia_2)
 
     @property
-    def has_limits(self):
+    def has_limits(self) -> bool:
         """True when the arm has joint limits."""
         return self.q_min is not None
 
-    def within_limits(self, q, tol=1e-12):
+    def within_limits(self, q: ArrayLike, tol: float = 1e-12) -> NDArray[np.bool_] | np.bool_:
         """Whether configurations respect the joint limits.
 
         Parameters
@@ -194,8 +198,9 @@ class TwoLinkArm:
 
         Returns
         -------
-        numpy.ndarray of bool, shape (...)
-            All true when the arm has no limits.
+        numpy.ndarray of bool, shape (...), or numpy.bool_
+            All true when the arm has no limits.  For one configuration
+            (``q`` of shape ``(2,)``) a numpy bool or a 0-d array.
 
         Examples
         --------
@@ -206,7 +211,7 @@ class TwoLinkArm:
         pair = pair_floats(q)
         if pair is not None:  # one configuration: the same checks and comparisons on floats
             tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
-            if self.q_min is None:
+            if self.q_min is None or self.q_max is None:
                 return np.ones((), dtype=bool)
             q1, q2 = pair
             (low_1, low_2), (high_1, high_2) = self.q_min, self.q_max
@@ -221,72 +226,99 @@ class TwoLinkArm:
         return np.all((angles >= low - tol) & (angles <= high + tol), axis=-1)
 
     # ------------------------------------------------------------------ kinematics
-    def fk(self, q):
+    def fk(self, q: ArrayLike) -> NDArray[np.float64]:
         """Tip position ``(..., 2)`` for joint angles ``q`` ``(..., 2)``; see :func:`twolink.kinematics.fk`."""
         return kinematics.fk(self, q)
 
-    def joint_positions(self, q):
+    def joint_positions(self, q: ArrayLike) -> NDArray[np.float64]:
         """Base, elbow and tip ``(..., 3, 2)``; see :func:`twolink.kinematics.joint_positions`."""
         return kinematics.joint_positions(self, q)
 
-    def jacobian(self, q):
+    def jacobian(self, q: ArrayLike) -> NDArray[np.float64]:
         """Analytic Jacobian ``(..., 2, 2)``; see :func:`twolink.kinematics.jacobian`."""
         return kinematics.jacobian(self, q)
 
-    def joint_torques(self, q, force):
-        """Static torques ``tau = J^T F`` for the force ``F`` the tip exerts; see :func:`twolink.kinematics.joint_torques`."""
-        return kinematics.joint_torques(self, q, force)
+    def joint_torques(self, q: ArrayLike, force_by_tip: ArrayLike) -> NDArray[np.float64]:
+        """Static torques ``tau = J^T force_by_tip`` ``(..., 2)`` that hold the force the tip exerts.
 
-    def dh_table(self):
+        ``force_by_tip`` (N, shape ``(..., 2)``) is the force the tip exerts
+        ON the environment; the environment pushes back with
+        ``-force_by_tip``, and the motors hold the arm still with these
+        torques (N m).  See :func:`twolink.kinematics.joint_torques`.
+
+        Examples
+        --------
+        >>> TwoLinkArm(1.0, 1.0).joint_torques([0.0, 0.0], [0.0, -10.0]).round(12)
+        array([-20., -10.])
+        """
+        return kinematics.joint_torques(self, q, force_by_tip)
+
+    def dh_table(self) -> tuple[dh.DHRow, dh.DHRow]:
         """The DH table as two rows; see :func:`twolink.dh.dh_table`."""
         return dh.dh_table(self)
 
-    def transforms(self, q):
+    def transforms(self, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(T_01, T_02)`` homogeneous transforms; see :func:`twolink.dh.transforms`."""
         return dh.transforms(self, q)
 
-    def geometric_jacobian(self, q):
+    def geometric_jacobian(self, q: ArrayLike) -> NDArray[np.float64]:
         """The 6x2 geometric Jacobian; see :func:`twolink.dh.geometric_jacobian`."""
         return dh.geometric_jacobian(self, q)
 
     # --- velocity
-    def tip_velocity(self, q, qd):
+    def tip_velocity(self, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """Tip velocity ``J(q) qd`` ``(..., 2)`` in m/s; see :func:`twolink.velocity.tip_velocity`."""
         return velocity.tip_velocity(self, q, qd)
 
-    def joint_rates(self, q, v_tip, tol=velocity.SINGULARITY_TOL):
+    def joint_rates(self, q: ArrayLike, v_tip: ArrayLike, tol: float = velocity.SINGULARITY_TOL) -> NDArray[np.float64]:
         """Joint rates ``J^-1 v_tip``, raising ``SingularityError`` when ``|sin q2| <= tol``; see :func:`twolink.velocity.joint_rates`."""
         return velocity.joint_rates(self, q, v_tip, tol=tol)
 
-    def joint_rates_dls(self, q, v_tip, damping):
+    def joint_rates_dls(self, q: ArrayLike, v_tip: ArrayLike, damping: float) -> NDArray[np.float64]:
         """Damped-least-squares joint rates (bounded at singularities); see :func:`twolink.velocity.joint_rates_dls`."""
         return velocity.joint_rates_dls(self, q, v_tip, damping)
 
-    def manipulability(self, q):
+    def manipulability(self, q: ArrayLike) -> NDArray[np.float64]:
         """Yoshikawa's manipulability ``|l1 l2 sin q2|`` ``(...)``; see :func:`twolink.velocity.manipulability`."""
         return velocity.manipulability(self, q)
 
     # --- dynamics
-    def mass_matrix(self, q):
+    def mass_matrix(self, q: ArrayLike) -> NDArray[np.float64]:
         """Mass matrix ``M(q)`` ``(..., 2, 2)``; see :func:`twolink.dynamics.mass_matrix`."""
         return dynamics.mass_matrix(self, q)
 
-    def coriolis(self, q, qd):
+    def coriolis(self, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """Coriolis matrix ``C(q, qd)`` ``(..., 2, 2)``, ``dM/dt - 2C`` skew; see :func:`twolink.dynamics.coriolis`."""
         return dynamics.coriolis(self, q, qd)
 
-    def gravity(self, q):
+    def gravity(self, q: ArrayLike) -> NDArray[np.float64]:
         """Gravity torques ``g(q)`` ``(..., 2)`` of ``M qdd + C qd + g = tau``; see :func:`twolink.dynamics.gravity`."""
         return dynamics.gravity(self, q)
 
-    def inverse_dynamics(self, q, qd, qdd, force=None):
-        """Torques ``tau = M qdd + C qd + g [+ J^T F]`` ``(..., 2)``; see :func:`twolink.dynamics.inverse_dynamics`."""
-        return dynamics.inverse_dynamics(self, q, qd, qdd, force)
+    def inverse_dynamics(
+        self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, force_by_tip: ArrayLike | None = None
+    ) -> NDArray[np.float64]:
+        """Torques ``tau = M qdd + C qd + g [+ J^T force_by_tip]`` ``(..., 2)``.
 
-    def forward_dynamics(self, q, qd, tau, force=None):
-        """Accelerations ``qdd = M^-1 (tau - C qd - g [- J^T F])`` ``(..., 2)``; see :func:`twolink.dynamics.forward_dynamics`."""
-        return dynamics.forward_dynamics(self, q, qd, tau, force)
+        ``force_by_tip`` (N, optional) is the force the tip exerts ON the
+        environment (which pushes back with ``-force_by_tip``);
+        ``J^T force_by_tip`` is the torque that holds it.  See
+        :func:`twolink.dynamics.inverse_dynamics`.
+        """
+        return dynamics.inverse_dynamics(self, q, qd, qdd, force_by_tip)
 
-    def energy(self, q, qd):
+    def forward_dynamics(
+        self, q: ArrayLike, qd: ArrayLike, tau: ArrayLike, force_by_tip: ArrayLike | None = None
+    ) -> NDArray[np.float64]:
+        """Accelerations ``qdd = M^-1 (tau - C qd - g [- J^T force_by_tip])`` ``(..., 2)``.
+
+        ``force_by_tip`` (N, optional) is the force the tip exerts ON the
+        environment (which pushes back with ``-force_by_tip``); the part
+        ``J^T force_by_tip`` of ``tau`` holds it and does not accelerate the
+        arm.  See :func:`twolink.dynamics.forward_dynamics`.
+        """
+        return dynamics.forward_dynamics(self, q, qd, tau, force_by_tip)
+
+    def energy(self, q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Kinetic and potential energy ``(T, V)``, each ``(...)``; see :func:`twolink.dynamics.energy`."""
         return dynamics.energy(self, q, qd)

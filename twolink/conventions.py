@@ -9,7 +9,10 @@ It also holds the package's one vocabulary for the elbow branch,
 ``trajectory``, ``workspace``) reads through :func:`check_elbow`.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validate import as_pairs, real_array
 
@@ -26,10 +29,10 @@ __all__ = ["to_absolute", "to_relative", "wrap_angle", "ELBOW_WORDS", "check_elb
 #:
 #: A function that cannot give one of them a meaning refuses it with a
 #: ``ValueError`` that says why and which words it accepts.
-ELBOW_WORDS = ("down", "up", "both", "auto")
+ELBOW_WORDS: tuple[str, ...] = ("down", "up", "both", "auto")
 
 
-def check_elbow(elbow, accepted=ELBOW_WORDS, why=""):
+def check_elbow(elbow: object, accepted: tuple[str, ...] = ELBOW_WORDS, why: str = "") -> str:
     """Return ``elbow`` when it is one of ``accepted`` (a subset of :data:`ELBOW_WORDS`).
 
     Parameters
@@ -41,6 +44,11 @@ def check_elbow(elbow, accepted=ELBOW_WORDS, why=""):
     why : str, optional
         Why a word of :data:`ELBOW_WORDS` outside ``accepted`` has no meaning
         here; added to the error.
+
+    Returns
+    -------
+    str
+        ``elbow`` itself.
 
     Raises
     ------
@@ -68,7 +76,7 @@ def check_elbow(elbow, accepted=ELBOW_WORDS, why=""):
     raise ValueError(f"elbow must be one of {accepted}; got {elbow!r}")
 
 
-def to_absolute(q):
+def to_absolute(q: ArrayLike) -> NDArray[np.float64]:
     """Relative joint angles ``(q1, q2)`` to absolute link angles ``(q1, q1 + q2)``.
 
     Parameters
@@ -86,13 +94,13 @@ def to_absolute(q):
     >>> to_absolute([np.pi / 4, np.pi / 2]) / np.pi
     array([0.25, 0.75])
     """
-    q = as_pairs(q, "q")
-    q_abs = q.copy()
-    q_abs[..., 1] += q[..., 0]
+    q_rel = as_pairs(q, "q")
+    q_abs = q_rel.copy()
+    q_abs[..., 1] += q_rel[..., 0]
     return q_abs
 
 
-def to_relative(q_abs):
+def to_relative(q_abs: ArrayLike) -> NDArray[np.float64]:
     """Absolute link angles ``(q1, q2_abs)`` to relative joint angles ``(q1, q2_abs - q1)``.
 
     Parameters
@@ -110,21 +118,32 @@ def to_relative(q_abs):
     >>> to_relative([np.pi / 4, 3 * np.pi / 4]) / np.pi
     array([0.25, 0.5 ])
     """
-    q_abs = as_pairs(q_abs, "q_abs")
-    q = q_abs.copy()
-    q[..., 1] -= q_abs[..., 0]
+    absolute = as_pairs(q_abs, "q_abs")
+    q = absolute.copy()
+    q[..., 1] -= absolute[..., 0]
     return q
 
 
-def wrap_angle(angle):
+def wrap_angle(angle: ArrayLike) -> NDArray[np.float64] | np.float64:
     """Wrap angles to the interval ``[-pi, pi)``.
+
+    Parameters
+    ----------
+    angle : array_like
+        Angles in radians, any shape; finite.
+
+    Returns
+    -------
+    numpy.ndarray or numpy.float64
+        The wrapped angles, same shape as ``angle`` (a numpy float for a
+        number).
 
     Examples
     --------
     >>> float(wrap_angle(3 * np.pi / 2) / np.pi)
     -0.5
     """
-    angle = real_array(angle, "angle (rad)")
-    if not np.all(np.isfinite(angle)):
+    angles = real_array(angle, "angle (rad)")
+    if not np.all(np.isfinite(angles)):
         raise ValueError("angle must be finite (radians); NaN or infinity has no wrapped value")
-    return (angle + np.pi) % (2.0 * np.pi) - np.pi
+    return (angles + np.pi) % (2.0 * np.pi) - np.pi

@@ -11,11 +11,17 @@ For the planar 2R arm the table is::
 OSAKE desk arm, 0 for the plain planar arm).
 """
 
-from typing import NamedTuple
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validate import as_finite_scalar, as_pairs, real_array, require_arm
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 __all__ = ["DHRow", "dh_matrix", "dh_table", "transforms", "geometric_jacobian"]
 
@@ -33,7 +39,7 @@ class DHRow(NamedTuple):
     alpha: float
 
 
-def dh_matrix(theta, d, a, alpha):
+def dh_matrix(theta: ArrayLike, d: float, a: float, alpha: float) -> NDArray[np.float64]:
     """Homogeneous transform of one DH row, vectorised over ``theta``.
 
     Parameters
@@ -79,7 +85,7 @@ def dh_matrix(theta, d, a, alpha):
     return A
 
 
-def dh_table(arm):
+def dh_table(arm: TwoLinkArm) -> tuple[DHRow, DHRow]:
     """The arm's DH table as two :class:`DHRow` rows.
 
     Examples
@@ -97,7 +103,7 @@ def dh_table(arm):
     )
 
 
-def transforms(arm, q):
+def transforms(arm: TwoLinkArm, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Frame 1 and frame 2 (tip) in the base frame: ``(T_01, T_02 = A1 @ A2)``.
 
     Parameters
@@ -125,7 +131,7 @@ def transforms(arm, q):
     return A1, A1 @ A2
 
 
-def geometric_jacobian(arm, q):
+def geometric_jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """The 6x2 geometric Jacobian ``[Jv; Jw]`` built from the DH frames.
 
     Column i is ``[z_{i-1} x (o_2 - o_{i-1}); z_{i-1}]`` for a revolute joint.

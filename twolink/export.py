@@ -36,14 +36,22 @@ True
 True
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Iterable
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-from ._validate import as_finite_scalar
+from ._validate import as_finite_scalar, require_arm
 from .statics import Wall
 
-__all__ = ["to_mjcf", "to_urdf", "INTEGRATORS", "AXIAL_INERTIA_RATIO"]
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
+
+__all__ = ["to_mjcf", "to_urdf", "as_wall", "INTEGRATORS", "AXIAL_INERTIA_RATIO"]
 
 #: MuJoCo's integrators (``<option integrator=...>``).
 INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
@@ -53,7 +61,7 @@ INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
 AXIAL_INERTIA_RATIO = 1e-6
 
 
-def _num(value):
+def _num(value: float) -> str:
     """A float written so that it reads back exactly (shortest round-trip repr)."""
     value = float(value)
     if value == 0.0:
@@ -61,17 +69,11 @@ def _num(value):
     return repr(value)
 
 
-def _nums(*values):
+def _nums(*values: float) -> str:
     return " ".join(_num(v) for v in values)
 
 
-def _require_arm(arm, who):
-    needed = ("l1", "l2", "m1", "m2", "g", "d", "inertias", "has_limits", "limit_convention")
-    if not all(hasattr(arm, name) for name in needed):
-        raise ValueError(f"{who} needs a twolink.TwoLinkArm as its arm; got {type(arm).__name__}")
-
-
-def _link_inertias(arm, who):
+def _link_inertias(arm: TwoLinkArm, who: str) -> list[tuple[float, float]]:
     """``[(mass, inertia), (mass, inertia)]``, checked positive (engines refuse massless moving bodies)."""
     links = []
     for k, (mass, inertia) in enumerate(zip((arm.m1, arm.m2), arm.inertias), start=1):
@@ -85,7 +87,35 @@ def _link_inertias(arm, who):
     return links
 
 
-def _as_wall(wall):
+def as_wall(wall: Wall | ArrayLike | None) -> Wall | None:
+    """The ``wall`` argument of :func:`to_mjcf` (and :func:`twolink.engine.wall_push`) as a :class:`~twolink.statics.Wall`.
+
+    Parameters
+    ----------
+    wall : Wall, array_like of shape (2, 2), or None
+        A wall, or two distinct points ``((x_a, y_a), (x_b, y_b))`` on its
+        line (metres), or ``None`` for no wall.
+
+    Returns
+    -------
+    Wall or None
+        ``wall`` itself when it is a ``Wall`` or ``None``; else
+        ``Wall.through`` the two points.
+
+    Raises
+    ------
+    ValueError
+        For anything else.
+
+    Examples
+    --------
+    >>> as_wall([[4.0, 0.0], [0.0, 4.0]]).into_wall().round(6)
+    array([0.707107, 0.707107])
+    >>> as_wall("x + y = 4")
+    Traceback (most recent call last):
+    ...
+    ValueError: wall must be None, a twolink.statics.Wall or two points ((x_a, y_a), (x_b, y_b)) on the line; got 'x + y = 4'
+    """
     if wall is None or isinstance(wall, Wall):
         return wall
     try:
@@ -100,7 +130,11 @@ def _as_wall(wall):
     )
 
 
-def _pair(value, name):
+#: The former private name, kept only until :mod:`twolink.engine` calls :func:`as_wall` (then remove it).
+_as_wall = as_wall
+
+
+def _pair(value: Iterable[float], name: str) -> tuple[float, ...]:
     try:
         pair = tuple(float(v) for v in value)
     except TypeError as exc:
@@ -111,15 +145,15 @@ def _pair(value, name):
 
 
 def to_mjcf(
-    arm,
+    arm: TwoLinkArm,
     *,
-    wall=None,
+    wall: Wall | ArrayLike | None = None,
     tip_site: bool = True,
     tip_radius: float | None = None,
     timestep: float = 1e-4,
     integrator: str = "RK4",
-    contact_solref=None,
-    contact_solimp=None,
+    contact_solref: Iterable[float] | None = None,
+    contact_solimp: Iterable[float] | None = None,
     model_name: str = "twolink",
 ) -> str:
     """An MJCF model (MuJoCo's XML) of the arm, optionally with a wall.
@@ -142,7 +176,7 @@ def to_mjcf(
     arm : TwoLinkArm
         Both links need mass > 0 and inertia > 0 (MuJoCo refuses massless
         moving bodies).
-    wall : Wall or pair of points, optional
+    wall : Wall or array_like of shape (2, 2), optional
         A straight wall in the arm's plane (:class:`twolink.statics.Wall`,
         or two points on it).  It becomes an infinite plane geom ``wall``
         whose free side faces the base (the side of
@@ -161,7 +195,7 @@ def to_mjcf(
         MuJoCo's integrator.  RK4 (default) is the fixed-step 4th-order
         Runge-Kutta method; the others add MuJoCo's implicit treatment of
         damping, which this model does not have.
-    contact_solref, contact_solimp : sequence of float, optional
+    contact_solref, contact_solimp : iterable of float, optional
         The wall's soft-contact parameters (MuJoCo's ``solref``, 2 numbers,
         and ``solimp``, 3 or 5 numbers); ``None`` keeps MuJoCo's defaults
         (``solref = (0.02, 1)``: a time constant of 20 ms; ``solimp = (0.9,
@@ -180,6 +214,8 @@ def to_mjcf(
     ValueError
         For an argument that is not what is described above, or a link
         without mass or inertia.
+    twolink.errors.InputTypeError
+        When ``arm`` is not an arm (a ``TypeError`` and a ``ValueError``).
 
     Examples
     --------
@@ -196,9 +232,9 @@ def to_mjcf(
     ...
     ValueError: integrator must be one of ('Euler', 'RK4', 'implicit', 'implicitfast'); got 'rk4'
     """
-    _require_arm(arm, "to_mjcf")
+    require_arm(arm)
     (m1, inertia_1), (m2, inertia_2) = _link_inertias(arm, "to_mjcf")
-    wall = _as_wall(wall)
+    wall_line = as_wall(wall)
     reach = arm.l1 + arm.l2
     tip_radius = reach / 1000.0 if tip_radius is None else tip_radius
     tip_radius = as_finite_scalar(tip_radius, "tip_radius (m)", minimum=0.0, strictly=True)
@@ -225,7 +261,7 @@ def to_mjcf(
 
     joint_ranges = ['limited="false"', 'limited="false"']
     tendon = ""
-    if arm.has_limits:
+    if arm.q_min is not None and arm.q_max is not None:  # arm.has_limits
         low, high = arm.q_min, arm.q_max
         joint_ranges[0] = f'limited="true" range="{_nums(low[0], high[0])}"'
         if arm.limit_convention == "relative":
@@ -242,16 +278,16 @@ def to_mjcf(
     rod_radius = reach / 100.0
     site = f'        <site name="tip" pos="{_num(arm.l2)} 0 0" size="{_num(2 * tip_radius)}"/>\n' if tip_site else ""
     wall_geom = ""
-    if wall is not None:
-        normal = wall.into_wall()  # from the base's side into the wall
-        foot = float(wall.point @ normal) * normal + tip_radius * normal
+    if wall_line is not None:
+        normal = wall_line.into_wall()  # from the base's side into the wall
+        foot = float(wall_line.point @ normal) * normal + tip_radius * normal
         wall_geom = (
             f'    <geom name="wall" type="plane" pos="{_nums(foot[0], foot[1], arm.d)}" '
             f'zaxis="{_nums(-normal[0], -normal[1], 0.0)}" size="0 0 {_num(reach / 40.0)}" '
             f'contype="0" conaffinity="1"{contact} rgba="0.6 0.6 0.6 0.5"/>\n'
         )
 
-    def inertial(length, mass, inertia):
+    def inertial(length: float, mass: float, inertia: float) -> str:
         return (
             f'<inertial pos="{_num(length / 2.0)} 0 0" mass="{_num(mass)}" '
             f'diaginertia="{_nums(AXIAL_INERTIA_RATIO * inertia, inertia, inertia)}"/>'
@@ -289,7 +325,7 @@ def to_mjcf(
 
 
 def to_urdf(
-    arm,
+    arm: TwoLinkArm,
     *,
     z_up: bool = False,
     effort_limit: float = 1e6,
@@ -343,6 +379,8 @@ def to_urdf(
     ------
     ValueError
         For an arm with absolute limits or other bad arguments.
+    twolink.errors.InputTypeError
+        When ``arm`` is not an arm (a ``TypeError`` and a ``ValueError``).
 
     Examples
     --------
@@ -355,7 +393,7 @@ def to_urdf(
     ...
     ValueError: to_urdf: this arm's limits bound the absolute angles (q1, q1 + q2), which URDF's per-joint limits cannot express; use an arm with relative limits (or none) and enforce the absolute ones elsewhere
     """
-    _require_arm(arm, "to_urdf")
+    require_arm(arm)
     (m1, inertia_1), (m2, inertia_2) = _link_inertias(arm, "to_urdf")
     if arm.has_limits and arm.limit_convention != "relative":
         raise ValueError(
@@ -371,7 +409,7 @@ def to_urdf(
         raise ValueError(f"robot_name must be a non-empty string without <, >, & or \"; got {robot_name!r}")
     thickness = (arm.l1 + arm.l2) / 50.0
 
-    def link(name, length, mass, inertia):
+    def link(name: str, length: float, mass: float, inertia: float) -> str:
         box = f'<geometry><box size="{_nums(length, thickness, thickness)}"/></geometry>'
         origin = f'<origin xyz="{_num(length / 2.0)} 0 0" rpy="0 0 0"/>'
         return (
@@ -387,8 +425,8 @@ def to_urdf(
             "  </link>\n"
         )
 
-    def joint(name, parent, child, xyz, rpy, k):
-        if arm.has_limits:
+    def joint(name: str, parent: str, child: str, xyz: str, rpy: str, k: int) -> str:
+        if arm.q_min is not None and arm.q_max is not None:  # arm.has_limits
             kind = "revolute"
             limit = (
                 f'    <limit lower="{_num(arm.q_min[k])}" upper="{_num(arm.q_max[k])}" '

@@ -12,10 +12,14 @@ exercises), or ``wrong:`` with the reason and the hint.
 check whose reference is at hand (not used by the chapters' exercises).
 """
 
+from __future__ import annotations
+
 import re
-from typing import NamedTuple
+from collections.abc import Callable
+from typing import NamedTuple, TypeVar
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 __all__ = ["check", "check_close", "check_true", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
 
@@ -25,6 +29,8 @@ WRONG = "wrong"
 
 _LINE = re.compile(r"^Exercise (?P<number>\d+\.\d+)(?: \((?P<part>[^)]*)\))?: "
                    r"(?P<status>correct|not solved yet|wrong|not right yet)\b")
+
+_Answer = TypeVar("_Answer")
 
 
 class PartResult(NamedTuple):
@@ -36,7 +42,7 @@ class PartResult(NamedTuple):
     message: str
 
 
-class CheckReport(tuple):
+class CheckReport(tuple[PartResult, ...]):
     """The verdicts of one :func:`check` call (a tuple of :class:`PartResult`)."""
 
     @property
@@ -45,16 +51,16 @@ class CheckReport(tuple):
         return all(result.status == CORRECT for result in self)
 
 
-def check(exercise: str, *answers, **named_answers) -> CheckReport:
+def check(exercise: str, *answers: object, **named_answers: object) -> CheckReport:
     """Check a learner's answers to an exercise and print one line per part.
 
     Parameters
     ----------
     exercise : str
         The exercise's number, e.g. ``"2.1"``.
-    *answers
+    *answers : object
         The answers in the order of the exercise's parts.
-    **named_answers
+    **named_answers : object
         Or by the parts' variable names (``q_elbow_up=...``).  A part not given,
         or given as ``...`` or ``None``, is "not solved yet".
 
@@ -86,7 +92,7 @@ convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with si
     unknown = sorted(set(named_answers) - set(names))
     if unknown:
         raise TypeError(f"exercise {entry.number} has no part {unknown[0]!r}; its parts are {', '.join(names)}")
-    given = dict(zip(names, answers))
+    given: dict[str, object] = dict(zip(names, answers))
     for name, value in named_answers.items():
         if name in given:
             raise TypeError(f"the answer {name!r} of exercise {entry.number} is given twice")
@@ -114,7 +120,7 @@ convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with si
     return CheckReport(results)
 
 
-def parse_line(line: str):
+def parse_line(line: str) -> tuple[str, str, str] | None:
     """``(number, part, status)`` of a line printed by :func:`check`, or ``None``.
 
     >>> parse_line("Exercise 2.1 (angles): wrong: the tip lands 3 m from the target. Hint: ...")
@@ -129,11 +135,12 @@ def parse_line(line: str):
     return match["number"], match["part"] or "", status
 
 
-def _unsolved(answer):
+def _unsolved(answer: object) -> bool:
     return answer is ... or answer is None
 
 
-def check_close(label, answer, expected, atol=1e-6, rtol=0.0, hint=""):
+def check_close(label: str, answer: object, expected: ArrayLike, atol: float = 1e-6, rtol: float = 0.0,
+                hint: str = "") -> bool:
     """Print whether ``answer`` matches ``expected`` (same shape, within tolerance).
 
     Parameters
@@ -185,8 +192,25 @@ def check_close(label, answer, expected, atol=1e-6, rtol=0.0, hint=""):
     return False
 
 
-def check_true(label, answer, condition, hint=""):
+def check_true(label: str, answer: _Answer, condition: Callable[[_Answer], object], hint: str = "") -> bool:
     """Print whether a learner's answer satisfies ``condition(answer)``.
+
+    Parameters
+    ----------
+    label : str
+        Which exercise, e.g. ``"Exercise 0.2"``.
+    answer : object
+        The learner's value; ``...`` or ``None`` means not attempted yet.
+    condition : callable
+        ``condition(answer)``, true when the answer is right (an exception
+        it raises counts as wrong, with its message).
+    hint : str
+        Shown when the answer is wrong.
+
+    Returns
+    -------
+    bool
+        True when correct.
 
     Examples
     --------

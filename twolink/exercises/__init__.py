@@ -12,7 +12,7 @@ first use, so a notebook's check cell holds no reference at all:
 21
 """
 
-from ._core import REGISTRY, Exercise, Part, Wrong, is_unsolved
+from .registry import REGISTRY, Exercise, Part, Wrong, is_unsolved
 from . import ch1, ch2, ch3, ch4, ch5, ch6, ch7  # noqa: F401  (each registers its chapter's exercises)
 
 __all__ = ["Exercise", "Part", "Wrong", "get", "all_exercises", "is_unsolved"]
@@ -26,6 +26,6 @@ def get(number: str) -> Exercise:
     return REGISTRY[key]
 
 
-def all_exercises() -> list:
+def all_exercises() -> list[Exercise]:
     """Every registered exercise, in chapter order."""
     return [REGISTRY[number] for number in sorted(REGISTRY, key=lambda n: tuple(int(x) for x in n.split(".")))]

@@ -1,10 +1,13 @@
 """Chapter 1 (DH forward kinematics): exercises 1.1 to 1.3."""
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import NDArray
 
 from .. import arms
 from ..conventions import to_relative
-from ._core import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar
+from .registry import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar
 
 CHAPTER = "01_dh_forward_kinematics"
 Q_1_1_DEG = (45.0, -30.0)  # OSAKE arm
@@ -13,12 +16,12 @@ Q_ABS_1_3_DEG = (60.0, 150.0)  # 2 m arm, link angles from the x-axis
 
 
 @reference
-def tip_1_1():
+def tip_1_1() -> NDArray[np.float64]:
     """The OSAKE tip at q = (45, -30) deg (x, y in metres)."""
     return arms.osake.fk(np.radians(Q_1_1_DEG))
 
 
-def judge_tip_1_1(answer, siblings):
+def judge_tip_1_1(answer: object, siblings: dict[str, object]) -> None:
     p_tip = numbers(answer, (2,))
     if matches(close, p_tip, arms.osake.fk(np.array(Q_1_1_DEG)), atol=1e-9):
         raise Wrong("this is the tip for the angles read as radians (45 rad, -30 rad): convert degrees first")
@@ -26,12 +29,12 @@ def judge_tip_1_1(answer, siblings):
 
 
 @reference
-def transform_1_2():
+def transform_1_2() -> NDArray[np.float64]:
     """T_02 of the OSAKE arm at q = (120, -45) deg."""
     return arms.osake.transforms(np.radians(Q_1_2_DEG))[1]
 
 
-def judge_transform_1_2(answer, siblings):
+def judge_transform_1_2(answer: object, siblings: dict[str, object]) -> None:
     T_02 = numbers(answer, (4, 4))
     A1, _ = arms.osake.transforms(np.radians(Q_1_2_DEG))
     A2 = np.linalg.solve(A1, transform_1_2())
@@ -40,11 +43,11 @@ def judge_transform_1_2(answer, siblings):
     close(T_02, transform_1_2(), atol=1e-9)
 
 
-def judge_height_1_2(answer, siblings):
+def judge_height_1_2(answer: object, siblings: dict[str, object]) -> None:
     close(scalar(answer), transform_1_2()[2, 3], atol=1e-9)
 
 
-def judge_axis_1_2(answer, siblings):
+def judge_axis_1_2(answer: object, siblings: dict[str, object]) -> None:
     axis = numbers(answer, (3,))
     if matches(close, axis, transform_1_2()[:3, 2], atol=1e-9):
         return None
@@ -54,19 +57,19 @@ def judge_axis_1_2(answer, siblings):
 
 
 @reference
-def relative_1_3():
+def relative_1_3() -> NDArray[np.float64]:
     """The 2 m arm's relative angles for link angles (60, 150) deg."""
     return to_relative(np.radians(Q_ABS_1_3_DEG))
 
 
-def judge_relative_1_3(answer, siblings):
+def judge_relative_1_3(answer: object, siblings: dict[str, object]) -> None:
     q_rel = numbers(answer, (2,))
     if matches(angles_close, q_rel, np.degrees(relative_1_3()), atol=1e-6, period=360.0):
         raise Wrong("these are degrees; the answer is in radians")
     angles_close(q_rel, relative_1_3(), atol=1e-9)
 
 
-def judge_tip_1_3(answer, siblings):
+def judge_tip_1_3(answer: object, siblings: dict[str, object]) -> None:
     p_tip = numbers(answer, (2,))
     if matches(close, p_tip, arms.two_metre.fk(np.radians(Q_ABS_1_3_DEG)), atol=1e-9):
         raise Wrong("this is arm.fk of the absolute angles; the package takes relative (DH) angles")

@@ -1,12 +1,14 @@
 """Chapter 2 (inverse kinematics): exercises 2.1 to 2.3."""
 
+from __future__ import annotations
+
 import numpy as np
 
 from .. import arms, ik
 from ..conventions import wrap_angle
 from ..errors import UnreachableError
 from ..ik.grid_search import grid_axis
-from ._core import Part, Wrong, boolean, close, matches, numbers, reference, register, scalar
+from .registry import Part, Wrong, boolean, close, matches, numbers, reference, register, scalar
 
 CHAPTER = "02_inverse_kinematics"
 TARGET_2_1 = (12.0, 4.0)
@@ -15,7 +17,7 @@ Q1_RANGE_DEG_2_2, Q2_RANGE_DEG_2_2 = (0.0, 90.0), (-90.0, 90.0)
 TARGET_2_3 = (15.0, 16.0)
 
 
-def judge_elbow_up_2_1(answer, siblings):
+def judge_elbow_up_2_1(answer: object, siblings: dict[str, object]) -> None:
     q = numbers(answer, (2,))
     if np.allclose(arms.ten.fk(np.radians(q)), TARGET_2_1, atol=1e-6):
         raise Wrong("these are degrees; the answer is in radians")
@@ -27,37 +29,38 @@ def judge_elbow_up_2_1(answer, siblings):
 
 
 @reference
-def within_limits_2_1():
+def within_limits_2_1() -> bool:
     """Whether the elbow-up solution for (12, 4) respects arms.ten's limits."""
     return bool(arms.ten.within_limits(ik.closed_form(arms.ten, TARGET_2_1, elbow="up")))
 
 
-def judge_limits_2_1(answer, siblings):
+def judge_limits_2_1(answer: object, siblings: dict[str, object]) -> None:
     if boolean(answer) != within_limits_2_1():
         raise Wrong(f"the elbow-up solution is {'within' if within_limits_2_1() else 'outside'} the limits")
 
 
 @reference
-def step_2_2():
+def step_2_2() -> float:
     """The grid step (rad) that makes (a1 + 2 a2) step / 2 equal 1 cm."""
     return 2 * ERROR_BOUND_2_2 / (arms.ten.l1 + 2 * arms.ten.l2)
 
 
 @reference
-def grid_counts_2_2():
+def grid_counts_2_2() -> tuple[int, int]:
     """Points along each joint's axis at that step (ik.brute_force's grid, both ends of each range on it)."""
     step = step_2_2()
-    return tuple(len(grid_axis(*np.radians(limits), step)) for limits in (Q1_RANGE_DEG_2_2, Q2_RANGE_DEG_2_2))
+    (q1_low, q1_high), (q2_low, q2_high) = np.radians(Q1_RANGE_DEG_2_2), np.radians(Q2_RANGE_DEG_2_2)
+    return len(grid_axis(q1_low, q1_high, step)), len(grid_axis(q2_low, q2_high, step))
 
 
-def judge_step_2_2(answer, siblings):
+def judge_step_2_2(answer: object, siblings: dict[str, object]) -> None:
     step_deg = scalar(answer)
     if matches(close, step_deg, step_2_2(), rtol=1e-9):
         raise Wrong("this is the step in radians; the task asks for degrees")
     close(step_deg, np.degrees(step_2_2()), rtol=1e-9)
 
 
-def judge_points_2_2(answer, siblings):
+def judge_points_2_2(answer: object, siblings: dict[str, object]) -> None:
     points = scalar(answer)
     if abs(points - round(points)) > 1e-6:
         raise Wrong(f"{points:.6g} is not a whole number of grid points: count points, not range / step")
@@ -73,7 +76,7 @@ def judge_points_2_2(answer, siblings):
 
 
 @reference
-def message_2_3():
+def message_2_3() -> str:
     """The message of the UnreachableError for (15, 16) on arms.ten."""
     try:
         ik.closed_form(arms.ten, TARGET_2_3)
@@ -82,7 +85,7 @@ def message_2_3():
     raise AssertionError("(15, 16) should be out of reach of arms.ten")
 
 
-def judge_message_2_3(answer, siblings):
+def judge_message_2_3(answer: object, siblings: dict[str, object]) -> None:
     if isinstance(answer, BaseException):
         raise Wrong(f"this is the {type(answer).__name__} itself; keep its message, str(error)")
     if not isinstance(answer, str):
@@ -91,7 +94,7 @@ def judge_message_2_3(answer, siblings):
         raise Wrong("not the message ik.closed_form raises for (15, 16)")
 
 
-def judge_distance_2_3(answer, siblings):
+def judge_distance_2_3(answer: object, siblings: dict[str, object]) -> None:
     distance = scalar(answer)
     expected = float(np.hypot(*TARGET_2_3) - arms.ten.reach[1])
     if matches(close, distance, -expected, atol=1e-9):

@@ -1,11 +1,14 @@
 """Chapter 3 (Jacobian and velocity): exercises 3.1 to 3.3."""
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .. import arms
 from ..arm import TwoLinkArm
 from ..sources import compsys726
-from ._core import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar
+from .registry import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar
 
 CHAPTER = "03_jacobian_velocity"
 Q_3_1_DEG = (20.0, 70.0)
@@ -15,12 +18,12 @@ ANGLE_TOLERANCE_DEG_3_3 = 0.5
 
 
 @reference
-def rates_3_1():
+def rates_3_1() -> NDArray[np.float64]:
     """Joint rates of the 2 m arm at (20, 70) deg for a tip moving up at 0.2 m/s."""
     return arms.two_metre.joint_rates(np.radians(Q_3_1_DEG), V_TIP_3_1)
 
 
-def judge_rates_3_1(answer, siblings):
+def judge_rates_3_1(answer: object, siblings: dict[str, object]) -> None:
     qd = numbers(answer, (2,))
     J = arms.two_metre.jacobian(np.radians(Q_3_1_DEG))
     if matches(close, qd, J.T @ np.asarray(V_TIP_3_1), atol=1e-9):
@@ -29,25 +32,25 @@ def judge_rates_3_1(answer, siblings):
 
 
 @reference
-def speed_3_2():
+def speed_3_2() -> float:
     """Tip speed (m/s) of the OSAKE arm, q2 = 90 deg held, joint 1 at 5 deg/s."""
     velocity = arms.osake.tip_velocity(np.radians([0.0, Q2_3_2_DEG]), np.radians([RATE_3_2_DEG_S, 0.0]))
     return float(np.linalg.norm(velocity))
 
 
-def judge_speed_3_2(answer, siblings):
+def judge_speed_3_2(answer: object, siblings: dict[str, object]) -> None:
     speed = scalar(answer)
     if matches(close, speed, np.degrees(speed_3_2()), rtol=1e-9):
         raise Wrong("this is r times 5 with omega left in deg/s: convert to rad/s")
     close(speed, speed_3_2(), atol=1e-9)
 
 
-def arm_3_3():
+def arm_3_3() -> TwoLinkArm:
     """The table's arm of chapter 3 (COMPSYS726, in metres)."""
     return TwoLinkArm(l1=compsys726.A1 / 100, l2=compsys726.A2 / 100)
 
 
-def condition_3_3(q2):
+def condition_3_3(q2: ArrayLike) -> NDArray[np.float64]:
     """Condition number sigma_max / sigma_min of J at elbow angle(s) ``q2`` (rad); it depends on q2 only."""
     arm = arm_3_3()
     q2 = np.atleast_1d(np.asarray(q2, dtype=float))
@@ -55,13 +58,13 @@ def condition_3_3(q2):
 
 
 @reference
-def roundest_3_3():
+def roundest_3_3() -> float:
     """The elbow angle (rad, in (0, pi)) of the roundest velocity ellipse: cos q2 = -2 l1 l2 / (l1^2 + 2 l2^2)."""
     arm = arm_3_3()
     return float(np.arccos(-2 * arm.l1 * arm.l2 / (arm.l1**2 + 2 * arm.l2**2)))
 
 
-def judge_angle_3_3(answer, siblings):
+def judge_angle_3_3(answer: object, siblings: dict[str, object]) -> None:
     q2_deg = scalar(answer)
     best_deg = np.degrees(roundest_3_3())
     if matches(close, q2_deg, roundest_3_3(), atol=np.radians(ANGLE_TOLERANCE_DEG_3_3)):
@@ -74,7 +77,7 @@ def judge_angle_3_3(answer, siblings):
 
 
 @reference
-def condition_best_3_3():
+def condition_best_3_3() -> tuple[float, float]:
     """The smallest condition number, and what an angle within the tolerance can give."""
     best = float(condition_3_3(roundest_3_3())[0])
     offsets = np.radians(ANGLE_TOLERANCE_DEG_3_3) * np.array([-1.0, 1.0]) * (1 + 1e-9)
@@ -82,7 +85,7 @@ def condition_best_3_3():
     return best, slack + 1e-9
 
 
-def judge_condition_3_3(answer, siblings):
+def judge_condition_3_3(answer: object, siblings: dict[str, object]) -> None:
     value = scalar(answer)
     best, slack = condition_best_3_3()
     if matches(close, value, 1.0 / best, atol=slack):

@@ -1,10 +1,13 @@
 """Chapter 4 (statics, the wall): exercises 4.1 to 4.3."""
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import NDArray
 
 from .. import arms
-from ..statics import Wall, wall_contact
-from ._core import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar
+from ..statics import Wall, WallContact, wall_contact
+from .registry import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar
 
 CHAPTER = "04_statics_wall"
 Q_4_1_DEG, FORCE_4_1 = (30.0, 60.0), (0.0, -100.0)  # the tip pushes down on the scale
@@ -12,7 +15,7 @@ WALL_X_4_2, PUSH_4_2 = 3.0, 200.0
 Q_4_3_DEG, LOAD_KG_4_3 = (30.0, -60.0), 20.0
 
 
-def judge_torques_4_1(answer, siblings):
+def judge_torques_4_1(answer: object, siblings: dict[str, object]) -> None:
     tau = numbers(answer, (2,))
     expected = arms.two_metre.joint_torques(np.radians(Q_4_1_DEG), FORCE_4_1)
     if matches(close, tau, -expected, atol=1e-9):
@@ -23,12 +26,12 @@ def judge_torques_4_1(answer, siblings):
 
 
 @reference
-def contact_4_2():
+def contact_4_2() -> WallContact:
     """The 2 m arm pushing 200 N on the wall x = 3 m, link 2 perpendicular: both branches."""
-    return wall_contact(arms.two_metre, Wall([WALL_X_4_2, 0.0], [1.0, 0.0]), PUSH_4_2)
+    return wall_contact(arms.two_metre, Wall(np.array([WALL_X_4_2, 0.0]), np.array([1.0, 0.0])), PUSH_4_2)
 
 
-def judge_configuration_4_2(answer, siblings):
+def judge_configuration_4_2(answer: object, siblings: dict[str, object]) -> None:
     q = numbers(answer, (2,))
     contact = contact_4_2()
     if matches(angles_close, q, contact.q[contact.branch("up")], atol=1e-6):
@@ -38,7 +41,7 @@ def judge_configuration_4_2(answer, siblings):
     angles_close(q, contact.q[contact.branch("down")], atol=1e-9)
 
 
-def judge_torque_4_2(answer, siblings):
+def judge_torque_4_2(answer: object, siblings: dict[str, object]) -> None:
     tau1 = scalar(answer)
     contact = contact_4_2()
     if matches(close, tau1, contact.tau[contact.branch("up"), 0], atol=1e-9):
@@ -47,14 +50,14 @@ def judge_torque_4_2(answer, siblings):
 
 
 @reference
-def torques_4_3():
+def torques_4_3() -> NDArray[np.float64]:
     """Motor torques holding a 20 kg load at q = (30, -60) deg, the links' weight included."""
     arm = arms.two_metre
     q = np.radians(Q_4_3_DEG)
     return arm.joint_torques(q, [0.0, LOAD_KG_4_3 * arm.g]) + arm.gravity(q)
 
 
-def judge_torques_4_3(answer, siblings):
+def judge_torques_4_3(answer: object, siblings: dict[str, object]) -> None:
     tau = numbers(answer, (2,))
     arm, q = arms.two_metre, np.radians(Q_4_3_DEG)
     if matches(close, tau, arm.joint_torques(q, [0.0, LOAD_KG_4_3 * arm.g]), atol=1e-9):

@@ -1,13 +1,17 @@
 """Chapter 5 (Lagrangian dynamics): exercises 5.1 to 5.3."""
 
+from __future__ import annotations
+
 import dataclasses
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .. import arms
 from ..dynamics import energy
-from ..simulate import simulate
-from ._core import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar, usable
+from ..arm import TwoLinkArm
+from ..simulate import SimulationResult, simulate
+from .registry import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar, usable
 
 CHAPTER = "05_lagrangian_dynamics"
 Q_5_1_DEG = (30.0, 45.0)
@@ -15,12 +19,12 @@ Q_HANG_5_2_DEG = (-90.0, 0.0)
 Q0_5_3_DEG, QD0_5_3, DURATION_5_3, DRIFT_LIMIT_5_3 = (0.0, 90.0), (2.0, 0.0), 5.0, 1e-8
 
 
-def horizontal_arm():
+def horizontal_arm() -> TwoLinkArm:
     """The 2 m arm lying on a table (g = 0)."""
     return dataclasses.replace(arms.two_metre, g=0.0)
 
 
-def judge_holding_5_1(answer, siblings):
+def judge_holding_5_1(answer: object, siblings: dict[str, object]) -> None:
     tau = numbers(answer, (2,))
     g_q = arms.two_metre.gravity(np.radians(Q_5_1_DEG))
     if matches(close, tau, -g_q, atol=1e-9):
@@ -28,7 +32,7 @@ def judge_holding_5_1(answer, siblings):
     close(tau, g_q, atol=1e-9)
 
 
-def judge_failure_5_1(answer, siblings):
+def judge_failure_5_1(answer: object, siblings: dict[str, object]) -> None:
     qdd = numbers(answer, (2,))
     arm, q = arms.two_metre, np.radians(Q_5_1_DEG)
     g_q = arm.gravity(q)
@@ -40,7 +44,7 @@ def judge_failure_5_1(answer, siblings):
 
 
 @reference
-def stiffness_5_2():
+def stiffness_5_2() -> NDArray[np.float64]:
     """K = dg/dq at q = (-90, 0) deg, by central differences of arm.gravity."""
     arm, q_hang, step = arms.two_metre, np.radians(Q_HANG_5_2_DEG), 1e-6
     return np.column_stack([(arm.gravity(q_hang + step * e) - arm.gravity(q_hang - step * e)) / (2 * step)
@@ -48,20 +52,20 @@ def stiffness_5_2():
 
 
 @reference
-def frequencies_5_2():
+def frequencies_5_2() -> NDArray[np.float64]:
     """The natural angular frequencies (rad/s, ascending): omega^2 the eigenvalues of M^-1 K."""
     mass = arms.two_metre.mass_matrix(np.radians(Q_HANG_5_2_DEG))
     return np.sort(np.sqrt(np.linalg.eigvals(np.linalg.solve(mass, stiffness_5_2())).real))
 
 
-def judge_stiffness_5_2(answer, siblings):
+def judge_stiffness_5_2(answer: object, siblings: dict[str, object]) -> None:
     K = numbers(answer, (2, 2))
     if matches(close, K, -stiffness_5_2(), atol=1e-6):
         raise Wrong("the sign is reversed: K = +dg/dq, positive definite at a stable equilibrium")
     close(K, stiffness_5_2(), atol=1e-6)
 
 
-def judge_frequencies_5_2(answer, siblings):
+def judge_frequencies_5_2(answer: object, siblings: dict[str, object]) -> None:
     omega = numbers(answer, (2,))
     if matches(close, omega, frequencies_5_2()**2, atol=1e-6):
         raise Wrong("these are omega^2; take square roots")
@@ -73,55 +77,61 @@ def judge_frequencies_5_2(answer, siblings):
 
 
 @reference
-def reference_5_3():
+def reference_5_3() -> SimulationResult:
     """The spinning horizontal arm simulated to 1e-12 (DOP853)."""
     return simulate(horizontal_arm(), np.radians(Q0_5_3_DEG), QD0_5_3, DURATION_5_3,
                     method="DOP853", rtol=1e-12, atol=1e-12)
 
 
-def _start_5_3():
+def _start_5_3() -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     return np.radians(Q0_5_3_DEG), np.asarray(QD0_5_3, dtype=float)
 
 
-def _energy_drift(q, qd):
+def _energy_drift(q: ArrayLike, qd: ArrayLike) -> float:
     """max |E - E(0)| / max T over samples, as SimulationResult.energy_drift."""
     kinetic, potential = energy(horizontal_arm(), q, qd)
     total = kinetic + potential
     return float(np.max(np.abs(total - total[0])) / np.max(kinetic))
 
 
-def _end_angles(answer):
+def _end_angles(answer: object) -> NDArray[np.float64]:
     q_end = numbers(answer, (2,))
     angles_close(q_end, reference_5_3().q[-1], atol=1e-5)
     return q_end
 
 
-def _end_rates(answer):
+def _end_rates(answer: object) -> NDArray[np.float64]:
     qd_end = numbers(answer, (2,))
     close(qd_end, reference_5_3().qd[-1], atol=1e-5)
     return qd_end
 
 
-def _motion(answer):
+def _motion(answer: object) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """The learner's simulation result as (t, q, qd) arrays, checked for shape."""
     if not all(hasattr(answer, name) for name in ("t", "q", "qd")):
         raise Wrong(f"expected the result of simulate(...) (with .t, .q, .qd), got a {type(answer).__name__}")
-    t = np.asarray(answer.t, dtype=float)
+    t = np.asarray(getattr(answer, "t"), dtype=np.float64)
     n = t.shape[0] if t.ndim == 1 else 0
     if n < 2:
         raise Wrong("expected a simulation with at least two samples in .t")
-    return t, numbers(answer.q, (n, 2), "its .q"), numbers(answer.qd, (n, 2), "its .qd")
+    return t, numbers(getattr(answer, "q"), (n, 2), "its .q"), numbers(getattr(answer, "qd"), (n, 2), "its .qd")
 
 
-def judge_end_angles_5_3(answer, siblings):
+def _judged_motion(answer: object) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """The learner's simulation as :func:`_motion` reads it, after :func:`judge_simulation_5_3` passed it."""
+    judge_simulation_5_3(answer, {})
+    return _motion(answer)
+
+
+def judge_end_angles_5_3(answer: object, siblings: dict[str, object]) -> None:
     _end_angles(answer)
 
 
-def judge_end_rates_5_3(answer, siblings):
+def judge_end_rates_5_3(answer: object, siblings: dict[str, object]) -> None:
     _end_rates(answer)
 
 
-def judge_simulation_5_3(answer, siblings):
+def judge_simulation_5_3(answer: object, siblings: dict[str, object]) -> None:
     t, q, qd = _motion(answer)
     q0, qd0 = _start_5_3()
     if abs(t[0]) > 1e-12 or abs(t[-1] - DURATION_5_3) > 1e-9:
@@ -138,9 +148,9 @@ def judge_simulation_5_3(answer, siblings):
         raise Wrong(f"its end state is not the spinning arm's ({wrong})") from None
 
 
-def judge_drift_5_3(answer, siblings):
+def judge_drift_5_3(answer: object, siblings: dict[str, object]) -> None:
     drift = scalar(answer)
-    motion = usable(siblings, "spin_ex3", lambda value: (judge_simulation_5_3(value, {}), _motion(value))[1])
+    motion = usable(siblings, "spin_ex3", _judged_motion)
     if motion is not None:
         measured = _energy_drift(motion[1], motion[2])
         if not np.isclose(drift, measured, rtol=1e-6, atol=1e-15):
@@ -156,7 +166,7 @@ def judge_drift_5_3(answer, siblings):
             raise Wrong(f"smaller than the drift of your own end state ({end_drift:.2g})")
 
 
-def judge_momentum_5_3(answer, siblings):
+def judge_momentum_5_3(answer: object, siblings: dict[str, object]) -> None:
     p1 = scalar(answer)
     arm = horizontal_arm()
     q_end = usable(siblings, "q_end_ex3", _end_angles)

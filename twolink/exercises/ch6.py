@@ -1,9 +1,13 @@
 """Chapter 6 (spring and impedance control): exercises 6.1 to 6.3."""
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import NDArray
 
 from .. import arms, controllers, ik, linearization
-from ._core import Part, Wrong, close, matches, numbers, reference, register, scalar, usable
+from ..arm import TwoLinkArm
+from .registry import Part, Wrong, close, matches, numbers, reference, register, scalar, usable
 
 CHAPTER = "06_spring_impedance_control"
 STIFFNESS_SOURCE, REST_POINT = 600.0, (3.0, 1.0)  # N/m, m: the source's spring
@@ -11,24 +15,24 @@ K_6_1, TIP_6_1 = ((600.0, 0.0), (0.0, 200.0)), (3.0, 0.5)
 SAG_LIMIT_6_3 = 0.005  # m
 
 
-def _arm():
+def _arm() -> TwoLinkArm:
     return arms.two_metre
 
 
 @reference
-def q_rest():
+def q_rest() -> NDArray[np.float64]:
     """The 2 m arm's elbow-down configuration with the tip at the rest point (3, 1)."""
     return ik.closed_form(_arm(), REST_POINT, elbow="down")
 
 
 @reference
-def torques_6_1():
+def torques_6_1() -> NDArray[np.float64]:
     """The anisotropic spring's joint torques with the tip held at (3, 0.5), elbow up."""
     spring = controllers.CartesianSpring(_arm(), np.array(K_6_1), np.array(REST_POINT))
     return spring.torque(ik.closed_form(_arm(), TIP_6_1, elbow="up"))
 
 
-def judge_torques_6_1(answer, siblings):
+def judge_torques_6_1(answer: object, siblings: dict[str, object]) -> None:
     tau = numbers(answer, (2,))
     spring = controllers.CartesianSpring(_arm(), np.array(K_6_1), np.array(REST_POINT))
     if matches(close, tau, spring.torque(ik.closed_form(_arm(), TIP_6_1, elbow="down")), atol=1e-6):
@@ -39,19 +43,19 @@ def judge_torques_6_1(answer, siblings):
 
 
 @reference
-def damping_6_2():
+def damping_6_2() -> NDArray[np.float64]:
     """The damping matrix that makes every mode of the loop at (3, 1) critically damped."""
     return linearization.critical_damping(_arm(), q_rest(), STIFFNESS_SOURCE, kind="matrix")
 
 
 @reference
-def poles_6_2():
+def poles_6_2() -> NDArray[np.float64]:
     """Each mode of the tip (omega^2 an eigenvalue of k Lambda^-1) a double pole at -omega, sorted."""
     omega = np.sqrt(np.linalg.eigvalsh(STIFFNESS_SOURCE * np.linalg.inv(linearization.tip_mass(_arm(), q_rest()))))
     return np.sort(np.repeat(-omega, 2))
 
 
-def judge_damping_6_2(answer, siblings):
+def judge_damping_6_2(answer: object, siblings: dict[str, object]) -> None:
     D = numbers(answer, (2, 2))
     if matches(close, D, linearization.critical_damping(_arm(), q_rest(), STIFFNESS_SOURCE) * np.eye(2), atol=1e-6):
         raise Wrong("this is the scalar critical damping times the identity: the light mode is then overdamped")
@@ -60,7 +64,7 @@ def judge_damping_6_2(answer, siblings):
 
 
 
-def judge_poles_6_2(answer, siblings):
+def judge_poles_6_2(answer: object, siblings: dict[str, object]) -> None:
     try:
         values = np.asarray(answer, dtype=complex).ravel()
     except (TypeError, ValueError):
@@ -74,7 +78,7 @@ def judge_poles_6_2(answer, siblings):
     close(np.sort(values.real), poles_6_2(), atol=1e-3)
 
 
-def judge_ratios_6_2(answer, siblings):
+def judge_ratios_6_2(answer: object, siblings: dict[str, object]) -> None:
     zeta = numbers(answer, (4,))
     if np.allclose(np.sort(zeta), np.sort(np.abs(poles_6_2())), atol=1e-3):
         raise Wrong("these are the natural frequencies wn, control.damp's first output; zeta is the second")
@@ -85,13 +89,13 @@ def judge_ratios_6_2(answer, siblings):
             raise Wrong("these are not the damping ratios of your poles, -Re(p) / |p|")
 
 
-def sag_6_3(stiffness_value):
+def sag_6_3(stiffness_value: float) -> float:
     """How far (m) the vertical arm's tip rests from (3, 1) under a scalar spring without gravity compensation."""
     controller = controllers.Impedance(_arm(), stiffness_value, 0.0, np.array(REST_POINT), gravity_compensation=False)
     return float(np.linalg.norm(_arm().fk(linearization.equilibrium(_arm(), controller, q_rest())) - REST_POINT))
 
 
-def judge_stiffness_6_3(answer, siblings):
+def judge_stiffness_6_3(answer: object, siblings: dict[str, object]) -> None:
     k = scalar(answer)
     if k <= 0:
         raise Wrong("a stiffness is positive")

@@ -1,11 +1,14 @@
 """Chapter 7 (workspace and trajectories): exercises 7.1 to 7.3."""
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 import scipy.optimize
 
 from .. import arms, trajectory, workspace
 from ..ik.analytic import closed_form
-from ._core import Part, Wrong, close, matches, reference, register, scalar
+from .registry import Part, Wrong, close, matches, reference, register, scalar
 
 CHAPTER = "07_workspace_trajectories"
 LIMIT_DEG_7_1 = 35.0  # arms.two_metre_limited: link angles in [35, 145] deg
@@ -14,7 +17,7 @@ LINE_7_3, DURATION_7_3, RTOL_7_3 = ((-3.5, 1.0), (-1.0, 3.5)), 5.0, 1e-6
 
 
 @reference
-def radius_7_1():
+def radius_7_1() -> float:
     """The largest inscribed circle's radius of arms.two_metre_limited, from the tangency condition.
 
     Centre (0, R - rho), R = l1 + l2, touching from outside the circles of
@@ -27,7 +30,7 @@ def radius_7_1():
     return float(((arm.l1 * c) ** 2 + height**2 - arm.l2**2) / (2 * height + 2 * arm.l2))
 
 
-def judge_radius_7_1(answer, siblings):
+def judge_radius_7_1(answer: object, siblings: dict[str, object]) -> None:
     rho = scalar(answer)
     arm = arms.two_metre_limited
     if rho <= 0:
@@ -40,20 +43,20 @@ def judge_radius_7_1(answer, siblings):
 
 
 @reference
-def radius_7_2():
+def radius_7_2() -> float:
     """The room about (14, 6) on arms.ten's elbow-up branch."""
     return float(workspace.clearance(arms.ten, CENTRE_7_2, elbow="up"))
 
 
 @reference
-def largest_step_7_2():
+def largest_step_7_2() -> float:
     """The largest joint step (deg) tracing 0.999 of that circle in 3 s, quintic law, 60 samples."""
     path = trajectory.CirclePath(CENTRE_7_2, SHRINK_7_2 * radius_7_2(), duration=DURATION_7_2, law="quintic")
     motion = trajectory.ik_trajectory(arms.ten, path, n=SAMPLES_7_2, elbow="up")
     return float(np.degrees(motion.joint_steps.max()))
 
 
-def judge_radius_7_2(answer, siblings):
+def judge_radius_7_2(answer: object, siblings: dict[str, object]) -> None:
     radius = scalar(answer)
     for elbow, name in ((None, "either branch"), ("down", "the elbow-down branch")):
         other = float(workspace.clearance(arms.ten, CENTRE_7_2, elbow=elbow))
@@ -62,24 +65,24 @@ def judge_radius_7_2(answer, siblings):
     close(radius, radius_7_2(), atol=1e-9)
 
 
-def judge_step_7_2(answer, siblings):
+def judge_step_7_2(answer: object, siblings: dict[str, object]) -> None:
     step_deg = scalar(answer)
     if matches(close, step_deg, np.radians(largest_step_7_2()), atol=1e-6):
         raise Wrong("this is in radians; the task asks for degrees")
     close(step_deg, largest_step_7_2(), atol=1e-6)
 
 
-def _line_path():
+def _line_path() -> trajectory.LinePath:
     return trajectory.LinePath(*LINE_7_3, duration=DURATION_7_3, law="quintic")
 
 
-def _peak_rate_at(t, elbow):
+def _peak_rate_at(t: ArrayLike, elbow: str) -> NDArray[np.float64]:
     p, v = _line_path().at(np.atleast_1d(t))
     return np.abs(arms.two_metre.joint_rates(closed_form(arms.two_metre, p, elbow=elbow), v)).max(axis=-1)
 
 
 @reference
-def peak_rate_7_3():
+def peak_rate_7_3() -> float:
     """The largest |joint rate| (rad/s) of the line task, quintic law: exact rates, refined near the peak."""
     path = _line_path()
     motion = trajectory.ik_trajectory(arms.two_metre, path, n=20001)
@@ -92,7 +95,7 @@ def peak_rate_7_3():
     return float(max(rates[i], -best.fun))
 
 
-def judge_rate_7_3(answer, siblings):
+def judge_rate_7_3(answer: object, siblings: dict[str, object]) -> None:
     rate = scalar(answer)
     if matches(close, rate, np.degrees(peak_rate_7_3()), rtol=1e-3):
         raise Wrong("this is in deg/s; the task asks for rad/s")

@@ -30,7 +30,10 @@ in degrees, as the source printed them.  Nothing here is for new code: use
 :func:`twolink.ik.closed_form` and :meth:`twolink.TwoLinkArm.joint_rates`.
 """
 
+from __future__ import annotations
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_finite_scalar
 
@@ -58,19 +61,19 @@ RATE_FACTOR = -10.0
 """The factor the printed rate column carries (a tip velocity the text never states)."""
 
 
-def _array(values, name):
+def _array(values: ArrayLike, name: str) -> NDArray[np.float64]:
     array = np.asarray(values, dtype=float)
     if not np.isfinite(array).all():
         raise ValueError(f"{name} must be finite numbers; got {values!r}")
     return array
 
 
-def _lengths(a1, a2):
+def _lengths(a1: float, a2: float) -> tuple[float, float]:
     return (as_finite_scalar(a1, "a1", minimum=0.0, strictly=True),
             as_finite_scalar(a2, "a2", minimum=0.0, strictly=True))
 
 
-def ik_as_written(x, y=Y_LINE, a1=A1, a2=A2):
+def ik_as_written(x: ArrayLike, y: ArrayLike = Y_LINE, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
     """Joint angles ``(q1, q2)`` in degrees, as the source's IK function computed them.
 
     ``q2 = acosd((x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2))`` is right (degrees,
@@ -120,7 +123,7 @@ def ik_as_written(x, y=Y_LINE, a1=A1, a2=A2):
     return np.stack([q1_deg, q2_deg], axis=-1)
 
 
-def q2_rate_vertical(q1, q2, y_rate, a1=A1, a2=A2):
+def q2_rate_vertical(q1: ArrayLike, q2: ArrayLike, y_rate: ArrayLike, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
     """``q2dot = (-a1 s1 - a2 s12) / (a1 a2 s2) * ydot`` for a tip moving only vertically (the source's, right).
 
     Parameters
@@ -132,6 +135,11 @@ def q2_rate_vertical(q1, q2, y_rate, a1=A1, a2=A2):
     a1, a2 : float
         Link lengths (> 0).
 
+    Returns
+    -------
+    numpy.ndarray
+        ``q2dot`` in rad/s, the broadcast shape of the inputs.
+
     Examples
     --------
     >>> round(float(q2_rate_vertical(0.0, np.pi / 2, 1.0, a1=1.0, a2=1.0)), 12)
@@ -142,8 +150,22 @@ def q2_rate_vertical(q1, q2, y_rate, a1=A1, a2=A2):
     return (-a1 * np.sin(q1) - a2 * np.sin(q1 + q2)) / (a1 * a2 * np.sin(q2)) * y_rate
 
 
-def q1_rate_horizontal(q1, q2, x_rate, a1=A1, a2=A2):
+def q1_rate_horizontal(q1: ArrayLike, q2: ArrayLike, x_rate: ArrayLike, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
     """``q1dot = a2 c12 / (a1 a2 s2) * xdot`` for a tip moving only horizontally (the source's, right).
+
+    Parameters
+    ----------
+    q1, q2 : array_like
+        Joint angles, radians.
+    x_rate : float or array_like
+        Horizontal tip velocity (length units per s).
+    a1, a2 : float
+        Link lengths (> 0).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``q1dot`` in rad/s, the broadcast shape of the inputs.
 
     Examples
     --------
@@ -155,7 +177,7 @@ def q1_rate_horizontal(q1, q2, x_rate, a1=A1, a2=A2):
     return a2 * np.cos(q1 + q2) / (a1 * a2 * np.sin(q2)) * x_rate
 
 
-def rate_as_printed(q_deg, a1=A1, a2=A2):
+def rate_as_printed(q_deg: ArrayLike, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
     """The source's rate column: -10 times the vertical formula at the printed angles.
 
     The table was to give the joint rates for horizontal motion; its printed
@@ -169,6 +191,11 @@ def rate_as_printed(q_deg, a1=A1, a2=A2):
         The table's angles ``(q1, q2)``, degrees.
     a1, a2 : float
         Link lengths (> 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+        The printed column's values (rad/s per the unstated velocity).
 
     Examples
     --------

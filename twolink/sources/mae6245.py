@@ -22,10 +22,15 @@ The correct methods live in :mod:`twolink.ik`; nothing here is meant for new
 code.  Angles in radians, lengths in the assignment's units (read as metres).
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import scipy.optimize
+from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "A1",
@@ -58,16 +63,16 @@ CIRCLE_CENTRE = (12.5, 12.5)
 CIRCLE_RADIUS = 2.0
 CIRCLE_STEP = 0.5
 
-_ACOS = {"matlab": np.emath.arccos, "numpy": np.arccos}
+_ACOS: dict[str, Callable[[Any], Any]] = {"matlab": np.emath.arccos, "numpy": np.arccos}
 
 
-def _check_acos(acos):
+def _check_acos(acos: str) -> Callable[[Any], Any]:
     if acos not in _ACOS:
         raise ValueError(f"acos must be one of {sorted(_ACOS)}; got {acos!r}")
     return _ACOS[acos]
 
 
-def x_equation_roots(p, theta2, a1=A1, a2=A2):
+def x_equation_roots(p: ArrayLike, theta2: float, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
     """Both roots of the assignment's closed form: the x-equation solved for theta1.
 
     With theta2 known, ``x = (a1 + a2 cos theta2) cos theta1 - a2 sin theta2 sin theta1``
@@ -116,7 +121,9 @@ def x_equation_roots(p, theta2, a1=A1, a2=A2):
     return np.array([direction + half_angle, direction - half_angle])
 
 
-def y_residual(q1, p=TARGET, acos="matlab", a1=A1, a2=A2):
+def y_residual(
+    q1: ArrayLike, p: ArrayLike = TARGET, acos: str = "matlab", a1: float = A1, a2: float = A2
+) -> NDArray[np.float64] | np.float64:
     """The assignment's objective: ``abs(a1 sin q1 + a2 sin(acos((x - a1 cos q1)/a2)) - y)``.
 
     q1 + q2 is taken from ``acos`` of the x-equation and put into the
@@ -139,8 +146,9 @@ def y_residual(q1, p=TARGET, acos="matlab", a1=A1, a2=A2):
 
     Returns
     -------
-    float or numpy.ndarray
-        The objective, >= 0 (``nan`` for "numpy" outside the domain).
+    numpy.float64 or numpy.ndarray
+        The objective, >= 0 (``nan`` for "numpy" outside the domain), a
+        numpy float for a number ``q1``, else an array of its shape.
 
     Examples
     --------
@@ -154,9 +162,9 @@ def y_residual(q1, p=TARGET, acos="matlab", a1=A1, a2=A2):
     """
     arccos = _check_acos(acos)
     x, y = np.asarray(p, dtype=float)
-    q1 = np.asarray(q1, dtype=float)
+    angle = np.asarray(q1, dtype=float)
     with np.errstate(invalid="ignore"):
-        residual = a1 * np.sin(q1) + a2 * np.sin(arccos((x - a1 * np.cos(q1)) / a2)) - y
+        residual = a1 * np.sin(angle) + a2 * np.sin(arccos((x - a1 * np.cos(angle)) / a2)) - y
     return np.abs(residual)
 
 
@@ -185,17 +193,19 @@ class NumericalRun:
         Every q1 the optimiser asked about, and the objective it got back.
     """
 
-    q: np.ndarray
+    q: NDArray[np.float64]
     q2_imag: float
     success: bool
     message: str
     iterations: int
     evaluations: int
-    q1_trials: np.ndarray
-    objective_trials: np.ndarray
+    q1_trials: NDArray[np.float64]
+    objective_trials: NDArray[np.float64]
 
 
-def numerical_ik(p=TARGET, q1_start=Q1_START, acos="matlab", a1=A1, a2=A2):
+def numerical_ik(
+    p: ArrayLike = TARGET, q1_start: float = Q1_START, acos: str = "matlab", a1: float = A1, a2: float = A2
+) -> NumericalRun:
     """The assignment's numerical IK, translated: minimise :func:`y_residual` over q1, then q2.
 
     MATLAB's ``fminunc`` (a quasi-Newton method) becomes scipy's BFGS from the
@@ -233,9 +243,10 @@ def numerical_ik(p=TARGET, q1_start=Q1_START, acos="matlab", a1=A1, a2=A2):
     """
     arccos = _check_acos(acos)
     x = float(np.asarray(p, dtype=float)[0])
-    q1_trials, objective_trials = [], []
+    q1_trials: list[float] = []
+    objective_trials: list[float] = []
 
-    def objective(q1_vector):
+    def objective(q1_vector: NDArray[np.float64]) -> float:
         value = float(y_residual(q1_vector[0], p, acos, a1, a2))
         q1_trials.append(float(q1_vector[0]))
         objective_trials.append(value)
@@ -257,7 +268,7 @@ def numerical_ik(p=TARGET, q1_start=Q1_START, acos="matlab", a1=A1, a2=A2):
     )
 
 
-def fk_check(theta1=FK_CHECK_THETA1, theta2=0.0, a1=A1, a2=A2):
+def fk_check(theta1: float = FK_CHECK_THETA1, theta2: float = 0.0, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
     """The assignment's FK check: ``x = a1 cos t1 + a2 cos(t1 + t2)``, ``y`` likewise.
 
     It was typed with theta1 = 0.7845 instead of the 0.7854 its IK had printed.
@@ -284,7 +295,7 @@ def fk_check(theta1=FK_CHECK_THETA1, theta2=0.0, a1=A1, a2=A2):
     return np.array([a1 * np.cos(theta1) + a2 * np.cos(theta1 + theta2), a1 * np.sin(theta1) + a2 * np.sin(theta1 + theta2)])
 
 
-def circle_angles(step=CIRCLE_STEP):
+def circle_angles(step: float = CIRCLE_STEP) -> NDArray[np.float64]:
     """The assignment's circle parameter ``phi = 0:step:2*pi`` (MATLAB's colon operator).
 
     The colon operator stops at the last multiple of the step not beyond
@@ -310,4 +321,4 @@ def circle_angles(step=CIRCLE_STEP):
     if not step > 0:
         raise ValueError(f"step must be > 0 rad; got {step!r}")
     count = int(np.floor(2 * np.pi / step + 1e-10)) + 1
-    return step * np.arange(count)
+    return step * np.arange(count, dtype=np.float64)

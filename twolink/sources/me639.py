@@ -28,9 +28,12 @@ Examples
 array([3., 1.])
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_finite_scalar, as_pairs
 from ..errors import UnreachableError
@@ -54,12 +57,12 @@ READINGS = ("sin", "cos")
 _ACOS_SLACK = 1e-12  # rounding slack on the cosine at full stretch
 
 
-def _check_reading(reading):
+def _check_reading(reading: str) -> None:
     if reading not in READINGS:
         raise ValueError(f"reading must be 'sin' (the transcribed typo) or 'cos' (correct); got {reading!r}")
 
 
-def source_ik(p_tip, *, reading="cos", l1=2.0, l2=2.0):
+def source_ik(p_tip: ArrayLike, *, reading: str = "cos", l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
     """The source's inverse kinematics: absolute link angles ``(q1, q2_abs)`` for a tip point.
 
     The source computes the elbow angle (link 2 relative to link 1) with
@@ -115,12 +118,12 @@ def source_ik(p_tip, *, reading="cos", l1=2.0, l2=2.0):
     _check_reading(reading)
     l1 = as_finite_scalar(l1, "l1", minimum=0.0, strictly=True)
     l2 = as_finite_scalar(l2, "l2", minimum=0.0, strictly=True)
-    p_tip = as_pairs(p_tip, "p_tip")
-    x, y = p_tip[..., 0], p_tip[..., 1]
+    targets = as_pairs(p_tip, "p_tip")
+    x, y = targets[..., 0], targets[..., 1]
     cos_theta = (x**2 + y**2 - l1**2 - l2**2) / (2.0 * l1 * l2)
     bad = np.abs(cos_theta) > 1.0 + _ACOS_SLACK
     if np.any(bad):
-        p_bad = p_tip[bad] if p_tip.ndim > 1 else p_tip
+        p_bad = targets[bad] if targets.ndim > 1 else targets
         p_bad = np.atleast_2d(p_bad)[0]
         r = float(np.hypot(p_bad[0], p_bad[1]))
         raise UnreachableError(
@@ -133,10 +136,22 @@ def source_ik(p_tip, *, reading="cos", l1=2.0, l2=2.0):
     return np.stack([q1, q1 + theta], axis=-1)
 
 
-def source_fk(q_abs, *, l1=2.0, l2=2.0):
+def source_fk(q_abs: ArrayLike, *, l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
     """Tip position from absolute link angles: ``(l1 cos q1 + l2 cos q2_abs, l1 sin q1 + l2 sin q2_abs)``.
 
     Where the arm's tip really is for the angles the source commanded.
+
+    Parameters
+    ----------
+    q_abs : array_like, shape (..., 2)
+        Absolute link angles, radians.
+    l1, l2 : float
+        Link lengths, metres (> 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+        The tip ``(x, y)``, metres.
 
     Examples
     --------
@@ -145,24 +160,27 @@ def source_fk(q_abs, *, l1=2.0, l2=2.0):
     """
     l1 = as_finite_scalar(l1, "l1", minimum=0.0, strictly=True)
     l2 = as_finite_scalar(l2, "l2", minimum=0.0, strictly=True)
-    q_abs = as_pairs(q_abs, "q_abs")
-    q1, q2 = q_abs[..., 0], q_abs[..., 1]
+    angles = as_pairs(q_abs, "q_abs")
+    q1, q2 = angles[..., 0], angles[..., 1]
     return np.stack([l1 * np.cos(q1) + l2 * np.cos(q2), l1 * np.sin(q1) + l2 * np.sin(q2)], axis=-1)
 
 
-def source_link_torques(q_abs, force, *, l1=2.0, l2=2.0):
+def source_link_torques(q_abs: ArrayLike, force_by_tip: ArrayLike, *, l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
     """The source's torque formulas: ``T_i = l_i (F_y cos q_i - F_x sin q_i)``, absolute angles.
 
-    These are the generalised forces of the absolute-angle model (motor 2 on
-    the ground), ``J_abs^T F``.  They relate to the DH torques by
+    With ``F = force_by_tip``, the force the tip exerts, these are the motor
+    torques of the absolute-angle model (motor 2 on the ground) that hold it,
+    ``J_abs^T force_by_tip``.  They relate to the DH torques by
     ``T1 = tau1_DH - tau2_DH``, ``T2 = tau2_DH`` (:func:`dh_to_motor_torques`).
 
     Parameters
     ----------
     q_abs : array_like, shape (..., 2)
         Absolute link angles, radians.
-    force : array_like, shape (..., 2)
-        Force at the tip, newtons.
+    force_by_tip : array_like, shape (..., 2)
+        The force the tip exerts ON the environment, newtons (the push into
+        the wall in :func:`source_wall_search`; the source's spring force
+        ``k (x, y)`` in :func:`source_spring_torques`).
 
     Returns
     -------
@@ -178,11 +196,11 @@ def source_link_torques(q_abs, force, *, l1=2.0, l2=2.0):
     """
     l1 = as_finite_scalar(l1, "l1", minimum=0.0, strictly=True)
     l2 = as_finite_scalar(l2, "l2", minimum=0.0, strictly=True)
-    q_abs = as_pairs(q_abs, "q_abs")
-    force = as_pairs(force, "force")
+    angles = as_pairs(q_abs, "q_abs")
+    force = as_pairs(force_by_tip, "force_by_tip")
     fx, fy = force[..., 0], force[..., 1]
-    t1 = l1 * (fy * np.cos(q_abs[..., 0]) - fx * np.sin(q_abs[..., 0]))
-    t2 = l2 * (fy * np.cos(q_abs[..., 1]) - fx * np.sin(q_abs[..., 1]))
+    t1 = l1 * (fy * np.cos(angles[..., 0]) - fx * np.sin(angles[..., 0]))
+    t2 = l2 * (fy * np.cos(angles[..., 1]) - fx * np.sin(angles[..., 1]))
     return np.stack(np.broadcast_arrays(t1, t2), axis=-1)
 
 
@@ -205,13 +223,15 @@ class WallSearchResult:
     """
 
     index: int
-    p_contact: np.ndarray
-    q_abs: np.ndarray
-    torques: np.ndarray
-    p_tip_fk: np.ndarray
+    p_contact: NDArray[np.float64]
+    q_abs: NDArray[np.float64]
+    torques: NDArray[np.float64]
+    p_tip_fk: NDArray[np.float64]
 
 
-def source_wall_search(*, reading="cos", n_points=100_000, normal_force=500.0, l1=2.0, l2=2.0):
+def source_wall_search(
+    *, reading: str = "cos", n_points: int = 100_000, force_magnitude: float = 500.0, l1: float = 2.0, l2: float = 2.0
+) -> WallSearchResult:
     """The source's wall search, vectorised: the first point with ``round(q2_abs, 4) == round(pi/4, 4)``.
 
     The source walks ``n_points`` equally spaced points from (4, 0) to (0, 4)
@@ -219,7 +239,7 @@ def source_wall_search(*, reading="cos", n_points=100_000, normal_force=500.0, l
     the **first** one whose absolute link-2 angle, rounded to four decimals in
     radians, equals ``round(pi/4, 4) = 0.7854`` (link 2 perpendicular to the
     wall, to about +-0.003 deg).  The torques use the normal force
-    ``N = normal_force (1, 1)/sqrt(2)`` (the push into the wall) in
+    ``N = force_magnitude (1, 1)/sqrt(2)`` (the push into the wall) in
     :func:`source_link_torques`.  This does the same work on all points at once.
 
     Parameters
@@ -228,8 +248,8 @@ def source_wall_search(*, reading="cos", n_points=100_000, normal_force=500.0, l
         Which reading of the transcribed IK line (H4.1).
     n_points : int
         Number of points along the wall (the source used 100,000; at least 2).
-    normal_force : float
-        Magnitude of the push, newtons.
+    force_magnitude : float
+        Magnitude of the push the tip exerts on the wall, newtons.
     l1, l2 : float
         Link lengths, metres.
 
@@ -259,7 +279,7 @@ def source_wall_search(*, reading="cos", n_points=100_000, normal_force=500.0, l
     _check_reading(reading)
     if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < 2:
         raise ValueError(f"n_points must be an integer >= 2; got {n_points!r}")
-    normal_force = as_finite_scalar(normal_force, "normal_force")
+    force_magnitude = as_finite_scalar(force_magnitude, "force_magnitude (N)")
     s = np.linspace(0.0, 1.0, int(n_points))
     p_wall = np.stack([4.0 - 4.0 * s, 4.0 * s], axis=-1)
     q_abs = source_ik(p_wall, reading=reading, l1=l1, l2=l2)
@@ -267,7 +287,7 @@ def source_wall_search(*, reading="cos", n_points=100_000, normal_force=500.0, l
     if hits.size == 0:
         raise ValueError(f"no point of the {n_points} matched round(q2_abs, 4) == {round(np.pi / 4, 4)}")
     i = int(hits[0])
-    force = normal_force * np.array([1.0, 1.0]) / np.sqrt(2.0)
+    force = force_magnitude * np.array([1.0, 1.0]) / np.sqrt(2.0)
     return WallSearchResult(
         index=i,
         p_contact=p_wall[i],
@@ -277,7 +297,7 @@ def source_wall_search(*, reading="cos", n_points=100_000, normal_force=500.0, l
     )
 
 
-def source_spring_torques(p_tip, *, k=600.0, l1=2.0, l2=2.0):
+def source_spring_torques(p_tip: ArrayLike, *, k: float = 600.0, l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
     """The source's spring torques: ``F = k (x, y)`` and ``t_i = k y l_i cos q_i - k x l_i sin q_i``.
 
     The spring is anchored at the origin (``x`` where ``x0 - x`` belongs), the
@@ -292,6 +312,8 @@ def source_spring_torques(p_tip, *, k=600.0, l1=2.0, l2=2.0):
         Tip positions, metres.
     k : float
         Spring constant, N/m.
+    l1, l2 : float
+        Link lengths, metres (> 0).
 
     Returns
     -------
@@ -309,12 +331,14 @@ def source_spring_torques(p_tip, *, k=600.0, l1=2.0, l2=2.0):
            [ 1873., -1873.]])
     """
     k = as_finite_scalar(k, "k")
-    p_tip = as_pairs(p_tip, "p_tip")
-    q_abs = source_ik(p_tip, reading="cos", l1=l1, l2=l2)
-    return source_link_torques(q_abs, k * p_tip, l1=l1, l2=l2)
+    points = as_pairs(p_tip, "p_tip")
+    q_abs = source_ik(points, reading="cos", l1=l1, l2=l2)
+    return source_link_torques(q_abs, k * points, l1=l1, l2=l2)
 
 
-def correct_spring_torques_dh(q_dh, p_rest, *, k=600.0, l1=2.0, l2=2.0):
+def correct_spring_torques_dh(
+    q_dh: ArrayLike, p_rest: ArrayLike, *, k: float = 600.0, l1: float = 2.0, l2: float = 2.0
+) -> NDArray[np.float64]:
     """The correct spring law in DH torques: ``tau = J(q)^T k (x0 - x)``.
 
     Parameters
@@ -325,11 +349,14 @@ def correct_spring_torques_dh(q_dh, p_rest, *, k=600.0, l1=2.0, l2=2.0):
         The spring's rest point ``x0``, metres.
     k : float
         Spring constant, N/m.
+    l1, l2 : float
+        Link lengths, metres (> 0).
 
     Returns
     -------
     numpy.ndarray, shape (..., 2)
-        ``(tau1, tau2)`` in DH convention, N m.
+        ``(tau1, tau2)`` in DH convention, N m: :func:`twolink.kinematics.joint_torques`
+        of the spring's force ``k (x0 - x)``.
 
     Examples
     --------
@@ -343,14 +370,14 @@ def correct_spring_torques_dh(q_dh, p_rest, *, k=600.0, l1=2.0, l2=2.0):
     from ..arm import TwoLinkArm
 
     k = as_finite_scalar(k, "k")
-    p_rest = as_pairs(p_rest, "p_rest")
+    rest = as_pairs(p_rest, "p_rest")
     arm = TwoLinkArm(l1=l1, l2=l2)
-    q_dh = as_pairs(q_dh, "q_dh")
-    force = k * (p_rest - arm.fk(q_dh))
-    return arm.joint_torques(q_dh, force)
+    q = as_pairs(q_dh, "q_dh")
+    spring_force_on_tip = k * (rest - arm.fk(q))
+    return arm.joint_torques(q, spring_force_on_tip)  # J^T F: the torque the spring applies at the joints
 
 
-def dh_to_motor_torques(tau_dh):
+def dh_to_motor_torques(tau_dh: ArrayLike) -> NDArray[np.float64]:
     """DH joint torques to the source's motor torques: ``u1 = tau1 - tau2``, ``u2 = tau2``.
 
     With motor 2 on the ground driving link 2's absolute angle, the virtual
@@ -361,13 +388,13 @@ def dh_to_motor_torques(tau_dh):
     >>> dh_to_motor_torques([0.0, -2381.0])
     array([ 2381., -2381.])
     """
-    tau_dh = as_pairs(tau_dh, "tau_dh")
-    u = tau_dh.copy()
-    u[..., 0] = tau_dh[..., 0] - tau_dh[..., 1]
+    tau = as_pairs(tau_dh, "tau_dh")
+    u = tau.copy()
+    u[..., 0] = tau[..., 0] - tau[..., 1]
     return u
 
 
-def motor_to_dh_torques(u_motor):
+def motor_to_dh_torques(u_motor: ArrayLike) -> NDArray[np.float64]:
     """The source's motor torques to DH joint torques: ``tau1 = u1 + u2``, ``tau2 = u2``.
 
     Examples
@@ -375,7 +402,7 @@ def motor_to_dh_torques(u_motor):
     >>> motor_to_dh_torques([2381.0, -2381.0])
     array([    0., -2381.])
     """
-    u_motor = as_pairs(u_motor, "u_motor")
-    tau = u_motor.copy()
-    tau[..., 0] = u_motor[..., 0] + u_motor[..., 1]
+    u = as_pairs(u_motor, "u_motor")
+    tau = u.copy()
+    tau[..., 0] = u[..., 0] + u[..., 1]
     return tau

@@ -27,11 +27,15 @@ versions are :meth:`twolink.TwoLinkArm.transforms`,
 :meth:`twolink.TwoLinkArm.tip_velocity`.
 """
 
+from __future__ import annotations
+
 import re
+from collections.abc import Sequence
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
-from .._validate import as_finite_scalar, as_pairs
+from .._validate import as_configuration, as_finite_scalar, as_pairs
 
 __all__ = [
     "L1_CM",
@@ -53,12 +57,12 @@ D_CM = 6.5
 """Height of the arm's plane above the base frame (first DH row's ``d``), cm."""
 
 
-def _lengths(l1, l2):
+def _lengths(l1: float, l2: float) -> tuple[float, float]:
     return (as_finite_scalar(l1, "l1 (cm)", minimum=0.0, strictly=True),
             as_finite_scalar(l2, "l2 (cm)", minimum=0.0, strictly=True))
 
 
-def h02_as_expanded(q, l1=L1_CM, l2=L2_CM, d=D_CM):
+def h02_as_expanded(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM, d: float = D_CM) -> NDArray[np.float64]:
     """The source's hand-expanded ``H_0^2``, with both of its mistakes.
 
     Where ``cos(q1 + q2)`` belongs the expansion has ``cos q1 cos q2``, where
@@ -106,7 +110,7 @@ def h02_as_expanded(q, l1=L1_CM, l2=L2_CM, d=D_CM):
     return H
 
 
-def jacobian_as_derived(q, l1=L1_CM, l2=L2_CM):
+def jacobian_as_derived(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM) -> NDArray[np.float64]:
     """The 6x2 geometric Jacobian with the derivation's first column ``z_0 x (o_2 - o_1)``.
 
     The source's derivation wrote ``o_2 - o_1`` in the first column and said
@@ -151,7 +155,7 @@ def jacobian_as_derived(q, l1=L1_CM, l2=L2_CM):
     return J
 
 
-def cpp_read_int(typed):
+def cpp_read_int(typed: str) -> int:
     """What C++'s ``std::cin >> n`` stores in an ``int n`` when the user types ``typed``.
 
     The stream reads the leading integer and stops at the first character
@@ -162,6 +166,11 @@ def cpp_read_int(typed):
     ----------
     typed : str
         What the user typed, e.g. ``"11.5"``.
+
+    Returns
+    -------
+    int
+        The integer ``cin`` stores.
 
     Raises
     ------
@@ -183,10 +192,21 @@ def cpp_read_int(typed):
     return int(match.group(1))
 
 
-def matmul_triple_loop(left, right):
+def matmul_triple_loop(left: Sequence[Sequence[float]], right: Sequence[Sequence[float]]) -> list[list[float]]:
     """The matrix product ``(AB)_ij = sum_k A_ik B_kj`` by three nested loops, as the C++ program did.
 
     Correct (it is the definition) and slow; kept to compare with ``@``.
+
+    Parameters
+    ----------
+    left, right : sequence of sequences of float
+        The matrices as rows (nested lists, as in the C++ program); ``left``
+        has as many columns as ``right`` has rows.
+
+    Returns
+    -------
+    list of list of float
+        The product, as rows.
 
     Examples
     --------
@@ -205,12 +225,15 @@ def matmul_triple_loop(left, right):
     return product
 
 
-def _dh_planar(theta, d, a):
+def _dh_planar(theta: float, d: float, a: float) -> list[list[float]]:
     c, s = np.cos(theta), np.sin(theta)
     return [[c, -s, 0.0, a * c], [s, c, 0.0, a * s], [0.0, 0.0, 1.0, d], [0.0, 0.0, 0.0, 1.0]]
 
 
-def cpp_fk_tip(q, l1_typed="10", l2_typed="11.5", d=D_CM, *, int_lengths=True, drop_offset=True):
+def cpp_fk_tip(
+    q: ArrayLike, l1_typed: str = "10", l2_typed: str = "11.5", d: float = D_CM, *, int_lengths: bool = True,
+    drop_offset: bool = True
+) -> NDArray[np.float64]:
     """The tip ``(x, y, z)`` in cm as the source's C++ forward-kinematics program computed it.
 
     The program read the link lengths into ``int`` variables (so ``11.5``
@@ -243,9 +266,7 @@ def cpp_fk_tip(q, l1_typed="10", l2_typed="11.5", d=D_CM, *, int_lengths=True, d
     >>> cpp_fk_tip(np.radians([30.0, 45.0]), int_lengths=False, drop_offset=False).round(4)
     array([11.6367, 16.1081,  6.5   ])
     """
-    q = as_pairs(q, "q (rad)")
-    if q.shape != (2,):
-        raise ValueError(f"q must be one configuration, shape (2,); got shape {q.shape}")
+    q = as_configuration(q, "q")
     if int_lengths:
         l1, l2 = float(cpp_read_int(l1_typed)), float(cpp_read_int(l2_typed))
     else:
@@ -258,7 +279,7 @@ def cpp_fk_tip(q, l1_typed="10", l2_typed="11.5", d=D_CM, *, int_lengths=True, d
     return np.array([H02[0][3], H02[1][3], H02[2][3]])
 
 
-def velocity_program_speed(t, l1=L1_CM, l2=L2_CM, step=1e-3):
+def velocity_program_speed(t: float, l1: float = L1_CM, l2: float = L2_CM, step: float = 1e-3) -> float:
     """The number the source's C++ velocity program prints as its "end-tip angular velocity", reproduced.
 
     The coursework's printed value is not known to the course; this is what the
@@ -302,7 +323,7 @@ def velocity_program_speed(t, l1=L1_CM, l2=L2_CM, step=1e-3):
     step = as_finite_scalar(step, "step (s)", minimum=0.0, strictly=True)
     l1, l2 = _lengths(l1, l2)
 
-    def angles(time):  # the numbers the program fed to cos/sin ("degrees")
+    def angles(time: float) -> NDArray[np.float64]:  # the numbers the program fed to cos/sin ("degrees")
         return np.array([3.0 * time, 60.0])
 
     theta = angles(t)

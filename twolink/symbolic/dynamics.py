@@ -22,15 +22,28 @@ arm's plane.  The derivation returns
 with ``Q`` the generalised forces of the motor torques, found by virtual
 work, and ``C`` built from the Christoffel symbols of ``M`` (so that
 ``dM/dt - 2 C`` is skew-symmetric).
+
+sympy has no type information: its names (``sp.Symbol``, ``sp.Matrix``,
+``sp.Expr``) are ``Any`` to a type checker, and the annotations here say
+what is meant.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import sympy as sp
+from numpy.typing import ArrayLike, NDArray
 
+from .._validate import as_configuration
 from .kinematics import planar_symbols
+
+if TYPE_CHECKING:
+    from ..arm import TwoLinkArm
 
 __all__ = [
     "dynamics_symbols",
@@ -45,7 +58,7 @@ __all__ = [
 MODELS = ("relative", "absolute")
 
 
-def dynamics_symbols():
+def dynamics_symbols() -> dict[str, sp.Symbol]:
     """The symbols of the dynamics: coordinates, rates, parameters and torques.
 
     Builds on :func:`twolink.symbolic.planar_symbols` (``q1, q2, l1, l2``).
@@ -95,11 +108,24 @@ def dynamics_symbols():
     return symbols
 
 
-def time_derivative(expr, coordinates, rates, accelerations):
+def time_derivative(
+    expr: sp.Expr, coordinates: Sequence[sp.Symbol], rates: Sequence[sp.Symbol], accelerations: Sequence[sp.Symbol]
+) -> sp.Expr:
     """Total time derivative of ``expr(q, qd)`` by the chain rule.
 
     ``d/dt f = sum_j (df/dq_j qd_j + df/dqd_j qdd_j)``: what Euler-Lagrange
     needs, without turning the coordinates into functions of time.
+
+    Parameters
+    ----------
+    expr : sympy expression
+        A function of the coordinates and rates.
+    coordinates, rates, accelerations : sequence of sympy.Symbol
+        ``q_j``, ``qd_j`` and ``qdd_j``, in the same order.
+
+    Returns
+    -------
+    sympy expression
 
     Examples
     --------
@@ -113,13 +139,25 @@ def time_derivative(expr, coordinates, rates, accelerations):
     )
 
 
-def christoffel_coriolis(M, coordinates, rates):
+def christoffel_coriolis(M: sp.Matrix, coordinates: Sequence[sp.Symbol], rates: Sequence[sp.Symbol]) -> sp.Matrix:
     """The Coriolis/centrifugal matrix from the Christoffel symbols of ``M``.
 
     ``C[i, j] = sum_k Gamma_ijk qd_k`` with
     ``Gamma_ijk = (dM_ij/dq_k + dM_ik/dq_j - dM_jk/dq_i) / 2``.  Many matrices
     give the same vector ``C qd``; this one makes ``dM/dt - 2 C``
     skew-symmetric (the passivity property controllers rely on).
+
+    Parameters
+    ----------
+    M : sympy.Matrix, shape (n, n)
+        The mass matrix, a function of the coordinates.
+    coordinates, rates : sequence of sympy.Symbol
+        ``q_k`` and ``qd_k``, ``n`` of each.
+
+    Returns
+    -------
+    sympy.Matrix, shape (n, n)
+        ``C``, simplified.
 
     Examples
     --------
@@ -185,9 +223,9 @@ class EquationsOfMotion:
     g: sp.ImmutableMatrix
     torques: sp.ImmutableMatrix
     Q: sp.ImmutableMatrix
-    parameters: tuple
+    parameters: tuple[sp.Symbol, ...]
 
-    def residual(self):
+    def residual(self) -> sp.Matrix:
         """``M qdd + C qd + g - (d/dt dL/dqd - dL/dq)``, simplified: zero when M, C, g are right.
 
         Examples
@@ -201,7 +239,7 @@ class EquationsOfMotion:
 
 
 @lru_cache(maxsize=None)
-def equations_of_motion(model="relative"):
+def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
     """Derive the equations of motion of the 2R arm by Euler-Lagrange.
 
     Kinetic energy ``T = sum_i (m_i |v_ci|^2 + I_i w_i^2) / 2`` with ``v_ci``
@@ -315,29 +353,30 @@ class NumericDynamics:
     """
 
     model: str
-    _mass_matrix: object
-    _coriolis: object
-    _gravity: object
+    _mass_matrix: Callable[..., Any]
+    _coriolis: Callable[..., Any]
+    _gravity: Callable[..., Any]
 
     @staticmethod
-    def _parameters(arm):
+    def _parameters(arm: TwoLinkArm) -> tuple[float, ...]:
         inertia_1, inertia_2 = arm.inertias
         return (arm.l1, arm.l2, arm.m1, arm.m2, inertia_1, inertia_2, arm.g)
 
-    def mass_matrix(self, arm, q):
-        """``M(q)``, shape (2, 2)."""
-        return np.asarray(self._mass_matrix(*q, *self._parameters(arm)), dtype=float)
+    def mass_matrix(self, arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
+        """``M(q)``, shape (2, 2), for one configuration ``q`` of shape (2,)."""
+        return np.asarray(self._mass_matrix(*as_configuration(q, "q"), *self._parameters(arm)), dtype=np.float64)
 
-    def coriolis(self, arm, q, qd):
-        """``C(q, qd)``, shape (2, 2)."""
-        return np.asarray(self._coriolis(*q, *qd, *self._parameters(arm)), dtype=float)
+    def coriolis(self, arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+        """``C(q, qd)``, shape (2, 2), for one state (``q``, ``qd`` of shape (2,))."""
+        return np.asarray(self._coriolis(*as_configuration(q, "q"), *as_configuration(qd, "qd", what="one pair of joint rates", unit="rad/s"), *self._parameters(arm)), dtype=np.float64)
 
-    def gravity(self, arm, q):
-        """``g(q)``, shape (2,)."""
-        return np.asarray(self._gravity(*q, *self._parameters(arm)), dtype=float).reshape(2)
+    def gravity(self, arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
+        """``g(q)``, shape (2,), for one configuration ``q`` of shape (2,)."""
+        return np.asarray(self._gravity(*as_configuration(q, "q"), *self._parameters(arm)), dtype=np.float64).reshape(2)
 
 
-def lambdify_dynamics(equations):
+
+def lambdify_dynamics(equations: EquationsOfMotion | str) -> NumericDynamics:
     """Turn derived equations of motion into numeric functions (numpy).
 
     Parameters

@@ -1,11 +1,18 @@
-"""DH transforms and forward kinematics of the planar 2R arm, in sympy."""
+"""DH transforms and forward kinematics of the planar 2R arm, in sympy.
+
+sympy has no type information: its names (``sp.Symbol``, ``sp.Matrix``,
+``sp.Expr``) are ``Any`` to a type checker, and the annotations here say
+what is meant.
+"""
+
+from __future__ import annotations
 
 import sympy as sp
 
 __all__ = ["planar_symbols", "dh_matrix", "planar_fk"]
 
 
-def planar_symbols():
+def planar_symbols() -> dict[str, sp.Symbol]:
     """The symbols the course uses: joint angles ``q1, q2`` and lengths ``l1, l2``, plus ``d``.
 
     Lengths are positive and angles real, so sympy can simplify.
@@ -26,8 +33,18 @@ def planar_symbols():
     return {"q1": q1, "q2": q2, "l1": l1, "l2": l2, "d": d}
 
 
-def dh_matrix(theta, d, a, alpha):
+def dh_matrix(theta: sp.Expr | float, d: sp.Expr | float, a: sp.Expr | float, alpha: sp.Expr | float) -> sp.Matrix:
     """The DH transform ``Rot_z(theta) Trans_z(d) Trans_x(a) Rot_x(alpha)`` as a sympy matrix.
+
+    Parameters
+    ----------
+    theta, d, a, alpha : sympy expression or number
+        The DH row: joint angle (rad), offset along z, length along x, twist
+        about x (rad).
+
+    Returns
+    -------
+    sympy.Matrix, shape (4, 4)
 
     Examples
     --------
@@ -49,7 +66,7 @@ def dh_matrix(theta, d, a, alpha):
     )
 
 
-def planar_fk(with_offset=False):
+def planar_fk(with_offset: bool = False) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:
     """``(A1, A2, T_02, p_tip)`` of the planar arm, with ``T_02 = A1 A2`` simplified.
 
     Parameters

@@ -12,23 +12,35 @@ Expected values are computed by the package from the exercise's data (never
 typed), once, on first use.
 """
 
+from __future__ import annotations
+
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Callable, Optional
+from typing import ParamSpec, TypeVar
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ..conventions import wrap_angle
 
-__all__ = ["Part", "Exercise", "Wrong", "REGISTRY", "register", "is_unsolved", "numbers", "reference",
-           "close", "angles_close", "scalar", "boolean", "usable"]
+__all__ = ["Part", "Exercise", "Judge", "Wrong", "REGISTRY", "register", "is_unsolved", "numbers", "reference",
+           "close", "angles_close", "scalar", "boolean", "matches", "usable"]
+
+_T = TypeVar("_T")
+_P = ParamSpec("_P")
+
+#: A part's judge: ``judge(answer, siblings)`` returns ``None`` when ``answer`` is
+#: right and the one-line reason when it is not (or raises :class:`Wrong` with it).
+#: ``siblings`` maps the other solved parts' variable names to their answers.
+Judge = Callable[[object, dict[str, object]], str | None]
 
 
 class Wrong(Exception):
     """Raised by a judge's helpers with the one-line reason an answer is wrong."""
 
 
-def is_unsolved(answer) -> bool:
+def is_unsolved(answer: object) -> bool:
     """True for the student edition's stub ``...`` and for ``None``.
 
     >>> is_unsolved(...), is_unsolved(None), is_unsolved(0.0)
@@ -37,8 +49,8 @@ def is_unsolved(answer) -> bool:
     return answer is ... or answer is None
 
 
-def reference(function):
-    """Decorator: compute an expected value once, on first use."""
+def reference(function: Callable[[], _T]) -> Callable[[], _T]:
+    """Decorator: compute an expected value (a function of no arguments) once, on first use."""
     return lru_cache(maxsize=None)(function)
 
 
@@ -52,7 +64,7 @@ class Part:
         The notebook variable holding the answer, e.g. ``"q_elbow_up"``.
     label : str
         What it is, in the check's message, e.g. ``"elbow-up angles"``.
-    judge : callable
+    judge : Judge
         ``judge(answer, siblings) -> None or str``: ``None`` when right, else the reason.
     hint : str
         Shown after the reason when the answer is wrong.
@@ -60,7 +72,7 @@ class Part:
 
     name: str
     label: str
-    judge: Callable
+    judge: Judge
     hint: str
 
 
@@ -69,7 +81,7 @@ class Exercise:
     """An exercise: its number (``"2.1"``), its parts in order and its notebook."""
 
     number: str
-    parts: tuple
+    parts: tuple[Part, ...]
     chapter: str = field(default="")
 
     def part(self, name: str) -> Part:
@@ -80,7 +92,7 @@ class Exercise:
         raise KeyError(f"exercise {self.number} has no part {name!r}; its parts are {[p.name for p in self.parts]}")
 
 
-REGISTRY: dict = {}
+REGISTRY: dict[str, Exercise] = {}
 
 
 def register(number: str, *parts: Part, chapter: str = "") -> Exercise:
@@ -95,7 +107,7 @@ def register(number: str, *parts: Part, chapter: str = "") -> Exercise:
 # ---------------------------------------------------------------- comparisons
 
 
-def numbers(answer, shape: tuple, what: str = "your answer") -> np.ndarray:
+def numbers(answer: object, shape: tuple[int, ...], what: str = "your answer") -> NDArray[np.float64]:
     """The answer as a float array of ``shape``; lists, tuples, arrays and numpy scalars all do.
 
     >>> numbers([1, 2], (2,)).tolist()
@@ -105,7 +117,7 @@ def numbers(answer, shape: tuple, what: str = "your answer") -> np.ndarray:
     >>> numbers([1, 2, 3], (2,))
     Traceback (most recent call last):
     ...
-    twolink.exercises._core.Wrong: expected 2 numbers (shape (2,)), got shape (3,)
+    twolink.exercises.registry.Wrong: expected 2 numbers (shape (2,)), got shape (3,)
     """
     if isinstance(answer, (str, bytes, dict, set)) or callable(answer):
         raise Wrong(f"expected numbers, got a {type(answer).__name__}")
@@ -132,12 +144,12 @@ def numbers(answer, shape: tuple, what: str = "your answer") -> np.ndarray:
     return values
 
 
-def scalar(answer, what: str = "your answer") -> float:
+def scalar(answer: object, what: str = "your answer") -> float:
     """The answer as one float (a size-one array will do)."""
     return float(numbers(answer, (), what))
 
 
-def boolean(answer) -> bool:
+def boolean(answer: object) -> bool:
     """The answer as a bool: ``True``/``False`` or numpy's bools, nothing else.
 
     >>> boolean(np.bool_(True))
@@ -145,7 +157,7 @@ def boolean(answer) -> bool:
     >>> boolean("yes")
     Traceback (most recent call last):
     ...
-    twolink.exercises._core.Wrong: expected True or False, got a str
+    twolink.exercises.registry.Wrong: expected True or False, got a str
     """
     if isinstance(answer, (bool, np.bool_)):
         return bool(answer)
@@ -158,10 +170,19 @@ def _off_by(error: float, tolerance: float) -> str:
     return f"off by {error:.3g} (allowed {tolerance:.2g})"
 
 
-def close(values: np.ndarray, expected, atol: float = 0.0, rtol: float = 0.0) -> None:
-    """Raise :class:`Wrong` unless ``|values - expected| <= atol + rtol |expected|`` everywhere."""
+def close(values: ArrayLike, expected: ArrayLike, atol: float = 0.0, rtol: float = 0.0) -> None:
+    """Raise :class:`Wrong` unless ``|values - expected| <= atol + rtol |expected|`` everywhere.
+
+    ``values`` and ``expected`` are numbers or arrays that broadcast together.
+
+    >>> close(1.0 + 1e-12, 1.0, atol=1e-9)
+    >>> close([1.0, 2.0], [1.0, 2.5], atol=0.1)
+    Traceback (most recent call last):
+    ...
+    twolink.exercises.registry.Wrong: off by 0.5 (allowed 0.1)
+    """
     expected = np.asarray(expected, dtype=float)
-    error = np.abs(values - expected)
+    error = np.abs(np.asarray(values, dtype=float) - expected)
     allowed = atol + rtol * np.abs(expected)
     if np.all(error <= allowed):
         return
@@ -169,23 +190,26 @@ def close(values: np.ndarray, expected, atol: float = 0.0, rtol: float = 0.0) ->
     raise Wrong(_off_by(float(error.flat[worst]), float(np.ravel(allowed)[worst])))
 
 
-def angles_close(values: np.ndarray, expected, atol: float, period: float = 2 * np.pi) -> None:
-    """Like :func:`close` for angles: the difference is wrapped, so angles 2 pi apart are equal.
+def angles_close(values: ArrayLike, expected: ArrayLike, atol: float, period: float = 2 * np.pi) -> None:
+    """Like :func:`close` for angles: the difference is wrapped, so angles ``period`` apart are equal.
+
+    ``values`` and ``expected`` are angles (numbers or arrays that broadcast
+    together) in the unit of ``period`` (``2 pi``: radians, ``360.0``: degrees).
 
     >>> angles_close(np.array([2 * np.pi + 0.1, -0.2]), [0.1, -0.2], atol=1e-12)
     >>> angles_close(np.array([0.1]), [0.3], atol=1e-3)
     Traceback (most recent call last):
     ...
-    twolink.exercises._core.Wrong: off by 0.2 (allowed 0.001)
+    twolink.exercises.registry.Wrong: off by 0.2 (allowed 0.001)
     """
     scale = 2 * np.pi / period
-    difference = np.abs(wrap_angle(scale * (values - np.asarray(expected, dtype=float)))) / scale
+    difference = np.abs(wrap_angle(scale * (np.asarray(values, dtype=float) - np.asarray(expected, dtype=float)))) / scale
     if np.all(difference <= atol):
         return
     raise Wrong(_off_by(float(np.max(difference)), atol))
 
 
-def matches(check: Callable, *args, **kwargs) -> bool:
+def matches(check: Callable[_P, object], *args: _P.args, **kwargs: _P.kwargs) -> bool:
     """True when ``check(*args, **kwargs)`` raises no :class:`Wrong` (to recognise a typical mistake)."""
     try:
         check(*args, **kwargs)
@@ -194,7 +218,7 @@ def matches(check: Callable, *args, **kwargs) -> bool:
     return True
 
 
-def usable(siblings: dict, name: str, convert: Callable) -> Optional[object]:
+def usable(siblings: dict[str, object], name: str, convert: Callable[[object], _T]) -> _T | None:
     """A sibling's answer converted by ``convert``, or ``None`` if it is missing or unusable."""
     if name not in siblings:
         return None
