@@ -46,12 +46,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ._validate import as_finite_scalar, require_arm
-from .statics import Wall
+from .statics import Wall, as_wall
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
-__all__ = ["to_mjcf", "to_urdf", "as_wall", "INTEGRATORS", "AXIAL_INERTIA_RATIO"]
+__all__ = ["to_mjcf", "to_urdf", "INTEGRATORS", "AXIAL_INERTIA_RATIO"]
 
 #: MuJoCo's integrators (``<option integrator=...>``).
 INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
@@ -85,53 +85,6 @@ def _link_inertias(arm: TwoLinkArm, who: str) -> list[tuple[float, float]]:
             )
         links.append((mass, inertia))
     return links
-
-
-def as_wall(wall: Wall | ArrayLike | None) -> Wall | None:
-    """The ``wall`` argument of :func:`to_mjcf` (and :func:`twolink.engine.wall_push`) as a :class:`~twolink.statics.Wall`.
-
-    Parameters
-    ----------
-    wall : Wall, array_like of shape (2, 2), or None
-        A wall, or two distinct points ``((x_a, y_a), (x_b, y_b))`` on its
-        line (metres), or ``None`` for no wall.
-
-    Returns
-    -------
-    Wall or None
-        ``wall`` itself when it is a ``Wall`` or ``None``; else
-        ``Wall.through`` the two points.
-
-    Raises
-    ------
-    ValueError
-        For anything else.
-
-    Examples
-    --------
-    >>> as_wall([[4.0, 0.0], [0.0, 4.0]]).into_wall().round(6)
-    array([0.707107, 0.707107])
-    >>> as_wall("x + y = 4")
-    Traceback (most recent call last):
-    ...
-    ValueError: wall must be None, a twolink.statics.Wall or two points ((x_a, y_a), (x_b, y_b)) on the line; got 'x + y = 4'
-    """
-    if wall is None or isinstance(wall, Wall):
-        return wall
-    try:
-        points = np.asarray(wall, dtype=float)
-    except (TypeError, ValueError):
-        points = None
-    if points is not None and points.shape == (2, 2):
-        return Wall.through(points[0], points[1])
-    raise ValueError(
-        "wall must be None, a twolink.statics.Wall or two points ((x_a, y_a), (x_b, y_b)) on the line; "
-        f"got {wall!r}"
-    )
-
-
-#: The former private name, kept only until :mod:`twolink.engine` calls :func:`as_wall` (then remove it).
-_as_wall = as_wall
 
 
 def _pair(value: Iterable[float], name: str) -> tuple[float, ...]:
@@ -234,7 +187,10 @@ def to_mjcf(
     """
     require_arm(arm)
     (m1, inertia_1), (m2, inertia_2) = _link_inertias(arm, "to_mjcf")
-    wall_line = as_wall(wall)
+    try:
+        wall_line = None if wall is None else as_wall(wall)
+    except ValueError as error:  # the same refusal, saying that None (no wall) is allowed here too
+        raise ValueError(f"wall must be None (no wall) or {str(error).removeprefix('wall must be ')}") from None
     reach = arm.l1 + arm.l2
     tip_radius = reach / 1000.0 if tip_radius is None else tip_radius
     tip_radius = as_finite_scalar(tip_radius, "tip_radius (m)", minimum=0.0, strictly=True)
