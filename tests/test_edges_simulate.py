@@ -118,4 +118,17 @@ def test_resolved_rate_with_a_huge_gain_runs_in_seconds():
     line = trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=1.0)
     motion, seconds = timed(lambda: trajectory.resolved_rate_trajectory(ARM, line, n=20, gain=1e6))
     assert seconds < 10.0
-    assert motion.tracking_error.max() < 1e-6
+    assert motion.tracking_error().max() < 1e-6
+
+
+def test_tracking_error_after_a_terminal_event_reads_the_path_at_the_times_reached():
+    def elbow_straight(t, state):
+        return state[1]
+
+    elbow_straight.terminal = True
+    elbow_straight.direction = 1
+    line = trajectory.LinePath([3.0, 1.0], [3.0, 1.0 + 1e-9], duration=5.0)
+    run = simulate(ARM, [np.pi / 4, -0.5], [0.0, 0.0], 5.0, events=elbow_straight, t_eval=np.linspace(0.0, 5.0, 501))
+    assert run.status == 1 and len(run.t) < 501
+    assert np.allclose(run.tracking_error(line), np.linalg.norm(run.p_tip - line.at(run.t)[0], axis=-1))
+

@@ -1,6 +1,7 @@
 """twolink.simulate: free and driven motion, energy conservation, failures, the result object."""
 
 import dataclasses
+import inspect
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -10,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from twolink import SimulationError, SimulationResult, TwoLinkArm, arms, plot, simulate
+from twolink import SimulationError, SimulationResult, TwoLinkArm, arms, controllers, ik, plot, simulate, trajectory
 
 TIGHT = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
 
@@ -189,7 +190,9 @@ def test_solver_failure_raises_instead_of_returning_a_partial_result():
     "kwargs, error, fragment",
     [
         ({"q0": [0.0, 0.0, 0.0]}, ValueError, r"q0 must have shape \(\.\.\., 2\)"),
-        ({"q0": [[0.0, 0.0], [1.0, 1.0]]}, ValueError, r"one state each, shape \(2,\)"),
+        ({"q0": [[0.0, 0.0], [1.0, 1.0]]}, ValueError, r"q0 must be one configuration of shape \(2,\) \(radians\); got shape \(2, 2\)"),
+        ({"qd0": [0.0]}, ValueError, r"qd0 must have shape \(\.\.\., 2\)"),
+        ({"qd0": [[0.0, 0.0]]}, ValueError, r"qd0 must be one pair of joint rates of shape \(2,\) \(rad/s\); got shape \(1, 2\)"),
         ({"qd0": [np.nan, 0.0]}, ValueError, "qd0 must be finite"),
         ({"t_end": 0.0}, ValueError, r"t_end \(s\) must be > 0"),
         ({"t_end": np.inf}, ValueError, r"t_end \(s\) must be finite"),
@@ -210,3 +213,60 @@ def test_bad_input_raises(kwargs, error, fragment):
 def test_arm_with_a_singular_mass_matrix_is_refused():
     with pytest.raises(ValueError, match="mass matrix is singular"):
         simulate(TwoLinkArm(1.0, 1.0, m2=0.0), [0.0, 0.0], [0.0, 0.0], 1.0)
+
+
+# ----------------------------------------------------------------- energy with a spring (issue 12)
+@pytest.mark.parametrize("g", [0.0, 9.81])
+def test_a_spring_controlled_undamped_arm_conserves_arm_plus_spring_energy(g):
+    """T + V_gravity + V_spring is constant to solver tolerance; T + V_gravity alone is not."""
+    arm = dataclasses.replace(arms.two_metre, g=g)
+    spring = controllers.CartesianSpring(arm, stiffness=600.0, rest_point=[3.0, 1.0])
+    q0 = ik.closed_form(arm, [3.0, 2.0])
+    result = simulate(arm, q0, [0.0, 0.0], 1.0, torque=spring, t_eval=np.linspace(0.0, 1.0, 401), **TIGHT)
+    kinetic, potential = result.energy(extra_potential=spring.potential_energy)
+    kinetic_arm, potential_arm = result.energy()
+    assert np.array_equal(kinetic, kinetic_arm)
+    assert np.allclose(potential, potential_arm + spring.potential_energy(result.q), rtol=0, atol=1e-12 * 600.0)
+    total = kinetic + potential
+    by_hand = np.max(np.abs(total - total[0])) / np.max(kinetic)
+    drift = result.energy_drift(extra_potential=spring.potential_energy)
+    assert drift == pytest.approx(by_hand, rel=1e-12)
+    assert drift < 1e-8
+    assert result.energy_drift() > 0.1  # the spring's energy is most of what changes form
+
+
+def test_extra_potential_must_be_a_vectorised_callable_of_finite_energies():
+    result = simulate(arms.two_metre, [0.3, 0.4], [0.0, 0.0], 0.5, t_eval=[0.0, 0.25, 0.5])
+    with pytest.raises(TypeError, match="extra_potential must be None or a callable V"):
+        result.energy(extra_potential=3.0)
+    with pytest.raises(ValueError, match=r"must be vectorised: q of shape \(3, 2\) in, energies of shape \(3,\) .* got shape \(\)"):
+        result.energy_drift(extra_potential=lambda q: 1.0)
+    with pytest.raises(ValueError, match=r"returned nan J at t = 0.25 s \(sample 1\)"):
+        result.energy(extra_potential=lambda q: np.where(q[:, 0] == result.q[1, 0], np.nan, 0.0))
+    with pytest.raises(ValueError, match="must return energies in joules"):
+        result.energy(extra_potential=lambda q: ["a", "b", "c"])
+
+
+# ----------------------------------------------------------------- tip and tracking error (issue 12)
+def test_p_tip_and_tracking_error_read_like_a_joint_trajectorys():
+    arm = arms.two_metre
+    line = trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=2.0, law="quintic")
+    motion = trajectory.ik_trajectory(arm, line, n=41)
+    control = controllers.JointPD(arm, kp=400.0, kd=40.0, reference=motion.joint_reference())
+    run = simulate(arm, motion.q[0] + [0.02, 0.0], [0.0, 0.0], 2.0, torque=control, t_eval=motion.t)
+    assert np.array_equal(run.p_tip, arm.fk(run.q))
+    by_hand = np.linalg.norm(arm.fk(run.q) - line.at(run.t)[0], axis=-1)
+    assert by_hand[0] > 0.01
+    for path in (line, motion, motion.p_ref):
+        assert np.allclose(run.tracking_error(path), by_hand, rtol=0, atol=1e-12)
+    assert np.allclose(run.tracking_error(line.p_end), np.linalg.norm(run.p_tip - line.p_end, axis=-1))
+    assert inspect.signature(SimulationResult.tracking_error) == inspect.signature(trajectory.JointTrajectory.tracking_error)
+
+
+def test_a_simulation_has_no_path_of_its_own():
+    run = simulate(arms.two_metre, [0.3, 0.4], [0.0, 0.0], 1.0, t_eval=np.linspace(0.0, 1.0, 11))
+    with pytest.raises(ValueError, match="a simulation has no path of its own: pass what the tip should follow"):
+        run.tracking_error()
+    motion = trajectory.ik_trajectory(arms.two_metre, trajectory.LinePath([3.0, 0.5], [3.0, 1.0], 1.0), n=12)
+    with pytest.raises(ValueError, match=r"sampled at 12 times .* simulate with t_eval=trajectory.t, or pass the path"):
+        run.tracking_error(motion)

@@ -4,19 +4,40 @@ The right-hand side comes from :func:`twolink.dynamics.state_derivative`;
 the inputs are checked once, at the entry of :func:`simulate`.  A torque
 callable ``(t, q, qd) -> tau`` drives the arm (a controller plugs in here);
 without one the arm moves freely under gravity.
+
+The :class:`SimulationResult` holds the motion and reads it the way a
+:class:`twolink.trajectory.JointTrajectory` does: ``p_tip`` and
+``tracking_error(path)`` mean the same on both, and ``energy`` /
+``energy_drift`` take the potential energy of a spring the controller
+simulates (``extra_potential=controller.potential_energy``).
 """
+
+from __future__ import annotations
 
 import math
 import time
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 
 from . import dynamics
-from ._validate import as_count, as_finite_scalar, as_pairs
+from ._validate import InputTypeError, as_configuration, as_count, as_finite_scalar
 from .errors import SimulationError
+from .kinematics import fk
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
+    from .trajectory import JointTrajectory, Path
+
+#: A torque law ``tau(t, q, qd)``: time (s), joint angles (rad) and rates (rad/s), each ``(2,)``, to two torques (N m).
+TorqueLaw = Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
+
+#: A potential energy ``V(q)`` in joules, vectorised over configurations ``(n, 2)`` -> ``(n,)``.
+PotentialEnergy = Callable[[NDArray[np.float64]], ArrayLike]
 
 __all__ = ["simulate", "SimulationResult", "SimulationError", "DEFAULT_MAX_EVALUATIONS", "DEFAULT_MAX_WALL_TIME"]
 
@@ -128,32 +149,134 @@ class SimulationResult:
         ``solve_ivp``'s message.
     nfev : int
         Number of right-hand-side evaluations.
-    t_events, y_events : list or None
+    t_events, y_events : list of numpy.ndarray or None
         Event times and states when ``events`` were passed to the solver.
     """
 
-    arm: object
-    t: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    tau: np.ndarray
+    arm: TwoLinkArm
+    t: NDArray[np.float64]
+    q: NDArray[np.float64]
+    qd: NDArray[np.float64]
+    tau: NDArray[np.float64]
     status: int
     message: str
     nfev: int
-    t_events: object = None
-    y_events: object = None
+    t_events: list[NDArray[np.float64]] | None = None
+    y_events: list[NDArray[np.float64]] | None = None
 
-    def energy(self):
-        """Kinetic and potential energy ``(T, V)`` along the motion, each shape ``(n,)``, joules."""
-        return dynamics.energy(self.arm, self.q, self.qd)
+    @property
+    def p_tip(self) -> NDArray[np.float64]:
+        """Where the tip is, ``fk(q)``: shape (n, 2), metres (as :attr:`twolink.trajectory.JointTrajectory.p_tip`)."""
+        return fk(self.arm, self.q)
 
-    def energy_drift(self):
+    def tracking_error(self, path: Path | JointTrajectory | ArrayLike | None = None) -> NDArray[np.float64]:
+        """Distance of the tip from where ``path`` wants it, ``|p_tip - p_path|`` per sample: shape (n,), metres.
+
+        The same method as :meth:`twolink.trajectory.JointTrajectory.tracking_error`.
+
+        Parameters
+        ----------
+        path : LinePath, CirclePath, JointTrajectory or array_like
+            What the tip should follow, read at the result's times ``t`` by
+            :func:`twolink.trajectory.path_positions`: a path object (its
+            position at every time), a trajectory sampled at the same times
+            (simulate with ``t_eval=trajectory.t``), points of shape (n, 2),
+            or one fixed point (2,).  A simulation has no path of its own,
+            so ``None`` is refused.
+
+        Raises
+        ------
+        ValueError
+            For ``path=None`` or a path that does not fit the times (see
+            :func:`twolink.trajectory.path_positions`).
+
+        Examples
+        --------
+        >>> from twolink import arms
+        >>> held = simulate(arms.two_metre, [0.0, 0.0], [0.0, 0.0], 1.0, t_eval=[0.0, 1.0],
+        ...                 torque=lambda t, q, qd: arms.two_metre.gravity(q))
+        >>> held.tracking_error([4.0, 0.0]).round(9) + 0.0       # held stretched out at (4, 0)
+        array([0., 0.])
+        """
+        if path is None:
+            raise ValueError(
+                "a simulation has no path of its own: pass what the tip should follow (a LinePath or CirclePath, "
+                "a JointTrajectory sampled at the same times, or points of shape (n, 2) or (2,) in metres)"
+            )
+        from .trajectory import path_positions  # trajectory imports this module: import it when first used
+
+        difference = self.p_tip - path_positions(path, self.t)
+        return np.hypot(difference[:, 0], difference[:, 1])
+
+    def energy(
+        self, extra_potential: PotentialEnergy | None = None
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """Kinetic and potential energy ``(T, V)`` along the motion, each shape ``(n,)``, joules.
+
+        Parameters
+        ----------
+        extra_potential : callable, optional
+            ``V_extra(q)``: potential energy stored outside the arm (a
+            spring the controller simulates), joules; called once with all
+            the configurations ``q`` of shape (n, 2), it must return shape
+            (n,): for example ``CartesianSpring(...).potential_energy``.
+            Added to ``V``.
+
+        Returns
+        -------
+        kinetic, potential : numpy.ndarray, shape (n,)
+            ``T = qd^T M qd / 2`` and ``V = V_gravity (+ V_extra)``
+            (:func:`twolink.dynamics.energy`).
+
+        Raises
+        ------
+        ValueError
+            If ``extra_potential`` is not callable or does not return ``n``
+            finite energies.
+        """
+        kinetic, potential = dynamics.energy(self.arm, self.q, self.qd)
+        if extra_potential is not None:
+            potential = potential + self._extra_energy(extra_potential)
+        return kinetic, potential
+
+    def _extra_energy(self, extra_potential: PotentialEnergy) -> NDArray[np.float64]:
+        if not callable(extra_potential):
+            raise InputTypeError(
+                f"extra_potential must be None or a callable V(q) -> joules (e.g. a controller's potential_energy); "
+                f"got {extra_potential!r}"
+            )
+        expected = self.q.shape[:-1]
+        try:
+            values = np.asarray(extra_potential(self.q), dtype=float)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(
+                f"extra_potential(q) must return energies in joules, one per configuration: {exc}"
+            ) from exc
+        if values.shape != expected:
+            raise ValueError(
+                f"extra_potential(q) must be vectorised: q of shape {self.q.shape} in, energies of shape "
+                f"{expected} (joules) out; got shape {values.shape}"
+            )
+        if not np.all(np.isfinite(values)):
+            first = int(np.flatnonzero(~np.isfinite(values))[0])
+            raise ValueError(f"extra_potential(q) returned {values[first]} J at t = {self.t[first]:.6g} s (sample {first})")
+        return values
+
+    def energy_drift(self, extra_potential: PotentialEnergy | None = None) -> float:
         """Relative drift of the total energy: ``max |E(t) - E(0)| / max T``.
 
         Divided by the largest kinetic energy of the motion, the energy that
         changes form (the total itself depends on where ``V = 0`` is put).
         For free motion the exact value is 0, so this measures the solver's
-        error; with torques or events it is no conservation check.
+        error; likewise under a conservative controller when its potential
+        energy is passed as ``extra_potential`` (a spring: ``E = T + V_gravity
+        + V_spring``).  With other torques or events it is no conservation check.
+
+        Parameters
+        ----------
+        extra_potential : callable, optional
+            ``V_extra(q)`` in joules, vectorised over ``q`` of shape (n, 2)
+            (see :meth:`energy`), e.g. ``spring.potential_energy``.
 
         Returns
         -------
@@ -162,12 +285,16 @@ class SimulationResult:
 
         Examples
         --------
-        >>> from twolink import arms
+        >>> from twolink import arms, controllers
         >>> result = simulate(arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0], 2.0)
         >>> result.energy_drift() < 1e-9
         True
+        >>> spring = controllers.CartesianSpring(arms.two_metre, stiffness=600.0, rest_point=[3.0, 1.0])
+        >>> bouncing = simulate(arms.two_metre, [0.3, 0.6], [0.0, 0.0], 1.0, torque=spring)
+        >>> bouncing.energy_drift(extra_potential=spring.potential_energy) < 1e-8 < bouncing.energy_drift()
+        True
         """
-        kinetic, potential = self.energy()
+        kinetic, potential = self.energy(extra_potential)
         total = kinetic + potential
         change = float(np.max(np.abs(total - total[0])))
         scale = float(np.max(kinetic))
@@ -175,7 +302,7 @@ class SimulationResult:
             return 0.0 if change == 0.0 else float("inf")
         return change / scale
 
-    def frames(self, max_frames=50):
+    def frames(self, max_frames: int = 50) -> NDArray[np.int_]:
         """Indices of at most ``max_frames`` samples, evenly spread, first and last included.
 
         Examples
@@ -190,16 +317,16 @@ class SimulationResult:
 
 
 def simulate(
-    arm,
-    q0,
-    qd0,
-    t_end,
-    torque=None,
-    t_eval=None,
-    max_evaluations=DEFAULT_MAX_EVALUATIONS,
-    max_wall_time=DEFAULT_MAX_WALL_TIME,
-    **solver_options,
-):
+    arm: TwoLinkArm,
+    q0: ArrayLike,
+    qd0: ArrayLike,
+    t_end: float,
+    torque: TorqueLaw | None = None,
+    t_eval: ArrayLike | None = None,
+    max_evaluations: int = DEFAULT_MAX_EVALUATIONS,
+    max_wall_time: float = DEFAULT_MAX_WALL_TIME,
+    **solver_options: Any,
+) -> SimulationResult:
     """Integrate the arm's motion from ``(q0, qd0)`` at ``t = 0`` to ``t_end``.
 
     Solves ``M(q) qdd + C(q, qd) qd + g(q) = tau`` with
@@ -272,19 +399,17 @@ def simulate(
     ...
     ValueError: t_end (s) must be > 0.0; got -1.0
     """
-    q0 = as_pairs(q0, "q0")
-    qd0 = as_pairs(qd0, "qd0")
-    if q0.shape != (2,) or qd0.shape != (2,):
-        raise ValueError(f"q0 and qd0 must be one state each, shape (2,); got {q0.shape} and {qd0.shape}")
+    q_start = as_configuration(q0, "q0")
+    qd_start = as_configuration(qd0, "qd0", what="one pair of joint rates", unit="rad/s")
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
     max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
     inner = dynamics.state_derivative(arm, torque)
-    options = dict(DEFAULT_SOLVER_OPTIONS)
+    options: dict[str, Any] = dict(DEFAULT_SOLVER_OPTIONS)
     options.update(solver_options)
     if t_eval is not None:
         t_eval = _check_t_eval(t_eval, t_end)
-    start = np.concatenate([q0, qd0])
+    start = np.concatenate([q_start, qd_start])
     note = ""
     method = options.get("method")
     if isinstance(method, str) and method in _EXPLICIT_METHODS:

@@ -3,38 +3,54 @@
 A path says where the tip should be at each instant: :class:`LinePath` (a
 straight segment) and :class:`CirclePath`, both run through a time law
 (:func:`time_scaling`: constant speed, or cubic / quintic polynomials that
-start and stop smoothly).  Two ways turn a path into joint angles:
+start and stop smoothly).  ``path.at(t)`` gives the tip's position and
+velocity at times ``t`` (and, with ``with_acceleration=True``, its
+acceleration).  Two ways turn a path into joint angles:
 
 - :func:`ik_trajectory`: closed-form IK at every sample, on one elbow branch
   for the whole path (no branch flips mid-path) with the angles kept
-  continuous (no 2 pi jumps) and within the joint limits;
+  continuous (no 2 pi jumps) and within the joint limits; the joint rates
+  and accelerations are exact, ``qd = J^-1 v`` and ``qdd = J^-1 (a - Jdot qd)``;
 - :func:`resolved_rate_trajectory`: integrate the joint rates
   ``qd = J^-1 (v_ref + gain (p_ref - p))`` (Whitney's resolved-rate control),
   using :func:`twolink.velocity.joint_rates` or its damped variant.
 
-A path that leaves the workspace raises :class:`twolink.UnreachableError`
-naming the first sample out of reach, never a NaN.
+Both give a :class:`JointTrajectory` (times, angles, rates, accelerations),
+which becomes a controller's reference with
+:meth:`JointTrajectory.joint_reference` (no refitting: the interpolant
+matches ``q``, ``qd`` and ``qdd`` at every sample).  A path that leaves the
+workspace raises :class:`twolink.UnreachableError` naming the first sample
+out of reach, never a NaN.
 
 Examples
 --------
 >>> from twolink import arms, trajectory
 >>> line = trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0)
 >>> motion = trajectory.ik_trajectory(arms.two_metre, line, n=50)
->>> motion.q.shape, bool(motion.tracking_error.max() < 1e-12)
-((50, 2), True)
+>>> motion.q.shape, motion.qdd.shape, bool(motion.tracking_error().max() < 1e-12)
+((50, 2), (50, 2), True)
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Callable, Literal, Union, overload
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 
-from ._validate import as_count, as_finite_scalar, as_pairs, real_array, require_arm
-from .errors import SimulationError, SingularityError, UnreachableError
+from ._validate import as_configuration, as_count, as_finite_scalar, as_pairs, real_array, require_arm
+from .controllers import JointReference
+from .conventions import check_elbow
+from .errors import InputTypeError, SimulationError, SingularityError, UnreachableError
+from .kinematics import fk, jacobian, require_nonsingular, require_within_reach
 from .simulate import DEFAULT_MAX_EVALUATIONS
-from .kinematics import fk
 from .velocity import joint_rates, joint_rates_dls
 from .workspace import LIMIT_TOL, describe_limits, require_reachable, solutions_within_limits
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 __all__ = [
     "TIME_LAWS",
@@ -44,6 +60,7 @@ __all__ = [
     "JointTrajectory",
     "ik_trajectory",
     "resolved_rate_trajectory",
+    "path_positions",
 ]
 
 #: The time laws :func:`time_scaling` knows.
@@ -51,8 +68,35 @@ TIME_LAWS = ("linear", "cubic", "quintic")
 
 _BRANCHES = ("down", "up")
 
+#: Why ``elbow="both"`` means nothing for a trajectory (see :func:`twolink.conventions.check_elbow`).
+_ONE_BRANCH = "a path follows one branch at a time: trace it once with 'down' and once with 'up'"
 
-def time_scaling(t, duration, law="quintic", with_acceleration=False):
+# what time_scaling, at and sample return: two, three or four float arrays
+_Array = NDArray[np.float64]
+_Two = tuple[NDArray[np.float64], NDArray[np.float64]]
+_Three = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+_Four = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+
+
+@overload
+def time_scaling(
+    t: ArrayLike, duration: float, law: str = ..., with_acceleration: Literal[False] = ...
+) -> _Two: ...
+@overload
+def time_scaling(
+    t: ArrayLike, duration: float, law: str, with_acceleration: Literal[True]
+) -> _Three: ...
+@overload
+def time_scaling(
+    t: ArrayLike, duration: float, law: str = ..., *, with_acceleration: Literal[True]
+) -> _Three: ...
+@overload
+def time_scaling(
+    t: ArrayLike, duration: float, law: str = ..., with_acceleration: bool = ...
+) -> _Two | _Three: ...
+def time_scaling(
+    t: ArrayLike, duration: float, law: str = "quintic", with_acceleration: bool = False
+) -> _Two | _Three:
     """Progress ``s(t)`` from 0 to 1 over ``[0, duration]``, its rate ``ds/dt`` and (optionally) ``d2s/dt2``.
 
     With ``tau = t / duration`` (clipped to [0, 1]):
@@ -90,11 +134,11 @@ def time_scaling(t, duration, law="quintic", with_acceleration=False):
     duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
     if law not in TIME_LAWS:
         raise ValueError(f"law must be one of {TIME_LAWS}; got {law!r}")
-    t = real_array(t, "t (s)")
-    if not np.all(np.isfinite(t)):
+    times = real_array(t, "t (s)")
+    if not np.all(np.isfinite(times)):
         raise ValueError("t must be finite times in seconds")
-    tau = np.clip(t / duration, 0.0, 1.0)
-    inside = (t >= 0.0) & (t <= duration)
+    tau = np.clip(times / duration, 0.0, 1.0)
+    inside = (times >= 0.0) & (times <= duration)
     if law == "linear":
         s, ds, dds = tau, np.ones_like(tau), np.zeros_like(tau)
     elif law == "cubic":
@@ -109,30 +153,78 @@ def time_scaling(t, duration, law="quintic", with_acceleration=False):
     return s, s_dot, np.where(inside, dds / duration**2, 0.0)
 
 
-def _point(value, name):
-    point = as_pairs(value, name)
-    if point.shape != (2,):
-        raise ValueError(f"{name} must be one (x, y) pair in metres; got shape {point.shape}")
-    return point
-
-
-def _sample_times(duration, n):
-    n = as_count(n, "n (samples, both ends included)", minimum=2, maximum=MAX_SAMPLES)
-    return np.linspace(0.0, duration, n)
+def _point(value: ArrayLike, name: str) -> _Array:
+    return as_configuration(value, name, what="one (x, y) point", unit="metres")
 
 
 #: Most samples a path may be cut into (memory budget: a few arrays of n x 2 floats, ~100 MB).
 MAX_SAMPLES = 10_000_000
 
 
-@dataclass(frozen=True)
-class LinePath:
+def _sample_times(duration: float, n: int) -> _Array:
+    n = as_count(n, "n (samples, both ends included)", minimum=2, maximum=MAX_SAMPLES)
+    return np.linspace(0.0, duration, n)
+
+
+class _TimedPath:
+    """What :class:`LinePath` and :class:`CirclePath` share: ``at`` and ``sample``."""
+
+    duration: float
+
+    def _at(self, t: ArrayLike) -> _Three:
+        raise NotImplementedError
+
+    @overload
+    def at(self, t: ArrayLike, with_acceleration: Literal[False] = ...) -> _Two: ...
+    @overload
+    def at(self, t: ArrayLike, with_acceleration: Literal[True]) -> _Three: ...
+    @overload
+    def at(self, t: ArrayLike, with_acceleration: bool = ...) -> _Two | _Three: ...
+    def at(self, t: ArrayLike, with_acceleration: bool = False) -> _Two | _Three:
+        """Tip position (m), velocity (m/s) and, optionally, acceleration (m/s^2) at times ``t`` (s).
+
+        Parameters
+        ----------
+        t : array_like
+            Times in seconds; before 0 the path waits at its start, after
+            ``duration`` at its end (zero velocity and acceleration there).
+        with_acceleration : bool
+            Also return the acceleration (as :func:`time_scaling` does).
+
+        Returns
+        -------
+        p, v[, a] : numpy.ndarray, each of shape ``t.shape + (2,)``
+        """
+        p, v, a = self._at(t)
+        return (p, v, a) if with_acceleration else (p, v)
+
+    @overload
+    def sample(self, n: int = ..., with_acceleration: Literal[False] = ...) -> _Three: ...
+    @overload
+    def sample(self, n: int, with_acceleration: Literal[True]) -> _Four: ...
+    @overload
+    def sample(self, n: int = ..., *, with_acceleration: Literal[True]) -> _Four: ...
+    @overload
+    def sample(self, n: int = ..., with_acceleration: bool = ...) -> _Three | _Four: ...
+    def sample(self, n: int = 50, with_acceleration: bool = False) -> _Three | _Four:
+        """``n`` evenly spaced instants over ``[0, duration]`` (both ends): ``(t, p, v)`` or ``(t, p, v, a)``.
+
+        Shapes ``(n,)`` for ``t`` (s) and ``(n, 2)`` for ``p`` (m), ``v`` (m/s)
+        and ``a`` (m/s^2, with ``with_acceleration=True``).
+        """
+        t = _sample_times(self.duration, n)
+        p, v, a = self._at(t)
+        return (t, p, v, a) if with_acceleration else (t, p, v)
+
+
+@dataclass(frozen=True, init=False)
+class LinePath(_TimedPath):
     """The straight segment from ``p_start`` to ``p_end``, travelled in ``duration`` seconds.
 
     Parameters
     ----------
-    p_start, p_end : pair of float
-        End points, metres.
+    p_start, p_end : array_like, shape (2,)
+        End points, metres (stored as tuples of floats).
     duration : float
         Seconds (> 0).
     law : {"linear", "cubic", "quintic"}
@@ -146,46 +238,41 @@ class LinePath:
     >>> p, v = line.at(1.0)
     >>> p, v
     (array([1.5, 2. ]), array([1.5, 2. ]))
+    >>> line.at(1.0, with_acceleration=True)[2]    # constant speed: no acceleration
+    array([0., 0.])
     """
 
-    p_start: tuple
-    p_end: tuple
+    p_start: tuple[float, float]
+    p_end: tuple[float, float]
     duration: float
-    law: str = "quintic"
+    law: str
 
-    def __post_init__(self):
-        object.__setattr__(self, "p_start", tuple(_point(self.p_start, "p_start")))
-        object.__setattr__(self, "p_end", tuple(_point(self.p_end, "p_end")))
-        object.__setattr__(
-            self, "duration", as_finite_scalar(self.duration, "duration (s)", minimum=0.0, strictly=True)
-        )
+    def __init__(self, p_start: ArrayLike, p_end: ArrayLike, duration: float, law: str = "quintic") -> None:
+        object.__setattr__(self, "p_start", tuple(_point(p_start, "p_start").tolist()))
+        object.__setattr__(self, "p_end", tuple(_point(p_end, "p_end").tolist()))
+        object.__setattr__(self, "duration", as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True))
+        object.__setattr__(self, "law", law)
         time_scaling(0.0, self.duration, self.law)  # checks the law's name
 
     @property
-    def length(self):
+    def length(self) -> float:
         """Length of the segment, metres."""
         return float(np.hypot(self.p_end[0] - self.p_start[0], self.p_end[1] - self.p_start[1]))
 
-    def at(self, t):
-        """Tip position and velocity at times ``t``: two arrays of shape ``t.shape + (2,)``."""
-        s, s_dot = time_scaling(t, self.duration, self.law)
+    def _at(self, t: ArrayLike) -> _Three:
+        s, s_dot, s_ddot = time_scaling(t, self.duration, self.law, with_acceleration=True)
         start, chord = np.asarray(self.p_start), np.subtract(self.p_end, self.p_start)
-        return start + np.multiply.outer(s, chord), np.multiply.outer(s_dot, chord)
-
-    def sample(self, n=50):
-        """``n`` evenly spaced instants over ``[0, duration]`` (both ends): ``(t, p, v)``."""
-        t = _sample_times(self.duration, n)
-        return (t, *self.at(t))
+        return start + np.multiply.outer(s, chord), np.multiply.outer(s_dot, chord), np.multiply.outer(s_ddot, chord)
 
 
-@dataclass(frozen=True)
-class CirclePath:
+@dataclass(frozen=True, init=False)
+class CirclePath(_TimedPath):
     """``turns`` times round a circle, counter-clockwise from ``start_angle``, in ``duration`` seconds.
 
     Parameters
     ----------
-    centre : pair of float
-        Centre, metres.
+    centre : array_like, shape (2,)
+        Centre, metres (stored as a tuple of floats).
     radius : float
         Radius (> 0), metres.
     duration : float
@@ -200,50 +287,131 @@ class CirclePath:
     Examples
     --------
     >>> circle = CirclePath([12.5, 12.5], 2.0, duration=4.0, law="linear")
-    >>> p, v = circle.at(1.0)   # a quarter of the way round
+    >>> p, v, a = circle.at(1.0, with_acceleration=True)   # a quarter of the way round
     >>> p.round(12), (v * 2 / np.pi).round(12)
     (array([12.5, 14.5]), array([-1.,  0.]))
+    >>> speed = 2 * np.pi * circle.radius / circle.duration     # constant: pi m/s
+    >>> (a * circle.radius / speed**2).round(12) + 0.0          # centripetal, speed^2 / r towards the centre
+    array([ 0., -1.])
     """
 
-    centre: tuple
+    centre: tuple[float, float]
     radius: float
     duration: float
-    law: str = "quintic"
-    start_angle: float = 0.0
-    turns: float = 1.0
+    law: str
+    start_angle: float
+    turns: float
 
-    def __post_init__(self):
-        object.__setattr__(self, "centre", tuple(_point(self.centre, "centre")))
-        object.__setattr__(self, "radius", as_finite_scalar(self.radius, "radius (m)", minimum=0.0, strictly=True))
-        object.__setattr__(
-            self, "duration", as_finite_scalar(self.duration, "duration (s)", minimum=0.0, strictly=True)
-        )
-        object.__setattr__(self, "start_angle", as_finite_scalar(self.start_angle, "start_angle (rad)"))
-        turns = as_finite_scalar(self.turns, "turns")
+    def __init__(
+        self,
+        centre: ArrayLike,
+        radius: float,
+        duration: float,
+        law: str = "quintic",
+        start_angle: float = 0.0,
+        turns: float = 1.0,
+    ) -> None:
+        object.__setattr__(self, "centre", tuple(_point(centre, "centre").tolist()))
+        object.__setattr__(self, "radius", as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True))
+        object.__setattr__(self, "duration", as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True))
+        object.__setattr__(self, "law", law)
+        object.__setattr__(self, "start_angle", as_finite_scalar(start_angle, "start_angle (rad)"))
+        turns = as_finite_scalar(turns, "turns")
         if turns == 0.0:
             raise ValueError("turns must be non-zero (1 is once round, counter-clockwise)")
         object.__setattr__(self, "turns", turns)
         time_scaling(0.0, self.duration, self.law)
 
     @property
-    def length(self):
+    def length(self) -> float:
         """Length of the path, metres."""
         return float(2.0 * np.pi * self.radius * abs(self.turns))
 
-    def at(self, t):
-        """Tip position and velocity at times ``t``: two arrays of shape ``t.shape + (2,)``."""
-        s, s_dot = time_scaling(t, self.duration, self.law)
+    def _at(self, t: ArrayLike) -> _Three:
+        s, s_dot, s_ddot = time_scaling(t, self.duration, self.law, with_acceleration=True)
         sweep = 2.0 * np.pi * self.turns
         angle = self.start_angle + sweep * s
+        rate, angular_acceleration = sweep * s_dot, sweep * s_ddot  # rad/s, rad/s^2
         direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
         tangent = np.stack([-np.sin(angle), np.cos(angle)], axis=-1)
         p = np.asarray(self.centre) + self.radius * direction
-        return p, (self.radius * sweep * s_dot)[..., None] * tangent
+        v = (self.radius * rate)[..., None] * tangent
+        # tangential r theta'' along the tangent, centripetal r theta'^2 towards the centre
+        a = (self.radius * angular_acceleration)[..., None] * tangent
+        a -= (self.radius * rate * rate)[..., None] * direction
+        return p, v, a
 
-    def sample(self, n=50):
-        """``n`` evenly spaced instants over ``[0, duration]`` (both ends): ``(t, p, v)``."""
-        t = _sample_times(self.duration, n)
-        return (t, *self.at(t))
+
+#: What :func:`ik_trajectory` follows: a timed path, or points in order.
+Path = Union[LinePath, CirclePath]
+
+
+def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointReference:
+    """The piecewise quintic through samples of ``q``, ``qd`` and ``qdd`` (matched at every sample).
+
+    On ``[t_k, t_k+1]``, with ``h = t_k+1 - t_k`` and ``s = (t - t_k) / h``,
+    the quintic Hermite basis; written with the change ``q_k+1 - q_k`` so
+    that at ``s = 0`` every derivative is the sample itself, to round-off.
+    Outside ``[t_0, t_n]`` the reference holds the end position at rest.
+    """
+    times = np.array(t, dtype=float)  # copies: the reference does not change with the trajectory's arrays
+    q, qd, qdd = (np.array(values, dtype=float) for values in (q, qd, qdd))
+    steps = np.diff(times)
+    changes = np.diff(q, axis=0)
+    start, end = float(times[0]), float(times[-1])
+    held_start, held_end, zeros = q[0].copy(), q[-1].copy(), np.zeros(2)
+    last = (qd[-1].copy(), qdd[-1].copy())
+
+    def locate(time: float) -> tuple[int, float, float]:
+        k = min(int(np.searchsorted(times, time, side="right")) - 1, len(steps) - 1)
+        return k, (time - times[k]) / steps[k], float(steps[k])
+
+    def position(time: float) -> NDArray[np.float64]:
+        time = float(time)
+        if time <= start:
+            return held_start.copy()
+        if time >= end:
+            return held_end.copy()
+        k, s, h = locate(time)
+        s2, s3 = s * s, s * s * s
+        h5 = s3 * (10.0 - 15.0 * s + 6.0 * s2)
+        h1 = s - s3 * (6.0 - 8.0 * s + 3.0 * s2)
+        h2 = 0.5 * s2 * (1.0 - s) ** 3
+        h3 = 0.5 * s3 * (1.0 - s) ** 2
+        h4 = s3 * (-4.0 + 7.0 * s - 3.0 * s2)
+        return q[k] + h5 * changes[k] + h * (h1 * qd[k] + h4 * qd[k + 1]) + h * h * (h2 * qdd[k] + h3 * qdd[k + 1])
+
+    def velocity(time: float) -> NDArray[np.float64]:
+        time = float(time)
+        if time == end:
+            return last[0].copy()
+        if time < start or time > end:
+            return zeros.copy()
+        k, s, h = locate(time)
+        s2 = s * s
+        d5 = 30.0 * s2 * (1.0 - s) ** 2
+        d1 = 1.0 - s2 * (18.0 - 32.0 * s + 15.0 * s2)
+        d2 = 0.5 * s * (1.0 - s) ** 2 * (2.0 - 5.0 * s)
+        d3 = 0.5 * s2 * (1.0 - s) * (3.0 - 5.0 * s)
+        d4 = s2 * (-12.0 + 28.0 * s - 15.0 * s2)
+        return d5 / h * changes[k] + d1 * qd[k] + d4 * qd[k + 1] + h * (d2 * qdd[k] + d3 * qdd[k + 1])
+
+    def acceleration(time: float) -> NDArray[np.float64]:
+        time = float(time)
+        if time == end:
+            return last[1].copy()
+        if time < start or time > end:
+            return zeros.copy()
+        k, s, h = locate(time)
+        s2 = s * s
+        c5 = 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s)
+        c1 = -s * (36.0 - 96.0 * s + 60.0 * s2)
+        c2 = (1.0 - s) * (1.0 - 8.0 * s + 10.0 * s2)
+        c3 = s * (3.0 - 12.0 * s + 10.0 * s2)
+        c4 = s * (-24.0 + 84.0 * s - 60.0 * s2)
+        return c5 / (h * h) * changes[k] + (c1 * qd[k] + c4 * qd[k + 1]) / h + c2 * qdd[k] + c3 * qdd[k + 1]
+
+    return JointReference(position, velocity, acceleration)
 
 
 @dataclass(frozen=True)
@@ -254,11 +422,13 @@ class JointTrajectory:
     ----------
     arm : TwoLinkArm
     t : numpy.ndarray, shape (n,)
-        Times in seconds.
+        Times in seconds (for a path given as points: the sample index).
     q : numpy.ndarray, shape (n, 2)
         Joint angles in radians (continuous: no 2 pi jumps).
     qd : numpy.ndarray, shape (n, 2)
         Joint rates in rad/s.
+    qdd : numpy.ndarray, shape (n, 2)
+        Joint accelerations in rad/s^2.
     p_ref : numpy.ndarray, shape (n, 2)
         Where the path wants the tip, metres.
     elbow : str
@@ -272,51 +442,176 @@ class JointTrajectory:
         through ``+-pi``); empty for a path on one branch.
     """
 
-    arm: object
-    t: np.ndarray
-    q: np.ndarray
-    qd: np.ndarray
-    p_ref: np.ndarray
+    arm: TwoLinkArm
+    t: NDArray[np.float64]
+    q: NDArray[np.float64]
+    qd: NDArray[np.float64]
+    qdd: NDArray[np.float64]
+    p_ref: NDArray[np.float64]
     elbow: str
     method: str
-    branch_switches: tuple = ()
+    branch_switches: tuple[int, ...] = ()
 
     @property
-    def p_tip(self):
-        """Where the tip actually is, ``fk(q)``, metres."""
+    def p_tip(self) -> NDArray[np.float64]:
+        """Where the tip actually is, ``fk(q)``: shape (n, 2), metres."""
         return fk(self.arm, self.q)
 
-    @property
-    def tracking_error(self):
-        """``|p_tip - p_ref|`` per sample, metres."""
-        return np.hypot(*(self.p_tip - self.p_ref).T)
+    def tracking_error(self, path: Path | JointTrajectory | ArrayLike | None = None) -> NDArray[np.float64]:
+        """Distance of the tip from where ``path`` wants it, ``|p_tip - p_path|`` per sample: shape (n,), metres.
+
+        The same method as :meth:`twolink.SimulationResult.tracking_error`.
+
+        Parameters
+        ----------
+        path : LinePath, CirclePath, JointTrajectory or array_like, optional
+            What the tip should follow, read by :func:`path_positions` at
+            this trajectory's times ``t``.  ``None`` (default): this
+            trajectory's own path, ``p_ref``.
+
+        Examples
+        --------
+        >>> from twolink import arms
+        >>> line = LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0)
+        >>> motion = ik_trajectory(arms.two_metre, line, n=20)
+        >>> bool(motion.tracking_error().max() < 1e-12), bool(motion.tracking_error(line).max() < 1e-12)
+        (True, True)
+        >>> float(motion.tracking_error([-1.0, 3.5])[0].round(6))   # from the line's end, at the start
+        3.535534
+        """
+        wanted = self.p_ref if path is None else path_positions(path, self.t)
+        difference = self.p_tip - wanted
+        return np.hypot(difference[:, 0], difference[:, 1])
 
     @property
-    def joint_steps(self):
-        """Largest joint change between consecutive samples, ``max_j |q[k+1, j] - q[k, j]|``, shape (n - 1,)."""
+    def joint_steps(self) -> NDArray[np.float64]:
+        """Largest joint change between consecutive samples, ``max_j |q[k+1, j] - q[k, j]|``: shape (n - 1,), rad."""
         return np.max(np.abs(np.diff(self.q, axis=0)), axis=-1)
 
     @property
-    def within_limits(self):
+    def within_limits(self) -> NDArray[np.bool_]:
         """Whether each sample respects the arm's joint limits, shape (n,)."""
-        return self.arm.within_limits(self.q, tol=LIMIT_TOL)
+        return np.asarray(self.arm.within_limits(self.q, tol=LIMIT_TOL), dtype=bool)
+
+    def joint_reference(self) -> JointReference:
+        """This motion as a controller's reference, matching ``q``, ``qd`` and ``qdd`` at every sample.
+
+        The piecewise quintic Hermite interpolant of the samples: on each
+        interval the one quintic with the samples' angles, rates and
+        accelerations at both ends (no fit, no spline refitted through
+        ``q`` alone), so the reference reproduces the samples to round-off
+        and has continuous rate and acceleration.  Between samples it
+        differs from the path's exact joint motion by ``O(h^6)`` in the
+        interval ``h``.  Outside ``[t[0], t[-1]]`` it holds the end position
+        at rest (zero rate and acceleration), like
+        :meth:`twolink.controllers.JointReference.from_samples`.
+
+        Returns
+        -------
+        twolink.controllers.JointReference
+            For :class:`~twolink.controllers.JointPD` or
+            :class:`~twolink.controllers.ComputedTorque` (``reference=``).
+
+        Examples
+        --------
+        >>> from twolink import arms
+        >>> motion = ik_trajectory(arms.two_metre, LinePath([3.0, -1.0], [3.0, 1.0], duration=2.0), n=21)
+        >>> q_ref, qd_ref, qdd_ref = motion.joint_reference()(motion.t[5])
+        >>> bool(np.all(q_ref == motion.q[5]) and np.all(qd_ref == motion.qd[5]) and np.all(qdd_ref == motion.qdd[5]))
+        True
+        """
+        return _quintic_hermite(self.t, self.q, self.qd, self.qdd)
 
 
-def _path_samples(path, n):
-    """``(t, p, v)`` from a path object, or from an (m, 2) array of points (then ``t`` counts samples)."""
-    if hasattr(path, "sample"):
-        return path.sample(n)
+def path_positions(path: Path | JointTrajectory | ArrayLike, t: ArrayLike) -> NDArray[np.float64]:
+    """Where ``path`` wants the tip at the times ``t``: shape ``(len(t), 2)``, metres.
+
+    What :meth:`JointTrajectory.tracking_error` and
+    :meth:`twolink.SimulationResult.tracking_error` compare the tip with.
+
+    Parameters
+    ----------
+    path : LinePath, CirclePath, JointTrajectory or array_like
+        - a path object (anything with ``at(t)``): its position at each
+          time (before its start and after its end it waits at its ends);
+        - a :class:`JointTrajectory`: its ``p_ref``; ``t`` must be its own
+          sample times (simulate with ``t_eval=trajectory.t``, or pass the
+          path object, which has a position at every time);
+        - points: shape ``(len(t), 2)``, one per time, or ``(2,)``, the
+          same point at every time (a fixed target).
+    t : array_like, shape (n,)
+        Times in seconds.
+
+    Raises
+    ------
+    ValueError
+        For times that are not a 1-D array of finite numbers, points of
+        another shape, or a trajectory sampled at other times.
+    twolink.InputTypeError
+        For anything else.
+
+    Examples
+    --------
+    >>> line = LinePath([0.0, 0.0], [2.0, 0.0], duration=1.0, law="linear")
+    >>> path_positions(line, [0.0, 0.5, 3.0])
+    array([[0., 0.],
+           [1., 0.],
+           [2., 0.]])
+    >>> path_positions([1.0, 2.0], [0.0, 1.0])
+    array([[1., 2.],
+           [1., 2.]])
+    """
+    times = real_array(t, "t (s)")
+    if times.ndim != 1 or not np.all(np.isfinite(times)):
+        raise ValueError(f"t must be a 1-D array of finite times (s); got shape {times.shape}")
+    if isinstance(path, JointTrajectory):
+        same = path.t.shape == times.shape and bool(
+            np.allclose(path.t, times, rtol=0.0, atol=1e-12 * max(1.0, float(np.max(np.abs(times), initial=0.0))))
+        )
+        if not same:
+            span = f"[{times[0]:.6g}, {times[-1]:.6g}] s" if times.size else "no time"
+            raise ValueError(
+                f"the trajectory is sampled at {len(path.t)} times over [{path.t[0]:.6g}, {path.t[-1]:.6g}] s, "
+                f"not at these {times.size} times over {span}: simulate with t_eval=trajectory.t, or pass the "
+                "path object (LinePath, CirclePath), which has a position at every time"
+            )
+        return np.array(path.p_ref, dtype=float)
+    at = getattr(path, "at", None)
+    if callable(at):
+        return np.asarray(at(times)[0], dtype=float)
+    try:
+        points = as_pairs(path, "path points (m)")
+    except InputTypeError:
+        raise InputTypeError(
+            "path must be a LinePath or CirclePath, a JointTrajectory, or points of shape (n, 2) or (2,) in "
+            f"metres; got {type(path).__name__}"
+        ) from None
+    if points.shape == (2,):
+        return np.broadcast_to(points, (times.size, 2)).copy()
+    if points.shape != (times.size, 2):
+        raise ValueError(
+            f"path points must have shape ({times.size}, 2), one (x, y) per time, or (2,), one fixed point; "
+            f"got shape {points.shape}"
+        )
+    return np.array(points, dtype=float)
+
+
+def _path_samples(path: Path | ArrayLike, n: int) -> tuple[_Array, _Array, _Array, _Array, bool]:
+    """``(t, p, v, a, timed)`` from a path object, or from an (m, 2) array of points (then ``t`` counts samples)."""
+    sample = getattr(path, "sample", None)
+    if callable(sample):
+        t, p, v, a = sample(n, with_acceleration=True)
+        return t, p, v, a, True
     points = as_pairs(path, "path")
     if points.ndim != 2 or len(points) < 2:
         raise ValueError(f"a path of points must have shape (m, 2) with m >= 2; got {points.shape}")
     t = np.arange(len(points), dtype=float)
-    return t, points, np.gradient(points, t, axis=0)
+    v = np.gradient(points, t, axis=0)
+    return t, points, v, np.gradient(v, t, axis=0), False
 
 
-def _choose_branch(arm, points, valid, elbow):
+def _choose_branch(arm: TwoLinkArm, points: _Array, valid: NDArray[np.bool_], elbow: str) -> int:
     """The one branch used for the whole path, or a clear error."""
-    if elbow not in _BRANCHES + ("auto",):
-        raise ValueError(f"elbow must be 'down', 'up' or 'auto'; got {elbow!r}")
     valid_everywhere = np.all(valid, axis=0)
     wanted = _BRANCHES if elbow == "auto" else (elbow,)
     for name in wanted:
@@ -339,7 +634,7 @@ def _choose_branch(arm, points, valid, elbow):
     )
 
 
-def _continuous(q_branch):
+def _continuous(q_branch: _Array) -> _Array:
     """Unwrap each joint along the path (no 2 pi jumps), keeping the first sample as it is."""
     return np.unwrap(q_branch, axis=0)
 
@@ -354,7 +649,7 @@ JUMP_TOL = np.pi / 2
 BRANCH_MEET_TOL = 1e-6
 
 
-def _nearest_turn(angles, reference):
+def _nearest_turn(angles: _Array, reference: _Array) -> _Array:
     """``angles`` shifted by multiples of 2 pi (per joint) to lie nearest ``reference``."""
     return angles - 2.0 * np.pi * np.round((angles - reference) / (2.0 * np.pi))
 
@@ -365,7 +660,9 @@ def _nearest_turn(angles, reference):
 BASE_ROUNDOFF = 1e-12
 
 
-def _switching_path(arm, points, q_both, valid, start_branch):
+def _switching_path(
+    arm: TwoLinkArm, points: _Array, q_both: _Array, valid: NDArray[np.bool_], start_branch: int
+) -> tuple[_Array, NDArray[np.int_]] | None:
     """A continuous joint path that may change branch where the branches meet, or None.
 
     At each sample the branch stays the same unless the pose is singular
@@ -402,18 +699,51 @@ def _switching_path(arm, points, q_both, valid, start_branch):
     return q, branches
 
 
-def _first_jump(q):
+def _first_jump(q: _Array) -> tuple[int, float] | None:
     steps = np.max(np.abs(np.diff(q, axis=0)), axis=-1)
     jumps = np.flatnonzero(steps > JUMP_TOL)
     return (int(jumps[0]), float(steps[jumps[0]])) if jumps.size else None
 
 
+def _jacobian_rate(arm: TwoLinkArm, q: _Array, qd: _Array) -> _Array:
+    """``dJ/dt`` along a motion through ``q`` at rates ``qd``, shape ``(..., 2, 2)``, m/(rad s)."""
+    l1, l2 = arm.l1, arm.l2
+    q1 = q[..., 0]
+    q12 = q1 + q[..., 1]
+    rate_1 = qd[..., 0]
+    rate_12 = rate_1 + qd[..., 1]
+    rate = np.empty(q.shape[:-1] + (2, 2))
+    rate[..., 0, 1] = -l2 * np.cos(q12) * rate_12
+    rate[..., 1, 1] = -l2 * np.sin(q12) * rate_12
+    rate[..., 0, 0] = -l1 * np.cos(q1) * rate_1 + rate[..., 0, 1]
+    rate[..., 1, 0] = -l1 * np.sin(q1) * rate_1 + rate[..., 1, 1]
+    return rate
+
+
+def _times(matrix: _Array, vector: _Array) -> _Array:
+    """``A x`` over leading axes."""
+    return np.einsum("...ij,...j->...i", matrix, vector)
+
+
+def _transposed_times(matrix: _Array, vector: _Array) -> _Array:
+    """``A^T x`` over leading axes."""
+    return np.einsum("...ji,...j->...i", matrix, vector)
+
+
 #: Below this ``|sin q2|`` :func:`ik_trajectory` takes finite-difference joint
-#: rates instead of ``J^-1 v`` (whose size grows as ``1 / |sin q2|``).
+#: rates and accelerations instead of ``J^-1 v`` and ``J^-1 (a - Jdot qd)``
+#: (whose sizes grow as ``1 / |sin q2|`` and faster).
 RATE_SINGULARITY_TOL = 1e-3
 
 
-def ik_trajectory(arm, path, n=50, elbow="auto"):
+def _finite_differences(values: _Array, t: _Array) -> _Array:
+    """``d values / dt`` by :func:`numpy.gradient` (second order, also at the ends when there are 3 samples)."""
+    return np.gradient(values, t, axis=0, edge_order=2) if len(t) > 2 else np.gradient(values, t, axis=0)
+
+
+def ik_trajectory(
+    arm: TwoLinkArm, path: Path | ArrayLike, n: int = 50, elbow: str = "auto"
+) -> JointTrajectory:
     """Joint angles along a path from the closed form, on one elbow branch throughout.
 
     Each sample is solved in closed form (:func:`twolink.workspace.solutions_within_limits`,
@@ -425,11 +755,13 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     ``q2`` passing ``0`` or ``+-pi``) if that gives a continuous path;
     ``branch_switches`` lists those samples.  No joint ever changes by more
     than ``JUMP_TOL`` between two samples: otherwise the error names them.
-    Joint rates are exact, ``J^-1 v`` from the path's own velocity, for a
-    path object; for a list of points, and at samples within
-    ``RATE_SINGULARITY_TOL`` of a singular circle (where ``J^-1 v`` blows up),
-    they are finite differences of the angles (second order,
-    :func:`numpy.gradient`).
+
+    Joint rates and accelerations are exact for a path object, from the
+    path's own velocity ``v`` and acceleration ``a``: ``qd = J^-1 v`` and
+    ``qdd = J^-1 (a - Jdot qd)`` (differentiating ``v = J qd``).  For a list
+    of points, and at samples within ``RATE_SINGULARITY_TOL`` of a singular
+    pose (where ``J^-1`` blows up), they are finite differences, of the
+    angles and then of the rates (second order, :func:`numpy.gradient`).
 
     Parameters
     ----------
@@ -440,21 +772,29 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     n : int
         Number of samples, both ends included (>= 2).
     elbow : {"auto", "down", "up"}
-        The branch.  ``"auto"`` takes elbow down if it stays within the limits
-        along the whole path, else elbow up.
+        The branch (:data:`twolink.conventions.ELBOW_WORDS`: ``"down"`` is
+        ``q2 >= 0``).  ``"auto"`` takes elbow down if it stays within the
+        limits along the whole path, else elbow up.  ``"both"`` is refused:
+        a path follows one branch at a time (trace it twice instead).
 
     Returns
     -------
     JointTrajectory
+        ``t`` (s), ``q`` (rad), ``qd`` (rad/s) and ``qdd`` (rad/s^2) at the
+        samples, shapes (n,) and (n, 2).
 
     Raises
     ------
     twolink.UnreachableError
-        If a sample is outside the workspace (the message names the first one:
-        index, coordinates, distance, reach or limits), if no branch (single,
+        If a sample is outside the reach (the message of
+        :func:`twolink.kinematics.require_within_reach`: the first point,
+        its distance, the reach) or the joint limits (the message of
+        :func:`twolink.workspace.require_reachable`), if no branch (single,
         or switching where the branches meet) stays within the limits along
         the path, or if no continuous joint path joins two samples (the
         message names them and the jump).
+    ValueError
+        For an ``elbow`` outside ``("down", "up", "auto")``.
 
     Examples
     --------
@@ -466,13 +806,19 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
     >>> ik_trajectory(arms.ten, LinePath([12.0, 12.0], [16.0, 16.0], duration=1.0, law="linear"), n=5)
     Traceback (most recent call last):
     ...
-    twolink.errors.UnreachableError: path point 3 (of 5) at (15, 15) is 21.2132 m from the base, outside the reach [0, 20] m of this arm (l1=10, l2=10)
+    twolink.errors.UnreachableError: path point (15, 15) (index (3,), first of 2) is 21.2132 m from the base; this arm reaches distances in [0, 20] m (l1=10, l2=10)
     """
     require_arm(arm)
-    t, points, v_path = _path_samples(path, n)
-    require_reachable(arm, points, what="path point")
+    elbow = check_elbow(elbow, ("down", "up", "auto"), why=_ONE_BRANCH)
+    t, points, v_path, a_path, timed = _path_samples(path, n)
+    require_within_reach(arm, points, what="path point")
+    require_reachable(arm, points, what="path point")  # the joint limits
     q_both, valid = solutions_within_limits(arm, points)
-    switches = ()
+    switches: tuple[int, ...] = ()
+    branch: int | None
+    q: NDArray[np.float64] | None
+    jump: tuple[int, float] | None
+    no_single_branch: UnreachableError | None = None
     try:
         branch = _choose_branch(arm, points, valid, elbow)
         q = _continuous(q_both[:, branch, :])
@@ -491,8 +837,9 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
                 found = (start, *candidate)
                 break
         if found is None:
-            if branch is None:
+            if no_single_branch is not None:
                 raise no_single_branch
+            assert jump is not None and branch is not None
             k, size = jump
             raise UnreachableError(
                 f"no continuous joint path follows the path: between path points {k} and {k + 1} "
@@ -504,27 +851,40 @@ def ik_trajectory(arm, path, n=50, elbow="auto"):
             )
         branch, q, branches = found
         switches = tuple(int(k) for k in np.flatnonzero(np.diff(branches)) + 1)
+    assert q is not None and branch is not None
     if arm.has_limits and not np.all(arm.within_limits(q, tol=LIMIT_TOL)):
         first = int(np.flatnonzero(~arm.within_limits(q, tol=LIMIT_TOL))[0])
         raise UnreachableError(
             f"the elbow-{_BRANCHES[branch]} branch cannot follow the path continuously within the joint limits "
             f"({describe_limits(arm)}): it would have to wrap round by 360 deg at path point {first}"
         )
-    qd = np.gradient(q, t, axis=0, edge_order=2) if len(t) > 2 else np.gradient(q, t, axis=0)
-    if hasattr(path, "sample"):
-        regular = np.abs(np.sin(q[:, 1])) > RATE_SINGULARITY_TOL
-        if np.any(regular):
-            qd[regular] = joint_rates(arm, q[regular], v_path[regular])
+    qd = _finite_differences(q, t)
+    regular = np.abs(np.sin(q[:, 1])) > RATE_SINGULARITY_TOL if timed else np.zeros(len(t), dtype=bool)
+    if np.any(regular):
+        qd[regular] = joint_rates(arm, q[regular], v_path[regular])
+    qdd = _finite_differences(qd, t)
+    if np.any(regular):
+        # differentiating v = J qd: a = J qdd + Jdot qd
+        centripetal = _times(_jacobian_rate(arm, q[regular], qd[regular]), qd[regular])
+        qdd[regular] = joint_rates(arm, q[regular], a_path[regular] - centripetal)
     return JointTrajectory(
-        arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=_BRANCHES[branch], method="closed form",
+        arm=arm, t=t, q=q, qd=qd, qdd=qdd, p_ref=points, elbow=_BRANCHES[branch], method="closed form",
         branch_switches=switches,
     )
 
 
 def resolved_rate_trajectory(
-    arm, path, n=50, q_start=None, elbow="auto", gain=10.0, damping=0.0, rtol=1e-8, method=None,
-    max_evaluations=DEFAULT_MAX_EVALUATIONS,
-):
+    arm: TwoLinkArm,
+    path: Path,
+    n: int = 50,
+    q0: ArrayLike | None = None,
+    elbow: str = "auto",
+    gain: float = 10.0,
+    damping: float = 0.0,
+    rtol: float = 1e-8,
+    method: str | None = None,
+    max_evaluations: int = DEFAULT_MAX_EVALUATIONS,
+) -> JointTrajectory:
     """Follow a path by resolved-rate control: integrate ``qd = J^-1 (v_ref + gain (p_ref - fk(q)))``.
 
     The joint rates come from :func:`twolink.velocity.joint_rates` (exact
@@ -537,14 +897,16 @@ def resolved_rate_trajectory(
     ----------
     arm : TwoLinkArm
     path : LinePath or CirclePath
-        Needs ``at(t)`` for the reference position and velocity at any time.
+        Needs ``at(t)`` for the reference position, velocity and acceleration at any time.
     n : int
         Output samples over ``[0, duration]`` (>= 2).
-    q_start : array_like, shape (2,), optional
+    q0 : array_like, shape (2,), optional
         Start configuration, radians; default: the closed form at the path's
         start on the branch :func:`ik_trajectory` would choose.
     elbow : {"auto", "down", "up"}
-        Branch for the default start.
+        Branch of the default start (as in :func:`ik_trajectory`; ``"both"``
+        is refused).  With ``q0`` given, ``"down"`` or ``"up"`` must be
+        ``q0``'s own branch.
     gain : float
         Position feedback gain, 1/s (>= 0).
     damping : float
@@ -563,7 +925,10 @@ def resolved_rate_trajectory(
     Returns
     -------
     JointTrajectory
-        ``qd`` holds the commanded rates at the samples.
+        ``qd`` (rad/s) holds the commanded rates at the samples and ``qdd``
+        (rad/s^2) their exact time derivative along the motion (from the
+        path's acceleration, differentiating the rate law; no finite
+        differences).
 
     Raises
     ------
@@ -573,62 +938,109 @@ def resolved_rate_trajectory(
         If the exact inverse meets a singularity (the message gives the time).
     twolink.SimulationError
         If the integration fails or uses up ``max_evaluations``.
+    ValueError
+        For bad arguments, or a ``q0`` on the other branch than ``elbow``.
 
     Examples
     --------
     >>> from twolink import arms
     >>> line = LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0)
     >>> motion = resolved_rate_trajectory(arms.two_metre, line, n=50)
-    >>> bool(motion.tracking_error.max() < 1e-6)
+    >>> bool(motion.tracking_error().max() < 1e-6)
     True
     """
     require_arm(arm)
-    if not hasattr(path, "at"):
+    if not callable(getattr(path, "at", None)):
         raise ValueError("resolved_rate_trajectory needs a path object with at(t) (LinePath or CirclePath)")
+    elbow = check_elbow(elbow, ("down", "up", "auto"), why=_ONE_BRANCH)
     gain = as_finite_scalar(gain, "gain (1/s)", minimum=0.0)
     damping = as_finite_scalar(damping, "damping (m/rad)", minimum=0.0)
     rtol = as_finite_scalar(rtol, "rtol", minimum=0.0, strictly=True)
     max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
-    t, points, _ = path.sample(n)
-    start_branch = elbow
-    if q_start is None:
+    t, points, v_ref, a_ref = path.sample(n, with_acceleration=True)
+    if q0 is None:
         start = ik_trajectory(arm, points, elbow=elbow)
-        q_start, start_branch = start.q[0], start.elbow
+        q_begin, start_branch = start.q[0], start.elbow
     else:
-        require_reachable(arm, points, what="path point")
-        q_start = as_pairs(q_start, "q_start")
-        if q_start.shape != (2,):
-            raise ValueError(f"q_start must be one configuration of shape (2,); got {q_start.shape}")
-        start_branch = "down" if np.sin(q_start[1]) >= 0.0 else "up"
+        require_within_reach(arm, points, what="path point")
+        require_reachable(arm, points, what="path point")  # the joint limits
+        q_begin = as_configuration(q0, "q0")
+        start_branch = "down" if np.sin(q_begin[1]) >= 0.0 else "up"
+        if elbow != "auto" and np.sin(q_begin[1]) != 0.0 and elbow != start_branch:
+            raise ValueError(
+                f"q0 = ({q_begin[0]:.6g}, {q_begin[1]:.6g}) rad is on the elbow-{start_branch} branch, but "
+                f"elbow={elbow!r} was asked for: leave elbow='auto' to start from q0's branch"
+            )
 
-    def rates(time, q):
-        p_ref, v_ref = path.at(time)
-        v_command = v_ref + gain * (p_ref - fk(arm, q))
+    def command(time: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        p_now, v_now = path.at(time)
+        return v_now + gain * (p_now - fk(arm, q))
+
+    def rates(time: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        v_command = command(time, q)
         if damping > 0.0:
             return joint_rates_dls(arm, q, v_command, damping)
         try:
             return joint_rates(arm, q, v_command)
+        except SingularityError:
+            pass
+        try:  # the package's one singularity message, with the time
+            require_nonsingular(arm, q, f"resolved rate at t = {time:.6g} s")
         except SingularityError as exc:
-            raise SingularityError(f"resolved rate met a singularity at t = {time:.6g} s: {exc}") from exc
+            raise SingularityError(f"{exc}; pass damping > 0 (damped least squares) to pass it") from None
+        return joint_rates(arm, q, v_command)  # raises joint_rates' own error (its tolerance)
 
     if method is None:
         method = "LSODA" if gain * (t[-1] - t[0]) / 3.3 > 1e4 else "RK45"
     evaluations = 0
 
-    def budgeted_rates(time, q):
+    def budgeted_rates(time: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
         nonlocal evaluations
         evaluations += 1
         if evaluations > max_evaluations:
             raise SimulationError(
                 f"resolved rate used up its budget of max_evaluations = {max_evaluations} at t = {time:.6g} s "
                 f"(method {method!r}, gain {gain:.3g} 1/s): "
-                + ("pass method='LSODA' or 'Radau' (the feedback is stiff)" if method in ("RK23", "RK45", "DOP853") else "loosen rtol or lower the gain")
+                + (
+                    "pass method='LSODA' or 'Radau' (the feedback is stiff)"
+                    if method in ("RK23", "RK45", "DOP853")
+                    else "loosen rtol or lower the gain"
+                )
             )
         return rates(time, q)
 
-    solution = solve_ivp(budgeted_rates, (t[0], t[-1]), q_start, t_eval=t, rtol=rtol, atol=rtol * 1e-2, method=method)
+    solution = solve_ivp(budgeted_rates, (t[0], t[-1]), q_begin, t_eval=t, rtol=rtol, atol=rtol * 1e-2, method=method)
     if not solution.success:
-        raise SimulationError(f"resolved rate: the integration failed at t = {solution.t[-1]:.6g} s: {solution.message}")
+        raise SimulationError(
+            f"resolved rate: the integration failed at t = {solution.t[-1]:.6g} s: {solution.message}"
+        )
     q = solution.y.T
     qd = np.array([rates(time, q_now) for time, q_now in zip(t, q)])
-    return JointTrajectory(arm=arm, t=t, q=q, qd=qd, p_ref=points, elbow=start_branch, method="resolved rate")
+    qdd = _rate_derivative(arm, q, qd, points, v_ref, a_ref, gain, damping)
+    return JointTrajectory(
+        arm=arm, t=t, q=q, qd=qd, qdd=qdd, p_ref=points, elbow=start_branch, method="resolved rate"
+    )
+
+
+def _rate_derivative(
+    arm: TwoLinkArm, q: _Array, qd: _Array, p_ref: _Array, v_ref: _Array, a_ref: _Array, gain: float, damping: float
+) -> _Array:
+    """``d qd / dt`` of the resolved-rate law along the motion, exactly.
+
+    The rates solve ``(J^T J + damping^2 I) qd = J^T v_c`` with the command
+    ``v_c = v_ref + gain (p_ref - fk(q))``, whose derivative is
+    ``a_ref + gain (v_ref - J qd)``.  Differentiating,
+    ``(J^T J + damping^2 I) qdd = J^T (v_c' - Jdot qd) + Jdot^T (v_c - J qd)``;
+    without damping that is ``J^-1 (v_c' - Jdot qd)``.
+    """
+    J = jacobian(arm, q)
+    J_rate = _jacobian_rate(arm, q, qd)
+    v_tip = _times(J, qd)
+    v_command = v_ref + gain * (p_ref - fk(arm, q))
+    wanted = a_ref + gain * (v_ref - v_tip) - _times(J_rate, qd)  # J qdd should give this
+    if damping == 0.0:
+        return joint_rates(arm, q, wanted)
+    # (J^T J + damping^2 I)^-1 = V diag(1 / (s^2 + damping^2)) V^T, with J = U diag(s) V^T
+    _, singular_values, Vt = np.linalg.svd(J)
+    residual_term = _times(Vt, _transposed_times(J_rate, v_command - v_tip)) / (singular_values**2 + damping**2)
+    return joint_rates_dls(arm, q, wanted, damping) + _transposed_times(Vt, residual_term)
