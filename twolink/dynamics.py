@@ -657,8 +657,3 @@ def _raise_blow_up(t, state):
         f"q = ({state[0]:.6g}, {state[1]:.6g}) rad, qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
     )
 
-
-#: The check of a torque callable's result lives in :mod:`twolink._validate` (engine and
-#: simulate share it); ``NonFiniteTorque`` is imported above and this private alias kept
-#: only until simulate.py imports ``torque_floats`` from there.
-_torque_floats = torque_floats

@@ -481,7 +481,7 @@ class WallPush:
         :attr:`force_by_tip` should be for a settled arm.
         """
         q = self.q_settled
-        return np.linalg.solve(jacobian(self.arm, q).T, self.tau - self.arm.gravity(q))
+        return np.asarray(np.linalg.solve(jacobian(self.arm, q).T, self.tau - self.arm.gravity(q)), dtype=np.float64)
 
     @property
     def relative_error(self) -> float:

@@ -25,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 
 from . import dynamics
-from ._validate import InputTypeError, as_configuration, as_count, as_finite_scalar
+from ._validate import InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, torque_floats
 from .errors import SimulationError
 from .kinematics import fk
 
@@ -444,7 +444,7 @@ def simulate(
             raise _BudgetExceeded(t, state, f"its budget of max_wall_time = {max_wall_time:.3g} s")
         try:
             derivative = inner(t, state)
-        except dynamics.NonFiniteTorque as exc:
+        except NonFiniteTorque as exc:
             if evaluations == 1:
                 raise
             raise SimulationError(
@@ -463,7 +463,7 @@ def simulate(
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             solution = solve_ivp(right_hand_side, (0.0, t_end), start, t_eval=t_eval, **options)
     except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
-        if evaluations <= 1 or isinstance(exc, dynamics.NonFiniteTorque):
+        if evaluations <= 1 or isinstance(exc, NonFiniteTorque):
             raise
         # the solver's own arithmetic broke down (overflowing rates or Jacobian): a blow-up, not bad input
         t_last, state = last[0], np.asarray(last[1], dtype=float)
@@ -516,7 +516,7 @@ def simulate(
         tau = np.zeros_like(q)
     else:
         tau = np.array(
-            [dynamics._torque_floats(torque(t, q_t.copy(), qd_t.copy()), t) for t, q_t, qd_t in zip(solution.t, q, qd)]
+            [torque_floats(torque(t, q_t.copy(), qd_t.copy()), t) for t, q_t, qd_t in zip(solution.t, q, qd)]
         ).reshape(q.shape)
     return SimulationResult(
         arm=arm,

@@ -298,5 +298,5 @@ def wall_contact(arm: TwoLinkArm, wall: Wall, force_magnitude: float, include_gr
         tau_wall=tau_wall,
         tau_gravity=tau_gravity,
         tau=tau_wall + tau_gravity,
-        within_limits=arm.within_limits(q),
+        within_limits=np.asarray(arm.within_limits(q)),
     )

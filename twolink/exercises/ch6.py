@@ -45,7 +45,7 @@ def judge_torques_6_1(answer: object, siblings: dict[str, object]) -> None:
 @reference
 def damping_6_2() -> NDArray[np.float64]:
     """The damping matrix that makes every mode of the loop at (3, 1) critically damped."""
-    return linearization.critical_damping(_arm(), q_rest(), STIFFNESS_SOURCE, kind="matrix")
+    return np.asarray(linearization.critical_damping(_arm(), q_rest(), STIFFNESS_SOURCE, kind="matrix"), dtype=float)
 
 
 @reference
