@@ -189,8 +189,10 @@ class EngineResult(SimulationResult):
     Attributes (besides :class:`~twolink.SimulationResult`'s; ``status`` is
     0, ``nfev`` counts MuJoCo steps)
     ----------
-    p_tip : numpy.ndarray, shape (n, 2)
-        The tip position MuJoCo computes (site ``tip``), metres.
+    p_tip_mujoco : numpy.ndarray, shape (n, 2)
+        The tip position MuJoCo's own kinematics computes (site ``tip``),
+        metres; :attr:`p_tip` (inherited) is twolink's ``fk(q)`` of MuJoCo's
+        joint angles, equal to it to round-off (tested).
     force_by_tip : numpy.ndarray, shape (n, 2)
         The force the tip exerts on the wall (N), from ``mj_contactForce``;
         zeros without contact.  The wall pushes on the tip with
@@ -199,7 +201,7 @@ class EngineResult(SimulationResult):
         MuJoCo's fixed step, seconds.
     """
 
-    p_tip: NDArray[np.float64]
+    p_tip_mujoco: NDArray[np.float64]
     force_by_tip: NDArray[np.float64]
     timestep: float
 
@@ -395,7 +397,7 @@ def simulate(
         status=0,
         message=f"MuJoCo {integrator}, fixed step {timestep:.6g} s, {(n_samples - 1) * sample_every} steps",
         nfev=(n_samples - 1) * sample_every,
-        p_tip=_frozen(p_tip),
+        p_tip_mujoco=_frozen(p_tip),
         force_by_tip=_frozen(force),
         timestep=timestep,
     )
