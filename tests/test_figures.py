@@ -76,9 +76,9 @@ def run_chapter(name, monkeypatch):
     where = {"cell": None}
     draw_ellipse = twolink.plot.draw_ellipse
 
-    def recording_draw_ellipse(ellipse, ax, *args, **kwargs):
-        ellipse_axes.add(ax)
-        return draw_ellipse(ellipse, ax, *args, **kwargs)
+    def recording_draw_ellipse(ellipse, *args, ax=None, **kwargs):
+        ellipse_axes.add(plt.gca() if ax is None else ax)
+        return draw_ellipse(ellipse, *args, ax=ax, **kwargs)
 
     def check_open_figures(*args, **kwargs):
         for number in plt.get_fignums():
@@ -120,8 +120,8 @@ def test_the_check_catches_an_unlabelled_axis_and_an_unstated_scale():
     ax_plain.plot([0, 1], [0, 1])
     ax_plain.set_xlabel("t [s]")
     ax_plain.set_ylabel("angle")
-    twolink.plot.setup_axes(arms.osake, ax_arm)
-    twolink.plot.draw_ellipse(velocity.velocity_ellipse(arms.osake, [0.3, 1.0]), ax_arm, scale=0.4)
+    twolink.plot.setup_axes(arms.osake, ax=ax_arm)
+    twolink.plot.draw_ellipse(velocity.velocity_ellipse(arms.osake, [0.3, 1.0]), ax=ax_arm, scale=0.4)
     problems = problems_in(figure, {ax_arm})
     assert any("y label 'angle' has no quantity [unit]" in problem for problem in problems)
     assert any("without a scale such as '0.4 m per m/s'" in problem for problem in problems)

@@ -255,7 +255,7 @@ def test_stiffness_ellipse_and_singular_poses():
     ellipse = stiffness.stiffness_ellipse(arm, [0.2, 1.0], [[500.0, 100.0], [100.0, 500.0]])
     assert np.allclose(ellipse.semi_axes, [600.0, 400.0])
     assert np.allclose(np.abs(ellipse.directions[:, 0]), np.sqrt(0.5))
-    assert np.allclose(ellipse.center, arm.fk([0.2, 1.0]))
+    assert np.allclose(ellipse.centre, arm.fk([0.2, 1.0]))
     with pytest.raises(SingularityError, match="unbounded"):
         stiffness.tip_stiffness(arm, [0.5, 0.0], 100.0)
     with pytest.raises(ValueError, match="one configuration"):

@@ -1,5 +1,7 @@
 """Velocity kinematics: tip velocity, joint rates (exact and damped), manipulability, ellipses, resolved rate."""
 
+import inspect
+
 import numpy as np
 import pytest
 from conftest import angles
@@ -8,7 +10,7 @@ from conftest import configurations
 from hypothesis import assume, example, given
 from hypothesis import strategies as st
 
-from twolink import SingularityError, TwoLinkArm, arms, velocity
+from twolink import SingularityError, TwoLinkArm, arms, kinematics, stiffness, velocity
 
 rates = st.floats(min_value=-10.0, max_value=10.0, allow_nan=False, allow_infinity=False)
 
@@ -175,8 +177,8 @@ def test_bad_input_raises(bad):
         arm.tip_velocity(np.zeros((3, 2)), np.zeros((4, 2)))
 
 
-def _inside(points, matrix, center):
-    offset = points - center
+def _inside(points, matrix, centre):
+    offset = points - centre
     return np.einsum("...i,ij,...j->...", offset, np.linalg.inv(matrix), offset)
 
 
@@ -188,13 +190,13 @@ def test_velocity_ellipse_is_the_image_of_the_unit_circle(arm, q, qd):
     eigenvalues = np.linalg.eigvalsh(J @ J.T)[::-1]
     assert np.allclose(ellipse.semi_axes**2, eigenvalues, rtol=1e-9, atol=1e-12 * (arm.l1 + arm.l2) ** 2)
     assert np.prod(ellipse.semi_axes) == pytest.approx(arm.manipulability(q), rel=1e-9)
-    assert np.allclose(ellipse.center, arm.fk(q))
+    assert np.allclose(ellipse.centre, arm.fk(q))
     # boundary points are on the ellipse x^T (J J^T)^-1 x = 1; J of a unit joint rate lies on it too
     boundary = ellipse.points(n=16)
-    assert np.allclose(_inside(boundary, J @ J.T, ellipse.center), 1.0, rtol=1e-6)
+    assert np.allclose(_inside(boundary, J @ J.T, ellipse.centre), 1.0, rtol=1e-6)
     assume(np.linalg.norm(qd) > 1e-3)
     v_unit = J @ (qd / np.linalg.norm(qd))
-    assert _inside(ellipse.center + v_unit, J @ J.T, ellipse.center) == pytest.approx(1.0, rel=1e-6)
+    assert _inside(ellipse.centre + v_unit, J @ J.T, ellipse.centre) == pytest.approx(1.0, rel=1e-6)
 
 
 @given(arm=arm_strategy(), q=configurations())
@@ -203,7 +205,7 @@ def test_force_ellipse_holds_unit_torque_on_its_boundary(arm, q):
     J = arm.jacobian(q)
     ellipse = velocity.force_ellipse(arm, q)
     assert ellipse.semi_axes[0] >= ellipse.semi_axes[1]
-    forces = ellipse.points(n=16) - ellipse.center
+    forces = ellipse.points(n=16) - ellipse.centre
     torque_norms = np.linalg.norm(forces @ J, axis=-1)  # |J^T F| per boundary force
     assert np.allclose(torque_norms, 1.0, rtol=1e-6)
     velocity_axes = velocity.velocity_ellipse(arm, q).semi_axes
@@ -216,7 +218,7 @@ def test_force_ellipse_is_unbounded_at_a_singularity_and_drawing_needs_a_clip():
     major = ellipse.directions[:, 0]
     assert abs(major[0]) == pytest.approx(1.0)  # along the stretched arm
     points = ellipse.points(n=8, scale=0.01, clip=2.0)
-    assert np.all(np.isfinite(points)) and np.abs(points - ellipse.center).max() <= 2.0 + 1e-12
+    assert np.all(np.isfinite(points)) and np.abs(points - ellipse.centre).max() <= 2.0 + 1e-12
     exact = velocity.Ellipse(np.zeros(2), np.array([np.inf, 1.0]), np.eye(2))
     with pytest.raises(ValueError, match="clip"):
         exact.points()
@@ -227,3 +229,53 @@ def test_ellipse_angle_is_the_major_axis_direction():
     major = ellipse.directions[:, 0]
     assert -np.pi / 2 < ellipse.angle <= np.pi / 2
     assert abs(np.cos(ellipse.angle) * major[1] - np.sin(ellipse.angle) * major[0]) < 1e-12
+
+
+# ---------------------------------------------------------------- one singularity test, one tolerance
+
+
+def test_velocity_singularity_tol_is_the_kinematics_one():
+    assert velocity.SINGULARITY_TOL is kinematics.SINGULARITY_TOL
+
+
+@pytest.mark.parametrize("q", [[0.4, 0.0], [[0.1, 1.0], [0.2, np.pi]]])
+def test_joint_rates_refuse_with_the_kinematics_message_and_advise_dls(q):
+    with pytest.raises(SingularityError) as shared:
+        kinematics.require_nonsingular(arms.two_metre, q, "solving for the joint rates")
+    with pytest.raises(SingularityError) as refused:
+        arms.two_metre.joint_rates(q, [0.0, 1.0])
+    assert str(refused.value) == f"{shared.value}; the joint rates are unbounded there: use joint_rates_dls"
+    assert refused.value.__cause__ is None and refused.value.__suppress_context__
+
+
+def test_tip_stiffness_refuses_with_the_kinematics_message_and_says_why():
+    with pytest.raises(SingularityError) as shared:
+        kinematics.require_nonsingular(arms.two_metre, [0.5, np.pi], "the tip stiffness")
+    with pytest.raises(SingularityError) as refused:
+        stiffness.tip_stiffness(arms.two_metre, [0.5, np.pi], 100.0)
+    assert str(refused.value) == f"{shared.value}; along the arm the tip stiffness is unbounded"
+
+
+@pytest.mark.parametrize("function", [stiffness.joint_stiffness, stiffness.tip_stiffness, stiffness.stiffness_ellipse])
+def test_stiffness_takes_one_configuration_with_the_shared_message(function):
+    with pytest.raises(ValueError, match=r"^q must be one configuration of shape \(2,\) \(radians\); got shape \(1, 2\)$"):
+        function(arms.two_metre, [[0.5, 1.0]], 100.0)
+
+
+@pytest.mark.parametrize(
+    "function",
+    [getattr(velocity, name) for name in velocity.__all__ if callable(getattr(velocity, name))]
+    + [velocity.Ellipse.points, velocity.Ellipse.angle.fget]
+    + [getattr(stiffness, name) for name in stiffness.__all__],
+)
+def test_public_functions_are_fully_annotated(function):
+    signature = inspect.signature(function)
+    assert all(p.annotation is not inspect.Parameter.empty for p in signature.parameters.values() if p.name != "self")
+    assert signature.return_annotation is not inspect.Signature.empty
+
+
+def test_ellipse_spells_centre():
+    ellipse = velocity.Ellipse(centre=np.array([1.0, 2.0]), semi_axes=np.ones(2), directions=np.eye(2))
+    assert np.allclose(ellipse.points(n=5).mean(axis=0), [1.0 + 0.2, 2.0])  # the repeated first point (1, 0) shifts the mean
+    with pytest.raises(TypeError):
+        velocity.Ellipse(center=np.zeros(2), semi_axes=np.ones(2), directions=np.eye(2))

@@ -1,15 +1,39 @@
-"""Drawing the arm with matplotlib: still figures and animations.
+"""Drawing the arm with matplotlib: still figures, animations and time plots.
 
-Every function draws on an axes you pass (or a new one) and returns what it
-made, so notebooks compose figures without global state.
+Every drawing function takes the axes as the keyword-only argument ``ax``,
+the first after the ``*`` (``draw_arm(arm, q, *, ax=None, ...)``), and returns
+what it made, so notebooks compose figures without global state.
+``ax=None`` means the current axes, :func:`matplotlib.pyplot.gca`; the
+functions that set up axes of their own (:func:`setup_axes`,
+:func:`animate_arm`, :func:`animate_simulation`) make a new, square figure
+instead.
 """
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Sequence
+from typing import TYPE_CHECKING, Any, Protocol
 
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib import animation
-from matplotlib.patches import Circle
+from matplotlib.artist import Artist
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Circle, FancyArrowPatch, Polygon
+from matplotlib.path import Path
+from matplotlib.text import Text
+from matplotlib.typing import ColorType
+from numpy.typing import ArrayLike, NDArray
 
-from ._validate import as_pairs
+from ._validate import InputTypeError, as_configuration, as_finite_scalar, as_pairs, real_array, require_arm
+from .velocity import Ellipse
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
+    from .simulate import SimulationResult
+    from .statics import Wall
 
 __all__ = [
     "setup_axes",
@@ -23,6 +47,8 @@ __all__ = [
     "draw_force",
     "draw_torque",
     "draw_wall",
+    "plot_time_series",
+    "draw_note",
 ]
 
 LINK_COLOR = "#1f4e79"
@@ -30,16 +56,60 @@ JOINT_COLOR = "#f2a900"
 PATH_COLOR = "#c0392b"
 
 
-def setup_axes(arm, ax=None, margin=0.15, size=(4.0, 4.0), title=None):
-    """Square axes sized to the arm's reach, with a light grid.
+class _HTMLDisplay(Protocol):
+    """What a notebook shows as HTML: ``IPython.display.HTML`` or twolink's stand-in."""
+
+    def _repr_html_(self) -> str: ...
+
+
+def _axes(ax: Axes | None, who: str) -> Axes:
+    """``ax``, or the current axes when it is None; anything else is refused naming ``ax``."""
+    if ax is None:
+        return plt.gca()
+    if not isinstance(ax, Axes):
+        raise InputTypeError(
+            f"{who}: ax must be a matplotlib Axes (or None for the current axes, plt.gca()); "
+            f"got {ax!r} ({type(ax).__name__})"
+        )
+    return ax
+
+
+def _path(q_path: ArrayLike) -> NDArray[np.float64]:
+    """``q_path`` as an array of shape ``(n, 2)`` with ``n >= 1``, or a message naming its shape."""
+    q_frames: NDArray[np.float64] = as_pairs(q_path, "q_path")
+    if q_frames.ndim != 2 or len(q_frames) < 1:
+        raise ValueError(f"q_path must have shape (n, 2) with n >= 1 (radians); got shape {q_frames.shape}")
+    return q_frames
+
+
+def _figure_of(ax: Axes) -> Figure:
+    """The figure that holds ``ax`` (the top-level one when ``ax`` sits in a subfigure)."""
+    figure = ax.figure
+    if not isinstance(figure, Figure):  # a SubFigure: its own .figure is the top-level one
+        figure = figure.figure
+    return figure
+
+
+def setup_axes(
+    arm: TwoLinkArm,
+    *,
+    ax: Axes | None = None,
+    margin: float = 0.15,
+    size: tuple[float, float] = (4.0, 4.0),
+    title: str | None = None,
+) -> Axes:
+    """Square axes sized to the arm's reach, labelled ``x [m]`` and ``y [m]``, with a light grid.
 
     Parameters
     ----------
     arm : TwoLinkArm
     ax : matplotlib.axes.Axes, optional
-        Axes to set up; a new figure of ``size`` inches is made if omitted.
+        Axes to set up.  Unlike the drawing functions, ``None`` does not mean
+        the current axes: a new figure of ``size`` inches is made.
     margin : float
         Extra room around the reach circle, as a fraction of the reach.
+    size : (float, float)
+        Width and height of the new figure in inches (only when ``ax`` is None).
     title : str, optional
 
     Returns
@@ -50,12 +120,14 @@ def setup_axes(arm, ax=None, margin=0.15, size=(4.0, 4.0), title=None):
     --------
     >>> from twolink import arms
     >>> ax = setup_axes(arms.two_metre)
-    >>> [float(v) for v in ax.get_xlim()]
-    [-4.6, 4.6]
+    >>> [float(v) for v in ax.get_xlim()], ax.get_xlabel()
+    ([-4.6, 4.6], 'x [m]')
     >>> plt.close(ax.figure)
     """
     if ax is None:
         _, ax = plt.subplots(figsize=size, dpi=80)
+    else:
+        ax = _axes(ax, "setup_axes")
     limit = arm.reach[1] * (1.0 + margin)
     ax.set_xlim(-limit, limit)
     ax.set_ylim(-limit, limit)
@@ -68,18 +140,51 @@ def setup_axes(arm, ax=None, margin=0.15, size=(4.0, 4.0), title=None):
     return ax
 
 
-def draw_reach(arm, ax, **style):
-    """Draw the reach annulus' two circles (``r_min`` and ``r_max``) on ``ax``."""
-    options = {"fill": False, "linestyle": "--", "color": "0.6", "linewidth": 1.0}
+def draw_reach(arm: TwoLinkArm, *, ax: Axes | None = None, **style: Any) -> list[Circle]:
+    """Draw the reach annulus' two circles (``r_min`` and ``r_max``; none of radius 0).
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; the current axes (``plt.gca()``) if omitted.
+    **style
+        Options of :class:`matplotlib.patches.Circle` (dashed grey outlines by default).
+
+    Returns
+    -------
+    list of matplotlib.patches.Circle
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> ax = setup_axes(TwoLinkArm(2.0, 1.0))
+    >>> [circle.radius for circle in draw_reach(TwoLinkArm(2.0, 1.0), ax=ax)]
+    [1.0, 3.0]
+    >>> plt.close(ax.figure)
+    """
+    ax = _axes(ax, "draw_reach")
+    options: dict[str, Any] = {"fill": False, "linestyle": "--", "color": "0.6", "linewidth": 1.0}
     options.update(style)
     circles = []
     for radius in arm.reach:
         if radius > 0:
-            circles.append(ax.add_patch(Circle((0.0, 0.0), radius, **options)))
+            circle = Circle((0.0, 0.0), radius, **options)
+            ax.add_patch(circle)
+            circles.append(circle)
     return circles
 
 
-def draw_arm(arm, q, ax, color=LINK_COLOR, label=None, alpha=1.0, linewidth=4.0):
+def draw_arm(
+    arm: TwoLinkArm,
+    q: ArrayLike,
+    *,
+    ax: Axes | None = None,
+    color: ColorType = LINK_COLOR,
+    label: str | None = None,
+    alpha: float = 1.0,
+    linewidth: float = 4.0,
+) -> Line2D:
     """Draw the arm at one configuration: links, joints and base.
 
     Parameters
@@ -87,7 +192,8 @@ def draw_arm(arm, q, ax, color=LINK_COLOR, label=None, alpha=1.0, linewidth=4.0)
     arm : TwoLinkArm
     q : array_like, shape (2,)
         Joint angles in radians.
-    ax : matplotlib.axes.Axes
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; the current axes (``plt.gca()``) if omitted.
     color, label, alpha, linewidth :
         Line style of the links.
 
@@ -100,17 +206,15 @@ def draw_arm(arm, q, ax, color=LINK_COLOR, label=None, alpha=1.0, linewidth=4.0)
     --------
     >>> from twolink import arms
     >>> ax = setup_axes(arms.two_metre)
-    >>> line = draw_arm(arms.two_metre, [0.0, np.pi / 2], ax)
+    >>> line = draw_arm(arms.two_metre, [0.0, np.pi / 2], ax=ax)
     >>> np.round(line.get_xydata(), 12)
     array([[0., 0.],
            [2., 0.],
            [2., 2.]])
     >>> plt.close(ax.figure)
     """
-    q = as_pairs(q, "q")
-    if q.ndim != 1:
-        raise ValueError(f"draw_arm draws one configuration, q of shape (2,); got {q.shape}")
-    points = arm.joint_positions(q)
+    ax = _axes(ax, "draw_arm")
+    points = arm.joint_positions(as_configuration(q))
     (line,) = ax.plot(
         points[:, 0],
         points[:, 1],
@@ -128,7 +232,15 @@ def draw_arm(arm, q, ax, color=LINK_COLOR, label=None, alpha=1.0, linewidth=4.0)
     return line
 
 
-def draw_strobe(arm, q_path, ax, frames=8, color=LINK_COLOR, path=True):
+def draw_strobe(
+    arm: TwoLinkArm,
+    q_path: ArrayLike,
+    *,
+    ax: Axes | None = None,
+    frames: int = 8,
+    color: ColorType = LINK_COLOR,
+    path: bool = True,
+) -> list[Line2D]:
     """A still of a motion: the arm at ``frames`` evenly spaced instants, fading in.
 
     Use it beside an animation so the motion shows where scripts do not run
@@ -139,7 +251,8 @@ def draw_strobe(arm, q_path, ax, frames=8, color=LINK_COLOR, path=True):
     arm : TwoLinkArm
     q_path : array_like, shape (n, 2)
         Joint angles along the motion, radians.
-    ax : matplotlib.axes.Axes
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; the current axes (``plt.gca()``) if omitted.
     frames : int
         How many poses to draw (first and last included).
     path : bool
@@ -148,20 +261,40 @@ def draw_strobe(arm, q_path, ax, frames=8, color=LINK_COLOR, path=True):
     Returns
     -------
     list of matplotlib.lines.Line2D
+        The poses, then the tip's path.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> ax = setup_axes(arms.two_metre)
+    >>> len(draw_strobe(arms.two_metre, np.linspace([0.0, 0.0], [1.0, 1.0], 20), ax=ax, frames=5))
+    6
+    >>> plt.close(ax.figure)
     """
-    q_path = as_pairs(q_path, "q_path")
-    indices = np.linspace(0, len(q_path) - 1, min(frames, len(q_path))).round().astype(int)
+    ax = _axes(ax, "draw_strobe")
+    q_samples = _path(q_path)
+    indices = np.linspace(0, len(q_samples) - 1, min(frames, len(q_samples))).round().astype(int)
     lines = []
     for rank, index in enumerate(indices):
         alpha = 0.25 + 0.75 * rank / max(1, len(indices) - 1)
-        lines.append(draw_arm(arm, q_path[index], ax, color=color, alpha=alpha, linewidth=3.0))
+        lines.append(draw_arm(arm, q_samples[index], ax=ax, color=color, alpha=alpha, linewidth=3.0))
     if path:
-        p_path = arm.fk(q_path)
+        p_path = arm.fk(q_samples)
         lines.extend(ax.plot(p_path[:, 0], p_path[:, 1], color=PATH_COLOR, linewidth=1.5))
     return lines
 
 
-def animate_arm(arm, q_path, t=None, ax=None, path=True, interval=100, title=None, extra=None):
+def animate_arm(
+    arm: TwoLinkArm,
+    q_path: ArrayLike,
+    t: ArrayLike | None = None,
+    *,
+    ax: Axes | None = None,
+    path: bool = True,
+    interval: float = 100.0,
+    title: str | None = None,
+    extra: Callable[[int], Iterable[Artist]] | None = None,
+) -> animation.FuncAnimation:
     """Animate the arm along a joint-space path, optionally tracing the tip.
 
     Parameters
@@ -173,11 +306,13 @@ def animate_arm(arm, q_path, t=None, ax=None, path=True, interval=100, title=Non
     t : array_like, shape (n,), optional
         Times of the frames in seconds, shown in the corner.
     ax : matplotlib.axes.Axes, optional
-        Axes to draw on (set up with :func:`setup_axes` if omitted).
+        Axes to draw on, set up with :func:`setup_axes`; as there, ``None``
+        makes a new figure (an animation needs a figure of its own).
     path : bool
         Trace the tip's path as the arm moves.
     interval : float
         Milliseconds between frames.
+    title : str, optional
     extra : callable, optional
         ``extra(frame_index) -> iterable of artists`` to update more artists
         (force arrows, targets) each frame.
@@ -185,8 +320,8 @@ def animate_arm(arm, q_path, t=None, ax=None, path=True, interval=100, title=Non
     Returns
     -------
     matplotlib.animation.FuncAnimation
-        Show it in a notebook with :func:`animation_html`, after closing its
-        figure (``plt.close(anim._fig)`` is done for you there).
+        Show it in a notebook with :func:`animation_html`, which closes its
+        figure so no stray still is shown.
 
     Examples
     --------
@@ -195,33 +330,36 @@ def animate_arm(arm, q_path, t=None, ax=None, path=True, interval=100, title=Non
     >>> anim = animate_arm(arms.two_metre, q_path)
     >>> len(list(anim.new_frame_seq()))
     5
-    >>> plt.close(anim._fig)
+    >>> plt.close("all")
     """
-    q_path = as_pairs(q_path, "q_path")
-    if q_path.ndim != 2 or len(q_path) < 1:
-        raise ValueError(f"q_path must have shape (n, 2) with n >= 1; got {q_path.shape}")
-    ax = setup_axes(arm, ax, title=title)
-    p_path = arm.fk(q_path)
-    arm_line = draw_arm(arm, q_path[0], ax)
+    q_frames = _path(q_path)
+    times = None
+    if t is not None:
+        times = real_array(t, "t")
+        if times.shape != (len(q_frames),):
+            raise ValueError(f"t must have shape ({len(q_frames)},), one time per frame of q_path; got {times.shape}")
+    ax = setup_axes(arm, ax=ax, title=title)
+    p_path = arm.fk(q_frames)
+    arm_line = draw_arm(arm, q_frames[0], ax=ax)
     (tip_trace,) = ax.plot([], [], color=PATH_COLOR, linewidth=1.5)
     clock = ax.text(0.02, 0.95, "", transform=ax.transAxes, fontsize=9)
 
-    def update(frame):
-        points = arm.joint_positions(q_path[frame])
+    def update(frame: int) -> list[Artist]:
+        points = arm.joint_positions(q_frames[frame])
         arm_line.set_data(points[:, 0], points[:, 1])
-        artists = [arm_line, tip_trace, clock]
+        artists: list[Artist] = [arm_line, tip_trace, clock]
         if path:
             tip_trace.set_data(p_path[: frame + 1, 0], p_path[: frame + 1, 1])
-        if t is not None:
-            clock.set_text(f"t = {t[frame]:.2f} s")
+        if times is not None:
+            clock.set_text(f"t = {times[frame]:.2f} s")
         if extra is not None:
             artists.extend(extra(frame))
         return artists
 
-    return animation.FuncAnimation(ax.figure, update, frames=len(q_path), interval=interval, blit=False)
+    return animation.FuncAnimation(_figure_of(ax), update, frames=len(q_frames), interval=interval, blit=False)
 
 
-def animation_html(anim):
+def animation_html(anim: animation.Animation) -> _HTMLDisplay:
     """An H.264 ``<video>`` of the animation for notebooks (small, byte-stable).
 
     Uses the ffmpeg shipped by the ``imageio-ffmpeg`` package, so no system
@@ -239,7 +377,7 @@ def animation_html(anim):
 
     from ._optional import COURSE_INSTALL, html, require
 
-    plt.close(anim._fig)
+    plt.close(getattr(anim, "_fig"))  # matplotlib keeps the figure in _fig, outside its type stubs
     try:
         imageio_ffmpeg = require("imageio_ffmpeg", "twolink.plot.animation_html")
         ffmpeg = imageio_ffmpeg.get_ffmpeg_exe()
@@ -254,7 +392,15 @@ def animation_html(anim):
         return html(anim.to_html5_video(embed_limit=5.0))
 
 
-def animate_simulation(result, max_frames=50, ax=None, path=True, title=None, speed=1.0):
+def animate_simulation(
+    result: SimulationResult,
+    max_frames: int = 50,
+    *,
+    ax: Axes | None = None,
+    path: bool = True,
+    title: str | None = None,
+    speed: float = 1.0,
+) -> animation.FuncAnimation:
     """Animate a :class:`twolink.SimulationResult` at (about) real speed, with a clock.
 
     Picks at most ``max_frames`` evenly spread samples (first and last
@@ -268,7 +414,7 @@ def animate_simulation(result, max_frames=50, ax=None, path=True, title=None, sp
     max_frames : int
         Frames in the animation (>= 2; 50 keeps a notebook video ~30 KB).
     ax, path, title :
-        As for :func:`animate_arm`.
+        As for :func:`animate_arm` (``ax=None`` makes a new figure).
     speed : float
         Playback speed relative to real time (> 0).
 
@@ -283,14 +429,14 @@ def animate_simulation(result, max_frames=50, ax=None, path=True, title=None, sp
     >>> anim = animate_simulation(result, max_frames=21)
     >>> len(list(anim.new_frame_seq())), anim._interval
     (21, 100.0)
-    >>> plt.close(anim._fig)
+    >>> plt.close("all")
     """
-    if not speed > 0:
-        raise ValueError(f"speed must be > 0; got {speed}")
+    speed = as_finite_scalar(speed, "speed", minimum=0.0, strictly=True)
     frames = result.frames(max_frames)
     t = result.t[frames]
     interval = 1000.0 * float(t[-1] - t[0]) / max(1, len(frames) - 1) / speed
-    return animate_arm(result.arm, result.q[frames], t=t, ax=ax, path=path, interval=interval, title=title)
+    arm = require_arm(result.arm, "result.arm")
+    return animate_arm(arm, result.q[frames], t=t, ax=ax, path=path, interval=interval, title=title)
 
 
 # --- velocity and statics: ellipses, force arrows, torque arcs, walls
@@ -299,19 +445,31 @@ TORQUE_COLOR = "#7d3c98"
 ELLIPSE_COLOR = "#2e86c1"
 
 
-def draw_ellipse(ellipse, ax, scale=1.0, clip=None, color=ELLIPSE_COLOR, alpha=0.25, label=None):
-    """Draw one :class:`twolink.velocity.Ellipse` (filled, with its outline) on ``ax``.
+def draw_ellipse(
+    ellipse: Ellipse,
+    *,
+    ax: Axes | None = None,
+    scale: float = 1.0,
+    clip: float | None = None,
+    color: ColorType = ELLIPSE_COLOR,
+    alpha: float = 0.25,
+    label: str | None = None,
+) -> list[Polygon | Line2D]:
+    """Draw one :class:`twolink.velocity.Ellipse` (filled, with its outline).
 
     Parameters
     ----------
     ellipse : twolink.velocity.Ellipse
-        A single ellipse (``center`` of shape (2,)).
-    ax : matplotlib.axes.Axes
+        A single ellipse (``centre`` of shape (2,)).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; the current axes (``plt.gca()``) if omitted.
     scale : float
         Metres of figure per unit of the ellipse's quantity (e.g. m per m/s).
     clip : float, optional
         Longest semi-axis drawn, in figure metres (needed at singular poses,
         where a force ellipse is unbounded).
+    color, alpha, label :
+        Style of the filled ellipse (the outline has the same colour).
 
     Returns
     -------
@@ -322,34 +480,51 @@ def draw_ellipse(ellipse, ax, scale=1.0, clip=None, color=ELLIPSE_COLOR, alpha=0
     --------
     >>> from twolink import arms, velocity
     >>> ax = setup_axes(arms.two_metre)
-    >>> artists = draw_ellipse(velocity.velocity_ellipse(arms.two_metre, [0.3, 1.2]), ax, scale=0.5)
-    >>> len(artists)
-    2
+    >>> artists = draw_ellipse(velocity.velocity_ellipse(arms.two_metre, [0.3, 1.2]), ax=ax, scale=0.5)
+    >>> [type(artist).__name__ for artist in artists]
+    ['Polygon', 'Line2D']
     >>> plt.close(ax.figure)
     """
-    if np.ndim(ellipse.center) != 1:
-        raise ValueError(f"draw_ellipse draws one ellipse (center of shape (2,)); got {np.shape(ellipse.center)}")
+    ax = _axes(ax, "draw_ellipse")
+    if np.ndim(ellipse.centre) != 1:
+        raise ValueError(f"draw_ellipse draws one ellipse (centre of shape (2,)); got {np.shape(ellipse.centre)}")
     points = ellipse.points(scale=scale, clip=clip)
     (fill,) = ax.fill(points[:, 0], points[:, 1], color=color, alpha=alpha, label=label)
     (outline,) = ax.plot(points[:, 0], points[:, 1], color=color, linewidth=1.2)
     return [fill, outline]
 
 
-def draw_force(ax, point, force, scale, at="tail", color=FORCE_COLOR, label=None, width=2.0):
-    """Draw a force as a straight arrow of length ``scale * |force|``.
+def draw_force(
+    point: ArrayLike,
+    vector: ArrayLike,
+    scale: float,
+    *,
+    ax: Axes | None = None,
+    at: str = "tail",
+    color: ColorType = FORCE_COLOR,
+    label: str | None = None,
+    width: float = 2.0,
+) -> FancyArrowPatch:
+    """Draw a force as a straight arrow of length ``scale * |vector|``.
+
+    Any force: the one the tip exerts (``force_by_tip``, drawn at the tip)
+    or one acting on it (``force_on_tip``); say which in a label or the title.
 
     Parameters
     ----------
-    ax : matplotlib.axes.Axes
     point : array_like, shape (2,)
         Where the force acts, metres.
-    force : array_like, shape (2,)
-        The force vector, newtons.
+    vector : array_like, shape (2,)
+        The force, newtons.
     scale : float
         Metres of figure per newton (> 0).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; the current axes (``plt.gca()``) if omitted.
     at : {"tail", "head"}
         Whether the arrow starts at ``point`` (a push away from it) or ends
         there (a push onto it).
+    color, label, width :
+        Style of the arrow.
 
     Returns
     -------
@@ -360,30 +535,46 @@ def draw_force(ax, point, force, scale, at="tail", color=FORCE_COLOR, label=None
     --------
     >>> from twolink import arms
     >>> ax = setup_axes(arms.two_metre)
-    >>> arrow = draw_force(ax, [1.0, 0.0], [100.0, 0.0], scale=0.01)
+    >>> arrow = draw_force([1.0, 0.0], [100.0, 0.0], scale=0.01, ax=ax)
     >>> [tuple(float(v) for v in end) for end in arrow._posA_posB]
     [(1.0, 0.0), (2.0, 0.0)]
     >>> plt.close(ax.figure)
     """
-    from matplotlib.patches import FancyArrowPatch
-
-    point = as_pairs(point, "point")
-    force = as_pairs(force, "force")
+    ax = _axes(ax, "draw_force")
+    p_point: NDArray[np.float64] = as_configuration(point, "point", "one (x, y) point", "metres")
+    f_vector: NDArray[np.float64] = as_configuration(vector, "vector", "one force (Fx, Fy)", "newtons")
     if at not in ("tail", "head"):
         raise ValueError(f"at must be 'tail' or 'head'; got {at!r}")
-    if not scale > 0:
-        raise ValueError(f"scale must be > 0 (metres of figure per newton); got {scale!r}")
-    tail, head = (point, point + scale * force) if at == "tail" else (point - scale * force, point)
+    scale = as_finite_scalar(scale, "scale (metres of figure per newton)", minimum=0.0, strictly=True)
+    if at == "tail":
+        tail, head = p_point, p_point + scale * f_vector
+    else:
+        tail, head = p_point - scale * f_vector, p_point
     arrow = FancyArrowPatch(
-        tuple(tail), tuple(head), arrowstyle="-|>", mutation_scale=14, color=color, linewidth=width, label=label,
+        (float(tail[0]), float(tail[1])),
+        (float(head[0]), float(head[1])),
+        arrowstyle="-|>",
+        mutation_scale=14,
+        color=color,
+        linewidth=width,
+        label=label,
         zorder=5,
     )
     ax.add_patch(arrow)
     return arrow
 
 
-def draw_torque(ax, center, tau, radius, color=TORQUE_COLOR, start=0.0, zero_tol=1e-9):
-    """Draw a joint torque as a curved arrow around ``center``.
+def draw_torque(
+    centre: ArrayLike,
+    tau: float,
+    radius: float,
+    *,
+    ax: Axes | None = None,
+    color: ColorType = TORQUE_COLOR,
+    start: float = 0.0,
+    zero_tol: float = 1e-9,
+) -> FancyArrowPatch | Circle:
+    """Draw a joint torque as a curved arrow around ``centre``.
 
     Counter-clockwise for ``tau > 0`` (the positive joint direction),
     clockwise for ``tau < 0``; a small dotted circle when ``|tau| <= zero_tol``
@@ -391,47 +582,60 @@ def draw_torque(ax, center, tau, radius, color=TORQUE_COLOR, start=0.0, zero_tol
 
     Parameters
     ----------
-    ax : matplotlib.axes.Axes
-    center : array_like, shape (2,)
+    centre : array_like, shape (2,)
         The joint, metres.
     tau : float
         Torque, N m.
     radius : float
-        Radius of the arc in figure metres.
+        Radius of the arc in figure metres (> 0).
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; the current axes (``plt.gca()``) if omitted.
+    color : colour
     start : float
         Angle where the arc starts, radians.
+    zero_tol : float
+        Largest ``|tau|`` (N m) drawn as no torque.
 
     Returns
     -------
-    matplotlib.patches.Patch
+    matplotlib.patches.FancyArrowPatch or matplotlib.patches.Circle
 
     Examples
     --------
     >>> from twolink import arms
     >>> ax = setup_axes(arms.two_metre)
-    >>> type(draw_torque(ax, [0.0, 0.0], 5.0, radius=0.5)).__name__
+    >>> type(draw_torque([0.0, 0.0], 5.0, radius=0.5, ax=ax)).__name__
     'FancyArrowPatch'
-    >>> type(draw_torque(ax, [0.0, 0.0], 0.0, radius=0.5)).__name__
+    >>> type(draw_torque([0.0, 0.0], 0.0, radius=0.5, ax=ax)).__name__
     'Circle'
     >>> plt.close(ax.figure)
     """
-    from matplotlib.patches import FancyArrowPatch
-    from matplotlib.path import Path
-
-    center = as_pairs(center, "center")
+    ax = _axes(ax, "draw_torque")
+    c_point: NDArray[np.float64] = as_configuration(centre, "centre", "one (x, y) point", "metres")
+    tau = as_finite_scalar(tau, "tau (N m)")
+    radius = as_finite_scalar(radius, "radius (figure metres)", minimum=0.0, strictly=True)
     if abs(tau) <= zero_tol:
-        return ax.add_patch(Circle(tuple(center), radius * 0.5, fill=False, color=color, linewidth=1.5, linestyle=":"))
+        circle = Circle(
+            (float(c_point[0]), float(c_point[1])), radius * 0.5, fill=False, color=color, linewidth=1.5, linestyle=":"
+        )
+        ax.add_patch(circle)
+        return circle
     sweep = np.sign(tau) * np.radians(270.0)
     angle = start + np.linspace(0.0, sweep, 40)
-    vertices = center + radius * np.stack([np.cos(angle), np.sin(angle)], axis=-1)
-    arrow = FancyArrowPatch(
-        path=Path(vertices), arrowstyle="-|>", mutation_scale=12, color=color, linewidth=1.8, zorder=5
-    )
+    vertices = c_point + radius * np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+    arrow = FancyArrowPatch(path=Path(vertices), arrowstyle="-|>", mutation_scale=12, color=color, linewidth=1.8, zorder=5)
     ax.add_patch(arrow)
     return arrow
 
 
-def draw_wall(wall, ax, half_length, color="0.25", hatch=0.15):
+def draw_wall(
+    wall: Wall,
+    half_length: float,
+    *,
+    ax: Axes | None = None,
+    color: ColorType = "0.25",
+    hatch: float = 0.15,
+) -> list[Line2D]:
     """Draw a :class:`twolink.statics.Wall` as a line with hatching on its far side.
 
     The segment is centred on the point of the wall nearest the base; the
@@ -440,25 +644,30 @@ def draw_wall(wall, ax, half_length, color="0.25", hatch=0.15):
     Parameters
     ----------
     wall : twolink.statics.Wall
-    ax : matplotlib.axes.Axes
     half_length : float
         Half the drawn length, metres.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; the current axes (``plt.gca()``) if omitted.
+    color : colour
     hatch : float
         Length of the hatch marks, metres.
 
     Returns
     -------
     list of matplotlib.lines.Line2D
+        The wall's line, then the hatch marks.
 
     Examples
     --------
     >>> from twolink import arms, statics
     >>> ax = setup_axes(arms.two_metre)
-    >>> lines = draw_wall(statics.Wall.through([4.0, 0.0], [0.0, 4.0]), ax, half_length=3.0)
+    >>> lines = draw_wall(statics.Wall.through([4.0, 0.0], [0.0, 4.0]), half_length=3.0, ax=ax)
     >>> np.round(lines[0].get_xydata().sum(axis=1), 12)
     array([4., 4.])
     >>> plt.close(ax.figure)
     """
+    ax = _axes(ax, "draw_wall")
+    half_length = as_finite_scalar(half_length, "half_length (m)", minimum=0.0, strictly=True)
     normal = wall.into_wall()
     along = np.array([-normal[1], normal[0]])
     foot = wall.point - (wall.point @ along) * along  # nearest point to the base
@@ -469,3 +678,155 @@ def draw_wall(wall, ax, half_length, color="0.25", hatch=0.15):
         tip = base + hatch * (normal + along) / np.sqrt(2.0)
         lines += ax.plot([base[0], tip[0]], [base[1], tip[1]], color=color, linewidth=0.8)
     return lines
+
+
+# --- quantities against time, notes on figures
+
+
+def plot_time_series(
+    t: ArrayLike,
+    values: ArrayLike,
+    quantity: str,
+    unit: str,
+    labels: Sequence[str] | None = None,
+    *,
+    ax: Axes | None = None,
+    fmt: str = "-",
+    colors: Sequence[ColorType] | None = None,
+    log: bool = False,
+    **line_options: Any,
+) -> list[Line2D]:
+    """Plot one or more quantities against time: ``t [s]`` across, ``quantity [unit]`` up.
+
+    One line per column of ``values`` (joint 1, joint 2, ...), with a light
+    grid and, when ``labels`` are given, a legend.  Call it again on the
+    same ``ax`` to add lines (another run, another style): the labels and
+    the legend are set anew and the legend lists every labelled line.
+
+    Parameters
+    ----------
+    t : array_like, shape (n,)
+        Times in seconds (finite).
+    values : array_like, shape (n,) or (n, k)
+        The quantity at each time, one column per line, in ``unit`` (NaN
+        leaves a gap).
+    quantity : str
+        What is plotted, for the axis label (``"joint angle"``).
+    unit : str
+        Its unit, for the axis label (``"deg"``, ``"N m"``; ``"-"`` for a
+        dimensionless ratio).
+    labels : sequence of str, optional
+        One legend entry per column (``["q1", "q2"]``); no legend if omitted.
+    ax : matplotlib.axes.Axes, optional
+        Axes to draw on; the current axes (``plt.gca()``) if omitted.
+    fmt : str
+        matplotlib format string of the lines (``"--"``, ``"o"``).
+    colors : sequence of colours, optional
+        One colour per column; matplotlib's colour cycle if omitted.
+    log : bool
+        Logarithmic vertical axis.
+    **line_options
+        More options of :meth:`matplotlib.axes.Axes.plot` (``linewidth``,
+        ``markersize``, ``alpha``).
+
+    Returns
+    -------
+    list of matplotlib.lines.Line2D
+        One per column.
+
+    Examples
+    --------
+    >>> t = np.linspace(0.0, 1.0, 11)
+    >>> fig, ax = plt.subplots()
+    >>> lines = plot_time_series(t, np.column_stack([t, t**2]), "joint angle", "rad", ["q1", "q2"], ax=ax)
+    >>> len(lines), ax.get_xlabel(), ax.get_ylabel()
+    (2, 't [s]', 'joint angle [rad]')
+    >>> [text.get_text() for text in ax.get_legend().get_texts()]
+    ['q1', 'q2']
+    >>> plt.close(fig)
+    """
+    ax = _axes(ax, "plot_time_series")
+    times = real_array(t, "t (s)")
+    if times.ndim != 1 or not np.all(np.isfinite(times)):
+        raise ValueError(f"t must be finite times in seconds of shape (n,); got shape {times.shape}")
+    data = real_array(values, "values")
+    if data.ndim == 1:
+        data = data[:, None]
+    if data.ndim != 2 or len(data) != len(times):
+        raise ValueError(
+            f"values must have shape ({len(times)},) or ({len(times)}, k), one row per time of t; got {np.shape(values)}"
+        )
+    for name, text in (("quantity", quantity), ("unit", unit)):
+        if not isinstance(text, str) or not text.strip():
+            raise InputTypeError(f"{name} must be a non-empty string (the axis label is 'quantity [unit]'); got {text!r}")
+    columns = data.shape[1]
+    if labels is not None and (isinstance(labels, str) or len(labels) != columns):
+        raise ValueError(f"labels must be a sequence of {columns} strings, one per column of values; got {labels!r}")
+    if colors is not None and (isinstance(colors, str) or len(colors) != columns):
+        raise ValueError(f"colors must be a sequence of {columns} colours, one per column of values; got {colors!r}")
+    lines = []
+    for column in range(columns):
+        options = dict(line_options)
+        if labels is not None:
+            options["label"] = labels[column]
+        if colors is not None:
+            options["color"] = colors[column]
+        lines.extend(ax.plot(times, data[:, column], fmt, **options))
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel(f"{quantity} [{unit}]")
+    if log:
+        ax.set_yscale("log")
+    ax.grid(True, which="both" if log else "major", alpha=0.3)
+    if labels is not None:
+        ax.legend(fontsize=8)
+    return lines
+
+
+_NOTE_CORNERS = {
+    "lower left": (0.03, 0.03, "left", "bottom"),
+    "upper left": (0.03, 0.97, "left", "top"),
+    "lower right": (0.97, 0.03, "right", "bottom"),
+    "upper right": (0.97, 0.97, "right", "top"),
+}
+
+
+def draw_note(text: str, *, ax: Axes | None = None, corner: str = "lower left", fontsize: float = 8.0) -> Text:
+    """Write a boxed note in a corner of the axes (values, the drawing scale of ellipses or arrows).
+
+    Parameters
+    ----------
+    text : str
+        The note; ``"\\n"`` breaks lines.
+    ax : matplotlib.axes.Axes, optional
+        Axes to write on; the current axes (``plt.gca()``) if omitted.
+    corner : {"lower left", "upper left", "lower right", "upper right"}
+    fontsize : float
+
+    Returns
+    -------
+    matplotlib.text.Text
+
+    Examples
+    --------
+    >>> fig, ax = plt.subplots()
+    >>> note = draw_note("ellipse drawn at 0.4 m per m/s", ax=ax)
+    >>> note.get_text(), note.get_position()
+    ('ellipse drawn at 0.4 m per m/s', (0.03, 0.03))
+    >>> plt.close(fig)
+    """
+    ax = _axes(ax, "draw_note")
+    if not isinstance(text, str):
+        raise InputTypeError(f"text must be a string; got {text!r} ({type(text).__name__})")
+    if corner not in _NOTE_CORNERS:
+        raise ValueError(f"corner must be one of {', '.join(map(repr, _NOTE_CORNERS))}; got {corner!r}")
+    x, y, horizontal, vertical = _NOTE_CORNERS[corner]
+    return ax.text(
+        x,
+        y,
+        text,
+        transform=ax.transAxes,
+        fontsize=fontsize,
+        ha=horizontal,
+        va=vertical,
+        bbox={"facecolor": "white", "edgecolor": "0.7", "alpha": 0.9},
+    )

@@ -23,25 +23,26 @@ Examples
 True
 """
 
-import numpy as np
+from __future__ import annotations
 
-from ._validate import as_pairs
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ._validate import as_configuration
 from .controllers import gain_matrix
 from .errors import SingularityError
-from .kinematics import fk, jacobian
-from .velocity import SINGULARITY_TOL, Ellipse
+from .kinematics import fk, jacobian, require_nonsingular
+from .velocity import Ellipse
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 __all__ = ["joint_stiffness", "tip_stiffness", "stiffness_ellipse"]
 
 
-def _configuration(q):
-    q = as_pairs(q, "q")
-    if q.shape != (2,):
-        raise ValueError(f"q must be one configuration of shape (2,) (radians); got {q.shape}")
-    return q
-
-
-def joint_stiffness(arm, q, tip_stiffness):
+def joint_stiffness(arm: TwoLinkArm, q: ArrayLike, tip_stiffness: ArrayLike) -> NDArray[np.float64]:
     """The joint stiffness ``J^T K_tip J`` (N m/rad) that a tip stiffness amounts to at ``q``.
 
     Parameters
@@ -68,14 +69,14 @@ def joint_stiffness(arm, q, tip_stiffness):
     array([[400., 200.],
            [200., 100.]])
     """
-    q = _configuration(q)
+    q = as_configuration(q)
     K_tip = gain_matrix(tip_stiffness, "tip stiffness (N/m)")
     J = jacobian(arm, q)
     K_joint = J.T @ K_tip @ J
     return (K_joint + K_joint.T) / 2.0
 
 
-def tip_stiffness(arm, q, joint_stiffness):
+def tip_stiffness(arm: TwoLinkArm, q: ArrayLike, joint_stiffness: ArrayLike) -> NDArray[np.float64]:
     """The stiffness ``J^-T K_joint J^-1`` (N/m) felt at the tip for a joint stiffness at ``q``.
 
     Parameters
@@ -93,8 +94,10 @@ def tip_stiffness(arm, q, joint_stiffness):
     Raises
     ------
     twolink.SingularityError
-        When the arm is stretched or folded (``|sin q2| <= SINGULARITY_TOL``):
-        along the arm the tip cannot be moved, its stiffness is unbounded.
+        When the arm is stretched or folded (``|sin q2| <=``
+        :data:`twolink.kinematics.SINGULARITY_TOL`, the test of
+        :func:`twolink.kinematics.require_nonsingular`): along the arm the tip
+        cannot be moved, its stiffness is unbounded.
 
     Examples
     --------
@@ -102,20 +105,23 @@ def tip_stiffness(arm, q, joint_stiffness):
     >>> tip_stiffness(TwoLinkArm(1.0, 1.0), [0.0, np.pi / 2], 100.0).round(12)
     array([[100., 100.],
            [100., 200.]])
+    >>> tip_stiffness(TwoLinkArm(1.0, 1.0), [0.3, 0.0], 100.0)
+    Traceback (most recent call last):
+    ...
+    twolink.errors.SingularityError: the tip stiffness needs J invertible, but q = (0.3, 0) rad is singular: |sin q2| = 0 <= tol = 1e-06 (|det J| = 0 m^2, the arm is stretched or folded); along the arm the tip stiffness is unbounded
     """
-    q = _configuration(q)
+    q = as_configuration(q)
     K_joint = gain_matrix(joint_stiffness, "joint stiffness (N m/rad)")
-    if abs(np.sin(q[1])) <= SINGULARITY_TOL:
-        raise SingularityError(
-            f"q = ({q[0]:.6g}, {q[1]:.6g}) rad is singular (|sin q2| = {abs(np.sin(q[1])):.3g}): "
-            "along the stretched or folded arm the tip stiffness is unbounded"
-        )
+    try:
+        require_nonsingular(arm, q, "the tip stiffness")
+    except SingularityError as error:
+        raise SingularityError(f"{error}; along the arm the tip stiffness is unbounded") from None
     J_inverse = np.linalg.inv(jacobian(arm, q))
     K_tip = J_inverse.T @ K_joint @ J_inverse
     return (K_tip + K_tip.T) / 2.0
 
 
-def stiffness_ellipse(arm, q, tip_stiffness):
+def stiffness_ellipse(arm: TwoLinkArm, q: ArrayLike, tip_stiffness: ArrayLike) -> Ellipse:
     """The stiffness ellipse at the tip: the restoring force for each unit displacement.
 
     ``{K d : |d| = 1}``: semi-axes are the eigenvalues of ``K`` (N/m),
@@ -140,10 +146,10 @@ def stiffness_ellipse(arm, q, tip_stiffness):
     --------
     >>> from twolink import TwoLinkArm
     >>> ellipse = stiffness_ellipse(TwoLinkArm(1.0, 1.0), [0.0, np.pi / 2], [[300.0, 0.0], [0.0, 100.0]])
-    >>> ellipse.center.round(12), ellipse.semi_axes, float(ellipse.angle)
+    >>> ellipse.centre.round(12), ellipse.semi_axes, float(ellipse.angle)
     (array([1., 1.]), array([300., 100.]), 0.0)
     """
-    q = _configuration(q)
+    q = as_configuration(q)
     K_tip = gain_matrix(tip_stiffness, "tip stiffness (N/m)")
     eigenvalues, eigenvectors = np.linalg.eigh(K_tip)
-    return Ellipse(center=fk(arm, q), semi_axes=eigenvalues[::-1].copy(), directions=eigenvectors[:, ::-1].copy())
+    return Ellipse(centre=fk(arm, q), semi_axes=eigenvalues[::-1].copy(), directions=eigenvectors[:, ::-1].copy())

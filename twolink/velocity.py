@@ -8,13 +8,20 @@ fails at the singular configurations ``sin q2 = 0`` (arm stretched or folded,
 :mod:`twolink.kinematics`.
 """
 
+from __future__ import annotations
+
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from ._validate import as_count, as_finite_scalar, as_pairs, finite_result, require_arm
 from .errors import SingularityError
-from .kinematics import fk, jacobian
+from .kinematics import SINGULARITY_TOL, fk, jacobian, require_nonsingular
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 __all__ = [
     "SINGULARITY_TOL",
@@ -27,22 +34,24 @@ __all__ = [
     "force_ellipse",
 ]
 
-#: Default tolerance of :func:`joint_rates` on ``|sin q2|``: closer to a
-#: singularity than this, the exact inverse is refused.
-SINGULARITY_TOL = 1e-6
+# SINGULARITY_TOL is :data:`twolink.kinematics.SINGULARITY_TOL` (the same object), the
+# default tolerance of :func:`joint_rates` on ``|sin q2|``, re-exported here for callers
+# that import it with the velocity functions.
 
 
-def _broadcast_pairs(q, other, other_name):
-    q = as_pairs(q, "q")
-    other = as_pairs(other, other_name)
+def _broadcast_pairs(q: ArrayLike, other: ArrayLike, other_name: str) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    q_pairs: NDArray[np.float64] = as_pairs(q, "q")
+    other_pairs: NDArray[np.float64] = as_pairs(other, other_name)
     try:
-        shape = np.broadcast_shapes(q.shape, other.shape)
+        shape = np.broadcast_shapes(q_pairs.shape, other_pairs.shape)
     except ValueError as exc:
-        raise ValueError(f"q of shape {q.shape} and {other_name} of shape {other.shape} do not broadcast") from exc
-    return np.broadcast_to(q, shape), np.broadcast_to(other, shape)
+        raise ValueError(
+            f"q of shape {q_pairs.shape} and {other_name} of shape {other_pairs.shape} do not broadcast"
+        ) from exc
+    return np.broadcast_to(q_pairs, shape), np.broadcast_to(other_pairs, shape)
 
 
-def tip_velocity(arm, q, qd):
+def tip_velocity(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
     """Linear velocity of the tip, ``v_tip = J(q) qd``.
 
     Parameters
@@ -70,11 +79,11 @@ def tip_velocity(arm, q, qd):
     return finite_result(v_tip, "tip velocities (m/s)", "qd is too large for this arm")
 
 
-def _sin_q2(q):
+def _sin_q2(q: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.sin(q[..., 1])
 
 
-def joint_rates(arm, q, v_tip, tol=SINGULARITY_TOL):
+def joint_rates(arm: TwoLinkArm, q: ArrayLike, v_tip: ArrayLike, tol: float = SINGULARITY_TOL) -> NDArray[np.float64]:
     """Joint rates that give the tip velocity ``v_tip``: ``qd = J(q)^-1 v_tip``.
 
     Solved with :func:`numpy.linalg.solve`, refusing configurations within
@@ -98,9 +107,10 @@ def joint_rates(arm, q, v_tip, tol=SINGULARITY_TOL):
     Raises
     ------
     twolink.SingularityError
-        If ``|sin q2| <= tol`` anywhere; the message gives the configuration,
-        ``|sin q2|``, ``|det J|`` and the tolerance.  Use
-        :func:`joint_rates_dls` there.
+        If ``|sin q2| <= tol`` anywhere (the test of
+        :func:`twolink.kinematics.require_nonsingular`); the message gives the
+        configuration, ``|sin q2|``, ``|det J|`` and the tolerance, and
+        advises :func:`joint_rates_dls` there.
     ValueError
         For NaN/inf input, wrong shapes or a negative ``tol``.
 
@@ -113,29 +123,21 @@ def joint_rates(arm, q, v_tip, tol=SINGULARITY_TOL):
     >>> arm.joint_rates([0.3, 0.0], [0.0, 1.0])
     Traceback (most recent call last):
     ...
-    twolink.errors.SingularityError: q = (0.3, 0) rad is singular: |sin q2| = 0 <= tol = 1e-06 (|det J| = 0 m^2, the arm is stretched or folded); the joint rates are unbounded there: use joint_rates_dls
+    twolink.errors.SingularityError: solving for the joint rates needs J invertible, but q = (0.3, 0) rad is singular: |sin q2| = 0 <= tol = 1e-06 (|det J| = 0 m^2, the arm is stretched or folded); the joint rates are unbounded there: use joint_rates_dls
     """
     require_arm(arm)
     q, v_tip = _broadcast_pairs(q, v_tip, "v_tip")
-    tol = as_finite_scalar(tol, "tol (smallest |sin q2|)", minimum=0.0)
-    distance = np.abs(_sin_q2(q))
-    near = distance <= tol
-    if np.any(near):
-        index = tuple(int(i) for i in np.argwhere(near)[0]) if near.ndim else ()
-        q_bad = q[index]
-        where = f" (index {index}, first of {int(np.count_nonzero(near))})" if near.ndim else ""
-        raise SingularityError(
-            f"q = ({q_bad[0]:.6g}, {q_bad[1]:.6g}) rad{where} is singular: |sin q2| = "
-            f"{distance[index]:.3g} <= tol = {tol:.3g} (|det J| = {arm.l1 * arm.l2 * distance[index]:.3g} m^2, "
-            "the arm is stretched or folded); the joint rates are unbounded there: use joint_rates_dls"
-        )
+    try:
+        require_nonsingular(arm, q, "solving for the joint rates", tol)
+    except SingularityError as error:
+        raise SingularityError(f"{error}; the joint rates are unbounded there: use joint_rates_dls") from None
     scale = _row_scale(v_tip)
     with np.errstate(over="ignore", invalid="ignore"):
         qd = np.linalg.solve(jacobian(arm, q), (v_tip / scale)[..., None])[..., 0] * scale
     return finite_result(qd, "joint rates qd (rad/s)", "v_tip is too large for this (near-singular) pose")
 
 
-def _row_scale(v_tip):
+def _row_scale(v_tip: NDArray[np.float64]) -> NDArray[np.float64]:
     """Largest ``|component|`` of each velocity, shape ``(..., 1)`` (1 for a zero velocity).
 
     The solvers work on ``v_tip / scale``, of size one, and multiply the
@@ -146,7 +148,9 @@ def _row_scale(v_tip):
     return np.where(scale > 0.0, scale, 1.0)
 
 
-def _accurate_svd(arm, q):
+def _accurate_svd(
+    arm: TwoLinkArm, q: NDArray[np.float64]
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
     """``J = U diag(s) V^T`` with the smaller singular value accurate to its last bits.
 
     :func:`numpy.linalg.svd` gets the singular vectors right, but the
@@ -161,7 +165,7 @@ def _accurate_svd(arm, q):
     return U, singular_values, Vt
 
 
-def joint_rates_dls(arm, q, v_tip, damping):
+def joint_rates_dls(arm: TwoLinkArm, q: ArrayLike, v_tip: ArrayLike, damping: float) -> NDArray[np.float64]:
     """Damped-least-squares joint rates ``qd = J^T (J J^T + damping^2 I)^-1 v_tip``.
 
     The rates minimise ``|J qd - v_tip|^2 + damping^2 |qd|^2``: they stay
@@ -223,7 +227,7 @@ def joint_rates_dls(arm, q, v_tip, damping):
     return finite_result(qd, "joint rates qd (rad/s)", "v_tip is too large for this damping")
 
 
-def manipulability(arm, q):
+def manipulability(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """Yoshikawa's manipulability ``w = sqrt(det(J J^T)) = |l1 l2 sin q2|``.
 
     The area of the velocity ellipse divided by pi: zero at singularities,
@@ -246,9 +250,9 @@ def manipulability(arm, q):
     >>> TwoLinkArm(2.0, 1.5).manipulability([[0.4, np.pi / 2], [0.4, 0.0]])
     array([3., 0.])
     """
-    q = as_pairs(q, "q")
+    q_pairs: NDArray[np.float64] = as_pairs(q, "q")
     require_arm(arm)
-    return np.abs(arm.l1 * arm.l2 * _sin_q2(q))
+    return np.abs(arm.l1 * arm.l2 * _sin_q2(q_pairs))
 
 
 @dataclass(frozen=True)
@@ -257,7 +261,7 @@ class Ellipse:
 
     Attributes
     ----------
-    center : numpy.ndarray, shape (..., 2)
+    centre : numpy.ndarray, shape (..., 2)
         Centre, usually the tip position (m).
     semi_axes : numpy.ndarray, shape (..., 2)
         Semi-axis lengths, largest first (``inf`` for an unbounded axis).
@@ -266,18 +270,18 @@ class Ellipse:
         with ``semi_axes[..., k]``.
     """
 
-    center: np.ndarray
-    semi_axes: np.ndarray
-    directions: np.ndarray
+    centre: NDArray[np.float64]
+    semi_axes: NDArray[np.float64]
+    directions: NDArray[np.float64]
 
     @property
-    def angle(self):
+    def angle(self) -> NDArray[np.float64]:
         """Angle of the major axis from the x-axis, radians in ``(-pi/2, pi/2]``."""
         major = self.directions[..., :, 0]
         angle = np.arctan2(major[..., 1], major[..., 0])
         return np.where(angle <= -np.pi / 2, angle + np.pi, np.where(angle > np.pi / 2, angle - np.pi, angle))
 
-    def points(self, n=64, scale=1.0, clip=None):
+    def points(self, n: int = 64, scale: float = 1.0, clip: float | None = None) -> NDArray[np.float64]:
         """Points on the boundary, ``(..., n, 2)``, for ``ax.plot`` or ``ax.fill``.
 
         Parameters
@@ -310,16 +314,18 @@ class Ellipse:
         phase = np.linspace(0.0, 2.0 * np.pi, int(n))
         unit_circle = np.stack([np.cos(phase), np.sin(phase)], axis=-1)  # (n, 2)
         local = unit_circle * lengths[..., None, :]  # (..., n, 2)
-        return self.center[..., None, :] + np.einsum("...ij,...nj->...ni", self.directions, local)
+        return self.centre[..., None, :] + np.einsum("...ij,...nj->...ni", self.directions, local)
 
 
-def _svd(arm, q):
-    q = as_pairs(q, "q")
-    U, singular_values, _ = np.linalg.svd(jacobian(arm, q))
-    return q, U, singular_values
+def _svd(
+    arm: TwoLinkArm, q: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    q_pairs: NDArray[np.float64] = as_pairs(q, "q")
+    U, singular_values, _ = np.linalg.svd(jacobian(arm, q_pairs))
+    return q_pairs, U, singular_values
 
 
-def velocity_ellipse(arm, q):
+def velocity_ellipse(arm: TwoLinkArm, q: ArrayLike) -> Ellipse:
     """The tip velocities reachable with unit joint speed, ``{J qd : |qd| <= 1}``.
 
     Semi-axes are the singular values of ``J`` (m/s per rad/s), along the left
@@ -341,14 +347,14 @@ def velocity_ellipse(arm, q):
     --------
     >>> from twolink import TwoLinkArm
     >>> ellipse = velocity_ellipse(TwoLinkArm(1.0, 1.0), [0.0, np.pi / 2])
-    >>> ellipse.center.round(12), (ellipse.semi_axes ** 2).round(12)
+    >>> ellipse.centre.round(12), (ellipse.semi_axes ** 2).round(12)
     (array([1., 1.]), array([2.618034, 0.381966]))
     """
     q, U, singular_values = _svd(arm, q)
-    return Ellipse(center=fk(arm, q), semi_axes=singular_values, directions=U)
+    return Ellipse(centre=fk(arm, q), semi_axes=singular_values, directions=U)
 
 
-def force_ellipse(arm, q):
+def force_ellipse(arm: TwoLinkArm, q: ArrayLike) -> Ellipse:
     """The tip forces that unit joint torque can hold, ``{F : |J^T F| <= 1}``.
 
     Semi-axes are ``1 / sigma`` (N per N m) for the singular values ``sigma``
@@ -378,4 +384,4 @@ def force_ellipse(arm, q):
     q, U, singular_values = _svd(arm, q)
     inverse = np.full_like(singular_values, np.inf)
     np.divide(1.0, singular_values, out=inverse, where=singular_values > 0.0)
-    return Ellipse(center=fk(arm, q), semi_axes=inverse[..., ::-1], directions=U[..., :, ::-1])
+    return Ellipse(centre=fk(arm, q), semi_axes=inverse[..., ::-1], directions=U[..., :, ::-1])
