@@ -12,7 +12,7 @@ instead.
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
-from typing import TYPE_CHECKING, Any, Protocol
+from typing import TYPE_CHECKING, Any
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -27,6 +27,7 @@ from matplotlib.text import Text
 from matplotlib.typing import ColorType
 from numpy.typing import ArrayLike, NDArray
 
+from ._optional import HTMLDisplay
 from ._validate import InputTypeError, as_configuration, as_finite_scalar, as_pairs, real_array, require_arm
 from .velocity import Ellipse
 
@@ -54,12 +55,6 @@ __all__ = [
 LINK_COLOR = "#1f4e79"
 JOINT_COLOR = "#f2a900"
 PATH_COLOR = "#c0392b"
-
-
-class _HTMLDisplay(Protocol):
-    """What a notebook shows as HTML: ``IPython.display.HTML`` or twolink's stand-in."""
-
-    def _repr_html_(self) -> str: ...
 
 
 def _axes(ax: Axes | None, who: str) -> Axes:
@@ -359,7 +354,7 @@ def animate_arm(
     return animation.FuncAnimation(_figure_of(ax), update, frames=len(q_frames), interval=interval, blit=False)
 
 
-def animation_html(anim: animation.Animation) -> _HTMLDisplay:
+def animation_html(anim: animation.Animation) -> HTMLDisplay:
     """An H.264 ``<video>`` of the animation for notebooks (small, byte-stable).
 
     Uses the ffmpeg shipped by the ``imageio-ffmpeg`` package, so no system
