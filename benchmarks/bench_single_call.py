@@ -9,6 +9,22 @@ per element, to show that the single-input path does not cost the batch path
 anything, and the same ``solve_ivp`` call with twolink's right-hand side and
 with a plain-Python one.
 
+What each side does, so the ratios compare like with like:
+
+- ``ik.closed_form``: twolink checks the arm, the target and the elbow word,
+  tests the reach (with its round-off tolerance), solves one branch and
+  returns an ``IKResult`` holding ``q``; its ``residual``, ``success``,
+  ``within_limits`` and ``message`` are computed only when read (none are
+  here).  The plain version tests the reach, solves the same branch and
+  returns the two angles as a tuple: neither side judges its answer.
+- ``ik.closed_form, read .success``: the same, and then the result is
+  judged: twolink reads ``.success`` (forward kinematics of ``q``, residual,
+  success, joint limits, message); the plain version recomputes the tip by
+  forward kinematics and returns ``(q1, q2, residual, success)``.
+- ``ik.newton``: both iterate to the same tolerance from the same start;
+  twolink returns an ``IKResult`` (its fields computed only when read), the
+  plain version the two angles.
+
 Run with ``make bench`` or ``.venv/bin/python benchmarks/bench_single_call.py``
 (``--quick`` for a smoke run with tiny sizes, used by the test suite).
 Each pair (twolink, plain) is timed in alternating batches, so that both
@@ -32,6 +48,7 @@ TARGET_RATIO = {
     "fk": 4.0,
     "jacobian": 4.0,
     "ik.closed_form": 3.0,
+    "ik.closed_form, read .success": 4.0,
     "ik.newton": 3.0,
     "forward_dynamics": 2.0,
     "inverse_dynamics": 2.0,
@@ -54,7 +71,7 @@ def plain_jacobian(l1, l2, q1, q2):
 
 
 def plain_closed_form(l1, l2, x, y):
-    """Elbow-down closed form with the reach check a correct solver needs."""
+    """Elbow-down closed form with the reach check a correct solver needs: ``(q1, q2)``."""
     r_squared = x * x + y * y
     c2 = (r_squared - l1 * l1 - l2 * l2) / (2.0 * l1 * l2)
     if not -1.0 <= c2 <= 1.0:
@@ -62,6 +79,14 @@ def plain_closed_form(l1, l2, x, y):
     q2 = math.acos(c2)
     q1 = math.atan2(y, x) - math.atan2(l2 * math.sin(q2), l1 + l2 * c2)
     return q1, q2
+
+
+def plain_closed_form_judged(l1, l2, x, y, tol=1e-9):
+    """:func:`plain_closed_form`, then its answer judged by forward kinematics: ``(q1, q2, residual, success)``."""
+    q1, q2 = plain_closed_form(l1, l2, x, y)
+    tip_x, tip_y = plain_fk(l1, l2, q1, q2)
+    residual = math.hypot(tip_x - x, tip_y - y)
+    return q1, q2, residual, residual <= tol * (l1 + l2)
 
 
 def plain_newton(l1, l2, x, y, q1=0.5, q2=1.0, tol=1e-12, max_iter=100):
@@ -140,7 +165,10 @@ def check_references_agree(arm, q, qd, tau, p):
     q1, q2 = q
     assert np.allclose(plain_fk(arm.l1, arm.l2, q1, q2), arm.fk(q), rtol=0, atol=1e-12)
     assert np.allclose(plain_jacobian(arm.l1, arm.l2, q1, q2), arm.jacobian(q), rtol=0, atol=1e-12)
-    assert np.allclose(plain_closed_form(arm.l1, arm.l2, *p), ik.closed_form(arm, p, elbow="down"), atol=1e-9)
+    result = ik.closed_form(arm, p, elbow="down")
+    assert np.allclose(plain_closed_form(arm.l1, arm.l2, *p), result.q, atol=1e-9)
+    *_, plain_residual, plain_success = plain_closed_form_judged(arm.l1, arm.l2, *p)
+    assert plain_success and bool(result.success) and abs(plain_residual - float(result.residual)) <= 1e-12
     q_newton = plain_newton(arm.l1, arm.l2, *p)
     assert np.allclose(plain_fk(arm.l1, arm.l2, *q_newton), p, atol=1e-9)
     assert np.allclose(
@@ -199,6 +227,12 @@ def single_call_rows(arm, repeat, min_seconds, batch):
             lambda: ik.closed_form(arm, p_list, elbow="down"),
             lambda: plain_closed_form(l1, l2, *p_list),
             lambda: ik.closed_form(arm, p_batch, elbow="down"),
+        ),
+        (
+            "ik.closed_form, read .success",
+            lambda: ik.closed_form(arm, p_list, elbow="down").success,
+            lambda: plain_closed_form_judged(l1, l2, *p_list),
+            lambda: ik.closed_form(arm, p_batch, elbow="down").success,
         ),
         (
             "ik.newton",

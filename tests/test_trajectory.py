@@ -158,7 +158,7 @@ def test_the_line_task_on_the_two_metre_arm_is_continuous_on_both_branches():
         assert motion.tracking_error.max() <= 1e-12 * 4
         assert np.all(motion.joint_steps <= step_bound(arms.two_metre, motion))
     # the naive per-point closed form on the up branch wraps q1 past -180 deg: a 360 deg jump
-    naive = ik.closed_form(arms.two_metre, line.sample(50)[1], elbow="up")
+    naive = ik.closed_form(arms.two_metre, line.sample(50)[1], elbow="up").q
     naive_steps = np.max(np.abs(np.diff(naive, axis=0)), axis=-1)
     assert naive_steps.max() > np.pi
     assert np.any(naive_steps > step_bound(arms.two_metre, motion))
@@ -276,7 +276,7 @@ def test_resolved_rate_refuses_bad_arguments():
 
 def test_resolved_rate_tracks_a_constant_speed_line_with_the_commanded_velocity():
     arm = arms.two_metre
-    q_start = ik.closed_form(arm, [3.0, -1.0])
+    q_start = ik.closed_form(arm, [3.0, -1.0]).q
     line = trajectory.LinePath([3.0, -1.0], [3.0, 1.0], duration=2.0, law="linear")
     motion = trajectory.resolved_rate_trajectory(arm, line, n=21, q_start=q_start)
     assert motion.tracking_error.max() < 1e-6
@@ -287,7 +287,7 @@ def test_resolved_rate_tracks_a_constant_speed_line_with_the_commanded_velocity(
 def test_damping_bounds_the_joint_rates_near_a_singularity_at_a_tracking_cost():
     """A line 5 cm from the base of the equal-link arm passes the folded singularity."""
     arm = arms.two_metre
-    q_start = ik.closed_form(arm, [-1.5, 0.05])
+    q_start = ik.closed_form(arm, [-1.5, 0.05]).q
     line = trajectory.LinePath([-1.5, 0.05], [1.5, 0.05], duration=3.0, law="linear")
     exact = trajectory.resolved_rate_trajectory(arm, line, n=301, q_start=q_start)
     damped = trajectory.resolved_rate_trajectory(arm, line, n=301, q_start=q_start, damping=0.3)

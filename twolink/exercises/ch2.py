@@ -29,7 +29,7 @@ def judge_elbow_up_2_1(answer, siblings):
 @reference
 def within_limits_2_1():
     """Whether the elbow-up solution for (12, 4) respects arms.ten's limits."""
-    return bool(arms.ten.within_limits(ik.closed_form(arms.ten, TARGET_2_1, elbow="up")))
+    return bool(arms.ten.within_limits(ik.closed_form(arms.ten, TARGET_2_1, elbow="up").q))
 
 
 def judge_limits_2_1(answer, siblings):
