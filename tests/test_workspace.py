@@ -400,3 +400,26 @@ def test_limit_description_is_in_degrees_and_names_the_convention():
     assert "absolute" in workspace.describe_limits(arms.two_metre_limited)
     assert workspace.describe_limits(arms.two_metre) == "no joint limits"
     assert np.allclose(np.degrees(to_absolute(configuration_within(arms.two_metre_limited, [0.0, 1.0]))), [35.0, 145.0])
+
+
+@given(arm=limited_arms(), q1=st.floats(-10.0, 10.0), q2=st.floats(-10.0, 10.0))
+def test_move_into_limits_turns_angles_by_whole_turns_only_where_that_helps(arm, q1, q2):
+    from twolink.ik.limits import move_into_limits
+
+    q = np.array([q1, q2])
+    moved, inside = move_into_limits(arm, q)
+    assert np.allclose(arm.fk(moved), arm.fk(q), atol=1e-12 * arm.reach[1] + 1e-12)  # the same pose
+    turns = (moved - q) / (2 * np.pi)
+    assert np.allclose(turns, np.round(turns), atol=1e-9)
+    assert bool(inside) == bool(arm.within_limits(moved, tol=ik.LIMIT_TOL))
+    if arm.within_limits(q, tol=ik.LIMIT_TOL):
+        assert np.array_equal(moved, q)  # already inside: exactly as given
+
+
+@given(arm=limited_arms(), fraction=unit, heading=angles)
+def test_closed_form_auto_is_within_the_limits_exactly_where_the_point_is_reachable(arm, fraction, heading):
+    r_min, r_max = arm.reach
+    p = (r_min + fraction * (r_max - r_min)) * np.array([np.cos(heading), np.sin(heading)])
+    auto = ik.closed_form(arm, p, elbow="auto")
+    assert bool(arm.within_limits(auto.q, tol=ik.LIMIT_TOL)) == bool(workspace.is_reachable(arm, p))
+    assert auto.success and auto.residual <= 1e-9 * r_max

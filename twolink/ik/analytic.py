@@ -117,20 +117,27 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     twolink.errors.UnreachableError: target (30, 0) is 30 m from the base; this arm reaches distances in [0, 20] m (l1=10, l2=10)
     """
     target = pair_floats(p)
-    if target is not None and type(elbow) is str:
+    if target is not None:
         # one target on floats: the steps of the vectorised path, written out (a call costs as much)
-        derived = getattr(arm, "_derived", None)
-        terms = derived.get("closed_form") if derived is not None else None
         try:
             l1, l2 = arm.l1, arm.l2
-        except AttributeError:
-            l1, l2 = arm_lengths(arm)  # not an arm: raises, naming it
-        r_min_squared, r_max_squared, inverse, low_outer, low_inner, judging_one = terms or _reach_terms(arm)
+            terms = getattr(arm, "_derived")["closed_form"]  # the arm's cached constants (set in its __post_init__)
+        except AttributeError:  # not a TwoLinkArm (or not an arm: arm_lengths raises, naming it)
+            l1, l2 = arm_lengths(arm)
+            terms = _reach_terms(arm)
+        except KeyError:  # the first call on this arm
+            terms = _reach_terms(arm)
+        r_min_squared, r_max_squared, inverse, low_outer, low_inner, judging_one = terms
+        try:
+            judging = judging_one[elbow]  # also: elbow is one of the words (else the vectorised path says so)
+        except (KeyError, TypeError):
+            judging = None
         x, y = target
         r_squared = x * x + y * y
         one_minus_c2 = (r_max_squared - r_squared) * inverse
         one_plus_c2 = (r_squared - r_min_squared) * inverse
-        if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner:  # else the vectorised path raises
+        # outside the reach (the vectorised path raises) or not an elbow word: the vectorised path
+        if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner and judging is not None:
             if one_minus_c2 < 0.0:
                 one_minus_c2 = 0.0
             if one_plus_c2 < 0.0:
@@ -143,16 +150,16 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
             if elbow == "down" or (elbow == "auto" and arm.q_min is None):
                 q = np.empty(2)  # then two item assignments: faster than np.array of a list
                 q[0], q[1] = math.atan2(yk1 - xk2, xk1 + yk2), q2_down
-                return result_judged_by(arm, target, q, judging_one[elbow])
+                return result_judged_by(arm, target, q, judging)
             if elbow == "up":
                 q = np.empty(2)
                 q[0], q[1] = math.atan2(yk1 + xk2, xk1 - yk2), -q2_down
-                return result_judged_by(arm, target, q, judging_one[elbow])
+                return result_judged_by(arm, target, q, judging)
             if elbow == "both":
                 q = np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down, math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
                 q.shape = (2, 2)
-                return result_judged_by(arm, target, q, judging_one[elbow])
-            # "auto" with joint limits, or not an elbow word: the vectorised path
+                return result_judged_by(arm, target, q, judging)
+            # "auto" with joint limits: the vectorised path
     elbow = check_elbow(elbow)
     targets: NDArray[np.float64] = as_pairs(p, "target p")
     try:

@@ -50,6 +50,7 @@ class Judging(NamedTuple):
     #: Describes the first failed answer for the message (None: its residual only).
     failure_detail: FailureDetail | None = None
 
+
 # the lazily computed fields, in this order: success, iterations, residual, within_limits, message
 _Fields = tuple[NDArray[np.bool_], NDArray[np.int_], NDArray[np.float64], NDArray[np.bool_], str]
 
@@ -65,9 +66,10 @@ class IKResult:
     The solvers build it; ``residual``, ``success``, ``within_limits``,
     ``iterations`` and ``message`` are computed from the arm, the targets and
     ``q`` when first read (then kept), so a result whose ``q`` alone is used
-    costs no forward kinematics.  The result is immutable (its attributes
-    cannot be set); ``q`` is the result's own array: change a copy of it, not
-    it, or the fields read afterwards describe the changed angles.
+    costs no forward kinematics.  The result is immutable (its fields are
+    read-only properties, and it takes no new attributes); ``q`` is the
+    result's own array: change a copy of it, not it, or the fields read
+    afterwards describe the changed angles.
 
     Attributes
     ----------
@@ -126,7 +128,7 @@ class IKResult:
     >>> result.q = [0.0, 0.0]
     Traceback (most recent call last):
     ...
-    AttributeError: IKResult is immutable: its fields cannot be set (got q)
+    AttributeError: property 'q' of 'IKResult' object has no setter
 
     Built by hand (the fields come from forward kinematics):
 
@@ -140,10 +142,10 @@ class IKResult:
              max iterations 0, message='solved 2 targets in closed form (both branches); 2 of 4 answers violate the joint limits (see within_limits)')
     """
 
-    __slots__ = ("_inputs", "_fields")
+    # one slot: [arm, p, q, judging, fields], fields None until first read (a list: no exception, one store)
+    __slots__ = ("_state",)
 
-    _inputs: tuple[Any, ...]
-    _fields: _Fields
+    _state: list[Any]
 
     def __init__(
         self,
@@ -161,20 +163,19 @@ class IKResult:
         q = np.array(as_pairs(q, "q"))
         if q.shape[q.ndim - p.ndim :] != p.shape:
             raise ValueError(f"q of shape {q.shape} does not hold one answer per target p of shape {p.shape}")
-        judging = Judging(iterations, threshold, str(method), str(solved_message), failure_detail)
-        object.__setattr__(self, "_inputs", (arm, p, q, judging))
+        self._state = [arm, p, q, Judging(iterations, threshold, str(method), str(solved_message), failure_detail), None]
 
     # ------------------------------------------------------------------ fields
     @property
     def q(self) -> NDArray[np.float64]:
         """Joint angles in radians, shape ``(..., 2)``."""
-        q: NDArray[np.float64] = self._inputs[2]
+        q: NDArray[np.float64] = self._state[2]
         return q
 
     @property
     def method(self) -> str:
         """Which solver produced this result."""
-        method: str = self._inputs[3].method
+        method: str = self._state[3].method
         return method
 
     @property
@@ -208,22 +209,15 @@ class IKResult:
         return bool(np.all(self._evaluated()[0]))
 
     def _evaluated(self) -> _Fields:
-        try:
-            return self._fields
-        except AttributeError:
-            pass
-        arm, p, q, judging = self._inputs
-        fields = _one_answer_fields(arm, p, q, judging) if q.shape == (2,) else _fields(arm, p, q, judging)
-        _set_fields(self, fields)
+        state = self._state
+        fields: _Fields | None = state[4]
+        if fields is None:
+            arm, p, q, judging, _ = state
+            fields = _one_answer_fields(arm, p, q, judging) if q.shape == (2,) else _fields(arm, p, q, judging)
+            state[4] = fields
         return fields
 
-    # ------------------------------------------------------------------ immutability, repr, pickling
-    def __setattr__(self, name: str, value: object) -> NoReturn:
-        raise AttributeError(f"IKResult is immutable: its fields cannot be set (got {name})")
-
-    def __delattr__(self, name: str) -> NoReturn:
-        raise AttributeError(f"IKResult is immutable: its fields cannot be deleted (got {name})")
-
+    # ------------------------------------------------------------------ not an array, repr, pickling
     def __array__(self, *args: object, **kwargs: object) -> NoReturn:
         raise TypeError(
             "an IKResult is not an array of joint angles: use its .q (and check .success), "
@@ -329,15 +323,11 @@ def _one_answer_fields(arm: TwoLinkArm, p: Any, q: NDArray[np.float64], judging:
 
 def _restored(q: NDArray[np.float64], method: str, fields: _Fields) -> IKResult:
     result = _new(IKResult)
-    _set_inputs(result, (None, None, q, Judging(0, 0.0, method, fields[4])))  # the fields are known: no arm, no p
-    _set_fields(result, fields)
+    result._state = [None, None, q, Judging(0, 0.0, method, fields[4]), fields]  # the fields known: no arm, no p
     return result
 
 
 _new = object.__new__
-# the slots' descriptors: setting through them skips IKResult.__setattr__ (which refuses)
-_set_inputs = vars(IKResult)["_inputs"].__set__
-_set_fields = vars(IKResult)["_fields"].__set__
 
 
 def result_judged_by(arm: TwoLinkArm, p: Any, q: NDArray[np.float64], judging: Judging) -> IKResult:
@@ -359,7 +349,7 @@ def result_judged_by(arm: TwoLinkArm, p: Any, q: NDArray[np.float64], judging: J
         How the answers are judged and described.
     """
     result = _new(IKResult)
-    _set_inputs(result, (arm, p, q, judging))
+    result._state = [arm, p, q, judging, None]
     return result
 
 
@@ -395,5 +385,5 @@ def assemble_result(
         answer for the message.
     """
     result = _new(IKResult)
-    _set_inputs(result, (arm, p, q, Judging(iterations, threshold, method, solved_message, failure_detail)))
+    result._state = [arm, p, q, Judging(iterations, threshold, method, solved_message, failure_detail), None]
     return result
