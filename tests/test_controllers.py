@@ -157,12 +157,12 @@ def test_the_source_exercise_numbers():
     arm = arms.two_metre
     spring = CartesianSpring(arm, 600.0, [3.0, 1.0])
     for y in np.linspace(0.0, 2.0, 9):
-        for q in ik.closed_form(arm, [3.0, y], elbow="both"):
+        for q in ik.closed_form(arm, [3.0, y], elbow="both").q:
             tau = spring(0.0, q, ZERO)
             assert tau[0] == pytest.approx(3.0 * 600.0 * (1.0 - y), abs=1e-9)
             elbow = arm.joint_positions(q)[1]
             assert tau[1] == pytest.approx((3.0 - elbow[0]) * 600.0 * (1.0 - y), abs=1e-9)
-    assert np.allclose(spring(0.0, ik.closed_form(arm, [3.0, 1.0]), ZERO), 0.0, atol=1e-9)
+    assert np.allclose(spring(0.0, ik.closed_form(arm, [3.0, 1.0]).q, ZERO), 0.0, atol=1e-9)
 
 
 def test_impedance_torque_adds_damping_and_gravity():
@@ -184,7 +184,7 @@ def test_impedance_torque_adds_damping_and_gravity():
 def test_at_the_rest_point_with_gravity_compensation_the_arm_stays_at_rest(arm, reach_fraction, direction, elbow):
     r_low, r_high = arm.reach
     rest_point = (r_low + reach_fraction * (r_high - r_low)) * np.array([np.cos(direction), np.sin(direction)])
-    q_rest = ik.closed_form(arm, rest_point, elbow=elbow)
+    q_rest = ik.closed_form(arm, rest_point, elbow=elbow).q
     assume(abs(np.sin(q_rest[1])) > 0.05)
     control = Impedance(arm, 100.0 * (arm.m1 + arm.m2), 5.0 * (arm.m1 + arm.m2), rest_point)
     result = simulate(arm, q_rest, ZERO, 2.0, torque=control, **TIGHT)
@@ -197,7 +197,7 @@ def test_at_the_rest_point_with_gravity_compensation_the_arm_stays_at_rest(arm, 
 def test_without_gravity_compensation_the_arm_sags():
     """The same test fails when the weight is not carried: the check above can fail."""
     arm = arms.two_metre
-    q_rest = ik.closed_form(arm, [3.0, 1.0])
+    q_rest = ik.closed_form(arm, [3.0, 1.0]).q
     control = Impedance(arm, 600.0, 60.0, [3.0, 1.0], gravity_compensation=False)
     result = simulate(arm, q_rest, ZERO, 2.0, torque=control, **TIGHT)
     assert np.max(np.abs(result.q - q_rest)) > 1e-3
@@ -207,9 +207,9 @@ def test_without_gravity_compensation_the_arm_sags():
 @pytest.mark.parametrize("start", [[3.0, 2.0], [2.0, 0.5], [3.5, 1.5]])
 def test_the_critically_damped_loop_settles_at_the_rest_point(arm, start):
     rest_point = np.array([3.0, 1.0])
-    q_rest = ik.closed_form(arm, rest_point)
+    q_rest = ik.closed_form(arm, rest_point).q
     control = Impedance(arm, 600.0, critical_damping(arm, q_rest, 600.0), rest_point)
-    result = simulate(arm, ik.closed_form(arm, start), ZERO, 3.0, torque=control, t_eval=[0.0, 0.2, 3.0], **TIGHT)
+    result = simulate(arm, ik.closed_form(arm, start).q, ZERO, 3.0, torque=control, t_eval=[0.0, 0.2, 3.0], **TIGHT)
     p_end = arm.fk(result.q[-1])
     assert np.linalg.norm(p_end - rest_point) < 1e-6  # metres, after 3 s
     assert np.linalg.norm(arm.tip_velocity(result.q[-1], result.qd[-1])) < 1e-5  # m/s
@@ -219,10 +219,10 @@ def test_the_critically_damped_loop_settles_at_the_rest_point(arm, start):
 def test_without_compensation_it_settles_where_spring_and_weight_balance():
     arm = arms.two_metre
     rest_point = np.array([3.0, 1.0])
-    q_rest = ik.closed_form(arm, rest_point)
+    q_rest = ik.closed_form(arm, rest_point).q
     control = Impedance(arm, 600.0, critical_damping(arm, q_rest, 600.0), rest_point, gravity_compensation=False)
     q_balance = equilibrium(arm, control, q_rest)
-    result = simulate(arm, ik.closed_form(arm, [3.0, 2.0]), ZERO, 4.0, torque=control, t_eval=[0.0, 4.0], **TIGHT)
+    result = simulate(arm, ik.closed_form(arm, [3.0, 2.0]).q, ZERO, 4.0, torque=control, t_eval=[0.0, 4.0], **TIGHT)
     assert np.allclose(result.q[-1], q_balance, atol=1e-6)
     sag = rest_point - arm.fk(q_balance)
     assert sag[1] > 0.01  # below the rest point by more than a centimetre
@@ -233,7 +233,7 @@ def test_without_compensation_it_settles_where_spring_and_weight_balance():
 def test_the_pure_spring_conserves_arm_plus_spring_energy():
     arm = arms.two_metre
     spring = CartesianSpring(arm, 600.0, [3.0, 1.0])
-    result = simulate(arm, ik.closed_form(arm, [3.0, 2.0]), ZERO, 2.0, torque=spring, **TIGHT)
+    result = simulate(arm, ik.closed_form(arm, [3.0, 2.0]).q, ZERO, 2.0, torque=spring, **TIGHT)
     kinetic, potential = result.energy()
     total = kinetic + potential + spring.potential_energy(result.q)
     assert np.max(kinetic) > 100.0  # it really swings
@@ -419,7 +419,7 @@ def test_impedance_pushing_on_a_stiff_wall_reproduces_the_statics_answer():
     statics_answer = statics.wall_contact(arm, pressed_wall, push, include_gravity=True)
     p_contact = statics_answer.p_contact[statics_answer.branch("down")]
     rest_point = p_contact + (push / k) * normal
-    q_start = ik.closed_form(arm, p_contact - 0.3 * normal)
+    q_start = ik.closed_form(arm, p_contact - 0.3 * normal).q
     control = Impedance(arm, k, 80.0, rest_point)
     world = TipForce(arm, control, SpringWall(WALL, k_wall, damping=2000.0))
     result = simulate(arm, q_start, ZERO, 3.0, torque=world, t_eval=[0.0, 3.0], **TIGHT)

@@ -91,7 +91,7 @@ def test_print_error_stops_the_block_at_the_error(capsys):
 
 def test_print_error_prints_nothing_when_nothing_is_refused(capsys):
     with display.print_error("never: ") as caught:
-        q = ik.closed_form(arms.two_metre, [3.0, 1.0])
+        q = ik.closed_form(arms.two_metre, [3.0, 1.0]).q
     assert caught.error is None and capsys.readouterr().out == ""
     assert np.allclose(arms.two_metre.fk(q), [3.0, 1.0])
 

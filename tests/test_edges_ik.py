@@ -74,12 +74,14 @@ EMPTY_SHAPES = [(0, 2), (3, 0, 2), (0, 0, 2)]
 @pytest.mark.parametrize(
     "solve",
     [
+        lambda p: ik.closed_form(arms.ten, p),
+        lambda p: ik.closed_form(arms.ten, p, elbow="auto"),
         lambda p: ik.newton(arms.ten, p),
         lambda p: ik.minimize(arms.ten, p),
         lambda p: ik.minimize(arms.ten, p, constrained=True),
         lambda p: ik.brute_force(arms.ten, p, step=np.radians(5.0)),
     ],
-    ids=["newton", "minimize", "minimize-constrained", "brute-force"],
+    ids=["closed-form", "closed-form-auto", "newton", "minimize", "minimize-constrained", "brute-force"],
 )
 def test_an_empty_batch_gives_an_empty_result(solve, shape):
     result = solve(np.empty(shape))
@@ -94,8 +96,8 @@ def test_empty_batches_through_the_vectorised_functions(shape):
 
     arm, empty = arms.ten, np.empty(shape)
     lead = shape[:-1]
-    assert ik.closed_form(arm, empty).shape == shape
-    assert ik.closed_form(arm, empty, elbow="both").shape == lead + (2, 2)
+    assert ik.closed_form(arm, empty).q.shape == shape
+    assert ik.closed_form(arm, empty, elbow="both").q.shape == (2,) + shape
     assert arm.fk(empty).shape == shape and arm.jacobian(empty).shape == lead + (2, 2)
     assert arm.forward_dynamics(empty, empty, empty).shape == shape
     assert arm.forward_dynamics(empty, empty, empty, empty).shape == shape

@@ -33,7 +33,7 @@ def test_arms_at_the_ends_of_the_range_are_exact(length):
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no overflow or underflow warnings either
         p = arm.fk(q)
-        assert np.allclose(ik.closed_form(arm, p), q, rtol=1e-12)
+        assert np.allclose(ik.closed_form(arm, p).q, q, rtol=1e-12)
         tau = arm.inverse_dynamics(q, [0.3, -0.2], qdd_wanted)
         qdd = arm.forward_dynamics(q, [0.3, -0.2], tau)
     assert np.all(np.isfinite(tau))

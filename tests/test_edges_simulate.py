@@ -44,7 +44,7 @@ def test_a_loop_that_becomes_stiff_on_contact_stops_within_the_evaluation_budget
     """Free of the 1e8 N/m wall at the start, pressed into it later: the budget stops it and names the fix."""
     wall = contact.SpringWall(statics.Wall.through([3.0, 0.0], [3.0, 1.0]), stiffness=1e8)
     pressed = contact.TipForce(ARM, controllers.Impedance(ARM, 600.0, 50.0, [3.5, 1.0]), wall)
-    q0 = ik.closed_form(ARM, [2.5, 1.0])
+    q0 = ik.closed_form(ARM, [2.5, 1.0]).q
     with pytest.raises(SimulationError, match=r"max_evaluations = 3000 .*stiff.*method='Radau' or method='LSODA'") as error:
         timed(lambda: simulate(ARM, q0, [0.0, 0.0], 0.5, torque=pressed, max_evaluations=3000))
     assert error.value.seconds < 10.0

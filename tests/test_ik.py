@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 from conftest import angles, unit
 from conftest import arms as arm_strategy
-from hypothesis import assume, given
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from twolink import TwoLinkArm, UnreachableError, arms, ik, wrap_angle
+from twolink import TwoLinkArm, UnreachableError, arms, ik, kinematics, wrap_angle
 
 
 def target_at(radius, heading):
@@ -21,7 +21,7 @@ def test_closed_form_round_trip_over_the_annulus(arm, fraction, heading):
     r_min, r_max = arm.reach
     p = target_at(r_min + fraction * (r_max - r_min), heading)
     for elbow in ("down", "up"):
-        q = ik.closed_form(arm, p, elbow=elbow)
+        q = ik.closed_form(arm, p, elbow=elbow).q
         assert np.linalg.norm(arm.fk(q) - p) <= 1e-9 * r_max
 
 
@@ -37,7 +37,7 @@ def test_closed_form_within_1e12_of_either_reach_circle(arm, offset, heading, ou
     radius = (r_max if outer else r_min) + offset * r_max
     assume(radius >= 0.0)
     p = target_at(radius, heading)
-    q_both = ik.closed_form(arm, p, elbow="both")
+    q_both = ik.closed_form(arm, p, elbow="both").q
     assert np.all(np.isfinite(q_both))
     for q in q_both:
         assert np.linalg.norm(arm.fk(q) - p) <= 1e-9 * r_max
@@ -48,13 +48,13 @@ def test_full_stretch_cos_q2_rounds_above_one_and_is_clipped():
     p = np.array([10 * np.sqrt(2), 10 * np.sqrt(2)])
     c2 = (p @ p - 200.0) / 200.0
     assert c2 > 1.0  # the round-off the issue warns about
-    q = ik.closed_form(arm, p)
+    q = ik.closed_form(arm, p).q
     assert np.allclose(q, [np.pi / 4, 0.0], atol=1e-7)
-    assert np.allclose(ik.closed_form(arm, p, elbow="up"), ik.closed_form(arm, p, elbow="down"), atol=1e-7)
+    assert np.allclose(ik.closed_form(arm, p, elbow="up").q, ik.closed_form(arm, p, elbow="down").q, atol=1e-7)
 
 
 def test_full_fold_with_equal_links_reaches_the_base():
-    q = ik.closed_form(arms.ten, [0.0, 0.0])
+    q = ik.closed_form(arms.ten, [0.0, 0.0]).q
     assert q[1] == pytest.approx(np.pi)
     assert np.allclose(arms.ten.fk(q), 0.0, atol=1e-12)
 
@@ -63,18 +63,18 @@ def test_full_fold_with_equal_links_reaches_the_base():
 def test_branches_have_the_documented_signs(arm, fraction, heading):
     r_min, r_max = arm.reach
     p = target_at(r_min + fraction * (r_max - r_min), heading)
-    q_both = ik.closed_form(arm, p, elbow="both")
+    q_both = ik.closed_form(arm, p, elbow="both").q
     assert q_both.shape == (2, 2)
     assert q_both[0, 1] >= 0.0 and q_both[1, 1] <= 0.0
-    assert np.allclose(q_both[0], ik.closed_form(arm, p, elbow="down"))
-    assert np.allclose(q_both[1], ik.closed_form(arm, p, elbow="up"))
+    assert np.allclose(q_both[0], ik.closed_form(arm, p, elbow="down").q)
+    assert np.allclose(q_both[1], ik.closed_form(arm, p, elbow="up").q)
     assert np.all(np.abs(q_both) <= np.pi + 1e-12)
 
 
 def test_elbow_down_puts_the_elbow_below_the_base_to_tip_line():
     p = np.array([1.5, 0.0])
     for elbow, sign in (("down", -1.0), ("up", 1.0)):
-        elbow_point = arms.two_metre.joint_positions(ik.closed_form(arms.two_metre, p, elbow=elbow))[1]
+        elbow_point = arms.two_metre.joint_positions(ik.closed_form(arms.two_metre, p, elbow=elbow).q)[1]
         assert np.sign(elbow_point[1]) == sign
 
 
@@ -82,18 +82,22 @@ def test_closed_form_is_vectorised_over_leading_axes():
     rng = np.random.default_rng(3)
     q_true = rng.uniform(-np.pi, np.pi, (4, 5, 2))
     p = arms.osake.fk(q_true)
-    q = ik.closed_form(arms.osake, p)
+    result = ik.closed_form(arms.osake, p)
+    q = result.q
     assert q.shape == (4, 5, 2)
-    assert ik.closed_form(arms.osake, p, elbow="both").shape == (4, 5, 2, 2)
+    assert result.success.shape == result.residual.shape == result.within_limits.shape == (4, 5)
+    both = ik.closed_form(arms.osake, p, elbow="both")
+    assert both.q.shape == (2, 4, 5, 2)  # the branches on a new leading axis, down first
+    assert both.success.shape == both.residual.shape == both.iterations.shape == (2, 4, 5)
     assert np.allclose(arms.osake.fk(q), p, atol=1e-12)
     # q_true is recovered on the branch matching the sign of its q2
-    q_both = ik.closed_form(arms.osake, p, elbow="both")
-    q_matching = np.where((q_true[..., 1] >= 0)[..., None], q_both[..., 0, :], q_both[..., 1, :])
+    q_both = both.q
+    q_matching = np.where((q_true[..., 1] >= 0)[..., None], q_both[0], q_both[1])
     assert np.allclose(np.cos(q_matching - q_true), 1.0)
 
 
 def test_source_example_double_root():
-    q_both = ik.closed_form(arms.ten, [10 * np.sqrt(2), 10 * np.sqrt(2)], elbow="both")
+    q_both = ik.closed_form(arms.ten, [10 * np.sqrt(2), 10 * np.sqrt(2)], elbow="both").q
     assert np.allclose(q_both, [[np.pi / 4, 0.0], [np.pi / 4, 0.0]], atol=1e-7)
 
 
@@ -141,7 +145,7 @@ def test_newton_agrees_with_a_closed_form_branch(arm, fraction, heading):
     result = ik.newton(arm, p, q0=(0.5, 1.0))
     assert result.success and result.method == "newton"
     assert result.residual <= 1e-12 * r_max
-    down, up = ik.closed_form(arm, p, elbow="both")
+    down, up = ik.closed_form(arm, p, elbow="both").q
     assert same_angles(result.q, down, 1e-6) or same_angles(result.q, up, 1e-6)
 
 
@@ -170,8 +174,8 @@ def test_minimize_agrees_with_closed_form(constrained):
     result = ik.minimize(arm, p, q0=(0.4, 1.0), constrained=constrained)
     assert result.all_success, result.message
     assert np.all(result.residual <= 1e-9 * 4.0)
-    q_both = ik.closed_form(arm, p, elbow="both")
-    for q, (down, up) in zip(result.q, q_both):
+    q_both = ik.closed_form(arm, p, elbow="both").q
+    for q, down, up in zip(result.q, *q_both):
         assert same_angles(q, down, 1e-5) or same_angles(q, up, 1e-5)
 
 
@@ -191,7 +195,7 @@ def test_brute_force_agrees_with_closed_form_to_its_grid_step(fraction, heading)
     p = target_at(fraction * 20.0, heading)
     step = np.radians(1.0)
     result = ik.brute_force(arm, p, step=step)
-    q_both = ik.closed_form(arm, p, elbow="both")
+    q_both = ik.closed_form(arm, p, elbow="both").q
     inside = [q for q in q_both if arm.within_limits(q)]
     assume(inside)
     assert result.success
@@ -243,3 +247,192 @@ def test_ik_result_fields():
     assert result.success.dtype == bool
     assert result.iterations.dtype.kind == "i"
     assert isinstance(result.message, str)
+
+
+# ---------------------------------------------------------------- one result type (issue 12)
+SOLVERS = {
+    "closed_form": lambda arm, p: ik.closed_form(arm, p),
+    "closed_form both": lambda arm, p: ik.closed_form(arm, p, elbow="both"),
+    "closed_form auto": lambda arm, p: ik.closed_form(arm, p, elbow="auto"),
+    "newton": lambda arm, p: ik.newton(arm, p, q0=(0.5, 1.0)),
+    "minimize": lambda arm, p: ik.minimize(arm, p, q0=(0.5, 1.0)),
+    "brute_force": lambda arm, p: ik.brute_force(arm, p, step=np.radians(2.0)),
+}
+
+
+@pytest.mark.parametrize("name", SOLVERS)
+@pytest.mark.parametrize("p", [[12.0, 9.0], [[12.0, 9.0], [5.0, 12.0], [-10.0, 10.0]]], ids=["one", "batch"])
+def test_every_solver_returns_an_ik_result_with_the_documented_fields(name, p):
+    result = SOLVERS[name](arms.ten, p)
+    assert isinstance(result, ik.IKResult)
+    lead = np.shape(p)[:-1]
+    if name == "closed_form both":
+        lead = (2,) + lead
+    assert isinstance(result.q, np.ndarray) and result.q.dtype == np.float64 and result.q.shape == lead + (2,)
+    for field, kind in (("success", "b"), ("within_limits", "b"), ("iterations", "i"), ("residual", "f")):
+        value = getattr(result, field)
+        assert isinstance(value, np.ndarray) and value.shape == lead and value.dtype.kind == kind, field
+    assert isinstance(result.message, str) and isinstance(result.method, str)
+    assert isinstance(result.all_success, bool)
+    assert result.all_success == bool(np.all(result.success))
+    assert np.array_equal(result.within_limits, arms.ten.within_limits(result.q))
+
+
+def test_closed_form_returns_a_result_whose_residual_is_recomputed_from_q():
+    p = np.array([[12.0, 9.0], [5.0, 12.0]])
+    result = ik.closed_form(arms.ten, p)
+    assert result.method == "closed-form" and np.all(result.iterations == 0)
+    assert np.array_equal(result.residual, np.hypot(*(arms.ten.fk(result.q) - p).T))
+    assert result.all_success and np.all(result.residual < 1e-12)
+    # the fields are computed from q when first read: a q changed before then shows in the residual
+    changed = ik.closed_form(arms.ten, p)
+    changed.q[1, 0] += 0.1
+    assert changed.residual[1] == pytest.approx(np.linalg.norm(arms.ten.fk(changed.q[1]) - p[1]), abs=1e-15)
+    assert changed.residual[1] > 1.0 and not changed.success[1] and not changed.all_success
+    assert "failed for 1 of 2 targets (first: flat index 1" in changed.message
+
+
+def test_a_result_keeps_its_own_targets():
+    p = np.array([[12.0, 9.0], [5.0, 12.0]])
+    for result in (ik.closed_form(arms.ten, p), ik.newton(arms.ten, p), ik.closed_form(arms.ten, p[0])):
+        p[...] = 0.0  # the caller reuses its array before reading the fields
+        assert result.all_success, result.message
+        p[...] = [[12.0, 9.0], [5.0, 12.0]]
+
+
+def test_an_unreachable_target_has_no_closed_form_result():
+    with pytest.raises(UnreachableError, match=re.escape("target (30, 40) is 50 m from the base")):
+        ik.closed_form(arms.ten, [30.0, 40.0], elbow="auto")
+    with pytest.raises(UnreachableError, match=re.escape("target (0, 25) (index (1,), first of 1) is 25 m")):
+        ik.closed_form(arms.ten, [[10.0, 10.0], [0.0, 25.0]], elbow="both")
+
+
+def test_ik_result_is_immutable_and_not_an_array():
+    result = ik.closed_form(arms.ten, [12.0, 9.0])
+    for field in ("q", "success", "iterations", "residual", "method", "message", "within_limits", "all_success"):
+        with pytest.raises(AttributeError, match="no setter"):
+            setattr(result, field, 1.0)
+        with pytest.raises(AttributeError, match="no deleter"):
+            delattr(result, field)
+    with pytest.raises(AttributeError, match="no attribute 'anything'"):
+        result.anything = 1.0  # no new attributes either
+    with pytest.raises(TypeError, match=r"use its \.q"):
+        np.asarray(result)
+    with pytest.raises(TypeError):
+        down, up = ik.closed_form(arms.ten, [12.0, 9.0], elbow="both")  # the branches are its .q
+
+
+def test_ik_result_repr_names_the_method_and_the_outcome():
+    one = repr(ik.closed_form(arms.ten, [12.0, 4.0]))
+    assert one.startswith("IKResult(method='closed-form', q=array([") and "success=True" in one
+    assert "within_limits=False" in one and "violate the joint limits" in one
+    batch = repr(ik.newton(arms.ten, [[12.0, 9.0], [5.0, 12.0]]))
+    assert "q of shape (2, 2), success 2 of 2" in batch and "max iterations" in batch
+
+
+def test_ik_result_survives_pickling_and_copying():
+    import copy
+    import pickle
+
+    for result in (ik.closed_form(arms.ten, [12.0, 4.0]), ik.newton(arms.ten, [[12.0, 9.0], [5.0, 12.0]])):
+        for twin in (pickle.loads(pickle.dumps(result)), copy.deepcopy(result), copy.copy(result)):
+            assert type(twin) is ik.IKResult and twin.method == result.method and twin.message == result.message
+            for field in ("q", "success", "iterations", "residual", "within_limits"):
+                assert np.array_equal(getattr(twin, field), getattr(result, field)), field
+
+
+def test_ik_result_built_by_hand_checks_its_shapes():
+    made = ik.IKResult(arms.ten, [[20.0, 0.0]], [[0.0, 0.0]], iterations=[3], threshold=1e-9, method="mine",
+                       solved_message="done")
+    assert made.all_success and made.iterations.tolist() == [3] and made.message == "done"
+    with pytest.raises(ValueError, match="one answer per target"):
+        ik.IKResult(arms.ten, [[20.0, 0.0]], [[0.0, 0.0], [1.0, 0.0]], iterations=0, threshold=1e-9,
+                    method="mine", solved_message="done")
+
+
+FIELDS = ("success", "iterations", "residual", "within_limits", "message")
+
+
+@settings(max_examples=60)
+@given(
+    arm=st.sampled_from([arms.ten, arms.two_metre, arms.two_metre_limited, arms.osake]),
+    fractions=st.lists(st.tuples(unit, angles), min_size=1, max_size=4),
+    one=st.booleans(),
+    solver=st.sampled_from(["closed_form", "closed_form both", "closed_form auto", "newton"]),
+    order=st.permutations(FIELDS),
+)
+def test_lazily_computed_fields_equal_eagerly_computed_ones(arm, fractions, one, solver, order):
+    r_min, r_max = arm.reach
+    p = np.array([target_at(r_min + f * (r_max - r_min), heading) for f, heading in fractions])
+    p = p[0] if one else p
+    result = SOLVERS[solver](arm, p.tolist() if one else p)
+    read = {field: getattr(result, field) for field in order}  # in any order: one computation, kept
+    for field in FIELDS:
+        assert getattr(result, field) is read[field]  # computed once
+    # eagerly: forward kinematics of q, against the solver's documented threshold
+    residual = np.hypot(*np.moveaxis(arm.fk(result.q) - p, -1, 0))
+    if solver == "newton":
+        threshold = 1e-12 * r_max + kinematics.distance_outside_reach(arm, p)
+    else:
+        threshold = ik.analytic.CLOSED_FORM_RTOL * r_max
+    np.testing.assert_allclose(read["residual"], residual, rtol=0, atol=1e-15 * r_max)
+    assert np.array_equal(read["success"], residual <= threshold)
+    assert np.array_equal(read["within_limits"], arm.within_limits(result.q))
+    assert read["residual"].shape == read["success"].shape == read["iterations"].shape == result.q.shape[:-1]
+    # one target on floats gives what the same target in a batch of one gives
+    if one:
+        batch = SOLVERS[solver](arm, p[None, :])
+        for field in ("success", "iterations", "within_limits"):
+            assert np.array_equal(read[field], np.take(getattr(batch, field), 0, axis=-1)), field
+        np.testing.assert_allclose(read["residual"], np.take(batch.residual, 0, axis=-1), rtol=0, atol=1e-12 * r_max)
+
+
+# ---------------------------------------------------------------- the elbow words
+@pytest.mark.parametrize("elbow", [None, "elbow-up", "Down", 1, ["down"]], ids=repr)
+@pytest.mark.parametrize("p", [[10.0, 10.0], [[10.0, 10.0]]], ids=["one", "batch"])
+def test_closed_form_names_the_elbow_words_it_accepts(elbow, p):
+    with pytest.raises(ValueError, match=re.escape("elbow must be one of ('down', 'up', 'both', 'auto')")):
+        ik.closed_form(arms.ten, p, elbow=elbow)
+
+
+def test_auto_is_down_for_an_arm_without_limits():
+    rng = np.random.default_rng(2)
+    p = arms.two_metre.fk(rng.uniform(-np.pi, np.pi, (50, 2)))
+    assert np.array_equal(ik.closed_form(arms.two_metre, p, elbow="auto").q, ik.closed_form(arms.two_metre, p).q)
+    for target in p[:5]:
+        assert np.array_equal(ik.closed_form(arms.two_metre, target.tolist(), elbow="auto").q,
+                              ik.closed_form(arms.two_metre, target.tolist()).q)
+
+
+@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited], ids=["ten", "two_metre_limited"])
+def test_auto_picks_a_branch_within_the_limits_down_first(arm):
+    from twolink import workspace
+
+    rng = np.random.default_rng(4)
+    r_max = arm.reach[1]
+    p = rng.uniform(-r_max, r_max, (4000, 2))
+    p = p[np.hypot(*p.T) <= r_max]
+    auto = ik.closed_form(arm, p, elbow="auto")
+    down, up = ik.closed_form(arm, p, elbow="both").q
+    down_ok, up_ok = arm.within_limits(down, tol=ik.LIMIT_TOL), arm.within_limits(up, tol=ik.LIMIT_TOL)
+    assert down_ok.sum() > 100 and (~down_ok & ~up_ok).sum() > 100
+    # equal links with equal absolute limits: a branch and its mirror take the same two link angles
+    assert (~down_ok & up_ok).sum() > 100 or arm is arms.two_metre_limited
+    assert np.array_equal(auto.q[down_ok], down[down_ok])  # down preferred (its angles exactly)
+    assert np.array_equal(auto.q[~down_ok & up_ok], up[~down_ok & up_ok])
+    assert np.array_equal(auto.q[~down_ok & ~up_ok], down[~down_ok & ~up_ok])  # neither: down, and said so
+    assert np.array_equal(arm.within_limits(auto.q, tol=ik.LIMIT_TOL), down_ok | up_ok)
+    assert np.array_equal(down_ok | up_ok, workspace.is_reachable(arm, p))
+    assert auto.all_success and np.all(auto.residual < 1e-12 * r_max)
+    assert "with neither branch within them" in auto.message
+    # one target at a time takes the same branch
+    for index in np.flatnonzero(~down_ok & up_ok)[:5]:
+        assert np.array_equal(ik.closed_form(arm, p[index].tolist(), elbow="auto").q, up[index])
+
+
+def test_auto_moves_angles_by_a_turn_into_limits_beyond_pi():
+    arm = TwoLinkArm(1.0, 1.0, q_min=(np.pi / 2, 0.0), q_max=(1.75 * np.pi, np.pi))  # q1 up to 315 deg
+    p = arm.fk([1.5 * np.pi, 0.5])  # q1 = 270 deg: the closed form gives -90 deg
+    auto = ik.closed_form(arm, p, elbow="auto")
+    assert auto.within_limits and np.allclose(auto.q, [1.5 * np.pi, 0.5])
+    assert not ik.closed_form(arm, p, elbow="down").within_limits

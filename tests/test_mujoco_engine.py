@@ -78,7 +78,7 @@ def test_constant_torques_equal_to_gravity_hold_the_arm():
 def test_the_same_impedance_controller_drives_both_and_mujoco_converges_with_the_step():
     arm = arms.two_metre
     control = Impedance(arm, stiffness=600.0, damping=50.0, rest_point=[3.0, 1.0])
-    q0 = ik.closed_form(arm, [2.5, 0.5])
+    q0 = ik.closed_form(arm, [2.5, 0.5]).q
     reference = simulate(arm, q0, [0.0, 0.0], 0.4, torque=control, t_eval=[0.0, 0.2, 0.4])
     errors = []
     for timestep in (1e-3, 5e-4):

@@ -209,7 +209,7 @@ def test_a_function_without_its_course_dependency_names_itself_and_the_extra(mon
 
     monkeypatch.setitem(sys.modules, "control", None)  # as if python-control were not installed
     arm = arms.two_metre
-    q_rest = ik.closed_form(arm, [3.0, 1.0])
+    q_rest = ik.closed_form(arm, [3.0, 1.0]).q
     impedance = controllers.Impedance(arm, 600.0, 50.0, [3.0, 1.0])
     args = (arm, impedance, q_rest) if function == "linearize" else (arm, impedance)
     with pytest.raises(ImportError, match=rf'twolink\.linearization\.{function} needs control.*pip install "twolink\[course\]"'):
@@ -254,7 +254,7 @@ BARE_SCRIPT = textwrap.dedent("""
     assert any(f.name == "LICENSE" for f in importlib.metadata.files("twolink"))
     from twolink import arms, controllers, ik, linearization, plot, simulate
     arm = twolink.TwoLinkArm(l1=2.0, l2=2.0, m1=1.0, m2=1.0)
-    q = ik.closed_form(arm, [3.0, 1.0], elbow="down")
+    q = ik.closed_form(arm, [3.0, 1.0], elbow="down").q
     assert np.allclose(arm.fk(q), [3.0, 1.0])
     assert np.allclose(arm.joint_torques(q, [0.0, -10.0]), arm.jacobian(q).T @ [0.0, -10.0])
     result = simulate(arm, [0.5, 0.0], [0.0, 0.0], 0.2)

@@ -221,7 +221,7 @@ def test_a_spring_controlled_undamped_arm_conserves_arm_plus_spring_energy(g):
     """T + V_gravity + V_spring is constant to solver tolerance; T + V_gravity alone is not."""
     arm = dataclasses.replace(arms.two_metre, g=g)
     spring = controllers.CartesianSpring(arm, stiffness=600.0, rest_point=[3.0, 1.0])
-    q0 = ik.closed_form(arm, [3.0, 2.0])
+    q0 = ik.closed_form(arm, [3.0, 2.0]).q
     result = simulate(arm, q0, [0.0, 0.0], 1.0, torque=spring, t_eval=np.linspace(0.0, 1.0, 401), **TIGHT)
     kinetic, potential = result.energy(extra_potential=spring.potential_energy)
     kinetic_arm, potential_arm = result.energy()

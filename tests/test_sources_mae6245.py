@@ -31,7 +31,7 @@ def test_the_minus_root_is_spurious_and_the_package_gives_only_the_plus_root():
     assert np.allclose(ARM.fk([plus, 0.0]), target, atol=1e-12)
     assert np.allclose(ARM.fk([minus, 0.0]), [target[0], -target[1]], atol=1e-12)  # (14.14, -14.14)
     assert round(float(np.hypot(*(ARM.fk([minus, 0.0]) - target))), 2) == 28.28
-    q_both = ik.closed_form(ARM, target, elbow="both")
+    q_both = ik.closed_form(ARM, target, elbow="both").q
     assert np.allclose(q_both, [[np.pi / 4, 0.0], [np.pi / 4, 0.0]], atol=1e-12)
 
 

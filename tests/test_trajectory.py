@@ -158,7 +158,7 @@ def test_the_line_task_on_the_two_metre_arm_is_continuous_on_both_branches():
         assert motion.tracking_error().max() <= 1e-12 * 4
         assert np.all(motion.joint_steps <= step_bound(arms.two_metre, motion))
     # the naive per-point closed form on the up branch wraps q1 past -180 deg: a 360 deg jump
-    naive = ik.closed_form(arms.two_metre, line.sample(50)[1], elbow="up")
+    naive = ik.closed_form(arms.two_metre, line.sample(50)[1], elbow="up").q
     naive_steps = np.max(np.abs(np.diff(naive, axis=0)), axis=-1)
     assert naive_steps.max() > np.pi
     assert np.any(naive_steps > step_bound(arms.two_metre, motion))
@@ -293,7 +293,7 @@ def test_resolved_rate_refuses_bad_arguments():
 
 def test_resolved_rate_tracks_a_constant_speed_line_with_the_commanded_velocity():
     arm = arms.two_metre
-    q0 = ik.closed_form(arm, [3.0, -1.0])
+    q0 = ik.closed_form(arm, [3.0, -1.0]).q
     line = trajectory.LinePath([3.0, -1.0], [3.0, 1.0], duration=2.0, law="linear")
     motion = trajectory.resolved_rate_trajectory(arm, line, n=21, q0=q0)
     assert motion.tracking_error().max() < 1e-6
@@ -304,7 +304,7 @@ def test_resolved_rate_tracks_a_constant_speed_line_with_the_commanded_velocity(
 def test_damping_bounds_the_joint_rates_near_a_singularity_at_a_tracking_cost():
     """A line 5 cm from the base of the equal-link arm passes the folded singularity."""
     arm = arms.two_metre
-    q0 = ik.closed_form(arm, [-1.5, 0.05])
+    q0 = ik.closed_form(arm, [-1.5, 0.05]).q
     line = trajectory.LinePath([-1.5, 0.05], [1.5, 0.05], duration=3.0, law="linear")
     exact = trajectory.resolved_rate_trajectory(arm, line, n=301, q0=q0)
     damped = trajectory.resolved_rate_trajectory(arm, line, n=301, q0=q0, damping=0.3)
@@ -479,7 +479,7 @@ def test_resolved_rate_accelerations_are_the_derivative_of_the_commanded_rates(d
     """Past the base (where damping matters: smallest singular value ~ 0.25 m/rad) from a displaced start (the feedback acts)."""
     arm = arms.two_metre
     line = LinePath([-1.5, 0.5], [1.5, 0.5], duration=3.0, law="cubic")
-    q0 = ik.closed_form(arm, [-1.5, 0.5]) + [0.02, -0.02]
+    q0 = ik.closed_form(arm, [-1.5, 0.5]).q + [0.02, -0.02]
     motion = trajectory.resolved_rate_trajectory(arm, line, n=6001, q0=q0, damping=damping, rtol=1e-11)
     differences = np.gradient(motion.qd, motion.t, axis=0)
     interior = slice(2, -2)

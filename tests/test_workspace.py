@@ -8,7 +8,7 @@ from conftest import angles, lengths, unit
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from twolink import TwoLinkArm, UnreachableError, arms, to_absolute, workspace
+from twolink import TwoLinkArm, UnreachableError, arms, ik, kinematics, to_absolute, workspace
 from twolink.arcs import Arc, circle_intersections
 
 
@@ -33,7 +33,7 @@ def configuration_within(arm, fractions):
 # ---------------------------------------------------------------- reachability, independent descriptions
 
 
-def ten_region(p, elbow=None):
+def ten_region(p, elbow="auto"):
     """arms.ten by geometry: tip at distance r = 20 cos(q2 / 2) in direction q1 + q2 / 2, so
     10 sqrt 2 <= r <= 20 and q1 = direction -+ acos(r / 20) in [0, 90] deg (- elbow down, + up)."""
     r = np.hypot(p[..., 0], p[..., 1])
@@ -42,7 +42,7 @@ def ten_region(p, elbow=None):
     in_band = (r >= 10 * np.sqrt(2)) & (r <= 20.0)
     down = (direction - half_bend >= 0.0) & (direction - half_bend <= np.pi / 2)
     up = (direction + half_bend >= 0.0) & (direction + half_bend <= np.pi / 2)
-    return in_band & {None: down | up, "down": down, "up": up}[elbow]
+    return in_band & {"auto": down | up, "down": down, "up": up, "both": down & up}[elbow]
 
 
 def two_metre_limited_region(p):
@@ -58,17 +58,18 @@ def two_metre_limited_region(p):
 @pytest.mark.parametrize(
     "arm, region, box, elbow",
     [
-        (arms.ten, ten_region, (-25.0, 25.0), None),
+        (arms.ten, ten_region, (-25.0, 25.0), "auto"),
         (arms.ten, ten_region, (-25.0, 25.0), "down"),
         (arms.ten, ten_region, (-25.0, 25.0), "up"),
-        (arms.two_metre_limited, two_metre_limited_region, (-5.0, 5.0), None),
+        (arms.ten, ten_region, (0.0, 20.0), "both"),  # a smaller region: a smaller box
+        (arms.two_metre_limited, two_metre_limited_region, (-5.0, 5.0), "auto"),
     ],
-    ids=["ten (relative limits)", "ten, elbow down", "ten, elbow up", "two_metre_limited (absolute limits)"],
+    ids=["ten (relative limits)", "ten, elbow down", "ten, elbow up", "ten, both elbows", "two_metre_limited (absolute limits)"],
 )
 def test_is_reachable_matches_the_geometric_description(arm, region, box, elbow):
     rng = np.random.default_rng(7)
     p = rng.uniform(box[0], box[1], size=(20_000, 2))
-    expected = region(p) if elbow is None else region(p, elbow)
+    expected = region(p) if arm is arms.two_metre_limited else region(p, elbow)
     got = workspace.is_reachable(arm, p, elbow=elbow)
     assert expected.sum() > 500 and (~expected).sum() > 500  # both kinds are tested
     # points within round-off of the boundary may go either way; nothing else may disagree
@@ -82,8 +83,39 @@ def test_the_two_branch_workspaces_of_the_ten_arm_are_mirror_images():
     rng = np.random.default_rng(5)
     p = rng.uniform(-25, 25, size=(5000, 2))
     assert np.array_equal(workspace.is_reachable(arms.ten, p, elbow="down"), workspace.is_reachable(arms.ten, p[:, ::-1], elbow="up"))
-    with pytest.raises(ValueError, match="elbow must be"):
-        workspace.is_reachable(arms.ten, p, elbow="both")
+    both = workspace.is_reachable(arms.ten, p, elbow="both")  # the region of both is its own mirror image
+    assert np.array_equal(both, workspace.is_reachable(arms.ten, p[:, ::-1], elbow="both")) and both.sum() > 50
+
+
+@pytest.mark.parametrize("elbow", [None, "either", "elbow down", 0], ids=repr)
+def test_workspace_functions_name_the_elbow_words(elbow):
+    words = re.escape("elbow must be one of ('down', 'up', 'both', 'auto')")
+    for call in (
+        lambda: workspace.is_reachable(arms.ten, [12.5, 12.5], elbow=elbow),
+        lambda: workspace.boundary_arcs(arms.ten, elbow=elbow),
+        lambda: workspace.clearance(arms.ten, [12.5, 12.5], elbow=elbow),
+        lambda: workspace.largest_inscribed_circle(arms.ten, elbow=elbow),
+    ):
+        with pytest.raises(ValueError, match=words):
+            call()
+
+
+def test_the_elbow_words_of_is_reachable():
+    p = np.array([[15.0, 1.0], [1.0, 15.0], [12.5, 12.5], [5.0, -15.0]])  # up only, down only, both, neither
+    valid = ik.solutions_within_limits(arms.ten, p)[1]
+    assert valid.tolist() == [[False, True], [True, False], [True, True], [False, False]]
+    expected = {"auto": [1, 1, 1, 0], "down": [0, 1, 1, 0], "up": [1, 0, 1, 0], "both": [0, 0, 1, 0]}
+    for elbow, reached in expected.items():
+        assert workspace.is_reachable(arms.ten, p, elbow=elbow).tolist() == [bool(r) for r in reached], elbow
+    assert workspace.is_reachable(arms.ten, [12.5, 12.5]).ndim == 0
+
+
+def test_solutions_within_limits_lives_in_ik_and_workspace_builds_on_it():
+    assert "solutions_within_limits" not in workspace.__all__ and "solutions_within_limits" in ik.__all__
+    assert workspace.LIMIT_TOL is ik.LIMIT_TOL
+    import twolink.workspace as module
+
+    assert module.solutions_within_limits is ik.solutions_within_limits  # imported, not a copy
 
 
 @pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited, arms.two_metre], ids=lambda arm: str(arm.limit_convention))
@@ -92,7 +124,7 @@ def test_every_point_returned_as_reachable_is_reached_by_ik_within_limits(arm):
     scale = arm.reach[1] * 1.2
     p = rng.uniform(-scale, scale, size=(5000, 2))
     reachable = workspace.is_reachable(arm, p)
-    q_both, valid = workspace.solutions_within_limits(arm, p)
+    q_both, valid = ik.solutions_within_limits(arm, p)
     assert np.array_equal(reachable, valid.any(axis=-1))
     for branch in (0, 1):
         chosen = valid[:, branch]
@@ -122,7 +154,7 @@ def test_reachable_points_of_random_limited_arms_have_a_valid_configuration(arm,
     r_min, r_max = arm.reach
     radius = r_min + fraction * (r_max - r_min)
     p = radius * np.array([np.cos(heading), np.sin(heading)])
-    q_both, valid = workspace.solutions_within_limits(arm, p)
+    q_both, valid = ik.solutions_within_limits(arm, p)
     assert workspace.is_reachable(arm, p) == valid.any()
     for q in q_both[valid]:
         assert arm.within_limits(q, tol=workspace.LIMIT_TOL)
@@ -144,7 +176,7 @@ def test_points_outside_are_rejected():
     for q_outside in ([np.radians(-50.0), np.radians(30.0)], [np.radians(40.0), np.radians(120.0)]):
         # for arms.ten, the other branch of these is outside the limits too
         p = arms.ten.fk(q_outside)
-        _, valid = workspace.solutions_within_limits(arms.ten, p)
+        _, valid = ik.solutions_within_limits(arms.ten, p)
         assert not valid.any() and not workspace.is_reachable(arms.ten, p)
 
 
@@ -165,11 +197,13 @@ def test_require_reachable_names_the_first_point_outside_the_reach():
     with pytest.raises(UnreachableError) as caught:
         workspace.require_reachable(arms.ten, path, what="path point")
     message = str(caught.value)
-    assert "path point 2 (of 4)" in message
-    assert "(14.5, 14.5)" in message
+    assert message.startswith("path point (14.5, 14.5) (index (2,), first of 2) is ")
     assert f"{np.hypot(14.5, 14.5):.6g} m" in message
     assert "[0, 20] m" in message
     assert "nan" not in message.lower()
+    with pytest.raises(UnreachableError) as reach:  # the one reach test, one message
+        kinematics.require_within_reach(arms.ten, path, what="path point")
+    assert str(reach.value) == message
 
 
 def test_require_reachable_names_the_limits_when_inside_the_reach():
@@ -177,8 +211,8 @@ def test_require_reachable_names_the_limits_when_inside_the_reach():
     with pytest.raises(UnreachableError) as caught:
         workspace.require_reachable(arms.ten, path, what="path point")
     message = str(caught.value)
-    assert message.startswith("path point 2 (of 3) at (-12, 12)")
-    assert "outside the joint limits" in message
+    assert message.startswith(f"path point (-12, 12) (index (2,), first of 1) is {np.hypot(12, 12):.6g} m from the base")
+    assert "inside the reach [0, 20] m but outside the joint limits" in message
     assert workspace.describe_limits(arms.ten) in message
     numbers = [float(value) for value in re.findall(r"q = \(([-\d.e+]+), ([-\d.e+]+)\) deg", message)[0]]
     assert numbers[0] > 90.0  # the elbow-down q1 breaks q1 <= 90 deg
@@ -216,13 +250,16 @@ def test_boundary_arcs_separate_reachable_from_unreachable(arm):
 
 
 @settings(max_examples=60)
-@given(arm=limited_arms(), elbow=st.sampled_from([None, "down", "up"]))
+@given(arm=limited_arms(), elbow=st.sampled_from(["auto", "down", "up", "both"]))
 def test_boundary_arcs_and_clearance_of_random_limited_arms(arm, elbow):
     """No boundary arc runs through the inside, and the sign of clearance is reachability."""
     arcs = workspace.boundary_arcs(arm, elbow=elbow)
     if not arcs:  # one branch may reach nothing within the limits: then no configuration is on it
-        _, q = workspace.sample_reachable(arm, 500)
-        assert elbow is not None and np.all(np.sin(q[:, 1]) * (1 if elbow == "down" else -1) <= 1e-6)
+        p, q = workspace.sample_reachable(arm, 500)
+        if elbow == "both":  # and then no point is reached on both branches
+            assert not np.any(workspace.is_reachable(arm, p, elbow="both"))
+        else:
+            assert elbow != "auto" and np.all(np.sin(q[:, 1]) * (1 if elbow == "down" else -1) <= 1e-6)
         assert np.all(workspace.clearance(arm, [[0.0, 0.0], [1.0, 1.0]], arcs, elbow=elbow) == -np.inf)
         return
     assert arcs
@@ -363,3 +400,26 @@ def test_limit_description_is_in_degrees_and_names_the_convention():
     assert "absolute" in workspace.describe_limits(arms.two_metre_limited)
     assert workspace.describe_limits(arms.two_metre) == "no joint limits"
     assert np.allclose(np.degrees(to_absolute(configuration_within(arms.two_metre_limited, [0.0, 1.0]))), [35.0, 145.0])
+
+
+@given(arm=limited_arms(), q1=st.floats(-10.0, 10.0), q2=st.floats(-10.0, 10.0))
+def test_move_into_limits_turns_angles_by_whole_turns_only_where_that_helps(arm, q1, q2):
+    from twolink.ik.limits import move_into_limits
+
+    q = np.array([q1, q2])
+    moved, inside = move_into_limits(arm, q)
+    assert np.allclose(arm.fk(moved), arm.fk(q), atol=1e-12 * arm.reach[1] + 1e-12)  # the same pose
+    turns = (moved - q) / (2 * np.pi)
+    assert np.allclose(turns, np.round(turns), atol=1e-9)
+    assert bool(inside) == bool(arm.within_limits(moved, tol=ik.LIMIT_TOL))
+    if arm.within_limits(q, tol=ik.LIMIT_TOL):
+        assert np.array_equal(moved, q)  # already inside: exactly as given
+
+
+@given(arm=limited_arms(), fraction=unit, heading=angles)
+def test_closed_form_auto_is_within_the_limits_exactly_where_the_point_is_reachable(arm, fraction, heading):
+    r_min, r_max = arm.reach
+    p = (r_min + fraction * (r_max - r_min)) * np.array([np.cos(heading), np.sin(heading)])
+    auto = ik.closed_form(arm, p, elbow="auto")
+    assert bool(arm.within_limits(auto.q, tol=ik.LIMIT_TOL)) == bool(workspace.is_reachable(arm, p))
+    assert auto.success and auto.residual <= 1e-9 * r_max

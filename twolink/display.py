@@ -118,7 +118,7 @@ def print_error(
     >>> type(caught.error).__name__
     'UnreachableError'
     >>> with print_error() as caught:
-    ...     q = ik.closed_form(arms.two_metre, [3.0, 1.0])
+    ...     q = ik.closed_form(arms.two_metre, [3.0, 1.0]).q
     >>> caught.error is None
     True
     """

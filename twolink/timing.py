@@ -5,12 +5,21 @@ scripts, so every table in the course is measured the same way: ``timeit``
 with several repeats, the median reported.
 """
 
+from __future__ import annotations
+
 import timeit
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from . import ik
-from ._validate import InputTypeError, as_count, as_finite_scalar
+from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs
+from .kinematics import require_within_reach
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 #: Longest measurement :func:`median_time` accepts per batch, seconds.
 MAX_SECONDS = 60.0
@@ -18,7 +27,7 @@ MAX_SECONDS = 60.0
 __all__ = ["median_time", "IK_METHODS", "compare_ik_methods", "brute_force_sweep"]
 
 
-def median_time(function, repeat=5, min_seconds=0.05):
+def median_time(function: Callable[[], object], repeat: int = 5, min_seconds: float = 0.05) -> float:
     """Median wall time of one call of ``function()``, in seconds.
 
     Calls are batched so that each measurement lasts about ``min_seconds``
@@ -26,6 +35,20 @@ def median_time(function, repeat=5, min_seconds=0.05):
     that, far cheaper than :meth:`timeit.Timer.autorange`'s fixed 0.2 s, which
     dominated notebooks timing several methods); the median of ``repeat``
     batches resists the odd slow run.
+
+    Parameters
+    ----------
+    function : callable
+        Called with no arguments.
+    repeat : int
+        Number of timed batches (the median is kept).
+    min_seconds : float
+        Duration of each batch, seconds (at most ``MAX_SECONDS``).
+
+    Returns
+    -------
+    float
+        Seconds per call.
 
     Examples
     --------
@@ -50,13 +73,18 @@ def median_time(function, repeat=5, min_seconds=0.05):
     return float(np.median(timer.repeat(repeat=repeat, number=number)) / number)
 
 
-def _solvers(q0, step):
+# a solver as timed: ``solve(arm, p)`` returns the IK result for targets ``p``.
+_Solver = Callable[[Any, Any], ik.IKResult]
+
+
+def _solvers(q0: tuple[float, ...], step: float) -> dict[str, _Solver]:
+    """Every method, as a call returning its :class:`~twolink.ik.IKResult` (the timing reads its ``q``)."""
     return {
         "closed form": lambda arm, p: ik.closed_form(arm, p, elbow="down"),
-        "newton": lambda arm, p: ik.newton(arm, p, q0=q0).q,
-        "minimize (BFGS)": lambda arm, p: ik.minimize(arm, p, q0=q0).q,
-        "minimize (SLSQP, constrained)": lambda arm, p: ik.minimize(arm, p, q0=q0, constrained=True).q,
-        "brute force": lambda arm, p: ik.brute_force(arm, p, step=step).q,
+        "newton": lambda arm, p: ik.newton(arm, p, q0=q0),
+        "minimize (BFGS)": lambda arm, p: ik.minimize(arm, p, q0=q0),
+        "minimize (SLSQP, constrained)": lambda arm, p: ik.minimize(arm, p, q0=q0, constrained=True),
+        "brute force": lambda arm, p: ik.brute_force(arm, p, step=step),
     }
 
 
@@ -64,7 +92,15 @@ def _solvers(q0, step):
 IK_METHODS = tuple(_solvers((0.5, 1.0), 1.0))
 
 
-def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), methods=IK_METHODS, repeat=3, per_call=True):
+def compare_ik_methods(
+    arm: TwoLinkArm,
+    targets: ArrayLike,
+    q0: ArrayLike = (0.5, 1.0),
+    step: float = float(np.radians(1.0)),
+    methods: Sequence[str] = IK_METHODS,
+    repeat: int = 3,
+    per_call: bool = True,
+) -> list[dict[str, Any]]:
     """Time every IK method on the same targets and report its accuracy.
 
     Parameters
@@ -72,7 +108,7 @@ def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), method
     arm : TwoLinkArm
     targets : array_like, shape (n, 2)
         Reachable targets in metres.
-    q0 : pair of float
+    q0 : array_like, shape (2,)
         Start for the iterative methods, radians.
     step : float
         Grid step of the brute-force method, radians.
@@ -88,9 +124,10 @@ def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), method
     -------
     list of dict
         One row per method: ``method``, ``seconds_per_target``,
-        ``max_residual`` (m, recomputed with FK) and ``solved`` (fraction of
-        targets whose residual is below 1e-9 of the reach, or the grid bound
-        for brute force).
+        ``max_residual`` (m, recomputed with FK from each method's ``q``)
+        and ``solved`` (fraction of targets whose residual is below 1e-9 of
+        the reach, or the grid bound for brute force).  The timed calls
+        include building each method's :class:`~twolink.ik.IKResult`.
 
     Examples
     --------
@@ -99,11 +136,11 @@ def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), method
     >>> rows[0]["method"], rows[0]["solved"], rows[0]["max_residual"] < 1e-12
     ('closed form', 1.0, True)
     """
-    targets = ik.check_reachable(arm, targets)
+    points: NDArray[np.float64] = require_within_reach(arm, as_pairs(targets, "targets"))
     repeat = as_count(repeat, "repeat", minimum=1, maximum=1000)
-    if targets.ndim != 2 or len(targets) == 0:
-        raise ValueError(f"targets must have shape (n, 2) with n >= 1 (nothing to time otherwise); got {targets.shape}")
-    solvers = _solvers(tuple(q0), step)
+    if points.ndim != 2 or len(points) == 0:
+        raise ValueError(f"targets must have shape (n, 2) with n >= 1 (nothing to time otherwise); got {points.shape}")
+    solvers = _solvers(tuple(as_pairs(q0, "q0").tolist()), step)
     unknown = [name for name in methods if name not in solvers]
     if unknown:
         raise ValueError(f"unknown methods {unknown}; choose from {IK_METHODS}")
@@ -111,24 +148,24 @@ def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), method
     for name in methods:
         solve = solvers[name]
         if per_call:
-            q = np.array([solve(arm, p) for p in targets])
+            q = np.array([solve(arm, p).q for p in points])
 
-            def run(solve=solve):
-                for p in targets:
+            def run(solve: _Solver = solve) -> None:
+                for p in points:
                     solve(arm, p)
 
         else:
-            q = np.asarray(solve(arm, targets))
+            q = solve(arm, points).q
 
-            def run(solve=solve):
-                solve(arm, targets)
+            def run(solve: _Solver = solve) -> None:
+                solve(arm, points)
 
-        residual = np.hypot(*(arm.fk(q) - targets).T)
+        residual = np.hypot(*(arm.fk(q) - points).T)
         tolerance = (arm.l1 + 2 * arm.l2) * step / 2 if name == "brute force" else 1e-9 * (arm.l1 + arm.l2)
         rows.append(
             {
                 "method": name,
-                "seconds_per_target": median_time(run, repeat=repeat) / len(targets),
+                "seconds_per_target": median_time(run, repeat=repeat) / len(points),
                 "max_residual": float(residual.max()),
                 "solved": float(np.mean(residual <= tolerance)),
             }
@@ -136,7 +173,9 @@ def compare_ik_methods(arm, targets, q0=(0.5, 1.0), step=np.radians(1.0), method
     return rows
 
 
-def brute_force_sweep(arm, targets, steps, repeat=3):
+def brute_force_sweep(
+    arm: TwoLinkArm, targets: ArrayLike, steps: ArrayLike, repeat: int = 3
+) -> list[dict[str, Any]]:
     """How brute-force IK cost and error grow with the grid resolution.
 
     Runs :func:`compare_ik_methods` (brute force only, one vectorised call
@@ -147,7 +186,7 @@ def brute_force_sweep(arm, targets, steps, repeat=3):
     arm : TwoLinkArm
     targets : array_like, shape (n, 2)
         Reachable targets in metres.
-    steps : sequence of float
+    steps : array_like of float
         Grid steps in radians.
     repeat : int
         Timing repeats (the median is kept).
@@ -165,10 +204,10 @@ def brute_force_sweep(arm, targets, steps, repeat=3):
     >>> [row["grid_points"] for row in rows]
     [4186, 16471]
     """
-    targets = ik.check_reachable(arm, targets)
+    points: NDArray[np.float64] = require_within_reach(arm, as_pairs(targets, "targets"))
     rows = []
-    for step in steps:
-        row = compare_ik_methods(arm, targets, step=float(step), methods=["brute force"], repeat=repeat, per_call=False)[0]
-        grid_points = int(np.ravel(ik.brute_force(arm, targets[:1], step=float(step)).iterations)[0])
+    for step in np.ravel(steps):
+        row = compare_ik_methods(arm, points, step=float(step), methods=["brute force"], repeat=repeat, per_call=False)[0]
+        grid_points = int(np.ravel(ik.brute_force(arm, points[:1], step=float(step)).iterations)[0])
         rows.append({"step": float(step), "grid_points": grid_points, **{k: v for k, v in row.items() if k != "method"}})
     return rows

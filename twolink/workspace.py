@@ -14,6 +14,15 @@ of :class:`~twolink.TwoLinkArm` (``limit_convention="relative"`` bounds ``(q1, q
 - :func:`require_reachable`: the same test, raising a clear error naming the
   first point that is out of the workspace.
 
+The functions with an ``elbow`` parameter read it in one way
+(:data:`twolink.conventions.ELBOW_WORDS`): ``"auto"`` (the default), the
+workspace of either branch (a point counts when some configuration within
+the limits reaches it); ``"down"`` / ``"up"``, the workspace of that branch
+only (a motion that must not flip its elbow); ``"both"``, the points reached
+on both branches within the limits (where the arm may choose either elbow).
+The limit-aware inverse kinematics they build on is
+:func:`twolink.ik.solutions_within_limits`.
+
 Examples
 --------
 >>> from twolink import arms, workspace
@@ -21,20 +30,28 @@ Examples
 array([ True, False, False])
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 import scipy.optimize
+from numpy.typing import ArrayLike, NDArray
 
 from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
 from .arcs import Arc, circle_intersections
-from .conventions import to_absolute, to_relative, wrap_angle
+from .conventions import check_elbow, to_absolute, to_relative, wrap_angle
 from .errors import UnreachableError
 from .ik.analytic import closed_form
-from .ik.targets import REACH_RTOL
+from .ik.limits import LIMIT_TOL, solutions_within_limits
+from .kinematics import require_within_reach
+
+if TYPE_CHECKING:
+    from .arm import TwoLinkArm
 
 __all__ = [
     "LIMIT_TOL",
     "is_reachable",
-    "solutions_within_limits",
     "require_reachable",
     "describe_limits",
     "sample_reachable",
@@ -45,19 +62,13 @@ __all__ = [
     "circle_points",
 ]
 
-#: Slack (radians) with which a configuration on a joint limit counts as inside.
-#: At a stretched or folded pose the tip pins the angles down only to about
-#: the square root of machine epsilon (1.5e-8 rad), so a point traced by a
-#: configuration on a limit needs this much slack to be recognised.
-LIMIT_TOL = 1e-7
-
 _TWO_PI = 2.0 * np.pi
 
 #: Most samples or points a workspace helper makes (memory budget: 1e7 x 2 floats, 160 MB per array).
 MAX_SAMPLES = 10_000_000
 
 
-def describe_limits(arm):
+def describe_limits(arm: TwoLinkArm) -> str:
     """The joint limits in words and degrees, for messages and tables.
 
     Examples
@@ -68,7 +79,7 @@ def describe_limits(arm):
     >>> describe_limits(arms.two_metre_limited)
     'link 1 angle q1 in [35, 145] deg, link 2 angle q1 + q2 in [35, 145] deg (absolute angles from the x-axis)'
     """
-    if not arm.has_limits:
+    if arm.q_min is None or arm.q_max is None:
         return "no joint limits"
     low, high = np.degrees(arm.q_min), np.degrees(arm.q_max)
     if arm.limit_convention == "relative":
@@ -82,80 +93,22 @@ def describe_limits(arm):
     )
 
 
-def _shift_into_range(angles, low, high, tol):
-    """Each angle moved by a multiple of 2 pi to its representative in ``[low - tol, low - tol + 2 pi)``."""
-    shifted = np.mod(angles - low + tol, _TWO_PI)
-    shifted += low - tol
-    return shifted, shifted <= high + tol
+def _on_branches(valid: NDArray[np.bool_], elbow: str) -> NDArray[np.bool_]:
+    """Per point, whether the branches ``elbow`` asks for reach it (``valid``: shape (..., 2), down, up)."""
+    if elbow == "auto":
+        return np.any(valid, axis=-1)
+    if elbow == "both":
+        return np.all(valid, axis=-1)
+    return valid[..., 0 if elbow == "down" else 1]
 
 
-def solutions_within_limits(arm, p, tol=LIMIT_TOL):
-    """Both closed-form IK branches at each point, moved into the limits where possible.
-
-    Each joint angle is shifted by a multiple of ``2 pi`` (the same physical
-    configuration) into the limit interval when it can be; absolute limits are
-    applied to the link angles ``(q1, q1 + q2)``.
-
-    Parameters
-    ----------
-    arm : TwoLinkArm
-    p : array_like, shape (..., 2)
-        Tip positions, metres.
-    tol : float
-        Slack in radians at each limit.
-
-    Returns
-    -------
-    q_both : numpy.ndarray, shape (..., 2, 2)
-        ``[..., 0, :]`` the elbow-down branch (``q2 >= 0`` before shifting),
-        ``[..., 1, :]`` elbow-up.  For points outside the reach annulus these
-        are the angles of the nearest point of the annulus (never NaN): read
-        ``valid`` before using them.
-    valid : numpy.ndarray of bool, shape (..., 2)
-        Whether each branch reaches the point within the limits.
-
-    Examples
-    --------
-    >>> from twolink import arms
-    >>> q_both, valid = solutions_within_limits(arms.ten, [10.0, 10.0])
-    >>> np.degrees(q_both).round(6), valid
-    (array([[  0.,  90.],
-           [ 90., -90.]]), array([ True,  True]))
-    >>> solutions_within_limits(arms.ten, [5.0, -15.0])[1]
-    array([False, False])
-    """
-    require_arm(arm)
-    p = as_pairs(p, "p")
-    tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
-    r_min, r_max = arm.reach
-    slack = REACH_RTOL * r_max
-    distance = np.hypot(p[..., 0], p[..., 1])
-    in_reach = (distance <= r_max + slack) & (distance >= r_min - slack)
-    # Project points outside the annulus onto it so the closed form never raises.
-    safe = np.where(distance > 0.0, distance, 1.0)
-    direction = np.where(distance[..., None] > 0.0, p / safe[..., None], np.array([1.0, 0.0]))
-    p_projected = np.where(in_reach[..., None], p, direction * np.clip(distance, r_min, r_max)[..., None])
-    q_both = closed_form(arm, p_projected, elbow="both")
-    valid = np.broadcast_to(in_reach[..., None], q_both.shape[:-1]).copy()
-    if not arm.has_limits:
-        return q_both, valid
-    low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)
-    if arm.limit_convention == "relative":
-        q_both, inside = _shift_into_range(q_both, low, high, tol)
-    else:
-        q_abs, inside = _shift_into_range(to_absolute(q_both), low, high, tol)
-        q_both = to_relative(q_abs)
-    valid &= np.all(inside, axis=-1)
-    return q_both, valid
-
-
-def is_reachable(arm, p, tol=LIMIT_TOL, elbow=None):
+def is_reachable(arm: TwoLinkArm, p: ArrayLike, tol: float = LIMIT_TOL, elbow: str = "auto") -> NDArray[np.bool_]:
     """Whether a configuration within the joint limits puts the tip at ``p``.
 
     Vectorised: solves both closed-form branches at every point and checks
     them against the limits in the arm's convention (angles compared modulo
-    ``2 pi``).  Points outside the reach annulus are unreachable whatever the
-    limits.
+    ``2 pi``; :func:`twolink.ik.solutions_within_limits`).  Points outside
+    the reach annulus are unreachable whatever the limits.
 
     Parameters
     ----------
@@ -164,9 +117,11 @@ def is_reachable(arm, p, tol=LIMIT_TOL, elbow=None):
         Tip positions, metres.
     tol : float
         Slack in radians at each limit (a point on the boundary counts as inside).
-    elbow : {None, "down", "up"}
-        ``None``: either branch will do.  ``"down"`` / ``"up"``: only that
-        branch counts (the workspace of a motion that must not flip its elbow).
+    elbow : {"auto", "down", "up", "both"}
+        ``"auto"``: either branch will do.  ``"down"`` / ``"up"``: only that
+        branch counts (the workspace of a motion that must not flip its
+        elbow).  ``"both"``: both branches must reach the point within the
+        limits (the arm can take it with either elbow).
 
     Returns
     -------
@@ -179,41 +134,47 @@ def is_reachable(arm, p, tol=LIMIT_TOL, elbow=None):
     array([ True, False, False])
     >>> is_reachable(arms.two_metre, [[0.0, 0.0], [0.0, 4.5]])
     array([ True, False])
-    >>> is_reachable(arms.ten, [[15.0, 1.0], [1.0, 15.0]], elbow="down")
-    array([False,  True])
+    >>> is_reachable(arms.ten, [[15.0, 1.0], [1.0, 15.0], [12.5, 12.5]], elbow="down")
+    array([False,  True,  True])
+    >>> is_reachable(arms.ten, [[15.0, 1.0], [1.0, 15.0], [12.5, 12.5]], elbow="both")
+    array([False, False,  True])
     """
-    valid = solutions_within_limits(arm, p, tol)[1]
-    if elbow is None:
-        return np.any(valid, axis=-1)
-    return valid[..., _branch_index(elbow)]
+    elbow = check_elbow(elbow)
+    return _on_branches(solutions_within_limits(arm, p, tol)[1], elbow)
 
 
-def _branch_index(elbow):
-    if elbow not in ("down", "up"):
-        raise ValueError(f"elbow must be None (either branch), 'down' or 'up'; got {elbow!r}")
-    return 0 if elbow == "down" else 1
-
-
-def require_reachable(arm, p, what="point", tol=LIMIT_TOL):
+def require_reachable(
+    arm: TwoLinkArm, p: ArrayLike, what: str = "point", tol: float = LIMIT_TOL
+) -> NDArray[np.float64]:
     """Return ``p`` as an array, or raise naming the first point out of the workspace.
+
+    Out of the reach annulus, the message is the package's one reach message
+    (:func:`twolink.kinematics.require_within_reach`); inside it but outside
+    the joint limits, the message has the same beginning and then gives the
+    limits and both IK branches in degrees.
 
     Parameters
     ----------
     arm : TwoLinkArm
-    p : array_like, shape (n, 2) or (2,)
-        Points in order (a path), metres.
+    p : array_like, shape (..., 2)
+        Points (a path, in order), metres.
     what : str
         How to call a point in the message, e.g. ``"path point"``.
     tol : float
         Slack at the joint limits, radians.
 
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+
     Raises
     ------
     twolink.UnreachableError
-        Naming the first unreachable point: its index, coordinates, distance
-        from the base, and either the reach interval (outside the annulus) or
-        the joint limits with both IK branches in degrees (inside the annulus
-        but outside the limits).
+        Naming the first unreachable point: its coordinates, its index in a
+        batch (and how many are unreachable), its distance from the base,
+        and either the reach interval (outside the annulus) or the joint
+        limits with both IK branches in degrees (inside the annulus but
+        outside the limits).
 
     Examples
     --------
@@ -221,38 +182,38 @@ def require_reachable(arm, p, what="point", tol=LIMIT_TOL):
     >>> require_reachable(arms.ten, [[12.5, 12.5], [20.0, 5.0]], what="path point")
     Traceback (most recent call last):
     ...
-    twolink.errors.UnreachableError: path point 1 (of 2) at (20, 5) is 20.6155 m from the base, outside the reach [0, 20] m of this arm (l1=10, l2=10)
+    twolink.errors.UnreachableError: path point (20, 5) (index (1,), first of 1) is 20.6155 m from the base; this arm reaches distances in [0, 20] m (l1=10, l2=10)
+    >>> require_reachable(arms.ten, [-12.0, 12.0])
+    Traceback (most recent call last):
+    ...
+    twolink.errors.UnreachableError: point (-12, 12) is 16.9706 m from the base, inside the reach [0, 20] m but outside the joint limits: q1 in [0, 90] deg, q2 in [-90, 90] deg (relative joint angles); elbow down needs q = (103.1, 63.9) deg, elbow up q = (166.9, -63.9) deg
     """
-    p = as_pairs(p, "p")
-    flat = p.reshape(-1, 2)
-    q_both, valid = solutions_within_limits(arm, flat, tol)
-    reachable = np.any(valid, axis=-1)
+    points: NDArray[np.float64] = as_pairs(p, "p")
+    require_within_reach(arm, points, what=what)
+    reachable = np.any(solutions_within_limits(arm, points, tol)[1], axis=-1)
     if np.all(reachable):
-        return p
-    index = int(np.flatnonzero(~reachable)[0])
-    x, y = flat[index]
-    distance = float(np.hypot(x, y))
+        return points
+    index = tuple(int(i) for i in np.argwhere(~reachable)[0]) if reachable.ndim else ()
+    x, y = points[index]
+    where = f" (index {index}, first of {int(np.count_nonzero(~reachable))})" if reachable.ndim else ""
     r_min, r_max = arm.reach
-    slack = REACH_RTOL * r_max
-    where = f"{what} {index} (of {len(flat)}) at ({x:.6g}, {y:.6g}) is {distance:.6g} m from the base"
-    if distance > r_max + slack or distance < r_min - slack:
-        raise UnreachableError(
-            f"{where}, outside the reach [{r_min:.6g}, {r_max:.6g}] m of this arm (l1={arm.l1:.6g}, l2={arm.l2:.6g})"
-        )
     # each angle shown as the turn nearest the middle of its limit interval: how far outside it is
-    q_plain = closed_form(arm, flat[index], elbow="both")
+    q_plain = closed_form(arm, points[index], elbow="both").q
     angles = to_absolute(q_plain) if arm.limit_convention == "absolute" else q_plain
     middle = (np.asarray(arm.q_min) + np.asarray(arm.q_max)) / 2.0
     down, up = np.degrees(middle + wrap_angle(angles - middle))
     needs = "link angles (q1, q1 + q2)" if arm.limit_convention == "absolute" else "q"
     raise UnreachableError(
-        f"{where}, inside the reach [{r_min:.6g}, {r_max:.6g}] m but outside the joint limits: "
+        f"{what} ({x:.6g}, {y:.6g}){where} is {float(np.hypot(x, y)):.6g} m from the base, inside the reach "
+        f"[{r_min:.6g}, {r_max:.6g}] m but outside the joint limits: "
         f"{describe_limits(arm)}; elbow down needs {needs} = ({down[0]:.4g}, {down[1]:.4g}) deg, "
         f"elbow up {needs} = ({up[0]:.4g}, {up[1]:.4g}) deg"
     )
 
 
-def sample_reachable(arm, n=2000, seed=0):
+def sample_reachable(
+    arm: TwoLinkArm, n: int = 2000, seed: int | None = 0
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Random configurations within the limits and the tip positions they reach.
 
     Configurations are uniform over the joint-limit box in the arm's
@@ -265,7 +226,7 @@ def sample_reachable(arm, n=2000, seed=0):
     arm : TwoLinkArm
     n : int
         Number of samples.
-    seed : int
+    seed : int or None
         Seed of :func:`numpy.random.default_rng`, for reproducible figures.
 
     Returns
@@ -295,20 +256,20 @@ def sample_reachable(arm, n=2000, seed=0):
     return arm.fk(q), q
 
 
-def _polar_offset(arm, q2):
+def _polar_offset(arm: TwoLinkArm, q2: float) -> tuple[float, float]:
     """Radius and polar angle offset of the tip for fixed ``q2``: ``p = r (cos(q1 + psi), sin(q1 + psi))``."""
     radius = float(np.hypot(arm.l1 + arm.l2 * np.cos(q2), arm.l2 * np.sin(q2)))
     return radius, float(np.arctan2(arm.l2 * np.sin(q2), arm.l1 + arm.l2 * np.cos(q2)))
 
 
-def _values_in(value, low, high):
+def _values_in(value: float, low: float, high: float) -> list[float]:
     """``value + 2 pi k`` lying in ``[low, high]``, for the k that give one."""
     first = np.ceil((low - value) / _TWO_PI - 1e-12)
     last = np.floor((high - value) / _TWO_PI + 1e-12)
-    return [value + _TWO_PI * k for k in np.arange(first, last + 1)]
+    return [float(value + _TWO_PI * k) for k in np.arange(first, last + 1)]
 
 
-def _overlaps(low_a, high_a, low_b, high_b):
+def _overlaps(low_a: float, high_a: float, low_b: float, high_b: float) -> list[tuple[float, float]]:
     """Intervals where ``[low_a, high_a]`` meets ``[low_b, high_b] + 2 pi k`` (for any k)."""
     intervals = []
     for k in range(-2, 3):
@@ -319,11 +280,11 @@ def _overlaps(low_a, high_a, low_b, high_b):
     return intervals
 
 
-def _label(name, angle):
+def _label(name: str, angle: float) -> str:
     return f"{name} = {np.degrees(angle):.6g} deg"
 
 
-def candidate_arcs(arm):
+def candidate_arcs(arm: TwoLinkArm) -> list[Arc]:
     """Every curve the workspace boundary can be made of, as exact arcs.
 
     The boundary of the reachable set lies on the images of the edges of the
@@ -363,12 +324,12 @@ def candidate_arcs(arm):
         convention = arm.limit_convention
     span = np.minimum(high - low, _TWO_PI)
     bounded = high - low < _TWO_PI
-    arcs = []
+    arcs: list[Arc] = []
     if convention == "relative":
         if bounded[0]:
             for q1 in (low[0], high[0]):
-                elbow = (l1 * np.cos(q1), l1 * np.sin(q1))
-                arcs.append(Arc(elbow, l2, q1 + low[1], span[1], _label("q1", q1), "joint limit"))
+                elbow_point = (l1 * np.cos(q1), l1 * np.sin(q1))
+                arcs.append(Arc(elbow_point, l2, q1 + low[1], span[1], _label("q1", q1), "joint limit"))
         if bounded[1]:
             for q2 in (low[1], high[1]):
                 radius, offset = _polar_offset(arm, q2)
@@ -380,8 +341,8 @@ def candidate_arcs(arm):
         return arcs
     if bounded[0]:
         for q1 in (low[0], high[0]):
-            elbow = (l1 * np.cos(q1), l1 * np.sin(q1))
-            arcs.append(Arc(elbow, l2, low[1], span[1], _label("q1", q1), "joint limit"))
+            elbow_point = (l1 * np.cos(q1), l1 * np.sin(q1))
+            arcs.append(Arc(elbow_point, l2, low[1], span[1], _label("q1", q1), "joint limit"))
     if bounded[1]:
         for q12 in (low[1], high[1]):
             centre = (l2 * np.cos(q12), l2 * np.sin(q12))
@@ -394,24 +355,24 @@ def candidate_arcs(arm):
     return arcs
 
 
-def _same_circle(arc_a, arc_b, scale):
-    return (
+def _same_circle(arc_a: Arc, arc_b: Arc, scale: float) -> bool:
+    return bool(
         np.hypot(arc_a.centre[0] - arc_b.centre[0], arc_a.centre[1] - arc_b.centre[1]) <= 1e-12 * scale
         and abs(arc_a.radius - arc_b.radius) <= 1e-12 * scale
     )
 
 
-def _same_arc(arc_a, arc_b, scale):
+def _same_arc(arc_a: Arc, arc_b: Arc, scale: float) -> bool:
     if not _same_circle(arc_a, arc_b, scale):
         return False
     # same end points and same midpoint (two halves of a circle share their end points)
     points_a = arc_a.point_at(np.array([0.0, 0.5, 1.0]))
     points_b = arc_b.point_at(np.array([0.0, 0.5, 1.0]))
     close = 1e-9 * scale
-    return np.abs(points_a - points_b).max() <= close or np.abs(points_a - points_b[::-1]).max() <= close
+    return bool(np.abs(points_a - points_b).max() <= close or np.abs(points_a - points_b[::-1]).max() <= close)
 
 
-def boundary_arcs(arm, probe=1e-5, elbow=None):
+def boundary_arcs(arm: TwoLinkArm, probe: float = 1e-5, elbow: str = "auto") -> list[Arc]:
     """The boundary of the reachable set, as exact arcs.
 
     Method: every candidate arc (:func:`candidate_arcs`) is cut where it
@@ -429,9 +390,11 @@ def boundary_arcs(arm, probe=1e-5, elbow=None):
     arm : TwoLinkArm
     probe : float
         Ring radius relative to the reach used to tell boundary from inside.
-    elbow : {None, "down", "up"}
-        The workspace of either branch (``None``) or of one branch only; the
-        singular arcs (``q2 = 0``, ``pi``), where the branches meet, bound the latter.
+    elbow : {"auto", "down", "up", "both"}
+        Whose workspace: of either branch (``"auto"``), of one branch only
+        (``"down"`` / ``"up"``; the singular arcs ``q2 = 0``, ``pi``, where the
+        branches meet, bound it), or of the points both branches reach
+        within the limits (``"both"``).
 
     Returns
     -------
@@ -448,11 +411,12 @@ def boundary_arcs(arm, probe=1e-5, elbow=None):
     >>> [arc.label for arc in boundary_arcs(arms.ten, elbow="down")]
     ['q1 = 0 deg', 'q1 = 90 deg', 'q2 = 90 deg', 'q2 = 0 deg (full stretch)']
     """
+    elbow = check_elbow(elbow)
     scale = arm.reach[1]
     candidates = candidate_arcs(arm)
-    pieces = []
+    pieces: list[Arc] = []
     for index, arc in enumerate(candidates):
-        cuts = []
+        cuts: list[float] = []
         for other_index, other in enumerate(candidates):
             if other_index == index:
                 continue
@@ -469,7 +433,7 @@ def boundary_arcs(arm, probe=1e-5, elbow=None):
     midpoints = np.array([piece.point_at(0.5) for piece in pieces])
     outside = ~is_reachable(arm, midpoints[:, None, :] + ring, elbow=elbow)
     on_edge = np.any(outside, axis=1) & is_reachable(arm, midpoints, elbow=elbow)
-    kept = []
+    kept: list[Arc] = []
     for piece, piece_on_edge in zip(pieces, on_edge):
         sliver = 0.0 < piece.radius * abs(piece.sweep) < 1e-6 * scale
         if piece_on_edge and not sliver and not any(_same_arc(piece, other, scale) for other in kept):
@@ -477,7 +441,9 @@ def boundary_arcs(arm, probe=1e-5, elbow=None):
     return kept
 
 
-def clearance(arm, p, arcs=None, elbow=None):
+def clearance(
+    arm: TwoLinkArm, p: ArrayLike, arcs: list[Arc] | None = None, elbow: str = "auto"
+) -> NDArray[np.float64]:
     """Signed distance from points to the edge of the reachable set, metres.
 
     Positive inside (the radius of the largest circle about ``p`` that fits
@@ -491,8 +457,13 @@ def clearance(arm, p, arcs=None, elbow=None):
     p : array_like, shape (..., 2)
     arcs : list of Arc, optional
         :func:`boundary_arcs` of the arm (same ``elbow``), if already computed.
-    elbow : {None, "down", "up"}
-        Room in the workspace of either branch, or of one branch only.
+    elbow : {"auto", "down", "up", "both"}
+        Room in the workspace of either branch (``"auto"``), of one branch
+        only, or of the points both branches reach (as :func:`boundary_arcs`).
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
 
     Examples
     --------
@@ -500,15 +471,18 @@ def clearance(arm, p, arcs=None, elbow=None):
     >>> clearance(arms.ten, [[12.5, 12.5], [0.0, 0.0]]).round(6)
     array([  2.32233 , -14.142136])
     """
-    p = as_pairs(p, "p")
+    points: NDArray[np.float64] = as_pairs(p, "p")
+    elbow = check_elbow(elbow)
     arcs = boundary_arcs(arm, elbow=elbow) if arcs is None else arcs
     if not arcs:  # nothing is reachable (one branch may be entirely outside the limits)
-        return np.full(p.shape[:-1], -np.inf)
-    distance = np.min([arc.distance(p) for arc in arcs], axis=0)
-    return np.where(is_reachable(arm, p, elbow=elbow), distance, -distance)
+        return np.full(points.shape[:-1], -np.inf)
+    distance = np.min([arc.distance(points) for arc in arcs], axis=0)
+    return np.where(is_reachable(arm, points, elbow=elbow), distance, -distance)
 
 
-def largest_inscribed_circle(arm, starts=6, seed=0, elbow=None):
+def largest_inscribed_circle(
+    arm: TwoLinkArm, starts: int = 6, seed: int | None = 0, elbow: str = "auto"
+) -> tuple[NDArray[np.float64], float]:
     """The largest circle that fits inside the reachable set: ``(centre, radius)``.
 
     Method: maximise :func:`clearance` (exact distance to the boundary arcs,
@@ -531,11 +505,12 @@ def largest_inscribed_circle(arm, starts=6, seed=0, elbow=None):
     arm : TwoLinkArm
     starts : int
         Number of optimiser starts.
-    seed : int
+    seed : int or None
         Seed for the sampled starting points.
-    elbow : {None, "down", "up"}
-        The largest circle in the workspace of either branch, or of one
-        branch only: a circle the arm can trace without flipping its elbow.
+    elbow : {"auto", "down", "up", "both"}
+        The largest circle in the workspace of either branch (``"auto"``),
+        of one branch only (a circle the arm can trace without flipping its
+        elbow), or of the points both branches reach.
 
     Returns
     -------
@@ -551,22 +526,28 @@ def largest_inscribed_circle(arm, starts=6, seed=0, elbow=None):
     >>> round(float(np.hypot(*centre)), 6)  # on the mid-circle of the band 10 sqrt 2 <= r <= 20
     17.071068
     """
-    if int(starts) < 1:
-        raise ValueError(f"starts must be a positive integer; got {starts!r}")
+    starts = as_count(starts, "starts", minimum=1)
+    elbow = check_elbow(elbow)
     arcs = boundary_arcs(arm, elbow=elbow)
     if not arcs:
-        raise ValueError(f"no configuration within the joint limits ({describe_limits(arm)}) has elbow {elbow}")
+        reached = {
+            "auto": "reaches any point",
+            "down": "is elbow down",
+            "up": "is elbow up",
+            "both": "reaches a point that the other branch reaches too",
+        }[elbow]
+        raise ValueError(f"no circle fits: no configuration within the joint limits ({describe_limits(arm)}) {reached}")
     scale = arm.reach[1]
     samples, _ = sample_reachable(arm, n=4000, seed=seed)
     room = clearance(arm, samples, arcs, elbow=elbow)
-    chosen = []
+    chosen: list[int] = []
     for index in np.argsort(room)[::-1]:
         if all(np.hypot(*(samples[index] - samples[other])) > 0.5 * room[index] for other in chosen):
             chosen.append(index)
-        if len(chosen) == int(starts):
+        if len(chosen) == starts:
             break
 
-    def negative_clearance(centre):
+    def negative_clearance(centre: NDArray[np.float64]) -> float:
         return -float(clearance(arm, centre, arcs, elbow=elbow))
 
     best_centre, best_radius = samples[chosen[0]], float(room[chosen[0]])
@@ -583,7 +564,7 @@ def largest_inscribed_circle(arm, starts=6, seed=0, elbow=None):
     return best_centre, best_radius
 
 
-def circle_points(centre, radius, n, start_angle=0.0):
+def circle_points(centre: ArrayLike, radius: float, n: int, start_angle: float = 0.0) -> NDArray[np.float64]:
     """``n`` equally spaced points on a circle, counter-clockwise from ``start_angle``.
 
     The last point is one step before the first (no repeated point).
@@ -611,11 +592,11 @@ def circle_points(centre, radius, n, start_angle=0.0):
            [10.5, 12.5],
            [12.5, 10.5]])
     """
-    centre = as_pairs(centre, "centre")
-    if centre.shape != (2,):
-        raise ValueError(f"centre must be one (x, y) pair; got shape {centre.shape}")
+    centre_xy: NDArray[np.float64] = as_pairs(centre, "centre")
+    if centre_xy.shape != (2,):
+        raise ValueError(f"centre must be one (x, y) pair; got shape {centre_xy.shape}")
     radius = as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True)
     start_angle = as_finite_scalar(start_angle, "start_angle (rad)")
     n = as_count(n, "n (points)", minimum=1, maximum=MAX_SAMPLES)
     angle = start_angle + _TWO_PI * np.arange(n) / n
-    return centre + radius * np.c_[np.cos(angle), np.sin(angle)]
+    return centre_xy + radius * np.c_[np.cos(angle), np.sin(angle)]

@@ -31,7 +31,7 @@ def judge_elbow_up_2_1(answer: object, siblings: dict[str, object]) -> None:
 @reference
 def within_limits_2_1() -> bool:
     """Whether the elbow-up solution for (12, 4) respects arms.ten's limits."""
-    return bool(arms.ten.within_limits(ik.closed_form(arms.ten, TARGET_2_1, elbow="up")))
+    return bool(arms.ten.within_limits(ik.closed_form(arms.ten, TARGET_2_1, elbow="up").q))
 
 
 def judge_limits_2_1(answer: object, siblings: dict[str, object]) -> None:

@@ -22,20 +22,20 @@ def _arm() -> TwoLinkArm:
 @reference
 def q_rest() -> NDArray[np.float64]:
     """The 2 m arm's elbow-down configuration with the tip at the rest point (3, 1)."""
-    return ik.closed_form(_arm(), REST_POINT, elbow="down")
+    return ik.closed_form(_arm(), REST_POINT, elbow="down").q
 
 
 @reference
 def torques_6_1() -> NDArray[np.float64]:
     """The anisotropic spring's joint torques with the tip held at (3, 0.5), elbow up."""
     spring = controllers.CartesianSpring(_arm(), np.array(K_6_1), np.array(REST_POINT))
-    return spring.torque(ik.closed_form(_arm(), TIP_6_1, elbow="up"))
+    return spring.torque(ik.closed_form(_arm(), TIP_6_1, elbow="up").q)
 
 
 def judge_torques_6_1(answer: object, siblings: dict[str, object]) -> None:
     tau = numbers(answer, (2,))
     spring = controllers.CartesianSpring(_arm(), np.array(K_6_1), np.array(REST_POINT))
-    if matches(close, tau, spring.torque(ik.closed_form(_arm(), TIP_6_1, elbow="down")), atol=1e-6):
+    if matches(close, tau, spring.torque(ik.closed_form(_arm(), TIP_6_1, elbow="down").q), atol=1e-6):
         raise Wrong("these are the torques on the elbow-down branch (q2 > 0)")
     if matches(close, tau, -torques_6_1(), atol=1e-6):
         raise Wrong("the sign is reversed: the spring pulls the tip towards the rest point, F = K (x0 - x)")

@@ -58,7 +58,7 @@ def largest_step_7_2() -> float:
 
 def judge_radius_7_2(answer: object, siblings: dict[str, object]) -> None:
     radius = scalar(answer)
-    for elbow, name in ((None, "either branch"), ("down", "the elbow-down branch")):
+    for elbow, name in (("auto", "either branch"), ("down", "the elbow-down branch")):
         other = float(workspace.clearance(arms.ten, CENTRE_7_2, elbow=elbow))
         if not np.isclose(other, radius_7_2(), atol=1e-6) and matches(close, radius, other, atol=1e-9):
             raise Wrong(f"this is the room on {name}; the task is elbow up")
@@ -78,7 +78,7 @@ def _line_path() -> trajectory.LinePath:
 
 def _peak_rate_at(t: ArrayLike, elbow: str) -> NDArray[np.float64]:
     p, v = _line_path().at(np.atleast_1d(t))
-    return np.abs(arms.two_metre.joint_rates(closed_form(arms.two_metre, p, elbow=elbow), v)).max(axis=-1)
+    return np.abs(arms.two_metre.joint_rates(closed_form(arms.two_metre, p, elbow=elbow).q, v)).max(axis=-1)
 
 
 @reference

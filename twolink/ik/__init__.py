@@ -5,16 +5,20 @@
 - :func:`minimize`: scipy optimisation, unconstrained least squares (the
   MATLAB ``fminunc`` analogue) or a constrained feasibility problem (``fmincon``).
 - :func:`brute_force`: the best point of a joint-space grid.
+- :func:`solutions_within_limits`: both closed-form branches, moved into the
+  joint limits, and which of them reach each point within the limits.
 
-The iterative solvers return an :class:`IKResult`; check ``success``.
+Every solver returns an :class:`IKResult`: the angles ``q``, and ``success``,
+``residual`` (recomputed by forward kinematics), ``within_limits`` and a
+``message``; check ``success`` before using ``q``.
 """
 
+from .analytic import closed_form
 from .grid_search import brute_force
-from .analytic import ELBOW_BRANCHES, closed_form
 from .iterative import newton
+from .limits import LIMIT_TOL, solutions_within_limits
 from .optimize import minimize
 from .result import IKResult
-from .targets import REACH_RTOL, check_reachable
 
 __all__ = [
     "closed_form",
@@ -22,7 +26,6 @@ __all__ = [
     "minimize",
     "brute_force",
     "IKResult",
-    "ELBOW_BRANCHES",
-    "REACH_RTOL",
-    "check_reachable",
+    "solutions_within_limits",
+    "LIMIT_TOL",
 ]

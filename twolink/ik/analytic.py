@@ -6,19 +6,34 @@ vectorised path (the tests compare the two to 1e-12, at the reach boundary
 too); anything else, and every error, goes through the vectorised path.
 """
 
+from __future__ import annotations
+
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
-from .._validate import arm_lengths, pair_floats, require_arm
-from .targets import REACH_RTOL, as_targets, raise_unreachable
+from .._validate import arm_lengths, as_pairs, pair_floats, require_arm
+from ..conventions import check_elbow
+from ..kinematics import REACH_RTOL, require_within_reach
+from .result import IKResult, Judging, result_judged_by
 
-__all__ = ["closed_form", "ELBOW_BRANCHES"]
+if TYPE_CHECKING:
+    from ..arm import TwoLinkArm
 
-ELBOW_BRANCHES = ("down", "up", "both")
+__all__ = ["closed_form", "CLOSED_FORM_RTOL"]
+
+#: The closed form succeeds where ``|fk(q) - p| <= CLOSED_FORM_RTOL * (l1 + l2)``:
+#: round-off only (targets accepted just outside the reach, by at most
+#: ``REACH_RTOL * (l1 + l2)``, are solved at the boundary within it too).
+CLOSED_FORM_RTOL = 1e-9
+
+METHOD = "closed-form"
+_BRANCH_WORDS = {"down": "elbow down", "up": "elbow up", "both": "both branches", "auto": "elbow down, no joint limits"}
 
 
-def closed_form(arm, p, elbow="down"):
+def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     """Joint angles that put the tip at ``p``, from the cosine rule.
 
     ``cos q2 = (x^2 + y^2 - l1^2 - l2^2) / (2 l1 l2)``, ``q2 = +-acos(cos q2)``,
@@ -37,61 +52,92 @@ def closed_form(arm, p, elbow="down"):
     arm : TwoLinkArm
     p : array_like, shape (..., 2)
         Target tip positions ``(x, y)`` in metres.
-    elbow : {"down", "up", "both"}
-        Which branch to return.
+    elbow : {"down", "up", "both", "auto"}
+        Which branch to return (:data:`twolink.conventions.ELBOW_WORDS`):
+
+        - ``"down"`` / ``"up"``: that branch, whatever the joint limits;
+        - ``"both"``: both branches, stacked on a new leading axis, down first;
+        - ``"auto"``: per target, the first branch within the arm's joint
+          limits, down preferred, judged as
+          :func:`twolink.ik.solutions_within_limits` judges it (angles moved
+          by whole turns into the limits where that helps, which then lie
+          outside ``(-pi, pi]``); the down branch for an arm without limits.
+          A target with neither branch within the limits gets the down
+          branch, with ``within_limits`` false (and the message says so).
 
     Returns
     -------
-    numpy.ndarray
-        Shape ``(..., 2)`` for one branch; ``(..., 2, 2)`` for ``"both"``,
-        with ``[..., 0, :]`` the down branch and ``[..., 1, :]`` the up branch.
+    IKResult
+        ``method="closed-form"``, ``iterations`` 0.  ``q`` has shape
+        ``(..., 2)``; for ``"both"`` ``(2, ..., 2)``, ``q[0]`` the down
+        branch and ``q[1]`` the up branch, and every field has that leading
+        axis of 2.  ``residual`` is recomputed by forward kinematics when first
+        read (nothing is computed for a caller who reads only ``q``);
+        ``success`` where it is at most ``CLOSED_FORM_RTOL * (l1 + l2)``
+        (round-off: the closed form is exact).  ``within_limits`` is not
+        applied except by ``"auto"``: check it.
 
     Raises
     ------
     twolink.UnreachableError
         If a target is further than ``REACH_RTOL * (l1 + l2)`` outside the
-        annulus ``r_min <= |p| <= r_max``; the message gives the target's
-        distance and the reach interval.  Targets within that tolerance (round
-        off at full stretch or full fold) are solved at the boundary.
+        annulus ``r_min <= |p| <= r_max`` (the message gives the target's
+        distance and the reach interval).  The closed form has no approximate
+        answer to return there, unlike :func:`twolink.ik.brute_force`'s
+        nearest grid point.  Targets within that tolerance (round-off at full
+        stretch or full fold) are solved at the boundary.
     ValueError
         For NaN or infinite targets, a wrong shape or an unknown ``elbow``.
-
-    Notes
-    -----
-    Joint limits are not applied: both branches are returned whatever the
-    limits; use ``arm.within_limits`` to filter.
 
     Examples
     --------
     >>> from twolink import arms, ik
-    >>> q = ik.closed_form(arms.ten, [10 * np.sqrt(2), 10 * np.sqrt(2)])
-    >>> q / np.pi
+    >>> result = ik.closed_form(arms.ten, [10 * np.sqrt(2), 10 * np.sqrt(2)])
+    >>> result.q / np.pi
     array([0.25, 0.  ])
-    >>> q_both = ik.closed_form(arms.ten, [10.0, 10.0], elbow="both")
+    >>> bool(result.success), bool(result.residual < 1e-12), result.method
+    (True, True, 'closed-form')
+    >>> q_both = ik.closed_form(arms.ten, [10.0, 10.0], elbow="both").q
     >>> np.degrees(q_both).round(6)
     array([[  0.,  90.],
            [ 90., -90.]])
+
+    ``"auto"`` keeps to the joint limits (arms.ten: ``0 <= q1 <= 90`` deg):
+
+    >>> ik.closed_form(arms.ten, [18.0, 2.0], elbow="down").within_limits
+    array(False)
+    >>> auto = ik.closed_form(arms.ten, [18.0, 2.0], elbow="auto")
+    >>> np.degrees(auto.q).round(3), auto.within_limits
+    (array([ 31.444, -50.208]), array(True))
+    >>> ik.closed_form(arms.ten, [12.0, 4.0], elbow="auto").message  # q1 < 0 down, q2 < -90 deg up
+    'solved 1 target in closed form, elbow auto: 0 down and 0 up within the joint limits, 1 with neither branch within them (given elbow down); 1 of 1 answers violate the joint limits (see within_limits)'
     >>> ik.closed_form(arms.ten, [30.0, 0.0])
     Traceback (most recent call last):
     ...
     twolink.errors.UnreachableError: target (30, 0) is 30 m from the base; this arm reaches distances in [0, 20] m (l1=10, l2=10)
     """
-    if elbow not in ELBOW_BRANCHES:
-        raise ValueError(f"elbow must be one of {ELBOW_BRANCHES}; got {elbow!r}")
     target = pair_floats(p)
-    if target is not None:  # one target on floats: the steps below, written out (a call costs as much)
-        derived = getattr(arm, "_derived", None)
-        terms = derived.get("closed_form") if derived is not None else None
+    if target is not None:
+        # one target on floats: the steps of the vectorised path, written out (a call costs as much)
         try:
             l1, l2 = arm.l1, arm.l2
-        except AttributeError:
-            l1, l2 = arm_lengths(arm)  # not an arm: raises, naming it
-        r_min_squared, r_max_squared, inverse, low_outer, low_inner = terms or _reach_terms(arm)
+            terms = getattr(arm, "_derived")["closed_form"]  # the arm's cached constants (set in its __post_init__)
+        except AttributeError:  # not a TwoLinkArm (or not an arm: arm_lengths raises, naming it)
+            l1, l2 = arm_lengths(arm)
+            terms = _reach_terms(arm)
+        except KeyError:  # the first call on this arm
+            terms = _reach_terms(arm)
+        r_min_squared, r_max_squared, inverse, low_outer, low_inner, judging_one = terms
+        try:
+            judging = judging_one[elbow]  # also: elbow is one of the words (else the vectorised path says so)
+        except (KeyError, TypeError):
+            judging = None
         x, y = target
         r_squared = x * x + y * y
         one_minus_c2 = (r_max_squared - r_squared) * inverse
         one_plus_c2 = (r_squared - r_min_squared) * inverse
-        if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner:  # else the vectorised path raises
+        # outside the reach (the vectorised path raises) or not an elbow word: the vectorised path
+        if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner and judging is not None:
             if one_minus_c2 < 0.0:
                 one_minus_c2 = 0.0
             if one_plus_c2 < 0.0:
@@ -101,27 +147,77 @@ def closed_form(arm, p, elbow="down"):
             q2_down = math.atan2(s2, (one_plus_c2 - one_minus_c2) * 0.5)
             s2 *= l2
             xk1, yk1, xk2, yk2 = x * k1, y * k1, x * s2, y * s2
-            if elbow != "both":
+            if elbow == "down" or (elbow == "auto" and arm.q_min is None):
                 q = np.empty(2)  # then two item assignments: faster than np.array of a list
-                if elbow == "down":
-                    q[0], q[1] = math.atan2(yk1 - xk2, xk1 + yk2), q2_down
-                else:
-                    q[0], q[1] = math.atan2(yk1 + xk2, xk1 - yk2), -q2_down
-                return q
-            q_both = np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down, math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
-            q_both.shape = (2, 2)
-            return q_both
-    p = as_targets(p)
+                q[0], q[1] = math.atan2(yk1 - xk2, xk1 + yk2), q2_down
+                return result_judged_by(arm, target, q, judging)
+            if elbow == "up":
+                q = np.empty(2)
+                q[0], q[1] = math.atan2(yk1 + xk2, xk1 - yk2), -q2_down
+                return result_judged_by(arm, target, q, judging)
+            if elbow == "both":
+                q = np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down, math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
+                q.shape = (2, 2)
+                return result_judged_by(arm, target, q, judging)
+            # "auto" with joint limits: the vectorised path
+    elbow = check_elbow(elbow)
+    targets: NDArray[np.float64] = as_pairs(p, "target p")
     try:
         arm.l1, arm.l2
     except AttributeError:
         require_arm(arm)
-    if p.ndim == 1:  # one target: solve as a batch of one (keeps every temporary an array)
-        return closed_form(arm, p[None, :], elbow)[0]
+    terms = _reach_terms(arm)
+    flat = targets.reshape(-1, 2)
+    count = len(flat)
+    if elbow == "auto" and arm.has_limits:
+        q_flat, message = _within_limits_first(arm, targets, flat, terms)
+    else:
+        q_flat = _branches(arm, targets, flat, terms, "down" if elbow == "auto" else elbow)
+        message = f"solved {count} target{'s' if count != 1 else ''} in closed form ({_BRANCH_WORDS[elbow]})"
+    q = q_flat.reshape(((2,) if elbow == "both" else ()) + targets.shape)
+    if isinstance(p, np.ndarray) and np.may_share_memory(targets, p):
+        targets = targets.copy()  # the result keeps its targets: not an array the caller can change
+    threshold = CLOSED_FORM_RTOL * (arm.l1 + arm.l2)
+    return result_judged_by(arm, targets, q, Judging(0, threshold, METHOD, message, _failure_detail))
+
+
+def _failure_detail(index: int, residual: float) -> str:
+    return f"residual {residual:.3g} m above the round-off bound CLOSED_FORM_RTOL (l1 + l2)"
+
+
+def _within_limits_first(
+    arm: TwoLinkArm, p: NDArray[np.float64], flat: NDArray[np.float64], terms: _Terms
+) -> tuple[NDArray[np.float64], str]:
+    """``elbow="auto"`` for an arm with limits: per target the down branch, else up, moved into the limits."""
+    from .limits import move_into_limits  # late import: limits builds on closed_form
+
+    q_both = _branches(arm, p, flat, terms, "both")
+    moved, inside = move_into_limits(arm, q_both)
+    q = np.where(inside[0][:, None], moved[0], q_both[0])
+    take_up = ~inside[0] & inside[1]
+    q[take_up] = moved[1][take_up]
+    neither = int(np.count_nonzero(~(inside[0] | inside[1])))
+    count = len(flat)
+    message = (
+        f"solved {count} target{'s' if count != 1 else ''} in closed form, elbow auto: "
+        f"{int(np.count_nonzero(inside[0]))} down and {int(np.count_nonzero(take_up))} up within the joint limits"
+    )
+    if neither:
+        message += f", {neither} with neither branch within them (given elbow down)"
+    return q, message
+
+
+def _branches(
+    arm: TwoLinkArm, p: NDArray[np.float64], flat: NDArray[np.float64], terms: _Terms, elbow: str
+) -> NDArray[np.float64]:
+    """The closed form on flat targets ``(n, 2)``: ``(n, 2)`` for one branch, ``(2, n, 2)`` for ``"both"``.
+
+    ``p`` is the targets as given, for the reach error's message.
+    """
     l1, l2 = arm.l1, arm.l2
-    r_min_squared, r_max_squared, inverse, low_outer, low_inner = _reach_terms(arm)
-    x = p[..., 0]
-    y = p[..., 1]
+    r_min_squared, r_max_squared, inverse, low_outer, low_inner, _ = terms
+    x = flat[:, 0]
+    y = flat[:, 1]
 
     # 1 - cos q2 and 1 + cos q2 straight from r^2, without forming cos q2 first:
     # (r_max^2 - r^2) and (r^2 - r_min^2) keep their relative accuracy at full
@@ -134,7 +230,9 @@ def closed_form(arm, p, elbow="down"):
     one_plus_c2 -= r_min_squared
     one_plus_c2 *= inverse
     if one_minus_c2.size and (one_minus_c2.min() < low_outer or one_plus_c2.min() < low_inner):
-        raise_unreachable(arm, p, (one_minus_c2 < low_outer) | (one_plus_c2 < low_inner))
+        # the one reach test raises, naming the first target out of reach (a target this test put out
+        # by one rounding on the edge of REACH_RTOL and it puts in is solved at the boundary below)
+        require_within_reach(arm, p)
     np.maximum(one_minus_c2, 0.0, out=one_minus_c2)
     np.maximum(one_plus_c2, 0.0, out=one_plus_c2)
 
@@ -153,33 +251,38 @@ def closed_form(arm, p, elbow="down"):
     xk2 = x * s2
     yk2 = y * s2
 
-    shape = p.shape[:-1]
     if elbow == "both":
-        q_both = np.empty(shape + (2, 2))
-        np.arctan2(yk1 - xk2, xk1 + yk2, out=q_both[..., 0, 0])
-        q_both[..., 0, 1] = q2_down
-        np.arctan2(yk1 + xk2, xk1 - yk2, out=q_both[..., 1, 0])
-        np.negative(q2_down, out=q_both[..., 1, 1])
+        q_both = np.empty((2, len(flat), 2))
+        np.arctan2(yk1 - xk2, xk1 + yk2, out=q_both[0, :, 0])
+        q_both[0, :, 1] = q2_down
+        np.arctan2(yk1 + xk2, xk1 - yk2, out=q_both[1, :, 0])
+        np.negative(q2_down, out=q_both[1, :, 1])
         return q_both
 
-    q = np.empty(shape + (2,))
+    q = np.empty((len(flat), 2))
     if elbow == "down":
         yk1 -= xk2
         xk1 += yk2
-        q[..., 1] = q2_down
+        q[:, 1] = q2_down
     else:
         yk1 += xk2
         xk1 -= yk2
-        np.negative(q2_down, out=q[..., 1])
-    np.arctan2(yk1, xk1, out=q[..., 0])
+        np.negative(q2_down, out=q[:, 1])
+    np.arctan2(yk1, xk1, out=q[:, 0])
     return q
 
 
-def _reach_terms(arm):
-    """``(r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner)`` of the cosine rule, cached per arm.
+# r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, and the Judging of one target per elbow word
+_Terms = tuple[float, float, float, float, float, dict[str, Judging]]
+
+
+def _reach_terms(arm: TwoLinkArm) -> _Terms:
+    """``(r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, judging_one)`` of the cosine rule, cached per arm.
 
     ``low_outer`` and ``low_inner`` are the lowest accepted ``1 - cos q2`` and
-    ``1 + cos q2``: the annulus widened by ``REACH_RTOL * r_max``.
+    ``1 + cos q2``: the annulus widened by ``REACH_RTOL * r_max``;
+    ``judging_one[elbow]`` judges the answer for one target (success bound
+    ``CLOSED_FORM_RTOL * r_max``).
     """
     derived = getattr(arm, "_derived", None)
     if derived is None:  # not a TwoLinkArm
@@ -190,11 +293,14 @@ def _reach_terms(arm):
     return terms
 
 
-def _compute_reach_terms(l1, l2):
+def _compute_reach_terms(l1: float, l2: float) -> _Terms:
     r_min, r_max = abs(l1 - l2), l1 + l2
     slack = REACH_RTOL * r_max
     inverse = 1.0 / (2.0 * l1 * l2)
     low_outer = (r_max * r_max - (r_max + slack) ** 2) * inverse
     low_inner = (max(r_min - slack, 0.0) ** 2 - r_min * r_min) * inverse
-    return r_min * r_min, r_max * r_max, inverse, low_outer, low_inner
-
+    judging_one = {
+        elbow: Judging(0, CLOSED_FORM_RTOL * r_max, METHOD, f"solved 1 target in closed form ({words})", _failure_detail)
+        for elbow, words in _BRANCH_WORDS.items()
+    }
+    return r_min * r_min, r_max * r_max, inverse, low_outer, low_inner, judging_one

@@ -1,11 +1,19 @@
 """Inverse kinematics by exhaustive search over a joint-space grid."""
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_finite_scalar
-from .iterative import distance_outside_reach
-from .result import assemble_result
-from .targets import check_reachable
+from ..kinematics import distance_outside_reach
+from .result import IKResult, assemble_result
+from .targets import reachable_targets
+
+if TYPE_CHECKING:
+    from ..arm import TwoLinkArm
 
 __all__ = ["brute_force", "grid_axis", "GRID_CHUNK", "MAX_AXIS_POINTS", "MAX_GRID_POINTS"]
 
@@ -20,7 +28,7 @@ MAX_AXIS_POINTS = 10_000_000
 MAX_GRID_POINTS = 1_000_000_000
 
 
-def grid_axis(low, high, step):
+def grid_axis(low: float, high: float, step: float) -> NDArray[np.float64]:
     """Grid values ``low, low + step, ...`` and always ``high`` itself.
 
     When the range is not a whole number of steps the last spacing is
@@ -41,22 +49,24 @@ def grid_axis(low, high, step):
             f"{intervals + 1:.3g} points, more than MAX_AXIS_POINTS = {MAX_AXIS_POINTS:.0e}: use a larger step"
         )
     count = int(np.floor(intervals + 1e-9)) + 1
-    axis = low + step * np.arange(count)
+    axis = low + step * np.arange(count, dtype=np.float64)
     if high - axis[-1] > 1e-9 * step:
         axis = np.append(axis, high)
     return axis
 
 
-def _joint_ranges(arm, q1_range, q2_range):
+def _joint_ranges(
+    arm: TwoLinkArm, q1_range: tuple[float, float] | None, q2_range: tuple[float, float] | None
+) -> list[tuple[float, float]]:
     ranges = []
+    q_min, q_max = arm.q_min, arm.q_max
     for joint, given in enumerate((q1_range, q2_range)):
         low, high = (-np.pi, np.pi) if given is None else given
         low = as_finite_scalar(low, f"q{joint + 1}_range[0]")
         high = as_finite_scalar(high, f"q{joint + 1}_range[1]")
-        if arm.has_limits and arm.limit_convention == "relative":
-            low, high = max(low, arm.q_min[joint]), min(high, arm.q_max[joint])
-        elif arm.has_limits and joint == 0:
-            low, high = max(low, arm.q_min[0]), min(high, arm.q_max[0])
+        # relative limits bound both joints; absolute ones bound q1 here (link 2 is masked on the grid)
+        if q_min is not None and q_max is not None and (arm.limit_convention == "relative" or joint == 0):
+            low, high = max(low, q_min[joint]), min(high, q_max[joint])
         if low > high:
             raise ValueError(
                 f"q{joint + 1} range [{low:.6g}, {high:.6g}] rad is empty "
@@ -66,7 +76,13 @@ def _joint_ranges(arm, q1_range, q2_range):
     return ranges
 
 
-def _best_on_grid(arm, p_target, q1_axis, q2_axis, absolute_limits):
+def _best_on_grid(
+    arm: TwoLinkArm,
+    p_target: NDArray[np.float64],
+    q1_axis: NDArray[np.float64],
+    q2_axis: NDArray[np.float64],
+    absolute_limits: tuple[float, float] | None,
+) -> tuple[int, int]:
     """Index pair of the grid point nearest the target, by rows of q1 in chunks.
 
     With ``a = elbow - p`` the squared distance is
@@ -98,7 +114,13 @@ def _best_on_grid(arm, p_target, q1_axis, q2_axis, absolute_limits):
     return best[1], best[2]
 
 
-def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
+def brute_force(
+    arm: TwoLinkArm,
+    p: ArrayLike,
+    q1_range: tuple[float, float] | None = None,
+    q2_range: tuple[float, float] | None = None,
+    step: float = float(np.radians(1.0)),
+) -> IKResult:
     """The grid point ``(q1, q2)`` whose tip lies nearest each target.
 
     The grid covers ``q1_range`` x ``q2_range`` (radians, inclusive) with
@@ -147,7 +169,7 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
     >>> int(result.iterations)
     16471
     """
-    p = check_reachable(arm, p)
+    p = reachable_targets(arm, p)
     step = as_finite_scalar(step, "step (radians)", minimum=0.0, strictly=True)
     (q1_low, q1_high), (q2_low, q2_high) = _joint_ranges(arm, q1_range, q2_range)
     q1_axis = grid_axis(q1_low, q1_high, step)
@@ -159,7 +181,7 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
             f"{MAX_GRID_POINTS:.0e}: use a larger step"
         )
     absolute_limits = None
-    if arm.has_limits and arm.limit_convention == "absolute":
+    if arm.q_min is not None and arm.q_max is not None and arm.limit_convention == "absolute":
         absolute_limits = (arm.q_min[1], arm.q_max[1])
 
     p_flat = p.reshape(-1, 2)
@@ -178,7 +200,7 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
     reachable = np.ravel(is_reachable(arm, p_flat))
     threshold = np.where(within & reachable, bound + distance_outside_reach(arm, p_flat), -np.inf)
 
-    def failure_detail(index, residual):
+    def failure_detail(index: int, residual: float) -> str:
         if not reachable[index]:
             return f"the target is outside the workspace the joint limits leave (best residual {residual:.3g} m)"
         if not within[index]:
@@ -189,7 +211,7 @@ def brute_force(arm, p, q1_range=None, q2_range=None, step=np.radians(1.0)):
         )
 
     return assemble_result(
-        arm, p, q, np.full(len(q), grid_points), threshold, "brute-force",
+        arm, p, q.reshape(p.shape), grid_points, threshold, "brute-force",
         solved_message=f"all {len(q)} targets within the grid bound {bound:.3g} m ({grid_points} points)",
         failure_detail=failure_detail,
     )

@@ -6,29 +6,28 @@ Python loop with the :mod:`math` module: the same step formula
 and damping schedule, the same result.
 """
 
+from __future__ import annotations
+
 import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_count, as_finite_scalar, broadcast_start, pair_floats, require_arm
 from ..conventions import wrap_angle
-from .result import assemble_pair_result, assemble_result
-from .targets import REACH_RTOL, check_reachable
+from ..kinematics import REACH_RTOL, distance_outside_reach
+from .result import IKResult, assemble_result
+from .targets import reachable_targets
 
-__all__ = ["newton", "distance_outside_reach"]
+if TYPE_CHECKING:
+    from ..arm import TwoLinkArm
 
-
-def distance_outside_reach(arm, p):
-    """How far each target lies outside the reach annulus (0 inside), metres.
-
-    This is the smallest residual any configuration can achieve.
-    """
-    r_min, r_max = arm.reach
-    distance = np.hypot(p[..., 0], p[..., 1])
-    return np.maximum(0.0, np.maximum(distance - r_max, r_min - distance))
+__all__ = ["newton"]
 
 
-def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
+def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float = 1e-12, max_iter: int = 100) -> IKResult:
     """Solve ``fk(q) = p`` by Newton's method with step control and angle wrapping.
 
     Each iteration takes the damped Newton (Levenberg-Marquardt) step
@@ -79,23 +78,23 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
     True
     """
     target = pair_floats(p)
-    start = pair_floats(q0) if target is not None else None
-    if start is not None:
+    q0_pair = pair_floats(q0) if target is not None else None
+    if target is not None and q0_pair is not None:
         if getattr(arm, "_derived", None) is None:  # every TwoLinkArm has it (and is an arm)
             require_arm(arm)
         distance = math.hypot(target[0], target[1])
         r_min, r_max = abs(arm.l1 - arm.l2), arm.l1 + arm.l2
         slack = REACH_RTOL * r_max
         # one target well inside the reach (a target on the edge of the tolerance is left to
-        # check_reachable, whose np.hypot may round differently) and one start: solve on floats
+        # the one reach test, whose np.hypot may round differently) and one start: solve on floats
         if (r_min - slack) * _INSIDE_UP < distance < (r_max + slack) * _INSIDE_DOWN:
             # the checks of the vectorised path, short-cut for the usual positive float and int
             if not (type(tol) is float and 0.0 < tol < math.inf):
                 tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
             if not (type(max_iter) is int and max_iter >= 1):
                 max_iter = as_count(max_iter, "max_iter", minimum=1)
-            return _newton_pair(arm, target, start, distance, tol, max_iter)
-    p = check_reachable(arm, p)
+            return _newton_pair(arm, target, q0_pair, distance, tol, max_iter)
+    p = reachable_targets(arm, p)
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
     max_iter = as_count(max_iter, "max_iter", minimum=1)
     p_flat = p.reshape(-1, 2)
@@ -139,7 +138,7 @@ def newton(arm, p, q0=(0.5, 1.0), tol=1e-12, max_iter=100):
             still = (error[active] > threshold[active]) & (damping[active] < damping_cap)
             active = active[still]
 
-    q = np.stack([q1, q2], axis=-1)
+    q = np.stack([q1, q2], axis=-1).reshape(p.shape)
     return assemble_result(
         arm, p, q, iterations, threshold, "newton",
         solved_message=_solved_message(len(q), iterations.max(initial=0)),
@@ -153,32 +152,37 @@ _INSIDE_UP, _INSIDE_DOWN = 1.0 + 1e-15, 1.0 - 1e-15
 DAMPING_START, DAMPING_CAP, DAMPING_DOWN, DAMPING_UP = 1e-3, 1e12, 0.2, 10.0
 
 
-def _solved_message(count, most_iterations):
+def _solved_message(count: int, most_iterations: int) -> str:
     return f"converged for all {count} targets (max {most_iterations} iterations)"
 
 
-def _failure_detail(residual, iterations):
+def _failure_detail(residual: float, iterations: int) -> str:
     return f"did not converge: residual {residual:.3g} m after {iterations} iterations"
 
 
 # ---------------------------------------------------------------- the formulas (floats or arrays)
-def _wrap(angle):
+_Number = TypeVar("_Number", float, NDArray[np.float64])
+
+
+def _wrap(angle: _Number) -> _Number:
     """Angles wrapped to ``[-pi, pi)`` (as :func:`twolink.wrap_angle`), floats or arrays."""
     return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
-def _trig(cos, sin, q1, q2):
+def _trig(cos: Callable[[Any], Any], sin: Callable[[Any], Any], q1: Any, q2: Any) -> tuple[Any, Any, Any, Any, Any]:
     """``(cos q1, sin q1, cos q12, sin q12, sin q2)``; ``cos``/``sin`` from :mod:`math` or numpy."""
     q12 = q1 + q2
     return cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
 
 
-def _residual(l1, l2, c1, s1, c12, s12, x, y):
+def _residual(l1: float, l2: float, c1: Any, s1: Any, c12: Any, s12: Any, x: Any, y: Any) -> tuple[Any, Any]:
     """``fk(q) - p`` as two components (the expressions of :func:`twolink.kinematics.fk`)."""
     return l1 * c1 + l2 * c12 - x, l1 * s1 + l2 * s12 - y
 
 
-def _lm_step(l1, l2, c1, s1, c12, s12, s2, rx, ry, damping):
+def _lm_step(
+    l1: float, l2: float, c1: Any, s1: Any, c12: Any, s12: Any, s2: Any, rx: Any, ry: Any, damping: Any
+) -> tuple[Any, Any]:
     """The damped Newton step ``-(J^T J + lam I)^(-1) J^T r`` as two components, floats or arrays.
 
     The 2x2 system is solved with its adjugate; its determinant
@@ -199,7 +203,9 @@ def _lm_step(l1, l2, c1, s1, c12, s12, s2, rx, ry, damping):
     return (b * g2 - (d + damping) * g1) / det, (b * g1 - (a + damping) * g2) / det
 
 
-def _newton_pair(arm, target, start, distance, tol, max_iter):
+def _newton_pair(
+    arm: TwoLinkArm, target: tuple[float, float], q0: tuple[float, float], distance: float, tol: float, max_iter: int
+) -> IKResult:
     """:func:`newton` for one target on floats: the same iteration as the vectorised path."""
     l1, l2 = arm.l1, arm.l2
     x, y = target
@@ -208,7 +214,7 @@ def _newton_pair(arm, target, start, distance, tol, max_iter):
     threshold = tol * scale + max(0.0, distance - scale, abs(l1 - l2) - distance)
     # _wrap and _trig written out: a function call costs as much as the arithmetic here
     two_pi, pi, l1l2 = 2.0 * math.pi, math.pi, l1 * l2
-    q1, q2 = (start[0] + pi) % two_pi - pi, (start[1] + pi) % two_pi - pi
+    q1, q2 = (q0[0] + pi) % two_pi - pi, (q0[1] + pi) % two_pi - pi
     q12 = q1 + q2
     c1, s1, c12, s12, s2 = cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
     rx, ry = l1 * c1 + l2 * c12 - x, l1 * s1 + l2 * s12 - y
@@ -247,8 +253,10 @@ def _newton_pair(arm, target, start, distance, tol, max_iter):
                 damping *= DAMPING_UP
             if not (error > threshold and damping < damping_cap):
                 break
-    return assemble_pair_result(
-        arm, target, q1, q2, iterations, threshold, "newton",
+    q = np.empty(2)
+    q[0], q[1] = q1, q2
+    return assemble_result(
+        arm, target, q, iterations, threshold, "newton",
         solved_message=_solved_message(1, iterations),
-        failure_detail=lambda residual: _failure_detail(residual, iterations),
+        failure_detail=lambda index, residual: _failure_detail(residual, iterations),
     )

@@ -4,28 +4,41 @@ Two formulations from the source coursework (MATLAB ``fminunc`` and
 ``fmincon``), translated to :func:`scipy.optimize.minimize`.
 """
 
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
 import numpy as np
 import scipy.optimize
+from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_finite_scalar, broadcast_start
-from ..kinematics import fk, jacobian
-from .iterative import distance_outside_reach
-from .result import assemble_result
-from .targets import check_reachable
+from ..kinematics import distance_outside_reach, fk, jacobian
+from .result import IKResult, assemble_result
+from .targets import reachable_targets
+
+if TYPE_CHECKING:
+    from ..arm import TwoLinkArm
 
 __all__ = ["minimize"]
 
 
-def _solve_one(arm, p_target, q_start, constrained, bounds):
+def _solve_one(
+    arm: TwoLinkArm,
+    p_target: NDArray[np.float64],
+    q0: NDArray[np.float64],
+    constrained: bool,
+    bounds: list[tuple[float, float]] | None,
+) -> Any:
     scale = arm.l1 + arm.l2
     if not constrained:
 
-        def squared_error(q):
+        def squared_error(q: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
             residual_vec = (fk(arm, q) - p_target) / scale
             return 0.5 * residual_vec @ residual_vec, jacobian(arm, q).T @ residual_vec / scale
 
         return scipy.optimize.minimize(
-            squared_error, q_start, jac=True, method="BFGS", options={"gtol": 1e-14, "maxiter": 500}
+            squared_error, q0, jac=True, method="BFGS", options={"gtol": 1e-14, "maxiter": 500}
         )
 
     # fmincon-style feasibility problem: minimise a constant subject to fk(q) = p.
@@ -36,7 +49,7 @@ def _solve_one(arm, p_target, q_start, constrained, bounds):
     }
     return scipy.optimize.minimize(
         lambda q: 0.0,
-        q_start,
+        q0,
         jac=lambda q: np.zeros(2),
         method="SLSQP",
         constraints=[constraint],
@@ -45,7 +58,9 @@ def _solve_one(arm, p_target, q_start, constrained, bounds):
     )
 
 
-def minimize(arm, p, q0=(0.5, 1.0), constrained=False, tol=1e-9):
+def minimize(
+    arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), constrained: bool = False, tol: float = 1e-9
+) -> IKResult:
     """Solve IK with :func:`scipy.optimize.minimize`, one target at a time.
 
     ``constrained=False`` minimises ``|fk(q) - p|^2 / 2`` with BFGS, the
@@ -93,27 +108,27 @@ def minimize(arm, p, q0=(0.5, 1.0), constrained=False, tol=1e-9):
     >>> ik.minimize(arms.ten, [10.0, 10.0], constrained=True).method
     'minimize-slsqp'
     """
-    p = check_reachable(arm, p)
+    p = reachable_targets(arm, p)
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
-    q0 = broadcast_start(q0, p.shape, "q0").reshape(-1, 2)
+    q0_flat = broadcast_start(q0, p.shape, "q0").reshape(-1, 2)
     p_flat = p.reshape(-1, 2)
     bounds = None
-    if constrained and arm.has_limits and arm.limit_convention == "relative":
+    if constrained and arm.q_min is not None and arm.q_max is not None and arm.limit_convention == "relative":
         bounds = list(zip(arm.q_min, arm.q_max))
-        q0 = np.clip(q0, arm.q_min, arm.q_max)
+        q0_flat = np.clip(q0_flat, arm.q_min, arm.q_max)
 
     q = np.empty_like(p_flat)
     iterations = np.zeros(len(p_flat), dtype=int)
-    scipy_messages = []
-    for index, (p_target, q_start) in enumerate(zip(p_flat, q0)):
-        outcome = _solve_one(arm, p_target, q_start, constrained, bounds)
+    scipy_messages: list[str] = []
+    for index, (p_target, q0_target) in enumerate(zip(p_flat, q0_flat)):
+        outcome = _solve_one(arm, p_target, q0_target, constrained, bounds)
         q[index] = outcome.x
         iterations[index] = outcome.nit
         scipy_messages.append(outcome.message)
 
     threshold = tol * (arm.l1 + arm.l2) + distance_outside_reach(arm, p_flat)
     return assemble_result(
-        arm, p, q, iterations, threshold, "minimize-slsqp" if constrained else "minimize-bfgs",
+        arm, p, q.reshape(p.shape), iterations, threshold, "minimize-slsqp" if constrained else "minimize-bfgs",
         solved_message=f"solved all {len(q)} targets",
         failure_detail=lambda index, residual: f"residual {residual:.3g} m; scipy said: {scipy_messages[index]}",
     )

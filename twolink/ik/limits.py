@@ -1,0 +1,166 @@
+"""Inverse kinematics within the joint limits: both closed-form branches, moved into the limits.
+
+A joint angle and the same angle plus a whole turn are one physical
+configuration, but a limit interval holds at most one of them (unless it is
+wider than a turn).  :func:`move_into_limits` picks, per angle, the turn that
+lies in the limits when there is one; :func:`solutions_within_limits` applies
+it to both closed-form branches at each point.  :mod:`twolink.workspace`
+builds its reachability tests on these, and ``ik.closed_form(...,
+elbow="auto")`` its choice of branch.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .._validate import as_finite_scalar, as_pairs, require_arm
+from ..kinematics import REACH_RTOL, distance_outside_reach
+from .analytic import closed_form
+
+if TYPE_CHECKING:
+    from ..arm import TwoLinkArm
+
+__all__ = ["LIMIT_TOL", "move_into_limits", "solutions_within_limits"]
+
+#: Slack (radians) with which a configuration on a joint limit counts as inside.
+#: At a stretched or folded pose the tip pins the angles down only to about
+#: the square root of machine epsilon (1.5e-8 rad), so a point traced by a
+#: configuration on a limit needs this much slack to be recognised.
+LIMIT_TOL = 1e-7
+
+_TWO_PI = 2.0 * np.pi
+
+
+def _turns_into_range(
+    angles: NDArray[np.float64], low: NDArray[np.float64], high: NDArray[np.float64], tol: float
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Whole turns (radians, a multiple of 2 pi) that move each angle into ``[low - tol, high + tol]``.
+
+    The turn to the angle's representative in ``[low - tol, low - tol + 2 pi)``
+    where that lies inside and the angle does not; 0 elsewhere (an angle
+    already inside is returned unchanged, not rounded through a modulo).
+    Also whether the moved angle is inside.
+    """
+    inside_now = (angles >= low - tol) & (angles <= high + tol)
+    representative = np.mod(angles - low + tol, _TWO_PI)
+    representative += low - tol
+    inside_moved = representative <= high + tol
+    turns = _TWO_PI * np.round((representative - angles) / _TWO_PI)
+    turns[inside_now | ~inside_moved] = 0.0
+    return turns, inside_now | inside_moved
+
+
+def move_into_limits(
+    arm: TwoLinkArm, q: ArrayLike, tol: float = LIMIT_TOL
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Configurations moved by whole turns into the arm's joint limits, where a turn does that.
+
+    Each joint angle (each link angle ``(q1, q1 + q2)`` for absolute limits)
+    already within its limit interval is left exactly as it is; any other is
+    moved by the multiple of ``2 pi`` that brings it in, if one does (else
+    it too is left as it is).  The tip does not move.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    q : array_like, shape (..., 2)
+        Relative joint angles, radians.
+    tol : float
+        Slack in radians at each limit.
+
+    Returns
+    -------
+    moved : numpy.ndarray, shape (..., 2)
+        The configurations, moved where that helps (relative angles).
+    inside : numpy.ndarray of bool, shape (...)
+        Whether each moved configuration is within the limits (with ``tol``);
+        all true for an arm without limits.
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> arm = TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(1.5 * np.pi, 0.5 * np.pi))
+    >>> moved, inside = move_into_limits(arm, [[-0.5 * np.pi, 0.25], [0.5, -1.0]])
+    >>> (moved / np.pi).round(6), inside
+    (array([[ 1.5     ,  0.079577],
+           [ 0.159155, -0.31831 ]]), array([ True, False]))
+    >>> move_into_limits(arm, [0.5, 0.25])[0] == [0.5, 0.25]  # already inside: exactly as given
+    array([ True,  True])
+    """
+    require_arm(arm)
+    angles: NDArray[np.float64] = as_pairs(q, "q")
+    tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
+    if arm.q_min is None or arm.q_max is None:
+        return angles.copy(), np.ones(angles.shape[:-1], dtype=np.bool_)
+    low, high = np.asarray(arm.q_min, dtype=float), np.asarray(arm.q_max, dtype=float)
+    if arm.limit_convention == "relative":
+        turns, inside = _turns_into_range(angles, low, high, tol)
+    else:  # turn link 1 by t1 and link 2 by t2: q1 by t1, q2 = (q1 + q2) - q1 by t2 - t1
+        link_angles = angles.copy()
+        link_angles[..., 1] += angles[..., 0]
+        turns, inside = _turns_into_range(link_angles, low, high, tol)
+        turns[..., 1] -= turns[..., 0]
+    return angles + turns, np.all(inside, axis=-1)
+
+
+def solutions_within_limits(
+    arm: TwoLinkArm, p: ArrayLike, tol: float = LIMIT_TOL
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Both closed-form IK branches at each point, moved into the limits where possible.
+
+    Each joint angle is moved by a multiple of ``2 pi`` (the same physical
+    configuration) into the limit interval when it can be
+    (:func:`move_into_limits`); absolute limits are applied to the link
+    angles ``(q1, q1 + q2)``.  Unlike :func:`twolink.ik.closed_form`, points
+    out of reach are not refused: they are answered, and marked invalid.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    p : array_like, shape (..., 2)
+        Tip positions, metres.
+    tol : float
+        Slack in radians at each limit.
+
+    Returns
+    -------
+    q_both : numpy.ndarray, shape (..., 2, 2)
+        ``[..., 0, :]`` the elbow-down branch (``q2 >= 0`` before moving),
+        ``[..., 1, :]`` elbow-up (the branch axis is the second last, next to
+        the angles; ``ik.closed_form(..., elbow="both").q`` has it first).
+        For points outside the reach annulus these are the angles of the
+        nearest point of the annulus (never NaN): read ``valid`` before
+        using them.
+    valid : numpy.ndarray of bool, shape (..., 2)
+        Whether each branch reaches the point within the limits.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> q_both, valid = solutions_within_limits(arms.ten, [10.0, 10.0])
+    >>> np.degrees(q_both).round(6), valid
+    (array([[  0.,  90.],
+           [ 90., -90.]]), array([ True,  True]))
+    >>> solutions_within_limits(arms.ten, [5.0, -15.0])[1]
+    array([False, False])
+    """
+    require_arm(arm)
+    points: NDArray[np.float64] = as_pairs(p, "p")
+    tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
+    r_min, r_max = arm.reach
+    distance = np.hypot(points[..., 0], points[..., 1])
+    # inside the reach by the one reach test's tolerance (kinematics.require_within_reach)
+    in_reach = distance_outside_reach(arm, points) <= REACH_RTOL * r_max
+    # points outside the annulus are projected onto it, so that the closed form never raises
+    safe = np.where(distance > 0.0, distance, 1.0)
+    direction = np.where(distance[..., None] > 0.0, points / safe[..., None], np.array([1.0, 0.0]))
+    p_projected = np.where(in_reach[..., None], points, direction * np.clip(distance, r_min, r_max)[..., None])
+    q_both = np.ascontiguousarray(np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2))
+    valid = np.broadcast_to(in_reach[..., None], q_both.shape[:-1]).copy()
+    if arm.has_limits:
+        q_both, inside = move_into_limits(arm, q_both, tol)
+        valid &= inside
+    return q_both, valid
