@@ -9,7 +9,7 @@ too); anything else, and every error, goes through the vectorised path.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -30,6 +30,9 @@ __all__ = ["closed_form", "CLOSED_FORM_RTOL"]
 CLOSED_FORM_RTOL = 1e-9
 
 METHOD = "closed-form"
+
+# the one-target path's functions, bound once (a global and an attribute lookup each cost a few % of a call)
+_sqrt, _atan2, _empty, _array = math.sqrt, math.atan2, np.empty, np.array
 _BRANCH_WORDS = {"down": "elbow down", "up": "elbow up", "both": "both branches", "auto": "elbow down, no joint limits"}
 
 
@@ -117,49 +120,45 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     twolink.errors.UnreachableError: target (30, 0) is 30 m from the base; this arm reaches distances in [0, 20] m (l1=10, l2=10)
     """
     target = pair_floats(p)
-    if target is not None:
+    if target is not None and type(elbow) is str:
         # one target on floats: the steps of the vectorised path, written out (a call costs as much)
+        cached: Any = arm  # (TwoLinkArm sets _derived, its cache of constants, in __post_init__)
         try:
             l1, l2 = arm.l1, arm.l2
-            terms = getattr(arm, "_derived")["closed_form"]  # the arm's cached constants (set in its __post_init__)
+            terms = cached._derived["closed_form"]
         except AttributeError:  # not a TwoLinkArm (or not an arm: arm_lengths raises, naming it)
             l1, l2 = arm_lengths(arm)
             terms = _reach_terms(arm)
         except KeyError:  # the first call on this arm
             terms = _reach_terms(arm)
         r_min_squared, r_max_squared, inverse, low_outer, low_inner, judging_one = terms
-        try:
-            judging = judging_one[elbow]  # also: elbow is one of the words (else the vectorised path says so)
-        except (KeyError, TypeError):
-            judging = None
         x, y = target
         r_squared = x * x + y * y
         one_minus_c2 = (r_max_squared - r_squared) * inverse
         one_plus_c2 = (r_squared - r_min_squared) * inverse
-        # outside the reach (the vectorised path raises) or not an elbow word: the vectorised path
-        if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner and judging is not None:
+        if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner:  # else the vectorised path raises
             if one_minus_c2 < 0.0:
                 one_minus_c2 = 0.0
             if one_plus_c2 < 0.0:
                 one_plus_c2 = 0.0
-            s2 = math.sqrt(one_minus_c2 * one_plus_c2)  # sin q2 of the down branch, >= 0
+            s2 = _sqrt(one_minus_c2 * one_plus_c2)  # sin q2 of the down branch, >= 0
             k1 = one_plus_c2 * l2 + (l1 - l2)  # l1 + l2 cos q2, accurate near full fold
-            q2_down = math.atan2(s2, (one_plus_c2 - one_minus_c2) * 0.5)
+            q2_down = _atan2(s2, (one_plus_c2 - one_minus_c2) * 0.5)
             s2 *= l2
             xk1, yk1, xk2, yk2 = x * k1, y * k1, x * s2, y * s2
             if elbow == "down" or (elbow == "auto" and arm.q_min is None):
-                q = np.empty(2)  # then two item assignments: faster than np.array of a list
-                q[0], q[1] = math.atan2(yk1 - xk2, xk1 + yk2), q2_down
-                return result_judged_by(arm, target, q, judging)
+                q = _empty(2)  # then two item assignments: faster than np.array of a list
+                q[0], q[1] = _atan2(yk1 - xk2, xk1 + yk2), q2_down
+                return result_judged_by(arm, target, q, judging_one[elbow])
             if elbow == "up":
-                q = np.empty(2)
-                q[0], q[1] = math.atan2(yk1 + xk2, xk1 - yk2), -q2_down
-                return result_judged_by(arm, target, q, judging)
+                q = _empty(2)
+                q[0], q[1] = _atan2(yk1 + xk2, xk1 - yk2), -q2_down
+                return result_judged_by(arm, target, q, judging_one[elbow])
             if elbow == "both":
-                q = np.array([math.atan2(yk1 - xk2, xk1 + yk2), q2_down, math.atan2(yk1 + xk2, xk1 - yk2), -q2_down])
+                q = _array([_atan2(yk1 - xk2, xk1 + yk2), q2_down, _atan2(yk1 + xk2, xk1 - yk2), -q2_down])
                 q.shape = (2, 2)
-                return result_judged_by(arm, target, q, judging)
-            # "auto" with joint limits: the vectorised path
+                return result_judged_by(arm, target, q, judging_one[elbow])
+            # "auto" with joint limits, or not an elbow word: the vectorised path
     elbow = check_elbow(elbow)
     targets: NDArray[np.float64] = as_pairs(p, "target p")
     try:

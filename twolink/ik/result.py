@@ -142,10 +142,12 @@ class IKResult:
              max iterations 0, message='solved 2 targets in closed form (both branches); 2 of 4 answers violate the joint limits (see within_limits)')
     """
 
-    # one slot: [arm, p, q, judging, fields], fields None until first read (a list: no exception, one store)
-    __slots__ = ("_state",)
+    # _inputs: (arm, p, q, judging), set when built (a tuple: the cheapest to make and free);
+    # _fields: the computed fields, set on first read
+    __slots__ = ("_inputs", "_fields")
 
-    _state: list[Any]
+    _inputs: tuple[Any, Any, NDArray[np.float64], Judging]
+    _fields: _Fields
 
     def __init__(
         self,
@@ -163,20 +165,18 @@ class IKResult:
         q = np.array(as_pairs(q, "q"))
         if q.shape[q.ndim - p.ndim :] != p.shape:
             raise ValueError(f"q of shape {q.shape} does not hold one answer per target p of shape {p.shape}")
-        self._state = [arm, p, q, Judging(iterations, threshold, str(method), str(solved_message), failure_detail), None]
+        self._inputs = (arm, p, q, Judging(iterations, threshold, str(method), str(solved_message), failure_detail))
 
     # ------------------------------------------------------------------ fields
     @property
     def q(self) -> NDArray[np.float64]:
         """Joint angles in radians, shape ``(..., 2)``."""
-        q: NDArray[np.float64] = self._state[2]
-        return q
+        return self._inputs[2]
 
     @property
     def method(self) -> str:
         """Which solver produced this result."""
-        method: str = self._state[3].method
-        return method
+        return self._inputs[3].method
 
     @property
     def success(self) -> NDArray[np.bool_]:
@@ -209,13 +209,13 @@ class IKResult:
         return bool(np.all(self._evaluated()[0]))
 
     def _evaluated(self) -> _Fields:
-        state = self._state
-        fields: _Fields | None = state[4]
-        if fields is None:
-            arm, p, q, judging, _ = state
+        try:
+            return self._fields
+        except AttributeError:  # the first read
+            arm, p, q, judging = self._inputs
             fields = _one_answer_fields(arm, p, q, judging) if q.shape == (2,) else _fields(arm, p, q, judging)
-            state[4] = fields
-        return fields
+            self._fields = fields
+            return fields
 
     # ------------------------------------------------------------------ not an array, repr, pickling
     def __array__(self, *args: object, **kwargs: object) -> NoReturn:
@@ -323,7 +323,8 @@ def _one_answer_fields(arm: TwoLinkArm, p: Any, q: NDArray[np.float64], judging:
 
 def _restored(q: NDArray[np.float64], method: str, fields: _Fields) -> IKResult:
     result = _new(IKResult)
-    result._state = [None, None, q, Judging(0, 0.0, method, fields[4]), fields]  # the fields known: no arm, no p
+    result._inputs = (None, None, q, Judging(0, 0.0, method, fields[4]))  # the fields are known: no arm, no p
+    result._fields = fields
     return result
 
 
@@ -349,7 +350,7 @@ def result_judged_by(arm: TwoLinkArm, p: Any, q: NDArray[np.float64], judging: J
         How the answers are judged and described.
     """
     result = _new(IKResult)
-    result._state = [arm, p, q, judging, None]
+    result._inputs = (arm, p, q, judging)
     return result
 
 
@@ -385,5 +386,5 @@ def assemble_result(
         answer for the message.
     """
     result = _new(IKResult)
-    result._state = [arm, p, q, Judging(iterations, threshold, method, solved_message, failure_detail), None]
+    result._inputs = (arm, p, q, Judging(iterations, threshold, method, solved_message, failure_detail))
     return result
