@@ -189,7 +189,9 @@ def test_constrained_minimize_respects_relative_limits():
     assert arms.ten.within_limits(beyond.q)
 
 
-@given(fraction=st.floats(min_value=0.05, max_value=0.95), heading=st.floats(min_value=0.0, max_value=np.pi / 2))
+# fractions from 0.72: arms.ten reaches within its limits only at |p| >= 10 sqrt 2 = 0.707 * 20 (fewer targets
+# filtered out by assume below; hypothesis refused a run that drew too many from below)
+@given(fraction=st.floats(min_value=0.72, max_value=0.95), heading=st.floats(min_value=0.0, max_value=np.pi / 2))
 def test_brute_force_agrees_with_closed_form_to_its_grid_step(fraction, heading):
     arm = arms.ten
     p = target_at(fraction * 20.0, heading)
