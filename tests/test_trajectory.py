@@ -210,7 +210,7 @@ def test_a_path_leaving_the_limits_but_not_the_reach_says_so():
     with pytest.raises(UnreachableError) as caught:
         trajectory.ik_trajectory(arms.two_metre_limited, line, n=50)
     message = str(caught.value)
-    assert message.startswith("path point 0 (of 50) at (-3.5, 1)")
+    assert message.startswith("path point (-3.5, 1) (index (0,), first of 35) is 3.64005 m from the base, inside the reach")
     assert "outside the joint limits" in message and "[35, 145] deg" in message
 
 

@@ -9,7 +9,7 @@ Examples
 >>> import numpy as np
 >>> import twolink
 >>> arm = twolink.TwoLinkArm(l1=2.0, l2=2.0)
->>> q = twolink.ik.closed_form(arm, [3.0, 1.0], elbow="down")
+>>> q = twolink.ik.closed_form(arm, [3.0, 1.0], elbow="down").q
 >>> arm.fk(q).round(12)
 array([3., 1.])
 """

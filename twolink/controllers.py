@@ -31,7 +31,7 @@ Examples
 --------
 >>> from twolink import arms, ik
 >>> spring = CartesianSpring(arms.two_metre, stiffness=600.0, rest_point=[3.0, 1.0])
->>> q = ik.closed_form(arms.two_metre, [3.0, 0.0])
+>>> q = ik.closed_form(arms.two_metre, [3.0, 0.0]).q
 >>> spring.force_on_tip(q).round(9) + 0.0          # tip 1 m below the rest point: pulled up
 array([  0., 600.])
 >>> spring(0.0, q, [0.0, 0.0]).round(6)     # tau = J^T F: x F_y about the shoulder, 1.5 m x F_y about the elbow
@@ -217,7 +217,7 @@ class CartesianSpring:
         At the rest point only ``-J^T K J`` is left:
 
         >>> from twolink import arms, ik
-        >>> q = ik.closed_form(arms.two_metre, [3.0, 1.0])
+        >>> q = ik.closed_form(arms.two_metre, [3.0, 1.0]).q
         >>> spring = CartesianSpring(arms.two_metre, 600.0, [3.0, 1.0])
         >>> by_q, by_qd = spring.torque_derivatives(0.0, q)
         >>> J = arms.two_metre.jacobian(q)
@@ -266,7 +266,7 @@ class Impedance:
     >>> from twolink import arms, ik
     >>> arm = arms.two_metre
     >>> control = Impedance(arm, stiffness=600.0, damping=50.0, rest_point=[3.0, 1.0])
-    >>> q_rest = ik.closed_form(arm, [3.0, 1.0])
+    >>> q_rest = ik.closed_form(arm, [3.0, 1.0]).q
     >>> bool(np.allclose(control(0.0, q_rest, [0.0, 0.0]), arm.gravity(q_rest)))
     True
     >>> Impedance(arm, 600.0, [[10.0, 20.0], [20.0, 10.0]], [3.0, 1.0])

@@ -215,7 +215,7 @@ def equilibrium(
     --------
     >>> from twolink import arms, controllers, ik
     >>> spring = controllers.CartesianSpring(arms.two_metre, 600.0, [3.0, 1.0])
-    >>> q_sag = equilibrium(arms.two_metre, spring, ik.closed_form(arms.two_metre, [3.0, 1.0]))
+    >>> q_sag = equilibrium(arms.two_metre, spring, ik.closed_form(arms.two_metre, [3.0, 1.0]).q)
     >>> arms.two_metre.fk(q_sag).round(4)      # gravity pulls the tip about 2 cm below the rest point
     array([2.9912, 0.9787])
     """
@@ -358,7 +358,7 @@ def linearize(
     >>> import control
     >>> from twolink import arms, controllers, ik
     >>> arm = arms.two_metre
-    >>> q_rest = ik.closed_form(arm, [3.0, 1.0])
+    >>> q_rest = ik.closed_form(arm, [3.0, 1.0]).q
     >>> d = critical_damping(arm, q_rest, 600.0)
     >>> loop = linearize(arm, controllers.Impedance(arm, 600.0, d, [3.0, 1.0]), q_rest, name="impedance")
     >>> wn, zeta, poles = control.damp(loop, doprint=False)
@@ -390,7 +390,7 @@ def closed_loop_system(arm: TwoLinkArm, controller: Controller, name: str | None
     --------
     >>> from twolink import arms, controllers, ik
     >>> arm = arms.two_metre
-    >>> q_rest = ik.closed_form(arm, [3.0, 1.0])
+    >>> q_rest = ik.closed_form(arm, [3.0, 1.0]).q
     >>> impedance = controllers.Impedance(arm, 600.0, 50.0, [3.0, 1.0])
     >>> numerical = closed_loop_system(arm, impedance).linearize(np.concatenate([q_rest, [0.0, 0.0]]), [0.0, 0.0])
     >>> bool(np.allclose(numerical.A, linearize(arm, impedance, q_rest).A, rtol=1e-4, atol=1e-3))

@@ -196,7 +196,7 @@ def brute_force(
 
     # success needs a grid point within the bound, the point within the limits, and the target
     # inside the workspace the limits leave (a target just outside it is near a limit's grid point)
-    within = arm.within_limits(q)
+    within = np.asarray(arm.within_limits(q))
     reachable = np.ravel(is_reachable(arm, p_flat))
     threshold = np.where(within & reachable, bound + distance_outside_reach(arm, p_flat), -np.inf)
 

@@ -98,8 +98,8 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
     max_iter = as_count(max_iter, "max_iter", minimum=1)
     p_flat = p.reshape(-1, 2)
-    q = wrap_angle(broadcast_start(q0, p.shape, "q0")).reshape(-1, 2)
-    q1, q2 = q[:, 0].copy(), q[:, 1].copy()
+    q_start = wrap_angle(broadcast_start(q0, p.shape, "q0")).reshape(-1, 2)
+    q1, q2 = q_start[:, 0].copy(), q_start[:, 1].copy()
     x, y = p_flat[:, 0], p_flat[:, 1]
 
     l1, l2 = arm.l1, arm.l2

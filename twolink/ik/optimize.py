@@ -35,7 +35,7 @@ def _solve_one(
 
         def squared_error(q: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
             residual_vec = (fk(arm, q) - p_target) / scale
-            return 0.5 * residual_vec @ residual_vec, jacobian(arm, q).T @ residual_vec / scale
+            return float(0.5 * residual_vec @ residual_vec), jacobian(arm, q).T @ residual_vec / scale
 
         return scipy.optimize.minimize(
             squared_error, q0, jac=True, method="BFGS", options={"gtol": 1e-14, "maxiter": 500}
