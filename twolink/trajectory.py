@@ -47,7 +47,8 @@ from .errors import InputTypeError, SimulationError, SingularityError, Unreachab
 from .kinematics import fk, jacobian, require_nonsingular, require_within_reach
 from .simulate import DEFAULT_MAX_EVALUATIONS
 from .velocity import joint_rates, joint_rates_dls
-from .workspace import LIMIT_TOL, describe_limits, require_reachable, solutions_within_limits
+from .ik import LIMIT_TOL, solutions_within_limits
+from .workspace import describe_limits, require_reachable
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
@@ -746,7 +747,7 @@ def ik_trajectory(
 ) -> JointTrajectory:
     """Joint angles along a path from the closed form, on one elbow branch throughout.
 
-    Each sample is solved in closed form (:func:`twolink.workspace.solutions_within_limits`,
+    Each sample is solved in closed form (:func:`twolink.ik.solutions_within_limits`,
     both branches), then one branch is kept for every sample, so the elbow never
     flips mid-path, and the angles are unwrapped so they never jump by ``2 pi``.
     Where one branch is not continuous (a line through the base of an

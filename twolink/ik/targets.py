@@ -9,9 +9,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_pairs
 
-# statics.py still imports REACH_RTOL from here; it is kinematics.REACH_RTOL (one object), and this
-# import goes once statics imports it from twolink.kinematics
-from ..kinematics import REACH_RTOL as REACH_RTOL
 from ..kinematics import require_within_reach
 
 if TYPE_CHECKING:
