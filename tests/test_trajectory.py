@@ -12,6 +12,15 @@ from twolink.trajectory import CirclePath, LinePath
 TEN_ARCS = {elbow: workspace.boundary_arcs(arms.ten, elbow=elbow) for elbow in ("down", "up")}
 durations = st.floats(min_value=0.1, max_value=20.0)
 laws = st.sampled_from(trajectory.TIME_LAWS)
+#: The parameters of a CirclePath, drawn together (the circle tests share them).
+CIRCLES = {
+    "centre": st.tuples(st.floats(-5, 5), st.floats(-5, 5)),
+    "radius": st.floats(0.1, 5),
+    "duration": durations,
+    "law": laws,
+    "start": st.floats(-np.pi, np.pi),
+    "turns": st.sampled_from([1.0, -1.0, 0.25, 2.0]),
+}
 
 
 # ---------------------------------------------------------------- time laws and paths
@@ -69,14 +78,7 @@ def test_line_path_runs_along_the_segment_with_consistent_velocity(start, end, d
     assert np.allclose(v[1:-1], (p[2:] - p[:-2]) / (2 * dt), atol=1e-3 * (1 + line.length) / duration)
 
 
-@given(
-    centre=st.tuples(st.floats(-5, 5), st.floats(-5, 5)),
-    radius=st.floats(0.1, 5),
-    duration=durations,
-    law=laws,
-    start=st.floats(-np.pi, np.pi),
-    turns=st.sampled_from([1.0, -1.0, 0.25, 2.0]),
-)
+@given(**CIRCLES)
 def test_circle_path_stays_on_the_circle_with_consistent_velocity(centre, radius, duration, law, start, turns):
     circle = CirclePath(centre, radius, duration, law, start_angle=start, turns=turns)
     t, p, v = circle.sample(801)
@@ -371,14 +373,7 @@ def test_line_path_acceleration_is_the_derivative_of_its_velocity(start, end, du
     assert np.array_equal(a, line.at(t, with_acceleration=True)[2])
 
 
-@given(
-    centre=st.tuples(st.floats(-5, 5), st.floats(-5, 5)),
-    radius=st.floats(0.1, 5),
-    duration=durations,
-    law=laws,
-    start=st.floats(-np.pi, np.pi),
-    turns=st.sampled_from([1.0, -1.0, 0.25, 2.0]),
-)
+@given(**CIRCLES)
 def test_circle_path_acceleration_is_the_derivative_of_its_velocity(centre, radius, duration, law, start, turns):
     circle = CirclePath(centre, radius, duration, law, start_angle=start, turns=turns)
     assert_acceleration_is_the_derivative_of_velocity(circle)

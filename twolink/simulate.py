@@ -27,7 +27,9 @@ from scipy.integrate import solve_ivp
 from . import dynamics
 from ._validate import InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, torque_floats
 from .errors import SimulationError
+from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME
 from .kinematics import fk
+from .trajectory import path_positions
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
@@ -47,11 +49,6 @@ __all__ = ["simulate", "SimulationResult", "SimulationError", "DEFAULT_MAX_EVALU
 DEFAULT_SOLVER_OPTIONS = MappingProxyType({"method": "DOP853", "rtol": 1e-10, "atol": 1e-10})
 
 
-#: Budget of :func:`simulate` unless the caller passes others: right-hand-side
-#: evaluations (a free motion of 10 s takes about 7e3; a stiff loop on an
-#: explicit method takes millions) and wall-clock seconds.
-DEFAULT_MAX_EVALUATIONS = 1_000_000
-DEFAULT_MAX_WALL_TIME = 30.0
 
 #: The explicit Runge-Kutta methods of ``solve_ivp`` (stiff loops need an implicit one).
 _EXPLICIT_METHODS = ("RK23", "RK45", "DOP853")
@@ -203,8 +200,6 @@ class SimulationResult:
                 "a simulation has no path of its own: pass what the tip should follow (a LinePath or CirclePath, "
                 "a JointTrajectory sampled at the same times, or points of shape (n, 2) or (2,) in metres)"
             )
-        from .trajectory import path_positions  # trajectory imports this module: import it when first used
-
         difference = self.p_tip - path_positions(path, self.t)
         return np.hypot(difference[:, 0], difference[:, 1])
 

@@ -43,9 +43,9 @@ from scipy.integrate import solve_ivp
 from ._validate import as_configuration, as_count, as_finite_scalar, as_pairs, real_array, require_arm
 from .controllers import JointReference
 from .conventions import check_elbow
+from .budgets import DEFAULT_MAX_EVALUATIONS
 from .errors import InputTypeError, SimulationError, SingularityError, UnreachableError
 from .kinematics import fk, jacobian, require_nonsingular, require_within_reach
-from .simulate import DEFAULT_MAX_EVALUATIONS
 from .velocity import joint_rates, joint_rates_dls
 from .ik import LIMIT_TOL, solutions_within_limits
 from .workspace import describe_limits, require_reachable

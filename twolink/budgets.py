@@ -1,0 +1,21 @@
+"""The default budgets of every integration in the package (one place, so that no module imports another for them).
+
+:func:`twolink.simulate.simulate` and
+:func:`twolink.trajectory.resolved_rate_trajectory` stop with a
+:class:`~twolink.errors.SimulationError` that names the budget when one is
+spent; callers pass larger ones explicitly.
+
+Examples
+--------
+>>> DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME
+(1000000, 30.0)
+"""
+
+__all__ = ["DEFAULT_MAX_EVALUATIONS", "DEFAULT_MAX_WALL_TIME"]
+
+#: Right-hand-side evaluations (a free motion of 10 s takes about 7e3; a stiff
+#: loop on an explicit method takes millions).
+DEFAULT_MAX_EVALUATIONS = 1_000_000
+
+#: Wall-clock seconds.
+DEFAULT_MAX_WALL_TIME = 30.0
