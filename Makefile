@@ -7,12 +7,13 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
 
-.PHONY: help install lock lab test notebooks bench bench-peers student grade site browser-test clean
+.PHONY: help install lock lab test portable notebooks bench bench-peers student grade site browser-test clean
 
 help:
 	@echo "make lab        open the course in JupyterLab (creates .venv on first use);"
 	@echo "                extra JupyterLab options: make lab LAB_ARGS=\"--no-browser --port 8890\""
 	@echo "make test       unit tests, doctests, notebook hygiene and every notebook under strict nbval"
+	@echo "make portable   every chapter under strict nbval in several emulated numeric environments (CPU SIMD, BLAS kernels, threads)"
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables"
 	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"
@@ -59,6 +60,12 @@ lab: $(STAMP)
 # pyproject.toml so that a plain `pytest` in the venv behaves the same.
 test: $(STAMP)
 	$(BIN)/python -m pytest
+
+# Stored outputs must read the same on every CPU, BLAS kernel and OS: strict
+# nbval of the chapters once per emulated numeric environment (tools/portable.py
+# lists them).  One chapter: make portable NOTEBOOKS=notebooks/04_statics_wall.ipynb
+portable: $(STAMP)
+	$(BIN)/python tools/portable.py $(if $(filter command line,$(origin NOTEBOOKS)),$(NOTEBOOKS),)
 
 # Widget state is stored while executing (nbclient 0.11 raises KeyError on an
 # interactive() output otherwise) and then removed by nbstripout, with the
