@@ -136,3 +136,118 @@ def test_markdown_table_refuses_rows_and_formats_of_the_wrong_length():
         display.markdown_table(["x", "y"], [[1, 2]], [".1f"])
     with pytest.raises(ValueError, match="has 3 cells for 2 columns"):
         display.markdown_table(["x", "y"], [[1, 2, 3]])
+
+
+# ------------------------------------------------------------------ numbers that read the same on every machine
+
+BOUND_TEXT = re.compile(r"(below|at most) (\S+)(?: (.+))?")
+
+
+@given(
+    value=st.floats(-1e3, 1e3, allow_nan=False),
+    exponent=st.integers(-16, 3),
+    unit=st.sampled_from(["", "m", "rad", "N m"]),
+)
+def test_below_states_a_true_bound_or_refuses(value, exponent, unit):
+    bound = 10.0**exponent
+    if abs(value) < bound:
+        text = display.below(value, bound, unit)
+        kind, shown, shown_unit = BOUND_TEXT.fullmatch(text).groups()
+        assert kind == "below" and float(shown) == pytest.approx(bound, rel=1e-12)
+        assert (shown_unit or "") == unit
+        assert "e-0" not in text and "e+" not in text  # plain exponents: 1e-5, not 1e-05
+    else:
+        with pytest.raises(display.BoundError, match="not below the stated bound"):
+            display.below(value, bound, unit)
+
+
+@given(noise=st.floats(0.0, 1e-13), sign=st.sampled_from([-1.0, 1.0]))
+def test_below_reads_the_same_for_any_round_off_under_the_bound(noise, sign):
+    # The point of the helper: two machines whose round-off differs print one text.
+    assert display.below(sign * noise, 1e-12, "m") == display.below(2.2e-16, 1e-12, "m") == "below 1e-12 m"
+
+
+def test_below_checks_the_largest_entry_of_an_array():
+    assert display.below([[1e-15, -3e-13], [0.0, 2e-14]], 1e-12) == "below 1e-12"
+    with pytest.raises(display.BoundError, match="largest magnitude 0.002"):
+        display.below([1e-15, -2e-3], 1e-3, "m")
+
+
+def test_at_most_allows_equality_and_refuses_more():
+    assert display.at_most(8, 8, "iterations") == "at most 8 iterations"
+    assert display.at_most([0, 3, 7], 8) == "at most 8"
+    with pytest.raises(display.BoundError, match="exceeds the stated bound 8 iterations"):
+        display.at_most(9, 8, "iterations")
+
+
+@pytest.mark.parametrize("function", [display.below, display.at_most])
+@pytest.mark.parametrize(
+    "value, bound, error, message",
+    [
+        (float("nan"), 1.0, ValueError, "NaN or infinite"),
+        ([1e-3, float("inf")], 1.0, ValueError, "NaN or infinite"),
+        ([], 1.0, ValueError, "empty"),
+        ("small", 1.0, ValueError, "value"),
+        (1e-9, float("nan"), ValueError, "bound"),
+        (1e-9, -1.0, ValueError, "bound"),
+        (1e-9, "1e-6", ValueError, "bound"),
+    ],
+)
+def test_bounds_refuse_what_cannot_be_bounded(function, value, bound, error, message):
+    with pytest.raises(error, match=message):
+        function(value, bound)
+
+
+def test_below_refuses_a_zero_bound():
+    with pytest.raises(ValueError, match="bound"):
+        display.below(0.0, 0.0)
+
+
+@pytest.mark.parametrize("function", [display.below, display.at_most, display.rounded, display.significant])
+def test_number_helpers_refuse_a_unit_that_is_not_text(function):
+    with pytest.raises(InputTypeError, match="unit must be a string"):
+        function(1e-20, 1, 3)
+
+
+@given(
+    value=st.floats(-1e6, 1e6, allow_nan=False),
+    decimals=st.integers(0, 6),
+    noise=st.floats(-1.0, 1.0),
+)
+def test_rounded_hides_noise_far_below_its_last_decimal(value, decimals, noise):
+    text = display.rounded(value, decimals)
+    assert float(text) == pytest.approx(round(value, decimals), abs=10.0**-decimals * 1e-6)
+    assert not text.startswith("-0") or float(text) != 0.0  # never "-0.00"
+    step = 10.0**-decimals
+    # A perturbation a thousandth of a step changes the text only when the value sits that close to a rounding tie.
+    nudged = display.rounded(value + noise * step * 1e-3, decimals)
+    if abs(abs(value / step) % 1.0 - 0.5) > 2e-3 and abs(value) < 1e5:
+        assert nudged == text
+
+
+def test_rounded_examples_and_shapes():
+    assert display.rounded(500.5405, 1, "N") == display.rounded(500.5362, 1, "N") == "500.5 N"
+    assert display.rounded([1.2, -1e-17], 2, "m") == "(1.20, 0.00) m"
+    assert display.rounded(-1e-17, 0) == "0"
+    with pytest.raises(ValueError, match="one number or a vector"):
+        display.rounded([[1.0]], 1)
+    with pytest.raises(ValueError, match="NaN or infinite"):
+        display.rounded(float("inf"), 1)
+    with pytest.raises(ValueError, match="decimals"):
+        display.rounded(1.0, -1)
+
+
+@given(value=st.floats(-1e12, 1e12, allow_nan=False).filter(lambda v: v == 0 or abs(v) > 1e-12), digits=st.integers(1, 8))
+def test_significant_reads_back_within_its_digits(value, digits):
+    text = display.significant(value, digits)
+    assert "e+" not in text and "e-0" not in text and not text.endswith(".")
+    assert float(text) == pytest.approx(value, rel=0.5 * 10.0 ** (1 - digits) * (1 + 1e-9), abs=1e-300)
+
+
+def test_significant_examples():
+    assert display.significant(0.013333333, 3, "m/s") == "0.0133 m/s"
+    assert display.significant([25000.0, -0.5], 2) == "(2.5e4, -0.50)"
+    assert display.significant(1.0, 3) == "1.00"
+    assert display.significant(-0.0, 2) == "0.0"
+    with pytest.raises(ValueError, match="digits"):
+        display.significant(1.0, 0)

@@ -224,7 +224,7 @@ def significant(value: ArrayLike, digits: int, unit: str = "") -> str:
     >>> significant(0.013333333, 3, "m/s")
     '0.0133 m/s'
     >>> significant([25000.0, -0.5], 2)
-    '(2.5e4, -0.5)'
+    '(2.5e4, -0.50)'
     """
     count = as_count(digits, "digits (significant digits shown)", minimum=1)
     values = real_array(value, "value")
