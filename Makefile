@@ -13,7 +13,7 @@ help:
 	@echo "make lab        open the course in JupyterLab (creates .venv on first use);"
 	@echo "                extra JupyterLab options: make lab LAB_ARGS=\"--no-browser --port 8890\""
 	@echo "make test       unit tests, doctests, notebook hygiene and every notebook under strict nbval"
-	@echo "make portable   every chapter under strict nbval in several emulated numeric environments (CPU SIMD, BLAS kernels, threads)"
+	@echo "make portable   every chapter (strict nbval) and doctest in several emulated numeric environments (CPU SIMD, BLAS kernels, threads)"
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables"
 	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"

@@ -14,7 +14,7 @@ fails.
 
 Usage::
 
-    python tools/portable.py                       # every variant, every chapter
+    python tools/portable.py                       # every variant: every chapter and the package's doctests
     python tools/portable.py notebooks/02_inverse_kinematics.ipynb
     python tools/portable.py --variant sse-1-thread notebooks/04_statics_wall.ipynb
     python tools/portable.py --list                 # the variants and their settings
@@ -131,7 +131,7 @@ def run_nbval(variant: Variant, notebooks: list[str], workers: str) -> tuple[int
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("notebooks", nargs="*", help="notebooks to check (default: every chapter in notebooks/)")
+    parser.add_argument("notebooks", nargs="*", help="notebooks to check (default: every chapter in notebooks/ and the doctests of twolink/)")
     parser.add_argument("--variant", action="append", choices=[v.name for v in VARIANTS], help="run only these (repeatable)")
     parser.add_argument("--workers", default="2", help="pytest-xdist workers (default 2)")
     parser.add_argument("--list", action="store_true", help="print the variants and exit")
@@ -143,9 +143,10 @@ def main(argv: list[str] | None = None) -> int:
             settings = " ".join(f'{key}="{value}"' for key, value in variant.env.items()) or "(no variables)"
             print(f"{variant.name}: {variant.why}\n    {settings}")
         return 0
-    notebooks = args.notebooks or sorted(str(path.relative_to(ROOT)) for path in (ROOT / "notebooks").glob("*.ipynb"))
+    # By default every chapter, and the docstrings' examples (stored outputs too, run as doctests).
+    notebooks = args.notebooks or [*sorted(str(path.relative_to(ROOT)) for path in (ROOT / "notebooks").glob("*.ipynb")), "twolink"]
     notebooks = [str(Path(name).resolve()) if Path(name).is_file() else name for name in notebooks]
-    missing = [name for name in notebooks if not (ROOT / name).is_file()]
+    missing = [name for name in notebooks if not (ROOT / name).exists()]
     if missing:
         parser.error(f"no such notebook: {', '.join(missing)}")
 
