@@ -4,6 +4,8 @@ import dataclasses
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import twolink
 from twolink import TwoLinkArm, arms
@@ -81,3 +83,38 @@ def test_public_api_names():
     assert issubclass(twolink.SingularityError, ValueError)
     for name in ["closed_form", "newton", "minimize", "brute_force", "IKResult"]:
         assert hasattr(twolink.ik, name), name
+
+
+# ----------------------------------------------------------------- within_limits: one formula, one type per input
+angles_around = st.floats(-4.0, 4.0, allow_nan=False)
+
+
+@settings(max_examples=200, deadline=None)
+@given(angles_around, angles_around, st.sampled_from(["relative", "absolute"]))
+def test_within_limits_of_one_configuration_is_a_bool_equal_to_the_batch(q1, q2, convention):
+    arm = TwoLinkArm(1.0, 1.0, q_min=(-1.0, -2.0), q_max=(1.5, 2.5), limit_convention=convention)
+    for q in ([q1, q2], (q1, q2), np.array([q1, q2]), np.array([q1, q2], dtype=np.float32)):
+        one = arm.within_limits(q)
+        assert type(one) is bool
+    batch = arm.within_limits(np.array([[q1, q2]]))
+    assert isinstance(batch, np.ndarray) and batch.dtype == bool and batch.shape == (1,)
+    assert arm.within_limits([q1, q2]) == bool(batch[0])
+    # a configuration exactly on a limit counts as inside on both paths
+    on_limit = [1.5, 2.5 - 1.5] if convention == "absolute" else [1.5, 2.5]
+    assert arm.within_limits(on_limit) is True and arm.within_limits(np.array([on_limit]))[0]
+
+
+def test_within_limits_of_an_arm_without_limits_has_the_same_types():
+    """It gave a 0-d array here (and numpy.bool_ for an arm with limits): a bool, or an array for a batch."""
+    free = TwoLinkArm(1.0, 1.0)
+    assert free.within_limits([9.0, -9.0]) is True and free.within_limits(np.array([9.0, -9.0])) is True
+    batch = free.within_limits(np.zeros((3, 4, 2)))
+    assert isinstance(batch, np.ndarray) and batch.dtype == bool and batch.shape == (3, 4) and batch.all()
+    assert arms.ten.within_limits([0.5, 1.0]) is True and arms.ten.within_limits([-0.5, 1.0]) is False
+
+
+@pytest.mark.parametrize("tol", [-1e-3, float("nan"), "0.1", None], ids=repr)
+def test_within_limits_checks_its_tolerance_for_one_configuration_as_for_a_batch(tol):
+    for q in ([0.1, 0.2], np.array([[0.1, 0.2]])):
+        with pytest.raises(ValueError, match=r"tol \(rad\)"):
+            arms.ten.within_limits(q, tol=tol)

@@ -422,3 +422,104 @@ def test_coriolis_is_built_from_the_mass_matrix_derivative(arm, q, qd):
     dM = dynamics.mass_matrix_derivative(arm, q)
     christoffel = 0.5 * (dM + np.swapaxes(dM, 1, 2) - np.transpose(dM, (2, 0, 1)))
     assert_within(arm.coriolis(q, qd), christoffel @ qd, 1e-12 * mass_scale(arm) * (1 + np.abs(qd).sum()))
+
+
+# ----------------------------------------------------------------- one state on floats, a batch on arrays
+# Forward and inverse dynamics evaluate one formula each (_forward; _inverse from the terms of M, C and g):
+# with math for one state, with numpy for a batch.
+ONE_ARM = TwoLinkArm(1.0, 0.7, m1=2.0, m2=1.2)
+wide_angles = st.floats(-4.0, 4.0, allow_nan=False)
+wide_rates = st.floats(-5.0, 5.0, allow_nan=False)
+
+
+def outcome(call):
+    """What a call did: its value, or the type and message of what it raised."""
+    try:
+        return "value", call()
+    except Exception as error:  # noqa: BLE001 - the point is to compare any refusal
+        return "error", (type(error), str(error))
+
+
+@given(wide_angles, wide_angles, wide_rates, wide_rates, wide_rates, wide_rates,
+       st.sampled_from([ONE_ARM, arms.two_metre, TwoLinkArm(1e-3, 2.0, m1=0.1)]))
+def test_dynamics_paths_agree(q1, q2, qd1, qd2, u1, u2, arm):
+    q, qd, u = [q1, q2], [qd1, qd2], [u1, u2]
+    for function in (dynamics.forward_dynamics, dynamics.inverse_dynamics):
+        one = function(arm, q, qd, u)
+        batch = function(arm, np.array([q]), np.array([qd]), np.array([u]))[0]
+        np.testing.assert_allclose(one, batch, rtol=1e-12, atol=1e-12)
+    assert arm.forward_dynamics(tuple(q), np.array(qd), u).shape == (2,)
+    # the inverse dynamics is M qdd + C qd + g, term by term
+    expected = arm.mass_matrix(q) @ u + arm.coriolis(q, qd) @ qd + arm.gravity(q)
+    np.testing.assert_allclose(dynamics.inverse_dynamics(arm, q, qd, u), expected, rtol=1e-12, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [[float("nan"), 1.0], [0.0, float("inf")], ["a", 1.0], [None, 1.0], [1.0, 2.0, 3.0], [True, False],
+     np.array([np.nan, 1.0])],
+    ids=repr,
+)
+def test_single_bad_state_is_refused_as_the_vectorised_path_refuses_it(bad):
+    from twolink._validate import as_pairs
+
+    one_zero, batch_zero = [0.0, 0.0], np.zeros((1, 2))
+    fast = outcome(lambda: dynamics.forward_dynamics(ONE_ARM, bad, one_zero, one_zero))
+    slow = outcome(lambda: dynamics.forward_dynamics(ONE_ARM, as_pairs(bad, "q")[None, :], batch_zero, batch_zero))
+    assert fast[0] == slow[0] == "error" and fast[1] == slow[1]
+    fast = outcome(lambda: dynamics.inverse_dynamics(ONE_ARM, one_zero, one_zero, bad))
+    slow = outcome(lambda: dynamics.inverse_dynamics(ONE_ARM, batch_zero, batch_zero, as_pairs(bad, "qdd")[None, :]))
+    assert fast[0] == slow[0] == "error" and fast[1] == slow[1]
+
+
+@pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)
+def test_single_state_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(not_an_arm):
+    for function in (dynamics.forward_dynamics, dynamics.inverse_dynamics):
+        fast = outcome(lambda: function(not_an_arm, [0.3, 0.4], [0.3, 0.4], [0.3, 0.4]))
+        slow = outcome(lambda: function(not_an_arm, *[np.array([[0.3, 0.4]])] * 3))
+        assert fast[0] == slow[0] == "error" and fast[1] == slow[1] and "arm" in fast[1][1]
+
+
+def test_dynamics_constants_are_cached_per_arm_and_follow_replace():
+    arm = TwoLinkArm(1.0, 1.0, m1=1.0, m2=1.0)
+    heavier = dataclasses.replace(arm, m2=5.0)
+    q, qd, tau = [0.3, 0.4], [0.0, 0.0], [0.0, 0.0]
+    assert not np.allclose(arm.forward_dynamics(q, qd, tau), heavier.forward_dynamics(q, qd, tau))
+    np.testing.assert_allclose(
+        heavier.forward_dynamics(q, qd, tau), TwoLinkArm(1.0, 1.0, m1=1.0, m2=5.0).forward_dynamics(q, qd, tau)
+    )
+    assert arm == TwoLinkArm(1.0, 1.0, m1=1.0, m2=1.0) and hash(arm) == hash(TwoLinkArm(1.0, 1.0, m1=1.0, m2=1.0))
+
+
+@pytest.mark.parametrize("rates", [[1e200, 1e200], [1e155, -1e155], [3e153, 0.0]], ids=repr)
+def test_overflowing_single_state_is_refused_as_in_a_batch(rates):
+    """Finite inputs whose dynamics overflow float64: the same OverflowError (or the same finite answer)."""
+    for call in (
+        lambda q, qd: dynamics.forward_dynamics(ONE_ARM, q, qd, np.zeros_like(q)),
+        lambda q, qd: dynamics.inverse_dynamics(ONE_ARM, q, qd, np.zeros_like(q)),
+    ):
+        fast = outcome(lambda: call([0.3, 0.4], rates))
+        slow = outcome(lambda: call(np.array([[0.3, 0.4]]), np.array([rates]))[0])
+        assert fast[0] == slow[0]
+        if fast[0] == "error":  # the messages differ only in the index of the overflowing entry
+            assert fast[1][0] is slow[1][0] is OverflowError
+        else:
+            np.testing.assert_allclose(fast[1], slow[1], rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda q: dynamics.forward_dynamics(ONE_ARM, q, [0.0, 0.0], [0.0, 0.0]),
+        lambda q: dynamics.inverse_dynamics(ONE_ARM, q, [0.0, 0.0], [0.0, 0.0]),
+        lambda q: dynamics.gravity(ONE_ARM, q),
+        lambda q: dynamics.gravity_jacobian(ONE_ARM, q),
+        lambda q: dynamics.energy(ONE_ARM, q, [0.0, 0.0]),
+    ],
+    ids=["forward_dynamics", "inverse_dynamics", "gravity", "gravity_jacobian", "energy"],
+)
+@pytest.mark.parametrize("q", [[1e308, 1e308], [[0.1, 0.2], [1e308, 1e308]]], ids=["one", "batch"])
+def test_angles_whose_sum_overflows_are_refused_naming_q(call, q):
+    """A bare 'math domain error' (or a NaN, or an overflow blamed on the rates) before."""
+    with pytest.raises(ValueError, match=r"q = \(1e\+308, 1e\+308\) rad.*q1 \+ q2 overflows float64"):
+        call(q)

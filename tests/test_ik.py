@@ -1,5 +1,6 @@
 """Inverse kinematics: every solver, both branches, the reach boundary, bad input."""
 
+import dataclasses
 import re
 
 import numpy as np
@@ -10,6 +11,9 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from twolink import TwoLinkArm, UnreachableError, arms, ik, kinematics, wrap_angle
+from twolink.conventions import ELBOW_WORDS
+from twolink.ik.iterative import _lm_step
+from twolink.ik.result import assemble_result
 
 
 def target_at(radius, heading):
@@ -251,7 +255,7 @@ def test_ik_result_fields():
     assert isinstance(result.message, str)
 
 
-# ---------------------------------------------------------------- one result type (issue 12)
+# ---------------------------------------------------------------- one result type
 SOLVERS = {
     "closed_form": lambda arm, p: ik.closed_form(arm, p),
     "closed_form both": lambda arm, p: ik.closed_form(arm, p, elbow="both"),
@@ -271,9 +275,13 @@ def test_every_solver_returns_an_ik_result_with_the_documented_fields(name, p):
     if name == "closed_form both":
         lead = (2,) + lead
     assert isinstance(result.q, np.ndarray) and result.q.dtype == np.float64 and result.q.shape == lead + (2,)
-    for field, kind in (("success", "b"), ("within_limits", "b"), ("iterations", "i"), ("residual", "f")):
+    for field, kind, plain in (("success", "b", bool), ("within_limits", "b", bool), ("iterations", "i", int),
+                               ("residual", "f", float)):
         value = getattr(result, field)
-        assert isinstance(value, np.ndarray) and value.shape == lead and value.dtype.kind == kind, field
+        if lead:  # a batch: arrays of the batch's shape
+            assert isinstance(value, np.ndarray) and value.shape == lead and value.dtype.kind == kind, field
+        else:  # one answer: a plain Python number
+            assert type(value) is plain, field
     assert isinstance(result.message, str) and isinstance(result.method, str)
     assert isinstance(result.all_success, bool)
     assert result.all_success == bool(np.all(result.success))
@@ -286,12 +294,19 @@ def test_closed_form_returns_a_result_whose_residual_is_recomputed_from_q():
     assert result.method == "closed-form" and np.all(result.iterations == 0)
     assert np.array_equal(result.residual, np.hypot(*(arms.ten.fk(result.q) - p).T))
     assert result.all_success and np.all(result.residual < 1e-12)
-    # the fields are computed from q when first read: a q changed before then shows in the residual
-    changed = ik.closed_form(arms.ten, p)
-    changed.q[1, 0] += 0.1
-    assert changed.residual[1] == pytest.approx(np.linalg.norm(arms.ten.fk(changed.q[1]) - p[1]), abs=1e-15)
-    assert changed.residual[1] > 1.0 and not changed.success[1] and not changed.all_success
-    assert "failed for 1 of 2 targets (first: flat index 1" in changed.message
+
+
+def test_assemble_result_judges_the_answers_by_forward_kinematics_when_built():
+    p = np.array([[12.0, 9.0], [5.0, 12.0]])
+    q = ik.closed_form(arms.ten, p).q.copy()
+    q[1, 0] += 0.1  # a wrong answer: the solver's claim does not matter
+    result = assemble_result(arms.ten, p, q, 0, 1e-9, "mine", "solved")
+    assert result.residual[1] == pytest.approx(np.linalg.norm(arms.ten.fk(q[1]) - p[1]), abs=1e-15)
+    assert result.residual[1] > 1.0 and not result.success[1] and not result.all_success
+    assert result.message.startswith("failed for 1 of 2 targets (first: flat index 1, residual")
+    one = assemble_result(arms.ten, p[1].tolist(), q[1], 7, 1e-9, "mine", "solved", lambda i, r: f"{r:.1f} m off")
+    assert (one.success, one.iterations, one.residual) == (False, 7, result.residual[1])
+    assert one.message.startswith("failed for 1 of 1 targets (first: flat index 0, ") and "m off" in one.message
 
 
 def test_a_result_keeps_its_own_targets():
@@ -309,15 +324,21 @@ def test_an_unreachable_target_has_no_closed_form_result():
         ik.closed_form(arms.ten, [[10.0, 10.0], [0.0, 25.0]], elbow="both")
 
 
-def test_ik_result_is_immutable_and_not_an_array():
+def test_ik_result_is_a_frozen_dataclass_and_not_an_array():
     result = ik.closed_form(arms.ten, [12.0, 9.0])
+    assert dataclasses.is_dataclass(result)
+    assert [field.name for field in dataclasses.fields(result)] == [
+        "q", "success", "residual", "within_limits", "iterations", "method", "message"
+    ]
     for field in ("q", "success", "iterations", "residual", "method", "message", "within_limits", "all_success"):
-        with pytest.raises(AttributeError, match="no setter"):
+        with pytest.raises(dataclasses.FrozenInstanceError, match=f"cannot assign to field '{field}'"):
             setattr(result, field, 1.0)
-        with pytest.raises(AttributeError, match="no deleter"):
+        with pytest.raises(dataclasses.FrozenInstanceError, match=f"cannot delete field '{field}'"):
             delattr(result, field)
-    with pytest.raises(AttributeError, match="no attribute 'anything'"):
+    with pytest.raises(dataclasses.FrozenInstanceError, match="cannot assign to field 'anything'"):
         result.anything = 1.0  # no new attributes either
+    # every field was computed when the result was built: a plain dataclass holding values
+    assert set(vars(result)) == {field.name for field in dataclasses.fields(result)}
     with pytest.raises(TypeError, match=r"use its \.q"):
         np.asarray(result)
     with pytest.raises(TypeError):
@@ -341,15 +362,18 @@ def test_ik_result_survives_pickling_and_copying():
             assert type(twin) is ik.IKResult and twin.method == result.method and twin.message == result.message
             for field in ("q", "success", "iterations", "residual", "within_limits"):
                 assert np.array_equal(getattr(twin, field), getattr(result, field)), field
+                assert type(getattr(twin, field)) is type(getattr(result, field)), field
+    # pickled as a dataclass is: its class and its fields, nothing else (no callbacks, no arm)
+    assert b"twolink.arm" not in pickle.dumps(ik.newton(arms.ten, [12.0, 9.0]))
 
 
-def test_ik_result_built_by_hand_checks_its_shapes():
-    made = ik.IKResult(arms.ten, [[20.0, 0.0]], [[0.0, 0.0]], iterations=[3], threshold=1e-9, method="mine",
-                       solved_message="done")
+def test_assemble_result_checks_its_shapes():
+    made = assemble_result(arms.ten, np.array([[20.0, 0.0]]), np.array([[0.0, 0.0]]), [3], 1e-9, "mine", "done")
     assert made.all_success and made.iterations.tolist() == [3] and made.message == "done"
     with pytest.raises(ValueError, match="one answer per target"):
-        ik.IKResult(arms.ten, [[20.0, 0.0]], [[0.0, 0.0], [1.0, 0.0]], iterations=0, threshold=1e-9,
-                    method="mine", solved_message="done")
+        assemble_result(arms.ten, np.array([[20.0, 0.0]]), np.array([[0.0, 0.0], [1.0, 0.0]]), 0, 1e-9, "mine", "done")
+    with pytest.raises(ValueError, match=re.escape("iterations must be one value or one per answer (1)")):
+        assemble_result(arms.ten, np.array([20.0, 0.0]), np.array([0.0, 0.0]), [1, 2], 1e-9, "mine", "done")
 
 
 FIELDS = ("success", "iterations", "residual", "within_limits", "message")
@@ -363,15 +387,15 @@ FIELDS = ("success", "iterations", "residual", "within_limits", "message")
     solver=st.sampled_from(["closed_form", "closed_form both", "closed_form auto", "newton"]),
     order=st.permutations(FIELDS),
 )
-def test_lazily_computed_fields_equal_eagerly_computed_ones(arm, fractions, one, solver, order):
+def test_fields_are_judged_by_forward_kinematics(arm, fractions, one, solver, order):
     r_min, r_max = arm.reach
     p = np.array([target_at(r_min + f * (r_max - r_min), heading) for f, heading in fractions])
     p = p[0] if one else p
     result = SOLVERS[solver](arm, p.tolist() if one else p)
-    read = {field: getattr(result, field) for field in order}  # in any order: one computation, kept
+    read = {field: getattr(result, field) for field in order}  # in any order: plain values
     for field in FIELDS:
-        assert getattr(result, field) is read[field]  # computed once
-    # eagerly: forward kinematics of q, against the solver's documented threshold
+        assert getattr(result, field) is read[field]
+    # forward kinematics of q, against the solver's documented threshold
     residual = np.hypot(*np.moveaxis(arm.fk(result.q) - p, -1, 0))
     if solver == "newton":
         threshold = 1e-12 * r_max + kinematics.distance_outside_reach(arm, p)
@@ -380,12 +404,14 @@ def test_lazily_computed_fields_equal_eagerly_computed_ones(arm, fractions, one,
     np.testing.assert_allclose(read["residual"], residual, rtol=0, atol=1e-15 * r_max)
     assert np.array_equal(read["success"], residual <= threshold)
     assert np.array_equal(read["within_limits"], arm.within_limits(result.q))
-    assert read["residual"].shape == read["success"].shape == read["iterations"].shape == result.q.shape[:-1]
+    shapes = {np.shape(read[field]) for field in ("residual", "success", "iterations", "within_limits")}
+    assert shapes == {result.q.shape[:-1]}
     # one target on floats gives what the same target in a batch of one gives
     if one:
         batch = SOLVERS[solver](arm, p[None, :])
         for field in ("success", "iterations", "within_limits"):
             assert np.array_equal(read[field], np.take(getattr(batch, field), 0, axis=-1)), field
+        assert read["message"] == batch.message
         np.testing.assert_allclose(read["residual"], np.take(batch.residual, 0, axis=-1), rtol=0, atol=1e-12 * r_max)
 
 
@@ -438,3 +464,176 @@ def test_auto_moves_angles_by_a_turn_into_limits_beyond_pi():
     auto = ik.closed_form(arm, p, elbow="auto")
     assert auto.within_limits and np.allclose(auto.q, [1.5 * np.pi, 0.5])
     assert not ik.closed_form(arm, p, elbow="down").within_limits
+
+
+# ---------------------------------------------------------------- one target on floats, a batch on arrays
+# The closed form and Newton evaluate one formula each (the cosine rule and its branches; the tip, the
+# Jacobian and the damped step): with math for a pair of floats, with numpy for a batch.
+ONE_ARM = TwoLinkArm(1.0, 0.7, m1=2.0, m2=1.2)
+wide_angles = st.floats(-4.0, 4.0, allow_nan=False)
+short_lengths = st.floats(0.05, 5.0, allow_nan=False)
+
+
+def outcome(call):
+    """What a call did: its value, or the type and message of what it raised."""
+    try:
+        return "value", call()
+    except Exception as error:  # noqa: BLE001 - the point is to compare any refusal
+        return "error", (type(error), str(error))
+
+
+@pytest.mark.parametrize(
+    "bad",
+    [[float("nan"), 1.0], [0.0, float("inf")], ["a", 1.0], [None, 1.0], [1 + 2j, 0.0], [1.0, 2.0, 3.0], [],
+     [True, False], [10**400, 0.0], np.array([np.nan, 1.0])],
+    ids=repr,
+)
+def test_single_bad_target_is_refused_as_the_vectorised_path_refuses_it(bad):
+    from twolink._validate import as_pairs
+
+    for solve in (lambda p: ik.closed_form(ONE_ARM, p).q, lambda p: ik.newton(ONE_ARM, p).q):
+        fast = outcome(lambda: solve(bad))
+        slow = outcome(lambda: solve(as_pairs(bad, "target p")[None, :])[0])
+        assert fast[0] == slow[0] == "error" and fast[1] == slow[1]
+
+
+def test_single_bad_start_and_settings_of_newton_are_refused_as_before():
+    with pytest.raises(ValueError, match="q0"):
+        ik.newton(ONE_ARM, [1.0, 0.5], q0=[np.nan, 0.0])
+    with pytest.raises(ValueError, match="tol"):
+        ik.newton(ONE_ARM, [1.0, 0.5], tol=-1.0)
+    with pytest.raises(ValueError, match="max_iter"):
+        ik.newton(ONE_ARM, [1.0, 0.5], max_iter=0)
+
+
+@pytest.mark.parametrize("tol", [1e308, 2.0, 0.5, ik.iterative.TOL_MAX * 1.01])
+@pytest.mark.parametrize("p", [[1.0, 0.5], [[1.0, 0.5]]], ids=["one", "batch"])
+def test_newton_refuses_a_tol_that_would_call_a_miss_success(tol, p):
+    """tol = 1e308 reported success 2 m from the target: tol is bounded by what a miss can mean."""
+    with pytest.raises(ValueError, match=r"tol = .* would count a tip up to .* m from the target as success") as raised:
+        ik.newton(ONE_ARM, p, q0=(3.0, -2.0), tol=tol)
+    assert "tol must be in (0, 0.01]" in str(raised.value) and "l1 + l2 = 1.7 m" in str(raised.value)
+    assert ik.newton(ONE_ARM, p, tol=ik.iterative.TOL_MAX).all_success  # the bound itself is allowed
+
+
+@pytest.mark.parametrize("distance", [1.7 * (1 + 1e-9), 3.0, 0.3 * (1 - 1e-9), 0.0])
+def test_single_unreachable_target_raises_the_vectorised_message(distance):
+    target = [distance * np.cos(0.3), distance * np.sin(0.3)]
+    with pytest.raises(UnreachableError) as expected:
+        kinematics.require_within_reach(ONE_ARM, np.array(target))
+    for solve in (ik.closed_form, ik.newton):
+        with pytest.raises(UnreachableError) as raised:
+            solve(ONE_ARM, target)
+        assert str(raised.value) == str(expected.value)
+
+
+def boundary_targets(l1, l2, angle):
+    """Targets at full stretch and full fold, just inside, on, and just outside within REACH_RTOL."""
+    r_min, r_max = abs(l1 - l2), l1 + l2
+    radii = [r_max, r_max * (1 - 1e-13), r_max * (1 + 0.5 * kinematics.REACH_RTOL), r_min, r_min * (1 + 1e-13)]
+    radii += [r_min - 0.5 * kinematics.REACH_RTOL * r_max] if r_min > kinematics.REACH_RTOL * r_max else []
+    return [[radius * np.cos(angle), radius * np.sin(angle)] for radius in radii]
+
+
+@settings(max_examples=200, deadline=None)
+@given(short_lengths, short_lengths, wide_angles, wide_angles, st.sampled_from(ELBOW_WORDS))
+def test_closed_form_paths_agree_inside_and_on_the_reach_boundary(l1, l2, q1, q2, elbow):
+    arm = TwoLinkArm(l1, l2)
+    targets = [arm.fk([q1, q2]).tolist()] + boundary_targets(l1, l2, q1)
+    for target in targets:
+        fast = ik.closed_form(arm, target, elbow=elbow)
+        slow = ik.closed_form(arm, np.array([target]), elbow=elbow)
+        assert fast.q.shape == np.take(slow.q, 0, axis=-2).shape
+        np.testing.assert_allclose(fast.q, np.take(slow.q, 0, axis=-2), rtol=0, atol=1e-12)
+        assert np.array_equal(fast.success, np.take(slow.success, 0, axis=-1)) and fast.message == slow.message
+
+
+@settings(max_examples=150, deadline=None)
+@given(short_lengths, short_lengths, wide_angles, wide_angles, wide_angles, wide_angles)
+def test_newton_paths_agree(l1, l2, q1, q2, start1, start2):
+    arm = TwoLinkArm(l1, l2)
+    target = arm.fk([q1, q2]).tolist()
+    fast = ik.newton(arm, target, q0=(start1, start2))
+    slow = ik.newton(arm, np.array([target]), q0=(start1, start2))
+    assert fast.q.shape == (2,) and type(fast.success) is bool and type(fast.iterations) is int
+    assert type(fast.residual) is float and type(fast.within_limits) is bool
+    assert fast.method == slow.method == "newton"
+    assert fast.success == bool(slow.success[0])
+    assert fast.within_limits == bool(slow.within_limits[0])
+    if fast.success:
+        scale = l1 + l2
+        assert fast.residual <= 1e-12 * scale and slow.residual[0] <= 1e-12 * scale
+        # The same iteration on numbers that differ in the last bits (math vs numpy trig): both stop
+        # within 1e-12 (l1 + l2) of the target, so the answers differ by at most that over the
+        # smallest singular value of J (to first order): 1e-12 in a well-conditioned pose.
+        sigma_min = np.linalg.svd(arm.jacobian(slow.q[0]), compute_uv=False)[-1]
+        bound = 1e-12 + 2e-12 * scale / max(sigma_min, 1e-300)  # no bound at an exactly singular answer
+        difference = np.abs(wrap_angle(fast.q - slow.q[0]))
+        assert np.all(difference <= bound), (difference, bound)
+        if sigma_min > 0.1 * scale:
+            np.testing.assert_allclose(fast.q, slow.q[0], rtol=0, atol=1e-12)
+
+
+@pytest.mark.parametrize(
+    "arm, target, q0",
+    [
+        (arms.two_metre, [4.0, 0.0], (0.3, 0.2)),  # full stretch
+        (arms.two_metre, [4.0, 0.0], (0.0, 0.0)),  # starts at the solution
+        (arms.two_metre, [3.0, 0.0], (0.0, 0.0)),  # zero gradient: stalls, success false
+        (TwoLinkArm(1.0, 1.0), [0.0, 0.0], (0.5, 1.0)),  # the base of an equal-link arm (folded)
+        (TwoLinkArm(1.0, 0.5), [0.5 * (1 + 1e-13), 0.0], (0.5, 2.0)),  # full fold
+        (arms.ten, [10.0, 10.0], (0.5, 1.0)),  # joint limits
+        (arms.ten, [-5.0, 12.0], (0.5, 1.0)),  # an answer outside the joint limits
+    ],
+)
+def test_newton_paths_agree_at_singular_and_limited_poses(arm, target, q0):
+    fast = ik.newton(arm, target, q0=q0)
+    slow = ik.newton(arm, np.array([target]), q0=q0)
+    assert fast.success == bool(slow.success[0])
+    assert fast.iterations == int(slow.iterations[0])
+    np.testing.assert_allclose(fast.q, slow.q[0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(fast.residual, slow.residual[0], rtol=0, atol=1e-12)
+    assert fast.within_limits == bool(slow.within_limits[0])
+    assert fast.message == slow.message
+
+
+def test_newton_stalls_honestly_at_a_zero_gradient_on_the_float_path():
+    result = ik.newton(arms.two_metre, [3.0, 0.0], q0=(0.0, 0.0))
+    assert not result.success
+    assert "did not converge" in result.message
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    st.floats(1e-3, 10.0), st.floats(1e-3, 10.0), st.floats(-1.0, 1.0), st.floats(-1.0, 1.0),
+    st.floats(1e-12, 10.0), wide_angles,
+)
+def test_lm_step_formula_solves_the_damped_normal_equations(l1, l2, rx, ry, damping, q1):
+    """The adjugate solve of (J^T J + lam I) dq = -J^T r equals numpy's solve, floats and arrays alike."""
+    for q2 in (0.0, 1e-9, 0.7, np.pi):  # singular poses included
+        J = TwoLinkArm(l1, l2).jacobian([q1, q2])
+        normal = J.T @ J + damping * np.eye(2)
+        expected = np.linalg.solve(normal, -(J.T @ [rx, ry]))
+        det_j = l1 * l2 * np.sin(q2)
+        step = _lm_step(*J.ravel().tolist(), float(det_j), rx, ry, damping)
+        scale = np.linalg.norm(expected) + 1e-300
+        assert np.allclose(step, expected, rtol=1e-8 * np.linalg.cond(normal), atol=1e-12 * scale)
+        arrays = _lm_step(*(np.full(3, value) for value in (*J.ravel(), det_j, rx, ry, damping)))
+        assert np.array_equal(arrays[0], np.full(3, step[0])) and np.array_equal(arrays[1], np.full(3, step[1]))
+
+
+@given(wide_angles, wide_angles)
+@settings(max_examples=50, deadline=None)
+def test_a_results_arrays_are_its_own(q1, q2):
+    result = ik.newton(ONE_ARM, ONE_ARM.fk([q1, q2]).tolist())
+    result.q[0] = 5.0
+    assert ik.newton(ONE_ARM, ONE_ARM.fk([q1, q2]).tolist()).q[0] != 5.0
+
+
+@pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)
+def test_single_target_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(not_an_arm):
+    for call in (lambda p: ik.closed_form(not_an_arm, p), lambda p: ik.newton(not_an_arm, p)):
+        fast, slow = outcome(lambda: call([0.3, 0.4])), outcome(lambda: call(np.array([[0.3, 0.4]])))
+        assert fast[0] == slow[0] == "error"
+        assert fast[1] == slow[1]
+        assert "arm" in fast[1][1]

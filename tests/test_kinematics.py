@@ -4,9 +4,11 @@ import numpy as np
 import pytest
 from conftest import arms as arm_strategy
 from conftest import configurations
-from hypothesis import given
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from twolink import TwoLinkArm, arms, kinematics, to_absolute, to_relative, wrap_angle
+from twolink import TwoLinkArm, UnreachableError, arms, kinematics, to_absolute, to_relative, wrap_angle
+from twolink._validate import as_pairs, pair_floats
 
 
 @given(arm=arm_strategy(), q=configurations())
@@ -202,3 +204,195 @@ def test_pushing_down_on_a_table_takes_clockwise_torques():
     the motors press it down, clockwise (negative torques), and the table pushes the tip up with 10 N."""
     tau = kinematics.joint_torques(arms.two_metre, [0.0, 0.0], [0.0, -10.0])
     assert np.allclose(tau, [-40.0, -20.0])
+
+
+# ----------------------------------------------------------------- one configuration on floats, a batch on arrays
+# fk, the Jacobian and J^T F evaluate one formula each (tip_from_trig, jacobian_from_trig, torques_from_jacobian):
+# with math for a pair of floats, with numpy for a batch.  The two evaluations agree to round-off, and a
+# single input the float path does not read is refused exactly as the vectorised checks refuse it.
+ONE_ARM = TwoLinkArm(1.0, 0.7, m1=2.0, m2=1.2)
+wide_angles = st.floats(-4.0, 4.0, allow_nan=False)
+short_lengths = st.floats(0.05, 5.0, allow_nan=False)
+
+
+@pytest.mark.parametrize(
+    "value, expected",
+    [
+        ([1.0, 2.0], (1.0, 2.0)),
+        ((1, 2), (1.0, 2.0)),
+        ([np.float64(0.5), np.float32(0.25)], (0.5, 0.25)),
+        ([np.int64(3), 4], (3.0, 4.0)),
+        (np.array([0.5, -1.5]), (0.5, -1.5)),
+    ],
+)
+def test_pair_floats_reads_plain_pairs(value, expected):
+    pair = pair_floats(value)
+    assert pair == expected
+    assert all(type(number) is float for number in pair)
+
+
+@pytest.mark.parametrize(
+    "value",
+    [
+        [True, 1.0],
+        [1.0, np.bool_(False)],
+        [1 + 2j, 0.0],
+        [None, 1.0],
+        ["1", 2.0],
+        [float("nan"), 1.0],
+        [1.0, float("inf")],
+        [10**400, 1.0],
+        [1.0, 2.0, 3.0],
+        [[1.0, 2.0]],
+        np.array([1.0, 2.0], dtype=np.float32),
+        np.array([[1.0, 2.0]]),
+        np.array([1, 2]),
+        "12",
+        None,
+        3.0,
+    ],
+)
+def test_pair_floats_leaves_everything_else_to_the_vectorised_checks(value):
+    assert pair_floats(value) is None
+
+
+def outcome(call):
+    """What a call did: its value, or the type and message of what it raised."""
+    try:
+        return "value", call()
+    except Exception as error:  # noqa: BLE001 - the point is to compare any refusal
+        return "error", (type(error), str(error))
+
+
+def assert_same_outcome(fast, slow):
+    kind_fast, fast_value = fast
+    kind_slow, slow_value = slow
+    assert kind_fast == kind_slow, (fast_value, slow_value)
+    if kind_fast == "error":
+        assert fast_value == slow_value
+    else:
+        np.testing.assert_allclose(fast_value, slow_value, rtol=0, atol=1e-12)
+
+
+BAD_PAIRS = [
+    [float("nan"), 1.0],
+    [0.0, float("inf")],
+    ["a", 1.0],
+    [None, 1.0],
+    [1 + 2j, 0.0],
+    [1.0, 2.0, 3.0],
+    [],
+    [True, False],
+    [10**400, 0.0],
+    np.array([np.nan, 1.0]),
+]
+
+
+def refused_in_a_batch_of_one(function, bad, name):
+    """``function`` on ``bad`` read by the vectorised checks, as a batch of one."""
+    return lambda: function(as_pairs(bad, name)[None, :])[0]
+
+
+@pytest.mark.parametrize("bad", BAD_PAIRS, ids=repr)
+def test_single_bad_configuration_is_refused_as_the_vectorised_path_refuses_it(bad):
+    for function in (ONE_ARM.fk, ONE_ARM.jacobian):
+        assert_same_outcome(outcome(lambda: function(bad)), outcome(refused_in_a_batch_of_one(function, bad, "q")))
+
+
+@settings(max_examples=200, deadline=None)
+@given(short_lengths, short_lengths, wide_angles, wide_angles, wide_angles, wide_angles)
+def test_fk_jacobian_and_joint_torques_paths_agree(l1, l2, q1, q2, fx, fy):
+    arm = TwoLinkArm(l1, l2)
+    for q in ([q1, q2], (q1, q2), np.array([q1, q2])):
+        np.testing.assert_allclose(arm.fk(q), arm.fk(np.array([[q1, q2]]))[0], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(arm.jacobian(q), arm.jacobian(np.array([[q1, q2]]))[0], rtol=0, atol=1e-12)
+        one = arm.joint_torques(q, [fx, fy])
+        np.testing.assert_allclose(one, arm.joint_torques(np.array([[q1, q2]]), [fx, fy])[0], rtol=0, atol=1e-12)
+    assert arm.fk([q1, q2]).shape == (2,) and arm.jacobian([q1, q2]).shape == (2, 2)
+    # the batch path, block by block, gives row for row what one call gives
+    q_many = np.array([[q1, q2], [q2, q1]] * 5000)  # more than one block
+    np.testing.assert_allclose(arm.fk(q_many)[-1], arm.fk([q2, q1]), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(arm.jacobian(q_many)[-2], arm.jacobian([q1, q2]), rtol=0, atol=1e-12)
+
+
+def test_the_formulas_read_as_the_textbook():
+    c1, s1, c12, s12 = np.cos(0.3), np.sin(0.3), np.cos(1.0), np.sin(1.0)
+    assert kinematics.tip_from_trig(2.0, 1.0, c1, s1, c12, s12) == (2 * c1 + c12, 2 * s1 + s12)
+    assert kinematics.jacobian_from_trig(2.0, 1.0, c1, s1, c12, s12) == (-2 * s1 - s12, -s12, 2 * c1 + c12, c12)
+    assert kinematics.torques_from_jacobian(1.0, 2.0, 3.0, 4.0, 10.0, 100.0) == (310.0, 420.0)
+
+
+def test_duck_typed_arm_still_works_on_the_float_path():
+    class Bare:
+        l1, l2 = 2.0, 1.0
+
+    np.testing.assert_allclose(kinematics.fk(Bare(), [0.0, np.pi / 2]), [2.0, 1.0], atol=1e-12)
+    np.testing.assert_allclose(kinematics.jacobian(Bare(), [0.0, 0.0]), [[0.0, 0.0], [3.0, 1.0]], atol=1e-12)
+
+
+@given(wide_angles, wide_angles)
+@settings(max_examples=50, deadline=None)
+def test_float_path_results_are_fresh_writable_arrays(q1, q2):
+    p_tip = ONE_ARM.fk([q1, q2])
+    p_tip[0] = 99.0
+    assert ONE_ARM.fk([q1, q2])[0] != 99.0
+    J = ONE_ARM.jacobian([q1, q2])
+    J[0, 0] = 99.0
+    assert ONE_ARM.jacobian([q1, q2])[0, 0] != 99.0
+
+
+@pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)
+def test_single_configuration_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(not_an_arm):
+    for call in (lambda q: kinematics.fk(not_an_arm, q), lambda q: kinematics.jacobian(not_an_arm, q)):
+        fast, slow = outcome(lambda: call([0.3, 0.4])), outcome(lambda: call(np.array([[0.3, 0.4]])))
+        assert fast[0] == slow[0] == "error"
+        assert fast[1] == slow[1]
+        assert "arm" in fast[1][1]
+
+
+# ----------------------------------------------------------------- angles whose sum overflows
+HUGE = [1e308, 1e308]
+
+
+@pytest.mark.parametrize(
+    "call",
+    [
+        lambda q: ONE_ARM.fk(q),
+        lambda q: ONE_ARM.jacobian(q),
+        lambda q: ONE_ARM.joint_positions(q),
+        lambda q: ONE_ARM.joint_torques(q, [1.0, 0.0]),
+        lambda q: kinematics.jacobian_derivative(ONE_ARM, q),
+        lambda q: kinematics.jacobian_rate(ONE_ARM, q, [0.0, 0.0]),
+    ],
+    ids=["fk", "jacobian", "joint_positions", "joint_torques", "jacobian_derivative", "jacobian_rate"],
+)
+@pytest.mark.parametrize("batch", [False, True], ids=["one", "batch"])
+def test_angles_whose_sum_overflows_are_refused_naming_q(call, batch):
+    q = [[0.1, 0.2], HUGE] if batch else HUGE
+    with pytest.raises(ValueError, match=r"q = \(1e\+308, 1e\+308\) rad.*q1 \+ q2 overflows float64") as raised:
+        call(q)
+    assert "math domain error" not in str(raised.value)
+    assert ("index (1,), first of 1" in str(raised.value)) == batch
+    # large angles with a finite sum are angles like any other
+    assert np.all(np.isfinite(ONE_ARM.fk([1e308, -1e308])))
+
+
+# ----------------------------------------------------------------- the reach message
+@pytest.mark.parametrize("outside", [1 + 2e-10, 1 + 1e-9, 1 + 1e-7])
+def test_unreachable_just_outside_the_reach_does_not_print_as_the_reach(outside):
+    """6 digits printed "4 m from the base; reaches [0, 4] m": now the digits and the overshoot show."""
+    arm = TwoLinkArm(2.0, 2.0)
+    with pytest.raises(UnreachableError) as raised:
+        kinematics.require_within_reach(arm, [4.0 * outside, 0.0])
+    message = str(raised.value)
+    distance = message.split(" is ")[1].split(" m from the base")[0]
+    assert float(distance) > 4.0 and distance != "4"
+    assert "beyond the outer reach circle" in message and "round-off tolerance" in message
+    assert message.endswith("this arm reaches distances in [0, 4] m (l1=2, l2=2)")
+
+
+def test_unreachable_inside_the_hole_just_short_of_the_reach_says_so():
+    with pytest.raises(UnreachableError, match=r"is 0\.99999999\d* m from the base, [0-9.e-]+ m inside the inner"):
+        kinematics.require_within_reach(TwoLinkArm(2.0, 1.0), [1.0 - 3e-9, 0.0])
+    with pytest.raises(UnreachableError, match=r"is 5 m from the base; this arm reaches"):
+        kinematics.require_within_reach(TwoLinkArm(2.0, 2.0), [3.0, 4.0])

@@ -16,7 +16,6 @@ from . import dh, kinematics
 from . import velocity
 from . import dynamics
 from ._validate import as_finite_scalar, as_pairs, pair_floats, real_array
-from .conventions import to_absolute
 
 __all__ = ["TwoLinkArm"]
 
@@ -184,7 +183,7 @@ class TwoLinkArm:
         """True when the arm has joint limits."""
         return self.q_min is not None
 
-    def within_limits(self, q: ArrayLike, tol: float = 1e-12) -> NDArray[np.bool_] | np.bool_:
+    def within_limits(self, q: ArrayLike, tol: float = 1e-12) -> bool | NDArray[np.bool_]:
         """Whether configurations respect the joint limits.
 
         Parameters
@@ -198,32 +197,36 @@ class TwoLinkArm:
 
         Returns
         -------
-        numpy.ndarray of bool, shape (...), or numpy.bool_
-            All true when the arm has no limits.  For one configuration
-            (``q`` of shape ``(2,)``) a numpy bool or a 0-d array.
+        bool or numpy.ndarray of bool, shape (...)
+            For one configuration (``q`` of shape ``(2,)``) a Python bool;
+            for a batch an array of bool.  True (all true) when the arm has
+            no limits.
 
         Examples
         --------
         >>> from twolink import arms
         >>> arms.ten.within_limits([[0.5, 1.0], [-0.5, 1.0]])
         array([ True, False])
+        >>> arms.ten.within_limits([0.5, 1.0]), TwoLinkArm(1.0, 1.0).within_limits([9.0, 9.0])
+        (True, True)
         """
         pair = pair_floats(q)
-        if pair is not None:  # one configuration: the same checks and comparisons on floats
-            tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
-            if self.q_min is None or self.q_max is None:
-                return np.ones((), dtype=bool)
+        q1: float | NDArray[np.float64]
+        q2: float | NDArray[np.float64]
+        if pair is not None:  # one configuration: the formula on floats
             q1, q2 = pair
-            (low_1, low_2), (high_1, high_2) = self.q_min, self.q_max
-            angle_2 = q1 + q2 if self.limit_convention == "absolute" else q2
-            return np.bool_(low_1 - tol <= q1 <= high_1 + tol and low_2 - tol <= angle_2 <= high_2 + tol)
-        q = as_pairs(q, "q")
+            leading: tuple[int, ...] = ()
+        else:  # a batch (or an unusual pair): on arrays
+            angles = as_pairs(q, "q")
+            q1, q2, leading = angles[..., 0], angles[..., 1], angles.shape[:-1]
         tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
-        if not self.has_limits:
-            return np.ones(q.shape[:-1], dtype=bool)
-        angles = to_absolute(q) if self.limit_convention == "absolute" else q
-        low, high = np.asarray(self.q_min), np.asarray(self.q_max)
-        return np.all((angles >= low - tol) & (angles <= high + tol), axis=-1)
+        one = leading == ()
+        if self.q_min is None or self.q_max is None:
+            return True if one else np.ones(leading, dtype=bool)
+        angle_2 = q1 + q2 if self.limit_convention == "absolute" else q2  # q2 itself or link 2 from the x-axis
+        (low_1, low_2), (high_1, high_2) = self.q_min, self.q_max
+        inside = (low_1 - tol <= q1) & (q1 <= high_1 + tol) & (low_2 - tol <= angle_2) & (angle_2 <= high_2 + tol)
+        return bool(inside) if one else inside
 
     # ------------------------------------------------------------------ kinematics
     def fk(self, q: ArrayLike) -> NDArray[np.float64]:

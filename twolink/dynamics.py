@@ -15,10 +15,13 @@ derives by Euler-Lagrange (the tests compare the two to 1e-12):
 * ``g1 = gamma1 cos q1 + gamma2 cos(q1 + q2)``, ``g2 = gamma2 cos(q1 + q2)``
   with ``gamma1 = (m1 lc1 + m2 l1) g`` and ``gamma2 = m2 lc2 g``.
 
-They are written once, in private helpers that work on Python floats and on
-numpy arrays alike; the public functions are vectorised over leading axes and
-take a lean float path for a single state (what an ODE solver or a
-controller calls thousands of times).
+Each is written once, in a private helper that works on Python floats and on
+numpy arrays alike (:func:`_mass_terms`, :func:`_coriolis_terms`,
+:func:`_gravity_terms`, and :func:`_inverse` and :func:`_forward` built on
+them); the public functions are vectorised over leading axes, evaluating the
+helpers on numpy arrays block by block, and evaluate them on Python floats
+with :mod:`math` for a single state (what an ODE solver or a controller calls
+thousands of times).
 
 Forward dynamics solves the 2x2 system ``M qdd = rhs`` with the closed-form
 inverse ``M^-1 = [[M22, -M12], [-M12, M11]] / det M``, written without
@@ -118,22 +121,22 @@ def _invertible_constants(arm):
 
 
 # ---------------------------------------------------------------- the formulas (floats or arrays)
-def _mass_terms(constants, cos_q2):
-    """``(M11, M12, M22)``."""
-    beta_cos = constants.beta * cos_q2
-    return constants.alpha + 2.0 * beta_cos, constants.delta + beta_cos, constants.delta
+def _mass_terms(alpha, beta, delta, cos_q2):
+    """``(M11, M12, M22) = (alpha + 2 beta cos q2, delta + beta cos q2, delta)``."""
+    beta_cos = beta * cos_q2
+    return alpha + 2.0 * beta_cos, delta + beta_cos, delta
 
 
-def _coriolis_terms(constants, sin_q2, qd1, qd2):
-    """``(C11, C12, C21)``; ``C22 = 0``."""
-    h = -constants.beta * sin_q2
+def _coriolis_terms(beta, sin_q2, qd1, qd2):
+    """``(C11, C12, C21) = (h qd2, h (qd1 + qd2), -h qd1)`` with ``h = -beta sin q2``; ``C22 = 0``."""
+    h = -beta * sin_q2
     return h * qd2, h * (qd1 + qd2), -h * qd1
 
 
-def _gravity_terms(constants, cos_q1, cos_q12):
-    """``(g1, g2)``."""
-    g2 = constants.gamma2 * cos_q12
-    return constants.gamma1 * cos_q1 + g2, g2
+def _gravity_terms(gamma1, gamma2, cos_q1, cos_q12):
+    """``(g1, g2) = (gamma1 cos q1 + gamma2 cos q12, gamma2 cos q12)``."""
+    g2 = gamma2 * cos_q12
+    return gamma1 * cos_q1 + g2, g2
 
 
 def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
@@ -163,58 +166,28 @@ def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
 
 
 def _inverse(constants, cos, sin, q1, q2, qd1, qd2, qdd1, qdd2):
-    """Joint torques ``(tau1, tau2)``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays).
-
-    ``M qdd + C qd + g`` with the terms of :func:`_mass_terms`,
-    :func:`_coriolis_terms` and :func:`_gravity_terms` written out (one
-    function call instead of five for a single state).
-    """
+    """Joint torques ``(tau1, tau2) = M qdd + C qd + g``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays)."""
     alpha, beta, delta, gamma1, gamma2 = constants[:5]
-    beta_cos = beta * cos(q2)
-    h = -beta * sin(q2)
-    g2 = gamma2 * cos(q1 + q2)
-    m12 = delta + beta_cos
-    bias1 = h * qd2 * qd1 + h * (qd1 + qd2) * qd2 + (gamma1 * cos(q1) + g2)
-    bias2 = -h * qd1 * qd1 + g2
-    return (alpha + 2.0 * beta_cos) * qdd1 + m12 * qdd2 + bias1, m12 * qdd1 + delta * qdd2 + bias2
-
-
-#: States per block in the vectorised paths: the temporaries of one block
-#: stay in the CPU cache, which is about twice as fast as whole-array numpy
-#: on 1e5 states.
-_BLOCK = 8192
+    m11, m12, m22 = _mass_terms(alpha, beta, delta, cos(q2))
+    c11, c12, c21 = _coriolis_terms(beta, sin(q2), qd1, qd2)
+    g1, g2 = _gravity_terms(gamma1, gamma2, cos(q1), cos(q1 + q2))
+    return m11 * qdd1 + m12 * qdd2 + (c11 * qd1 + c12 * qd2 + g1), m12 * qdd1 + m22 * qdd2 + (c21 * qd1 + g2)
 
 
 def _blockwise(formula, constants, q, qd, last):
-    """Evaluate ``formula`` on broadcast ``(..., 2)`` arrays, block by block.
+    """Evaluate ``formula`` with numpy on broadcast ``(..., 2)`` arrays, block by block.
 
     ``formula`` is :func:`_forward` (``last`` is ``tau``) or :func:`_inverse`
     (``last`` is ``qdd``).
     """
     shape = broadcast_shape(**{"q": q, "qd": qd, "tau" if formula is _forward else "qdd": last})
+    kinematics.link_angles(q)  # q1 + q2 must not overflow
     q_flat, qd_flat, last_flat = (np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last))
+    columns = (q_flat[:, 0], q_flat[:, 1], qd_flat[:, 0], qd_flat[:, 1], last_flat[:, 0], last_flat[:, 1])
     result = np.empty(shape)
-    result_flat = result.reshape(-1, 2)
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is reported by the caller, not warned
-        _fill_blocks(formula, constants, q_flat, qd_flat, last_flat, result_flat)
+        kinematics.evaluate_blockwise(formula, (constants, np.cos, np.sin), columns, result.reshape(-1, 2))
     return result
-
-
-def _fill_blocks(formula, constants, q_flat, qd_flat, last_flat, result_flat):
-    for start in range(0, len(result_flat), _BLOCK):
-        block = slice(start, start + _BLOCK)
-        q_block, qd_block, last_block = q_flat[block], qd_flat[block], last_flat[block]
-        result_flat[block, 0], result_flat[block, 1] = formula(
-            constants,
-            np.cos,
-            np.sin,
-            q_block[:, 0],
-            q_block[:, 1],
-            qd_block[:, 0],
-            qd_block[:, 1],
-            last_block[:, 0],
-            last_block[:, 1],
-        )
 
 
 # ---------------------------------------------------------------- input checks
@@ -263,7 +236,8 @@ def mass_matrix(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
            [10.,  4.]])
     """
     q = as_pairs(q, "q")
-    m11, m12, m22 = _mass_terms(_constants(arm), np.cos(q[..., 1]))
+    constants = _constants(arm)
+    m11, m12, m22 = _mass_terms(constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1]))
     M = np.empty(q.shape[:-1] + (2, 2))
     M[..., 0, 0] = m11
     M[..., 0, 1] = m12
@@ -307,7 +281,7 @@ def coriolis(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)
-    c11, c12, c21 = _coriolis_terms(_constants(arm), np.sin(q[..., 1]), qd[..., 0], qd[..., 1])
+    c11, c12, c21 = _coriolis_terms(_constants(arm).beta, np.sin(q[..., 1]), qd[..., 0], qd[..., 1])
     C = np.zeros(shape[:-1] + (2, 2))
     C[..., 0, 0] = c11
     C[..., 0, 1] = c12
@@ -341,7 +315,9 @@ def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     array([40., 10.])
     """
     q = as_pairs(q, "q")
-    g1, g2 = _gravity_terms(_constants(arm), np.cos(q[..., 0]), np.cos(q[..., 0] + q[..., 1]))
+    q1, q12 = kinematics.link_angles(q)
+    constants = _constants(arm)
+    g1, g2 = _gravity_terms(constants.gamma1, constants.gamma2, np.cos(q1), np.cos(q12))
     torques = np.empty(q.shape)
     torques[..., 0] = g1
     torques[..., 1] = g2
@@ -421,8 +397,8 @@ def gravity_jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     constants = _constants(arm)
-    q1 = q[..., 0]
-    by_q2 = -constants.gamma2 * np.sin(q1 + q[..., 1])
+    q1, q12 = kinematics.link_angles(q)
+    by_q2 = -constants.gamma2 * np.sin(q12)
     G = np.empty(q.shape[:-1] + (2, 2))
     G[..., 0, 0] = -constants.gamma1 * np.sin(q1) + by_q2
     G[..., 0, 1] = by_q2
@@ -469,7 +445,10 @@ def inverse_dynamics(
     if force_by_tip is None:
         state = _single_state(q, qd, qdd)
         if state is not None:
-            tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
+            try:
+                tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
+            except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
+                tau1 = tau2 = math.inf
             if math.isfinite(tau1 + tau2):
                 tau = np.empty(2)  # then two item assignments: faster than np.array of a tuple
                 tau[0], tau[1] = tau1, tau2
@@ -539,7 +518,10 @@ def forward_dynamics(
     if force_by_tip is None:
         state = _single_state(q, qd, tau)
         if state is not None:
-            qdd1, qdd2 = _forward(_invertible_constants(arm), math.cos, math.sin, *state)
+            try:
+                qdd1, qdd2 = _forward(_invertible_constants(arm), math.cos, math.sin, *state)
+            except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
+                qdd1 = qdd2 = math.inf
             if math.isfinite(qdd1 + qdd2):
                 qdd = np.empty(2)  # then two item assignments: faster than np.array of a tuple
                 qdd[0], qdd[1] = qdd1, qdd2
@@ -586,10 +568,11 @@ def energy(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.flo
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)[:-1]
     constants = _constants(arm)
-    m11, m12, m22 = _mass_terms(constants, np.cos(q[..., 1]))
+    m11, m12, m22 = _mass_terms(constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1]))
     qd1, qd2 = qd[..., 0], qd[..., 1]
+    q1, q12 = kinematics.link_angles(q)
     kinetic = 0.5 * (m11 * qd1 * qd1 + 2.0 * m12 * qd1 * qd2 + m22 * qd2 * qd2)
-    potential = constants.gamma1 * np.sin(q[..., 0]) + constants.gamma2 * np.sin(q[..., 0] + q[..., 1])
+    potential = constants.gamma1 * np.sin(q1) + constants.gamma2 * np.sin(q12)
     return np.broadcast_to(kinetic, shape).copy(), np.broadcast_to(potential, shape).copy()
 
 

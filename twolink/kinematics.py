@@ -5,16 +5,20 @@ joint angles in the DH / relative convention: ``q1`` is link 1 from the x-axis,
 ``q2`` is link 2 relative to link 1.  All are vectorised over leading axes.
 :class:`twolink.TwoLinkArm` exposes them as methods.
 
-One configuration (a pair of floats, shape ``(2,)``) takes a lean path on
-Python floats and the :mod:`math` module (what a loop, a widget or a
-controller calls thousands of times); it computes the same expressions, in
-the same order, as the vectorised path (the tests compare the two to 1e-12).
+Each formula is written once, as a function of the link angles' cosines and
+sines (:func:`tip_from_trig`, :func:`jacobian_from_trig`,
+:func:`torques_from_jacobian`), read beside the textbook.  One configuration
+(a pair of floats, shape ``(2,)``) evaluates it on Python floats with the
+:mod:`math` module (what a loop, a widget or a controller calls thousands of
+times); a batch evaluates the same function on numpy arrays, block by block
+(:func:`evaluate_blockwise`).
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from collections.abc import Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -26,6 +30,10 @@ if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
 __all__ = [
+    "tip_from_trig",
+    "jacobian_from_trig",
+    "torques_from_jacobian",
+    "link_angles",
     "fk",
     "joint_positions",
     "jacobian",
@@ -48,6 +56,142 @@ REACH_RTOL = 1e-10
 #: Configurations with ``|sin q2|`` at most this are treated as singular
 #: (stretched or folded) by :func:`require_nonsingular`.
 SINGULARITY_TOL = 1e-6
+
+#: A float (one configuration, evaluated with :mod:`math`) or a numpy array
+#: of them (a batch, evaluated with numpy): the formulas below take either.
+Values = Any
+
+# the one-configuration paths' functions, bound once (a module attribute lookup costs a few % of a call)
+_cos, _sin, _empty = math.cos, math.sin, np.empty
+
+
+# ---------------------------------------------------------------- the formulas (floats or arrays)
+def tip_from_trig(l1: float, l2: float, c1: Values, s1: Values, c12: Values, s12: Values) -> tuple[Values, Values]:
+    """The tip ``(x, y) = (l1 c1 + l2 c12, l1 s1 + l2 s12)``.
+
+    ``c1, s1`` are ``cos q1, sin q1`` and ``c12, s12`` are ``cos(q1 + q2),
+    sin(q1 + q2)``: floats (from :mod:`math`) or arrays (from numpy).
+
+    Examples
+    --------
+    >>> tip_from_trig(2.0, 1.0, 1.0, 0.0, 0.0, 1.0)  # q = (0, pi/2)
+    (2.0, 1.0)
+    """
+    return l1 * c1 + l2 * c12, l1 * s1 + l2 * s12
+
+
+def jacobian_from_trig(
+    l1: float, l2: float, c1: Values, s1: Values, c12: Values, s12: Values
+) -> tuple[Values, Values, Values, Values]:
+    """The Jacobian's entries ``(J11, J12, J21, J22)``, the derivatives of :func:`tip_from_trig`.
+
+    ``J = [[-l1 s1 - l2 s12, -l2 s12], [l1 c1 + l2 c12, l2 c12]]``; floats or
+    arrays, as :func:`tip_from_trig`.
+
+    Examples
+    --------
+    >>> jacobian_from_trig(1.0, 1.0, 1.0, 0.0, 0.0, 1.0)  # q = (0, pi/2)
+    (-1.0, -1.0, 1.0, 0.0)
+    """
+    j12 = -l2 * s12
+    j22 = l2 * c12
+    return -l1 * s1 + j12, j12, l1 * c1 + j22, j22
+
+
+def torques_from_jacobian(
+    j11: Values, j12: Values, j21: Values, j22: Values, fx: Values, fy: Values
+) -> tuple[Values, Values]:
+    """``tau = J^T F``: ``(J11 Fx + J21 Fy, J12 Fx + J22 Fy)``, floats or arrays.
+
+    Examples
+    --------
+    >>> torques_from_jacobian(-1.0, -1.0, 1.0, 0.0, 0.0, 10.0)
+    (10.0, 0.0)
+    """
+    return j11 * fx + j21 * fy, j12 * fx + j22 * fy
+
+
+def _tip_of_angles(l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]) -> tuple[Values, Values]:
+    """:func:`tip_from_trig` of a block of angles, evaluated with numpy."""
+    q12 = q1 + q2
+    return tip_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
+
+
+def _jacobian_of_angles(
+    l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]
+) -> tuple[Values, Values, Values, Values]:
+    """:func:`jacobian_from_trig` of a block of angles, evaluated with numpy."""
+    q12 = q1 + q2
+    return jacobian_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
+
+
+#: Rows per block of the vectorised paths: the temporaries of one block stay
+#: in the CPU cache, which is faster than whole-array numpy on large batches.
+BLOCK_ROWS = 8192
+
+
+def evaluate_blockwise(
+    formula: Callable[..., Sequence[Values]],
+    constants: tuple[Any, ...],
+    columns: Sequence[NDArray[np.float64]],
+    out: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """Fill ``out`` (shape ``(n, m)``) with ``formula(*constants, *columns)``, block by block.
+
+    ``columns`` are ``n``-long arrays; ``formula`` returns ``m`` arrays
+    (or numbers), the columns of ``out``.
+
+    Examples
+    --------
+    >>> q = np.array([[0.0, np.pi / 2], [0.0, 0.0]])
+    >>> evaluate_blockwise(_tip_of_angles, (2.0, 1.0), (q[:, 0], q[:, 1]), np.empty((2, 2))).round(12)
+    array([[2., 1.],
+           [3., 0.]])
+    """
+    for start in range(0, len(out), BLOCK_ROWS):
+        block = slice(start, start + BLOCK_ROWS)
+        for column, values in enumerate(formula(*constants, *(array[block] for array in columns))):
+            out[block, column] = values
+    return out
+
+
+#: Angles at least this large in size may overflow float64 in ``q1 + q2``.
+_HALF_MAX = float(np.finfo(np.float64).max) / 2.0
+
+
+def link_angles(q: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The link angles ``(q1, q1 + q2)`` from the x-axis of checked configurations ``q`` ``(..., 2)``.
+
+    Raises
+    ------
+    ValueError
+        Naming the first configuration whose ``q1 + q2`` overflows float64
+        (angles near 1e308 rad: finite, but without a finite sum).
+
+    Examples
+    --------
+    >>> link_angles(np.array([0.5, 0.25]))
+    (array(0.5), array(0.75))
+    >>> link_angles(np.array([1e308, 1e308]))
+    Traceback (most recent call last):
+    ...
+    ValueError: q = (1e+308, 1e+308) rad: q1 + q2 overflows float64; the joint angles must have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)
+    """
+    q1 = q[..., 0]
+    if q.size and (q.max() >= _HALF_MAX or q.min() <= -_HALF_MAX):
+        with np.errstate(over="ignore"):
+            q12 = q1 + q[..., 1]
+        overflowed = ~np.isfinite(q12)
+        if np.any(overflowed):
+            index = tuple(int(i) for i in np.argwhere(overflowed)[0]) if overflowed.ndim else ()
+            where = f" (index {index}, first of {int(np.count_nonzero(overflowed))})" if overflowed.ndim else ""
+            first, second = q[index]
+            raise ValueError(
+                f"q = ({first:.6g}, {second:.6g}) rad{where}: q1 + q2 overflows float64; the joint angles must "
+                "have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)"
+            )
+        return q1, q12
+    return np.asarray(q1), np.asarray(q1 + q[..., 1])
 
 
 def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
@@ -76,19 +220,21 @@ def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         q1, q2 = pair
         q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        p_tip = np.empty(2)  # then two item assignments: faster than np.array of a list
-        p_tip[0] = l1 * math.cos(q1) + l2 * math.cos(q12)
-        p_tip[1] = l1 * math.sin(q1) + l2 * math.sin(q12)
-        return p_tip
+        try:
+            x, y = tip_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
+        except ValueError:  # math.cos(inf): q1 + q2 overflows, and link_angles below says so
+            pass
+        else:
+            p_tip = _empty(2)  # then two item assignments: faster than np.array of a tuple
+            p_tip[0] = x
+            p_tip[1] = y
+            return p_tip
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    angle1 = q[..., 0]
-    angle12 = angle1 + q[..., 1]
+    link_angles(q)
     p_tips = np.empty(q.shape)
-    p_tips[..., 0] = l1 * np.cos(angle1)
-    p_tips[..., 0] += l2 * np.cos(angle12)
-    p_tips[..., 1] = l1 * np.sin(angle1)
-    p_tips[..., 1] += l2 * np.sin(angle12)
+    flat = q.reshape(-1, 2)
+    evaluate_blockwise(_tip_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), p_tips.reshape(-1, 2))
     return p_tips
 
 
@@ -115,14 +261,13 @@ def joint_positions(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
            [1., 1.]])
     """
     q = as_pairs(q, "q")
-    arm_lengths(arm)
+    l1, l2 = arm_lengths(arm)
+    q1, q12 = link_angles(q)
+    c1, s1 = np.cos(q1), np.sin(q1)
     points = np.zeros(q.shape[:-1] + (3, 2))
-    q1 = q[..., 0]
-    q12 = q1 + q[..., 1]
-    points[..., 1, 0] = arm.l1 * np.cos(q1)
-    points[..., 1, 1] = arm.l1 * np.sin(q1)
-    points[..., 2, 0] = points[..., 1, 0] + arm.l2 * np.cos(q12)
-    points[..., 2, 1] = points[..., 1, 1] + arm.l2 * np.sin(q12)
+    points[..., 1, 0] = l1 * c1
+    points[..., 1, 1] = l1 * s1
+    points[..., 2, 0], points[..., 2, 1] = tip_from_trig(l1, l2, c1, s1, np.cos(q12), np.sin(q12))
     return points
 
 
@@ -158,24 +303,23 @@ def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         q1, q2 = pair
         q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        c12 = l2 * math.cos(q12)
-        s12 = l2 * math.sin(q12)
-        J = np.array([-l1 * math.sin(q1) - s12, -s12, l1 * math.cos(q1) + c12, c12])
-        J.shape = (2, 2)
-        return J
+        try:
+            j11, j12, j21, j22 = jacobian_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
+        except ValueError:  # math.cos(inf): q1 + q2 overflows, and link_angles below says so
+            pass
+        else:
+            J = _empty((2, 2))  # then four item assignments: faster than np.array of a list
+            J[0, 0] = j11
+            J[0, 1] = j12
+            J[1, 0] = j21
+            J[1, 1] = j22
+            return J
     q = as_pairs(q, "q")
-    arm_lengths(arm)
-    angle1 = q[..., 0]
-    angle12 = angle1 + q[..., 1]
-    x2 = arm.l2 * np.cos(angle12)
-    y2 = arm.l2 * np.sin(angle12)
+    l1, l2 = arm_lengths(arm)
+    link_angles(q)
     Js = np.empty(q.shape[:-1] + (2, 2))
-    Js[..., 0, 0] = -arm.l1 * np.sin(angle1)
-    Js[..., 0, 0] -= y2
-    Js[..., 0, 1] = -y2
-    Js[..., 1, 0] = arm.l1 * np.cos(angle1)
-    Js[..., 1, 0] += x2
-    Js[..., 1, 1] = x2
+    flat = q.reshape(-1, 2)
+    evaluate_blockwise(_jacobian_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), Js.reshape(-1, 4))
     return Js
 
 
@@ -218,27 +362,27 @@ def joint_torques(arm: TwoLinkArm, q: ArrayLike, force_by_tip: ArrayLike) -> NDA
     array([40., 20.])
     """
     pair = pair_floats(q)
-    if pair is not None:
-        force_pair = pair_floats(force_by_tip)
-        if force_pair is not None:
-            q1, q2 = pair
-            fx, fy = force_pair
-            q12 = q1 + q2
-            l1, l2 = arm_lengths(arm)
-            c12 = l2 * math.cos(q12)
-            s12 = l2 * math.sin(q12)
-            tau = np.empty(2)  # then two item assignments: faster than np.array of a list
-            tau[0] = (-l1 * math.sin(q1) - s12) * fx + (l1 * math.cos(q1) + c12) * fy
-            tau[1] = -s12 * fx + c12 * fy
+    force_pair = pair_floats(force_by_tip) if pair is not None else None
+    if pair is not None and force_pair is not None:
+        q1, q2 = pair
+        q12 = q1 + q2
+        l1, l2 = arm_lengths(arm)
+        try:
+            J_entries = jacobian_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
+        except ValueError:  # math.cos(inf): q1 + q2 overflows, and link_angles says so
+            pass
+        else:
+            tau = _empty(2)  # then two item assignments: faster than np.array of a tuple
+            tau[0], tau[1] = torques_from_jacobian(*J_entries, *force_pair)
             return tau
     q = as_pairs(q, "q")
     force_by_tip = as_pairs(force_by_tip, "force_by_tip")
     shape = broadcast_shape(q=q, force_by_tip=force_by_tip)
     J = jacobian(arm, q)
-    force_x, force_y = force_by_tip[..., 0], force_by_tip[..., 1]
     taus = np.empty(shape)
-    taus[..., 0] = J[..., 0, 0] * force_x + J[..., 1, 0] * force_y
-    taus[..., 1] = J[..., 0, 1] * force_x + J[..., 1, 1] * force_y
+    taus[..., 0], taus[..., 1] = torques_from_jacobian(
+        J[..., 0, 0], J[..., 0, 1], J[..., 1, 0], J[..., 1, 1], force_by_tip[..., 0], force_by_tip[..., 1]
+    )
     return taus
 
 
@@ -277,8 +421,7 @@ def jacobian_derivative(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    q1 = q[..., 0]
-    q12 = q1 + q[..., 1]
+    q1, q12 = link_angles(q)
     x2, y2 = l2 * np.cos(q12), l2 * np.sin(q12)
     dJ = np.empty(q.shape[:-1] + (2, 2, 2))
     dJ[..., 0, 0, 0] = -(l1 * np.cos(q1) + x2)
@@ -322,8 +465,7 @@ def jacobian_rate(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.fl
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)
     l1, l2 = arm_lengths(arm)
-    q1 = q[..., 0]
-    q12 = q1 + q[..., 1]
+    q1, q12 = link_angles(q)
     x2, y2 = l2 * np.cos(q12), l2 * np.sin(q12)
     qd1, qd2 = qd[..., 0], qd[..., 1]
     qd12 = qd1 + qd2
@@ -409,10 +551,29 @@ def require_within_reach(arm: TwoLinkArm, p: ArrayLike, what: str = "target") ->
         x, y = p[index]
         where = f" (index {index}, first of {int(np.count_nonzero(outside))})" if np.ndim(outside) else ""
         raise UnreachableError(
-            f"{what} ({x:.6g}, {y:.6g}){where} is {float(distance[index]):.6g} m from the base; "
+            f"{what} ({x:.6g}, {y:.6g}){where} is {_distance_words(float(distance[index]), r_min, r_max, slack)}; "
             f"this arm reaches distances in [{r_min:.6g}, {r_max:.6g}] m (l1={l1:.6g}, l2={l2:.6g})"
         )
     return p
+
+
+def _distance_words(distance: float, r_min: float, r_max: float, slack: float) -> str:
+    """``"5 m from the base"``, with the digits and the overshoot that set it apart from the reach it misses.
+
+    Just outside the round-off tolerance, 6 digits print the distance as the
+    reach itself ("4 m from the base; reaches [0, 4] m"): then the distance
+    takes as many digits as it needs, and the message says by how much it
+    misses.
+    """
+    bound = r_max if distance > r_max else r_min
+    if f"{distance:.6g}" != f"{bound:.6g}":
+        return f"{distance:.6g} m from the base"
+    digits = next(n for n in range(7, 18) if f"{distance:.{n}g}" != f"{bound:.{n}g}")
+    side = "beyond the outer" if distance > r_max else "inside the inner"
+    return (
+        f"{distance:.{digits}g} m from the base, {abs(distance - bound):.3g} m {side} reach circle "
+        f"(more than the round-off tolerance REACH_RTOL (l1 + l2) = {slack:.3g} m)"
+    )
 
 
 def require_nonsingular(arm: TwoLinkArm, q: ArrayLike, what: str, tol: float = SINGULARITY_TOL) -> NDArray[np.float64]:

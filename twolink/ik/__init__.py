@@ -8,9 +8,11 @@
 - :func:`solutions_within_limits`: both closed-form branches, moved into the
   joint limits, and which of them reach each point within the limits.
 
-Every solver returns an :class:`IKResult`: the angles ``q``, and ``success``,
-``residual`` (recomputed by forward kinematics), ``within_limits`` and a
-``message``; check ``success`` before using ``q``.
+Every solver returns an :class:`IKResult`, a frozen dataclass built when the
+solver ends: the angles ``q``, and ``success``, ``residual`` (recomputed by
+forward kinematics), ``within_limits``, ``iterations`` and a ``message``
+(Python numbers for one target, arrays for a batch); check ``success``
+before using ``q``.
 """
 
 from .analytic import closed_form

@@ -1,14 +1,16 @@
 """Closed-form inverse kinematics of the planar 2R arm (cosine rule + atan2).
 
-One target given as a pair of floats is solved on Python floats with the
-:mod:`math` module, evaluating the same expressions in the same order as the
-vectorised path (the tests compare the two to 1e-12, at the reach boundary
-too); anything else, and every error, goes through the vectorised path.
+The formula is written once, in two small functions of floats or arrays
+(:func:`_cosine_rule` and :func:`_branch_angles`): one
+target given as a pair of floats evaluates them with the :mod:`math` module,
+a batch with numpy; anything else, and every error, goes through the
+vectorised path.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -16,8 +18,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._validate import arm_lengths, as_pairs, pair_floats, require_arm
 from ..conventions import check_elbow
-from ..kinematics import REACH_RTOL, require_within_reach
-from .result import IKResult, Judging, result_judged_by
+from ..kinematics import BLOCK_ROWS, REACH_RTOL, require_within_reach
+from .result import IKResult, assemble_result, one_answer_result
 
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
@@ -32,7 +34,7 @@ CLOSED_FORM_RTOL = 1e-9
 METHOD = "closed-form"
 
 # the one-target path's functions, bound once (a global and an attribute lookup each cost a few % of a call)
-_sqrt, _atan2, _empty, _array = math.sqrt, math.atan2, np.empty, np.array
+_sqrt, _atan2, _array = math.sqrt, math.atan2, np.array
 _BRANCH_WORDS = {"down": "elbow down", "up": "elbow up", "both": "both branches", "auto": "elbow down, no joint limits"}
 
 
@@ -74,9 +76,8 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
         ``method="closed-form"``, ``iterations`` 0.  ``q`` has shape
         ``(..., 2)``; for ``"both"`` ``(2, ..., 2)``, ``q[0]`` the down
         branch and ``q[1]`` the up branch, and every field has that leading
-        axis of 2.  ``residual`` is recomputed by forward kinematics when first
-        read (nothing is computed for a caller who reads only ``q``);
-        ``success`` where it is at most ``CLOSED_FORM_RTOL * (l1 + l2)``
+        axis of 2.  ``residual`` is recomputed from ``q`` by forward
+        kinematics when the result is built; ``success`` where it is at most ``CLOSED_FORM_RTOL * (l1 + l2)``
         (round-off: the closed form is exact).  ``within_limits`` is not
         applied except by ``"auto"``: check it.
 
@@ -98,7 +99,7 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     >>> result = ik.closed_form(arms.ten, [10 * np.sqrt(2), 10 * np.sqrt(2)])
     >>> result.q / np.pi
     array([0.25, 0.  ])
-    >>> bool(result.success), bool(result.residual < 1e-12), result.method
+    >>> result.success, result.residual < 1e-12, result.method
     (True, True, 'closed-form')
     >>> q_both = ik.closed_form(arms.ten, [10.0, 10.0], elbow="both").q
     >>> np.degrees(q_both).round(6)
@@ -108,10 +109,10 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     ``"auto"`` keeps to the joint limits (arms.ten: ``0 <= q1 <= 90`` deg):
 
     >>> ik.closed_form(arms.ten, [18.0, 2.0], elbow="down").within_limits
-    array(False)
+    False
     >>> auto = ik.closed_form(arms.ten, [18.0, 2.0], elbow="auto")
     >>> np.degrees(auto.q).round(3), auto.within_limits
-    (array([ 31.444, -50.208]), array(True))
+    (array([ 31.444, -50.208]), True)
     >>> ik.closed_form(arms.ten, [12.0, 4.0], elbow="auto").message  # q1 < 0 down, q2 < -90 deg up
     'solved 1 target in closed form, elbow auto: 0 down and 0 up within the joint limits, 1 with neither branch within them (given elbow down); 1 of 1 answers violate the joint limits (see within_limits)'
     >>> ik.closed_form(arms.ten, [30.0, 0.0])
@@ -121,7 +122,7 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     """
     target = pair_floats(p)
     if target is not None and type(elbow) is str:
-        # one target on floats: the steps of the vectorised path, written out (a call costs as much)
+        # one target on floats: the formula with math, as the vectorised path evaluates it with numpy
         cached: Any = arm  # (TwoLinkArm sets _derived, its cache of constants, in __post_init__)
         try:
             l1, l2 = arm.l1, arm.l2
@@ -131,33 +132,25 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
             terms = _reach_terms(arm)
         except KeyError:  # the first call on this arm
             terms = _reach_terms(arm)
-        r_min_squared, r_max_squared, inverse, low_outer, low_inner, judging_one = terms
+        r_min_squared, r_max_squared, inverse, low_outer, low_inner, threshold, messages = terms
         x, y = target
-        r_squared = x * x + y * y
-        one_minus_c2 = (r_max_squared - r_squared) * inverse
-        one_plus_c2 = (r_squared - r_min_squared) * inverse
+        one_minus_c2, one_plus_c2 = _cosine_rule(x, y, r_min_squared, r_max_squared, inverse)
         if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner:  # else the vectorised path raises
-            if one_minus_c2 < 0.0:
+            if one_minus_c2 < 0.0:  # round-off at full stretch
                 one_minus_c2 = 0.0
-            if one_plus_c2 < 0.0:
+            if one_plus_c2 < 0.0:  # round-off at full fold
                 one_plus_c2 = 0.0
-            s2 = _sqrt(one_minus_c2 * one_plus_c2)  # sin q2 of the down branch, >= 0
-            k1 = one_plus_c2 * l2 + (l1 - l2)  # l1 + l2 cos q2, accurate near full fold
-            q2_down = _atan2(s2, (one_plus_c2 - one_minus_c2) * 0.5)
-            s2 *= l2
-            xk1, yk1, xk2, yk2 = x * k1, y * k1, x * s2, y * s2
             if elbow == "down" or (elbow == "auto" and arm.q_min is None):
-                q = _empty(2)  # then two item assignments: faster than np.array of a list
-                q[0], q[1] = _atan2(yk1 - xk2, xk1 + yk2), q2_down
-                return result_judged_by(arm, target, q, judging_one[elbow])
+                q1, q2 = _branch_angles(l1, l2, x, y, one_minus_c2, one_plus_c2, 1.0, _sqrt, _atan2)
+                return one_answer_result(arm, x, y, q1, q2, 0, threshold, METHOD, messages[elbow], _failure_detail)
             if elbow == "up":
-                q = _empty(2)
-                q[0], q[1] = _atan2(yk1 + xk2, xk1 - yk2), -q2_down
-                return result_judged_by(arm, target, q, judging_one[elbow])
+                q1, q2 = _branch_angles(l1, l2, x, y, one_minus_c2, one_plus_c2, -1.0, _sqrt, _atan2)
+                return one_answer_result(arm, x, y, q1, q2, 0, threshold, METHOD, messages[elbow], _failure_detail)
             if elbow == "both":
-                q = _array([_atan2(yk1 - xk2, xk1 + yk2), q2_down, _atan2(yk1 + xk2, xk1 - yk2), -q2_down])
-                q.shape = (2, 2)
-                return result_judged_by(arm, target, q, judging_one[elbow])
+                q_both = _array(
+                    [_branch_angles(l1, l2, x, y, one_minus_c2, one_plus_c2, sign, _sqrt, _atan2) for sign in (1.0, -1.0)]
+                )
+                return assemble_result(arm, target, q_both, 0, threshold, METHOD, messages[elbow], _failure_detail)
             # "auto" with joint limits, or not an elbow word: the vectorised path
     elbow = check_elbow(elbow)
     targets: NDArray[np.float64] = as_pairs(p, "target p")
@@ -174,10 +167,7 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
         q_flat = _branches(arm, targets, flat, terms, "down" if elbow == "auto" else elbow)
         message = f"solved {count} target{'s' if count != 1 else ''} in closed form ({_BRANCH_WORDS[elbow]})"
     q = q_flat.reshape(((2,) if elbow == "both" else ()) + targets.shape)
-    if isinstance(p, np.ndarray) and np.may_share_memory(targets, p):
-        targets = targets.copy()  # the result keeps its targets: not an array the caller can change
-    threshold = CLOSED_FORM_RTOL * (arm.l1 + arm.l2)
-    return result_judged_by(arm, targets, q, Judging(0, threshold, METHOD, message, _failure_detail))
+    return assemble_result(arm, targets, q, 0, terms[5], METHOD, message, _failure_detail)
 
 
 def _failure_detail(index: int, residual: float) -> str:
@@ -214,74 +204,77 @@ def _branches(
     ``p`` is the targets as given, for the reach error's message.
     """
     l1, l2 = arm.l1, arm.l2
-    r_min_squared, r_max_squared, inverse, low_outer, low_inner, _ = terms
-    x = flat[:, 0]
-    y = flat[:, 1]
-
-    # 1 - cos q2 and 1 + cos q2 straight from r^2, without forming cos q2 first:
-    # (r_max^2 - r^2) and (r^2 - r_min^2) keep their relative accuracy at full
-    # stretch and full fold, where 1 -+ cos q2 would cancel catastrophically.
-    r_squared = x * x
-    r_squared += y * y
-    one_minus_c2 = r_max_squared - r_squared
-    one_minus_c2 *= inverse
-    one_plus_c2 = r_squared
-    one_plus_c2 -= r_min_squared
-    one_plus_c2 *= inverse
-    if one_minus_c2.size and (one_minus_c2.min() < low_outer or one_plus_c2.min() < low_inner):
-        # the one reach test raises, naming the first target out of reach (a target this test put out
-        # by one rounding on the edge of REACH_RTOL and it puts in is solved at the boundary below)
-        require_within_reach(arm, p)
-    np.maximum(one_minus_c2, 0.0, out=one_minus_c2)
-    np.maximum(one_plus_c2, 0.0, out=one_plus_c2)
-
-    s2 = one_minus_c2 * one_plus_c2
-    np.sqrt(s2, out=s2)  # sin q2 of the down branch, >= 0
-    c2 = one_plus_c2 - one_minus_c2
-    c2 *= 0.5
-    k1 = one_plus_c2
-    k1 *= l2
-    k1 += l1 - l2  # l1 + l2 cos q2, accurate near full fold
-    xk1 = x * k1
-    yk1 = y * k1
-    np.arctan2(s2, c2, out=c2)  # c2 now holds q2 of the down branch
-    q2_down = c2
-    s2 *= l2  # l2 sin q2
-    xk2 = x * s2
-    yk2 = y * s2
-
-    if elbow == "both":
-        q_both = np.empty((2, len(flat), 2))
-        np.arctan2(yk1 - xk2, xk1 + yk2, out=q_both[0, :, 0])
-        q_both[0, :, 1] = q2_down
-        np.arctan2(yk1 + xk2, xk1 - yk2, out=q_both[1, :, 0])
-        np.negative(q2_down, out=q_both[1, :, 1])
-        return q_both
-
-    q = np.empty((len(flat), 2))
-    if elbow == "down":
-        yk1 -= xk2
-        xk1 += yk2
-        q[:, 1] = q2_down
-    else:
-        yk1 += xk2
-        xk1 -= yk2
-        np.negative(q2_down, out=q[:, 1])
-    np.arctan2(yk1, xk1, out=q[:, 0])
+    r_min_squared, r_max_squared, inverse, low_outer, low_inner = terms[:5]
+    q = np.empty((2, len(flat), 2) if elbow == "both" else (len(flat), 2))
+    for start in range(0, len(flat), BLOCK_ROWS):  # block by block: the temporaries stay in the CPU cache
+        block = slice(start, start + BLOCK_ROWS)
+        x, y = flat[block, 0], flat[block, 1]
+        one_minus_c2, one_plus_c2 = _cosine_rule(x, y, r_min_squared, r_max_squared, inverse)
+        if one_minus_c2.min() < low_outer or one_plus_c2.min() < low_inner:
+            # the one reach test raises, naming the first target out of reach (a target this test put out
+            # by one rounding on the edge of REACH_RTOL and it puts in is solved at the boundary below)
+            require_within_reach(arm, p)
+        np.maximum(one_minus_c2, 0.0, out=one_minus_c2)  # round-off at full stretch
+        np.maximum(one_plus_c2, 0.0, out=one_plus_c2)  # round-off at full fold
+        for out, sign in ((q[0], 1.0), (q[1], -1.0)) if elbow == "both" else ((q, 1.0 if elbow == "down" else -1.0),):
+            out[block, 0], out[block, 1] = _branch_angles(
+                l1, l2, x, y, one_minus_c2, one_plus_c2, sign, np.sqrt, np.arctan2
+            )
     return q
 
 
-# r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, and the Judging of one target per elbow word
-_Terms = tuple[float, float, float, float, float, dict[str, Judging]]
+# ---------------------------------------------------------------- the formula (floats or arrays)
+def _cosine_rule(x: Any, y: Any, r_min_squared: float, r_max_squared: float, inverse: float) -> tuple[Any, Any]:
+    """``(1 - cos q2, 1 + cos q2)`` of the cosine rule ``cos q2 = (r^2 - l1^2 - l2^2) / (2 l1 l2)``.
+
+    Taken straight from ``r^2 = x^2 + y^2`` as ``(r_max^2 - r^2) / (2 l1 l2)``
+    and ``(r^2 - r_min^2) / (2 l1 l2)`` (``inverse`` is ``1 / (2 l1 l2)``),
+    without forming ``cos q2`` first: they keep their relative accuracy at
+    full stretch and full fold, where ``1 -+ cos q2`` would cancel.  Floats
+    or arrays; negative (by round-off, or out of reach) outside the annulus.
+    """
+    r_squared = x * x + y * y
+    return (r_max_squared - r_squared) * inverse, (r_squared - r_min_squared) * inverse
+
+
+def _branch_angles(
+    l1: float,
+    l2: float,
+    x: Any,
+    y: Any,
+    one_minus_c2: Any,
+    one_plus_c2: Any,
+    sign: float,
+    sqrt: Callable[[Any], Any],
+    atan2: Callable[[Any, Any], Any],
+) -> tuple[Any, Any]:
+    """``(q1, q2)`` of one branch from :func:`_cosine_rule`'s ``1 -+ cos q2`` (clipped at 0).
+
+    ``sign`` is ``+1`` for the down branch (``q2 >= 0``), ``-1`` for up:
+    ``sin q2 = sign sqrt((1 - cos q2)(1 + cos q2))``, ``q2 = atan2(sin q2, cos q2)``,
+    and ``q1 = atan2(y, x) - atan2(k2, k1)`` with ``k1 = l1 + l2 cos q2``
+    (written ``l2 (1 + cos q2) + (l1 - l2)``, accurate near full fold) and
+    ``k2 = l2 sin q2``, evaluated as one ``atan2(y k1 - x k2, x k1 + y k2)``
+    so that ``q1`` lies in ``(-pi, pi]``.  ``sqrt``/``atan2`` from
+    :mod:`math` (floats) or numpy (arrays).
+    """
+    sin_q2 = sign * sqrt(one_minus_c2 * one_plus_c2)
+    k1 = one_plus_c2 * l2 + (l1 - l2)
+    k2 = l2 * sin_q2
+    return atan2(y * k1 - x * k2, x * k1 + y * k2), atan2(sin_q2, (one_plus_c2 - one_minus_c2) * 0.5)
+
+
+# r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, the success threshold, the message of one target per elbow
+_Terms = tuple[float, float, float, float, float, float, dict[str, str]]
 
 
 def _reach_terms(arm: TwoLinkArm) -> _Terms:
-    """``(r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, judging_one)`` of the cosine rule, cached per arm.
+    """``(r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, threshold, messages)``, cached per arm.
 
     ``low_outer`` and ``low_inner`` are the lowest accepted ``1 - cos q2`` and
     ``1 + cos q2``: the annulus widened by ``REACH_RTOL * r_max``;
-    ``judging_one[elbow]`` judges the answer for one target (success bound
-    ``CLOSED_FORM_RTOL * r_max``).
+    ``threshold`` is the success bound ``CLOSED_FORM_RTOL * r_max``, and
+    ``messages[elbow]`` the message of one target solved.
     """
     derived = getattr(arm, "_derived", None)
     if derived is None:  # not a TwoLinkArm
@@ -298,8 +291,5 @@ def _compute_reach_terms(l1: float, l2: float) -> _Terms:
     inverse = 1.0 / (2.0 * l1 * l2)
     low_outer = (r_max * r_max - (r_max + slack) ** 2) * inverse
     low_inner = (max(r_min - slack, 0.0) ** 2 - r_min * r_min) * inverse
-    judging_one = {
-        elbow: Judging(0, CLOSED_FORM_RTOL * r_max, METHOD, f"solved 1 target in closed form ({words})", _failure_detail)
-        for elbow, words in _BRANCH_WORDS.items()
-    }
-    return r_min * r_min, r_max * r_max, inverse, low_outer, low_inner, judging_one
+    messages = {elbow: f"solved 1 target in closed form ({words})" for elbow, words in _BRANCH_WORDS.items()}
+    return r_min * r_min, r_max * r_max, inverse, low_outer, low_inner, CLOSED_FORM_RTOL * r_max, messages

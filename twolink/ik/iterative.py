@@ -1,8 +1,10 @@
 """Newton's method on the forward-kinematics equations, vectorised over targets.
 
 One target and one start given as pairs of floats are solved by a plain
-Python loop with the :mod:`math` module: the same step formula
-(:func:`_lm_step`, written once for floats and arrays), the same acceptance
+Python loop with the :mod:`math` module, a batch by the same loop on numpy
+arrays: the same formulas (the tip and Jacobian of
+:mod:`twolink.kinematics`, the step :func:`_lm_step`, the wrap
+:func:`_wrap`, each written once for floats and arrays), the same acceptance
 and damping schedule, the same result.
 """
 
@@ -17,14 +19,20 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_count, as_finite_scalar, broadcast_start, pair_floats, require_arm
 from ..conventions import wrap_angle
-from ..kinematics import REACH_RTOL, distance_outside_reach
-from .result import IKResult, assemble_result
+from ..kinematics import REACH_RTOL, distance_outside_reach, jacobian_from_trig, tip_from_trig
+from .result import IKResult, assemble_result, one_answer_result
 from .targets import reachable_targets
 
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = ["newton"]
+__all__ = ["newton", "TOL_MAX"]
+
+#: The largest ``tol`` :func:`newton` accepts: success then means a tip within
+#: 1 % of the reach ``l1 + l2`` of the target.  Beyond it "success" would say
+#: little (at ``tol = 2`` every answer succeeds: no tip within the reach is
+#: further than ``2 (l1 + l2)`` from a reachable target).
+TOL_MAX = 1e-2
 
 
 def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float = 1e-12, max_iter: int = 100) -> IKResult:
@@ -52,7 +60,8 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
         Starting joint angles in radians (broadcast against the targets).
     tol : float
         Success when ``|fk(q) - p| <= tol * (l1 + l2)`` (plus the distance
-        outside the reach for targets on a boundary within round-off).
+        outside the reach for targets on a boundary within round-off); in
+        ``(0, TOL_MAX]`` (``TOL_MAX = 0.01``).
     max_iter : int
         Iteration cap per target.
 
@@ -66,7 +75,8 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
     twolink.UnreachableError
         For targets outside the reach (message gives distance and reach).
     ValueError
-        For NaN/inf targets or starts, or a non-positive ``tol``/``max_iter``.
+        For NaN/inf targets or starts, a ``tol`` outside ``(0, TOL_MAX]``
+        or a non-positive ``max_iter``.
 
     Examples
     --------
@@ -89,13 +99,13 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
         # the one reach test, whose np.hypot may round differently) and one start: solve on floats
         if (r_min - slack) * _INSIDE_UP < distance < (r_max + slack) * _INSIDE_DOWN:
             # the checks of the vectorised path, short-cut for the usual positive float and int
-            if not (type(tol) is float and 0.0 < tol < math.inf):
-                tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
+            if not (type(tol) is float and 0.0 < tol <= TOL_MAX):
+                tol = _checked_tol(tol, arm.l1 + arm.l2)
             if not (type(max_iter) is int and max_iter >= 1):
                 max_iter = as_count(max_iter, "max_iter", minimum=1)
             return _newton_pair(arm, target, q0_pair, distance, tol, max_iter)
     p = reachable_targets(arm, p)
-    tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
+    tol = _checked_tol(tol, arm.l1 + arm.l2)
     max_iter = as_count(max_iter, "max_iter", minimum=1)
     p_flat = p.reshape(-1, 2)
     q_start = wrap_angle(broadcast_start(q0, p.shape, "q0")).reshape(-1, 2)
@@ -107,7 +117,8 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
     threshold = tol * scale + distance_outside_reach(arm, p_flat)
     # per target: the angles, their sines and cosines (shared by fk and J), residual and error
     c1, s1, c12, s12, s2 = _trig(np.cos, np.sin, q1, q2)
-    rx, ry = _residual(l1, l2, c1, s1, c12, s12, x, y)
+    tip_x, tip_y = tip_from_trig(l1, l2, c1, s1, c12, s12)
+    rx, ry = tip_x - x, tip_y - y
     error = np.sqrt(rx * rx + ry * ry)
     damping = np.full(len(q1), DAMPING_START * scale**2)
     damping_cap = DAMPING_CAP * scale**2
@@ -117,14 +128,13 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
         for _ in range(max_iter):
             if active.size == 0:
                 break
-            dq1, dq2 = _lm_step(
-                l1, l2, c1[active], s1[active], c12[active], s12[active], s2[active], rx[active], ry[active],
-                damping[active],
-            )
+            J_entries = jacobian_from_trig(l1, l2, c1[active], s1[active], c12[active], s12[active])
+            dq1, dq2 = _lm_step(*J_entries, l1 * l2 * s2[active], rx[active], ry[active], damping[active])
             t1 = _wrap(q1[active] + dq1)
             t2 = _wrap(q2[active] + dq2)
             trial = _trig(np.cos, np.sin, t1, t2)
-            trx, try_ = _residual(l1, l2, *trial[:4], x[active], y[active])
+            tip_x, tip_y = tip_from_trig(l1, l2, *trial[:4])
+            trx, try_ = tip_x - x[active], tip_y - y[active]
             error_trial = np.sqrt(trx * trx + try_ * try_)
             better = error_trial < error[active]
             accepted = active[better]
@@ -160,6 +170,17 @@ def _failure_detail(residual: float, iterations: int) -> str:
     return f"did not converge: residual {residual:.3g} m after {iterations} iterations"
 
 
+def _checked_tol(tol: object, reach: float) -> float:
+    """``tol`` as a float in ``(0, TOL_MAX]``, or a ValueError saying what it would mean."""
+    value = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
+    if value > TOL_MAX:
+        raise ValueError(
+            f"tol = {value:.3g} would count a tip up to {value * reach:.3g} m from the target as success "
+            f"(tol is relative to the reach l1 + l2 = {reach:.6g} m); tol must be in (0, {TOL_MAX:g}]"
+        )
+    return value
+
+
 # ---------------------------------------------------------------- the formulas (floats or arrays)
 _Number = TypeVar("_Number", float, NDArray[np.float64])
 
@@ -175,30 +196,24 @@ def _trig(cos: Callable[[Any], Any], sin: Callable[[Any], Any], q1: Any, q2: Any
     return cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
 
 
-def _residual(l1: float, l2: float, c1: Any, s1: Any, c12: Any, s12: Any, x: Any, y: Any) -> tuple[Any, Any]:
-    """``fk(q) - p`` as two components (the expressions of :func:`twolink.kinematics.fk`)."""
-    return l1 * c1 + l2 * c12 - x, l1 * s1 + l2 * s12 - y
-
-
 def _lm_step(
-    l1: float, l2: float, c1: Any, s1: Any, c12: Any, s12: Any, s2: Any, rx: Any, ry: Any, damping: Any
+    j11: Any, j12: Any, j21: Any, j22: Any, det_j: Any, rx: Any, ry: Any, damping: Any
 ) -> tuple[Any, Any]:
     """The damped Newton step ``-(J^T J + lam I)^(-1) J^T r`` as two components, floats or arrays.
 
-    The 2x2 system is solved with its adjugate; its determinant
-    ``det(J)^2 + lam (|J|_F^2 + lam)`` with ``det J = l1 l2 sin q2`` is a sum
-    of non-negative terms (no cancellation near a singular ``J``).
+    ``J = [[j11, j12], [j21, j22]]`` (from :func:`twolink.kinematics.jacobian_from_trig`),
+    ``det_j = det J = l1 l2 sin q2``, ``r = (rx, ry) = fk(q) - p`` and
+    ``lam = damping``.  The 2x2 system is solved with its adjugate; its
+    determinant ``det(J)^2 + lam (|J|_F^2 + lam)`` is a sum of non-negative
+    terms (no cancellation near a singular ``J``).  On floats a zero
+    determinant (the damping underflowed at a singular ``J``) raises
+    ZeroDivisionError; on arrays it gives inf or NaN.
     """
-    j12 = -l2 * s12
-    j11 = -l1 * s1 + j12
-    j22 = l2 * c12
-    j21 = l1 * c1 + j22
     a = j11 * j11 + j21 * j21
     d = j12 * j12 + j22 * j22
     b = j11 * j12 + j21 * j22
     g1 = j11 * rx + j21 * ry
     g2 = j12 * rx + j22 * ry
-    det_j = l1 * l2 * s2
     det = det_j * det_j + damping * (a + d + damping)
     return (b * g2 - (d + damping) * g1) / det, (b * g1 - (a + damping) * g2) / det
 
@@ -210,53 +225,37 @@ def _newton_pair(
     l1, l2 = arm.l1, arm.l2
     x, y = target
     scale = l1 + l2
-    cos, sin, sqrt = math.cos, math.sin, math.sqrt
     threshold = tol * scale + max(0.0, distance - scale, abs(l1 - l2) - distance)
-    # _wrap and _trig written out: a function call costs as much as the arithmetic here
-    two_pi, pi, l1l2 = 2.0 * math.pi, math.pi, l1 * l2
-    q1, q2 = (q0[0] + pi) % two_pi - pi, (q0[1] + pi) % two_pi - pi
-    q12 = q1 + q2
-    c1, s1, c12, s12, s2 = cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
-    rx, ry = l1 * c1 + l2 * c12 - x, l1 * s1 + l2 * s12 - y
+    cos, sin, sqrt, l1l2 = math.cos, math.sin, math.sqrt, l1 * l2
+    q1, q2 = _wrap(q0[0]), _wrap(q0[1])
+    c1, s1, c12, s12, s2 = _trig(cos, sin, q1, q2)
+    tip_x, tip_y = tip_from_trig(l1, l2, c1, s1, c12, s12)
+    rx, ry = tip_x - x, tip_y - y
     error = sqrt(rx * rx + ry * ry)
     damping = DAMPING_START * scale * scale
     damping_cap = DAMPING_CAP * scale * scale
     iterations = 0
     if error > threshold:
         for iterations in range(1, max_iter + 1):
-            # _lm_step, written out (the tests hold this loop to the vectorised one)
-            j12 = -l2 * s12
-            j11 = -l1 * s1 + j12
-            j22 = l2 * c12
-            j21 = l1 * c1 + j22
-            a = j11 * j11 + j21 * j21
-            d = j12 * j12 + j22 * j22
-            b = j11 * j12 + j21 * j22
-            g1 = j11 * rx + j21 * ry
-            g2 = j12 * rx + j22 * ry
-            det_j = l1l2 * s2
-            det = det_j * det_j + damping * (a + d + damping)
-            if det > 0.0:
-                dq1, dq2 = (b * g2 - (d + damping) * g1) / det, (b * g1 - (a + damping) * g2) / det
-            else:  # det = 0: the damping underflowed at a singular J; the step is rejected
+            try:
+                dq1, dq2 = _lm_step(*jacobian_from_trig(l1, l2, c1, s1, c12, s12), l1l2 * s2, rx, ry, damping)
+            except ZeroDivisionError:  # the damping underflowed at a singular J; the step is rejected
                 dq1 = dq2 = math.nan
-            t1, t2 = (q1 + dq1 + pi) % two_pi - pi, (q2 + dq2 + pi) % two_pi - pi
-            t12 = t1 + t2
-            tc1, ts1, tc12, ts12 = cos(t1), sin(t1), cos(t12), sin(t12)
-            trx, try_ = l1 * tc1 + l2 * tc12 - x, l1 * ts1 + l2 * ts12 - y
+            t1, t2 = _wrap(q1 + dq1), _wrap(q2 + dq2)
+            trial = _trig(cos, sin, t1, t2)
+            tip_x, tip_y = tip_from_trig(l1, l2, *trial[:4])
+            trx, try_ = tip_x - x, tip_y - y
             error_trial = sqrt(trx * trx + try_ * try_)
             if error_trial < error:
-                q1, q2, c1, s1, c12, s12, s2 = t1, t2, tc1, ts1, tc12, ts12, sin(t2)
+                q1, q2 = t1, t2
+                c1, s1, c12, s12, s2 = trial
                 rx, ry, error = trx, try_, error_trial
                 damping *= DAMPING_DOWN
             else:
                 damping *= DAMPING_UP
             if not (error > threshold and damping < damping_cap):
                 break
-    q = np.empty(2)
-    q[0], q[1] = q1, q2
-    return assemble_result(
-        arm, target, q, iterations, threshold, "newton",
-        solved_message=_solved_message(1, iterations),
-        failure_detail=lambda index, residual: _failure_detail(residual, iterations),
+    return one_answer_result(
+        arm, x, y, q1, q2, iterations, threshold, "newton", _solved_message(1, iterations),
+        lambda index, residual: _failure_detail(residual, iterations),
     )
