@@ -428,3 +428,36 @@ def test_impedance_pushing_on_a_stiff_wall_reproduces_the_statics_answer():
     assert contact_force == pytest.approx(push, rel=1e-6)
     assert np.allclose(q_end, statics_answer.q[statics_answer.branch("down")], atol=1e-7)
     assert np.allclose(control(3.0, q_end, ZERO), statics_answer.tau[statics_answer.branch("down")], rtol=1e-6, atol=1e-4)
+
+
+# ----------------------------------------------------------------- edges: shapes named, batches of states
+def test_joint_pd_and_computed_torque_take_a_batch_of_states_row_by_row():
+    rng = np.random.default_rng(0)
+    q, qd = rng.normal(size=(5, 2)), rng.normal(size=(5, 2))
+    for control in (JointPD(arms.two_metre, 100.0, 20.0, [0.5, 0.5]), ComputedTorque(arms.two_metre, 100.0, 20.0, [0.5, 0.5])):
+        rows = np.array([control(0.3, q_row, qd_row) for q_row, qd_row in zip(q, qd)])
+        assert np.allclose(control(0.3, q, qd), rows, rtol=1e-13, atol=1e-12)
+
+
+@pytest.mark.parametrize("control", [
+    JointPD(arms.two_metre, 100.0, 20.0, [0.5, 0.5]),
+    ComputedTorque(arms.two_metre, 100.0, 20.0, [0.5, 0.5]),
+    Impedance(arms.two_metre, 600.0, 50.0, [3.0, 1.0]),
+], ids=["JointPD", "ComputedTorque", "Impedance"])
+def test_wrong_shapes_are_named_not_left_to_numpy_matmul(control):
+    with pytest.raises(ValueError, match=r"^q must have shape \(\.\.\., 2\) .*got shape \(3,\)"):
+        control(0.0, [0.1, 0.2, 0.3], [0.0, 0.0])
+    with pytest.raises(ValueError, match=r"^q of shape \(3, 2\) and qd of shape \(4, 2\) do not broadcast together"):
+        control(0.0, np.zeros((3, 2)), np.zeros((4, 2)))
+
+
+def test_a_reference_returning_the_wrong_shape_is_named():
+    three = JointReference(lambda t: [1.0, 2.0, 3.0], lambda t: [0.0, 0.0], lambda t: [0.0, 0.0])
+    with pytest.raises(ValueError, match=r"the reference's position\(t\) must return two numbers \(rad\), shape \(2,\); got \[1.0, 2.0, 3.0\] at t = 0.0"):
+        JointPD(arms.two_metre, 100.0, 20.0, three)(0.0, [0.0, 0.0], [0.0, 0.0])
+
+
+@pytest.mark.parametrize("flag", ["False", 0, None])
+def test_gravity_compensation_takes_only_true_or_false(flag):
+    with pytest.raises(ValueError, match=r"gravity_compensation must be True or False"):
+        JointPD(arms.two_metre, 100.0, 20.0, [0.5, 0.5], gravity_compensation=flag)

@@ -6,6 +6,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from twolink import TwoLinkArm, arms, ik, workspace
+from twolink.errors import InputTypeError
+from twolink.ik.grid_search import grid_axis
 
 LIMITED = TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(np.pi / 2, np.pi / 2))
 
@@ -121,3 +123,32 @@ def test_timing_an_empty_batch_is_refused_clearly():
 
     with pytest.raises(ValueError, match=r"n >= 1"):
         timing.compare_ik_methods(arms.ten, np.empty((0, 2)), methods=["closed form"], repeat=1)
+
+
+# ----------------------------------------------------------------- grid and optimiser arguments
+@pytest.mark.parametrize(("step", "message"), [
+    (0.0, r"step \(radians\) must be > 0.0; got 0.0"),
+    (-0.1, r"step \(radians\) must be > 0.0; got -0.1"),
+    (float("inf"), r"step \(radians\) must be finite; got inf"),
+])
+def test_grid_axis_refuses_a_step_that_is_not_finite_and_positive(step, message):
+    with pytest.raises(ValueError, match=message):
+        grid_axis(0.0, 1.0, step)
+
+
+@pytest.mark.parametrize("bad", [b"ab", "ab", (True, 1.0)])
+def test_brute_force_refuses_a_range_that_is_not_two_angles(bad):
+    with pytest.raises(InputTypeError, match=r"q1_range must be None or a pair \(low, high\) of angles in radians"):
+        ik.brute_force(arms.two_metre, [3.0, 1.0], q1_range=bad)
+
+
+@pytest.mark.parametrize("bad", [[0.0, 1.0, 2.0], (0.0, float("inf")), [[0.0, 1.0]]])
+def test_brute_force_refuses_a_range_of_another_shape_or_not_finite(bad):
+    with pytest.raises(ValueError, match=r"q2_range must be None or a pair \(low, high\) of finite angles in radians"):
+        ik.brute_force(arms.two_metre, [3.0, 1.0], q2_range=bad)
+
+
+@pytest.mark.parametrize("bad", ["False", "True", 1, None])
+def test_minimize_takes_only_a_bool_for_constrained(bad):
+    with pytest.raises(InputTypeError, match=r"constrained must be True or False; got "):
+        ik.minimize(arms.two_metre, [3.0, 1.0], constrained=bad)

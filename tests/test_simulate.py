@@ -2,6 +2,7 @@
 
 import dataclasses
 import inspect
+import time
 
 import matplotlib.pyplot as plt
 import numpy as np
@@ -12,6 +13,7 @@ from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
 from twolink import SimulationError, SimulationResult, TwoLinkArm, arms, controllers, ik, plot, simulate, trajectory
+from twolink.errors import InputTypeError
 
 TIGHT = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
 
@@ -270,3 +272,48 @@ def test_a_simulation_has_no_path_of_its_own():
     motion = trajectory.ik_trajectory(arms.two_metre, trajectory.LinePath([3.0, 0.5], [3.0, 1.0], 1.0), n=12)
     with pytest.raises(ValueError, match=r"sampled at 12 times .* simulate with t_eval=trajectory.t, or pass the path"):
         run.tracking_error(motion)
+
+
+# ----------------------------------------------------------------- edges: a slow torque function, bad t_eval
+def sleepy(seconds):
+    def torque(t, q, qd):
+        time.sleep(seconds)
+        return [0.0, 0.0]
+
+    return torque
+
+
+def test_a_slow_torque_function_stops_at_the_wall_time_budget_and_is_named_as_the_cause():
+    started = time.monotonic()
+    with pytest.raises(SimulationError, match=r"max_wall_time = 0.5 s .*the torque function is the likely cause: .*evaluated only \d+ times"):
+        simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, torque=sleepy(0.2), max_wall_time=0.5)
+    assert time.monotonic() - started < 0.5 + 3 * 0.2  # the clock is read at every call, not every 64th
+
+
+def test_events_are_timed_too():
+    def slow_event(t, state):
+        time.sleep(0.05)
+        return state[1] - 10.0
+
+    with pytest.raises(SimulationError, match=r"max_wall_time = 0.3 s"):
+        simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 10.0, max_wall_time=0.3, events=slow_event)
+
+
+def test_the_torques_at_the_output_times_are_within_the_budget_too():
+    calls = []
+
+    def slow_after_the_integration(t, q, qd):
+        calls.append(t)
+        if len(calls) > 200:  # the integration takes a few dozen calls; the output times 2001
+            time.sleep(0.01)
+        return [0.0, 0.0]
+
+    with pytest.raises(SimulationError, match=r"recomputing the torques at the 2001 output times used up the budget"):
+        simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 0.01, torque=slow_after_the_integration, max_wall_time=1.0,
+                 t_eval=np.linspace(0.0, 0.01, 2001), method="RK45", rtol=1e-3, atol=1e-3)
+
+
+@pytest.mark.parametrize("bad", [[0.0, True], np.ma.masked_array([0.0, 0.5], mask=[False, True]), ["0", "1"]])
+def test_t_eval_refuses_bools_masked_arrays_and_strings(bad):
+    with pytest.raises(InputTypeError, match=r"t_eval must be times in seconds \(real numbers\)"):
+        simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, t_eval=bad)

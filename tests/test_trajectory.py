@@ -1,12 +1,14 @@
 """Cartesian paths, time laws and the joint trajectories that follow them."""
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 from conftest import unit
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from twolink import SingularityError, UnreachableError, arms, controllers, ik, simulate, trajectory, workspace
+from twolink import SimulationError, SingularityError, UnreachableError, arms, controllers, ik, simulate, trajectory, workspace
 from twolink.trajectory import CirclePath, LinePath
 
 TEN_ARCS = {elbow: workspace.boundary_arcs(arms.ten, elbow=elbow) for elbow in ("down", "up")}
@@ -585,3 +587,53 @@ def test_tracking_error_refuses_what_it_cannot_compare():
         motion.tracking_error(motion.p_ref[:5])
     with pytest.raises(TypeError, match="path must be a LinePath or CirclePath, a JointTrajectory, or points"):
         motion.tracking_error("the line")
+
+
+# ----------------------------------------------------------------- edges: huge turns and gains, the budgets
+@pytest.mark.parametrize("turns", [1e308, -1e7, 0.0])
+def test_a_circle_refuses_turns_beyond_what_float64_can_place(turns):
+    with pytest.raises(ValueError, match=r"turns must be non-zero and at most 1e\+06 round either way"):
+        CirclePath([3.0, 0.0], 0.5, 2.0, turns=turns)
+
+
+def test_a_million_turns_still_give_points_on_the_circle():
+    circle = CirclePath([3.0, 0.0], 0.5, 2.0, law="linear", turns=-trajectory.MAX_TURNS)
+    p, v = circle.at(np.linspace(0.0, 2.0, 7))
+    assert np.allclose(np.hypot(*(p - [3.0, 0.0]).T), 0.5, rtol=0.0, atol=1e-9)
+    assert np.all(np.isfinite(v))
+
+
+def test_a_path_too_large_for_float64_is_an_overflow_error_not_nan():
+    with pytest.raises(OverflowError, match=r"the path's positions \(m\) overflow float64"):
+        LinePath([-1e308, 0.0], [1e308, 0.0], duration=1.0).at(0.5)
+
+
+def test_resolved_rate_refuses_a_gain_beyond_the_feedback_bound_at_once():
+    line = LinePath([3.0, 1.0], [3.0, 0.5], duration=1.0)
+    with pytest.raises(ValueError, match=r"gain \(1/s\) times the path's duration must be at most MAX_FEEDBACK = 1e\+09"):
+        trajectory.resolved_rate_trajectory(arms.two_metre, line, gain=1e308)
+
+
+def test_resolved_rate_at_the_feedback_bound_still_tracks_the_path():
+    line = LinePath([-3.5, 1.0], [-1.0, 3.5], duration=1.0)
+    motion = trajectory.resolved_rate_trajectory(arms.two_metre, line, n=20, gain=trajectory.MAX_FEEDBACK)
+    assert motion.tracking_error().max() < 1e-6
+
+
+def test_resolved_rate_stops_at_its_wall_time_budget_naming_it():
+    line = LinePath([-3.5, 1.0], [-1.0, 3.5], duration=1.0)
+    with pytest.raises(SimulationError, match=r"resolved rate used up its budget of max_wall_time = 1e-06 s .* at t = "):
+        trajectory.resolved_rate_trajectory(arms.two_metre, line, n=20, max_wall_time=1e-6)
+
+
+def test_a_failed_resolved_rate_integration_names_the_time_it_reached(monkeypatch):
+    """A solver that fails on its first step has no output times: the message still says where it stopped."""
+
+    def failing_at_once(fun, t_span, y0, **options):
+        fun(0.25, y0)
+        return SimpleNamespace(success=False, status=-1, t=np.empty(0), message="Required step size is less than spacing between numbers.")
+
+    monkeypatch.setattr(trajectory, "solve_ivp", failing_at_once)
+    line = LinePath([-3.5, 1.0], [-1.0, 3.5], duration=1.0)
+    with pytest.raises(SimulationError, match=r"resolved rate: the integration failed at t = 0.25 s of 1 s \(method 'RK45', gain 10 1/s\): Required step"):
+        trajectory.resolved_rate_trajectory(arms.two_metre, line, n=20)

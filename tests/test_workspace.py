@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from twolink import TwoLinkArm, UnreachableError, arms, ik, kinematics, to_absolute, workspace
 from twolink.arcs import Arc, circle_intersections
+from twolink.errors import InputTypeError
 
 
 @st.composite
@@ -423,3 +424,51 @@ def test_closed_form_auto_is_within_the_limits_exactly_where_the_point_is_reacha
     auto = ik.closed_form(arm, p, elbow="auto")
     assert bool(arm.within_limits(auto.q, tol=ik.LIMIT_TOL)) == bool(workspace.is_reachable(arm, p))
     assert auto.success and auto.residual <= 1e-9 * r_max
+
+
+# ----------------------------------------------------------------- edges: arguments refused with their names
+@pytest.mark.parametrize("probe", [0, -1, 1e-9, 0.5])
+def test_boundary_arcs_refuses_a_probe_ring_outside_its_range(probe):
+    with pytest.raises(ValueError, match=r"probe \(ring radius / reach\) must be in \[1e-06, 0.01\]; got "):
+        workspace.boundary_arcs(arms.ten, probe)
+
+
+def test_boundary_arcs_refuses_a_string_probe():
+    with pytest.raises(InputTypeError, match=r"probe \(ring radius / reach\) must be a real number; got 'x'"):
+        workspace.boundary_arcs(arms.ten, "x")
+
+
+@pytest.mark.parametrize("probe", list(workspace.PROBE_RANGE))
+def test_boundary_arcs_at_either_end_of_the_probe_range_finds_the_same_edges(probe):
+    assert [arc.label for arc in workspace.boundary_arcs(arms.ten, probe)] == [
+        arc.label for arc in workspace.boundary_arcs(arms.ten)
+    ]
+
+
+@pytest.mark.parametrize("call", [workspace.describe_limits, workspace.candidate_arcs, workspace.sample_reachable])
+def test_none_for_the_arm_is_refused_naming_arm(call):
+    with pytest.raises(InputTypeError, match=r"arm must be a twolink.TwoLinkArm; got None"):
+        call(None)
+
+
+def test_largest_inscribed_circle_refuses_more_starts_than_it_has_candidates_at_once():
+    with pytest.raises(ValueError, match=r"starts must be an integer <= 4000; got 1000000000000"):
+        workspace.largest_inscribed_circle(arms.ten, starts=10**12)
+
+
+def test_largest_inscribed_circle_stops_at_its_wall_time_budget_saying_what_to_change():
+    with pytest.raises(RuntimeError, match=r"used up its budget of max_wall_time = 0.3 s after \d+ of \d+ starts .*fewer starts"):
+        workspace.largest_inscribed_circle(arms.ten, starts=200, max_wall_time=0.3)
+
+
+@pytest.mark.parametrize("convention", ["relative", "absolute"])
+def test_the_base_is_reachable_when_a_folded_configuration_is_within_the_limits(convention):
+    """fk of a folded equal-link arm lands a round-off from the base, in a direction that says nothing about q1."""
+    arm = TwoLinkArm(1.0, 1.0, q_min=(1.0, np.pi), q_max=(2.0, np.pi + 1.0), limit_convention=convention)
+    q_folded = [1.0, np.pi]  # relative angles; the link angles (1, 1 + pi) are within the absolute limits too
+    assert arm.within_limits(q_folded)
+    assert workspace.is_reachable(arm, [arm.fk(q_folded), [0.0, 0.0]]).all()
+    q_both, valid = ik.solutions_within_limits(arm, [0.0, 0.0])
+    assert valid.all() and arm.within_limits(q_both, tol=workspace.LIMIT_TOL).all()
+    narrow = TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(0.5, 3.0), limit_convention=convention)
+    assert not workspace.is_reachable(narrow, [0.0, 0.0])  # no folded configuration within these limits

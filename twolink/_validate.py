@@ -9,6 +9,7 @@ is allowed, instead of propagating NaN.  So their inputs are typed
 from __future__ import annotations
 
 import math
+from itertools import chain
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
@@ -26,7 +27,7 @@ _REAL_TYPES = (int, float, np.integer, np.floating)
 
 __all__ = [
     "finite_result", "InputTypeError", "real_array", "require_arm", "as_pairs", "pair_floats", "as_finite_scalar",
-    "as_count", "broadcast_start", "broadcast_shape",
+    "as_count", "as_flag", "broadcast_start", "broadcast_shape",
 ]
 
 #: Scalar types the one-input fast path converts itself (``float`` is tested
@@ -204,6 +205,26 @@ def as_count(value: object, name: str, *, minimum: int = 1, maximum: int | None 
     return count
 
 
+def as_flag(value: object, name: str) -> bool:
+    """``value`` as a Python ``bool``: only ``True`` or ``False`` (Python or numpy) are accepted.
+
+    A string such as ``"False"`` is truthy and a number's meaning is a
+    guess, so both are refused with a message naming the argument.
+
+    Examples
+    --------
+    >>> as_flag(np.True_, "constrained")
+    True
+    >>> as_flag("False", "constrained")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: constrained must be True or False; got 'False' (str)
+    """
+    if not isinstance(value, (bool, np.bool_)):
+        raise InputTypeError(f"{name} must be True or False; got {value!r} ({type(value).__name__})")
+    return bool(value)
+
+
 def broadcast_start(start: object, shape: tuple[int, ...], name: str, against: str = "target p") -> NDArray[np.float64]:
     """``start`` (pairs) broadcast to ``shape``, or a message naming both shapes.
 
@@ -247,16 +268,48 @@ def broadcast_shape(**arrays: NDArray[np.float64]) -> tuple[int, ...]:
 
 
 _BAD_ELEMENT = (bool, np.bool_, complex, np.complexfloating, str, bytes, type(None))
+_PLAIN_NUMBERS = frozenset((float, int))
+_SEQUENCES = frozenset((list, tuple))
+
+
+def _masked_message(name: str, what: str) -> str:
+    return (
+        f"{name} must be {what}; got a masked array (numpy.ma), whose masked entries would be read as the "
+        "values hidden under the mask: decide what they mean first and pass a plain array "
+        "(values.filled(...) or values.compressed())"
+    )
+
+
+def _refuse_bad_entries(items: Any, values: object, name: str, what: str, where: tuple[int, ...] = ()) -> None:
+    """Raise :class:`InputTypeError` for the first entry of a (nested) list or tuple numpy would coerce silently.
+
+    Booleans (read as 0.0 / 1.0), complex numbers, strings, bytes, ``None``,
+    boolean arrays and masked arrays are refused at any depth, naming the
+    entry's index; numpy turns a boolean among floats into a float before it
+    can be seen in the array.
+    """
+    for index, element in enumerate(items):
+        element_type = type(element)
+        if element_type is float or element_type is int:
+            continue
+        if element_type is list or element_type is tuple:
+            _refuse_bad_entries(element, values, name, what, (*where, index))
+        elif isinstance(element, np.ma.MaskedArray):
+            raise InputTypeError(_masked_message(name, what))
+        elif isinstance(element, _BAD_ELEMENT) or (element_type is np.ndarray and element.dtype.kind == "b"):
+            kind = "bool array" if element_type is np.ndarray else element_type.__name__
+            raise InputTypeError(f"{name} must be {what}; got {values!r} (entry {(*where, index)} is {kind})")
 
 
 def real_array(values: object, name: str, what: str = "real numbers") -> NDArray[np.float64]:
     """``values`` as a float64 array, refusing anything that is not real numbers.
 
     Booleans, complex numbers (whose imaginary part would be dropped),
-    strings, ``None`` and other objects raise :class:`InputTypeError`
-    naming the argument; numpy would coerce several of them silently.
-    (Inside nested lists numpy turns a boolean among floats into a float
-    before it can be seen; flat sequences are checked element by element.)
+    strings, bytes, ``None`` and other objects raise :class:`InputTypeError`
+    naming the argument, also inside nested lists (numpy would coerce
+    several of them silently: ``[[0.3, True]]`` becomes ``[[0.3, 1.0]]``).
+    So do masked arrays (:mod:`numpy.ma`), whose masked entries numpy would
+    read as the values hidden under the mask.
 
     Examples
     --------
@@ -265,7 +318,15 @@ def real_array(values: object, name: str, what: str = "real numbers") -> NDArray
     >>> real_array([1.0, 2j], "q")
     Traceback (most recent call last):
     ...
-    twolink.errors.InputTypeError: q must be real numbers; got [1.0, 2j] (an entry is complex)
+    twolink.errors.InputTypeError: q must be real numbers; got [1.0, 2j] (entry (1,) is complex)
+    >>> real_array([[0.3, True]], "q")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: q must be real numbers; got [[0.3, True]] (entry (0, 1) is bool)
+    >>> real_array(np.ma.masked_array([0.3, 99.0], mask=[False, True]), "q0")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: q0 must be real numbers; got a masked array (numpy.ma), whose masked entries would be read as the values hidden under the mask: decide what they mean first and pass a plain array (values.filled(...) or values.compressed())
     """
     # the exact type tests below (faster than isinstance) decide what ``values`` is;
     # mypy does not narrow on them, so the checked value is read through ``items``
@@ -276,10 +337,14 @@ def real_array(values: object, name: str, what: str = "real numbers") -> NDArray
         array = items
     else:
         if kind is list or kind is tuple:
-            for element in items:
-                element_type = type(element)
-                if element_type is not float and element_type is not int and isinstance(element, _BAD_ELEMENT):
-                    raise InputTypeError(f"{name} must be {what}; got {values!r} (an entry is {element_type.__name__})")
+            # one or two levels of plain floats and ints (the usual lists) are seen at C speed
+            types = set(map(type, items))
+            if not types <= _PLAIN_NUMBERS and not (
+                types <= _SEQUENCES and set(map(type, chain.from_iterable(items))) <= _PLAIN_NUMBERS
+            ):
+                _refuse_bad_entries(items, values, name, what)
+        elif isinstance(values, np.ma.MaskedArray):
+            raise InputTypeError(_masked_message(name, what))
         elif isinstance(values, _BAD_ELEMENT):
             raise InputTypeError(f"{name} must be {what}; got {values!r} ({type(values).__name__})")
         try:
@@ -388,6 +453,8 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
     ...
     twolink._validate.NonFiniteTorque: torque(t, q, qd) returned non-finite torques [ 1. nan] at t = 0.25
     """
+    if type(value) is not np.ndarray and isinstance(value, np.ma.MaskedArray):
+        raise ValueError(f"torque(t, q, qd) must return two numbers (N m), not a masked array; got {value!r} at t = {t}")
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as exc:

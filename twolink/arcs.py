@@ -78,8 +78,21 @@ class Arc:
                 raise InputTypeError(f"{name} must be a string; got {getattr(self, name)!r}")
 
     def point_at(self, fraction: ArrayLike) -> NDArray[np.float64]:
-        """Points at ``fraction`` (0 = start, 1 = end) along the arc, shape ``(..., 2)``."""
-        angle = self.start + self.sweep * real_array(fraction, "fraction")
+        """Points at ``fraction`` (0 = start, 1 = end) along the arc, shape ``(..., 2)``.
+
+        Fractions are finite real numbers (outside ``[0, 1]`` they go on
+        round the arc's circle); NaN and infinity are refused.
+
+        Examples
+        --------
+        >>> Arc((0.0, 0.0), 1.0, 0.0, np.pi).point_at(0.5).round(12) + 0.0
+        array([0., 1.])
+        >>> Arc((0.0, 0.0), 1.0, 0.0, np.pi).point_at(float("nan"))
+        Traceback (most recent call last):
+        ...
+        ValueError: fraction must be finite numbers (0 = start, 1 = end of the arc); entry () is nan
+        """
+        angle = self.start + self.sweep * _finite_fractions(fraction, "fraction")
         points = np.empty(angle.shape + (2,))
         points[..., 0] = self.centre[0] + self.radius * np.cos(angle)
         points[..., 1] = self.centre[1] + self.radius * np.sin(angle)
@@ -141,21 +154,44 @@ class Arc:
         return np.where(along <= abs(self.sweep), radial, to_ends)
 
     def split(self, fractions: ArrayLike) -> list[Arc]:
-        """Cut the arc at the given fractions (0 < f < 1) into consecutive pieces.
+        """Cut the arc at the given fractions into consecutive pieces.
+
+        Fractions lie in ``[0, 1]`` (0 = start, 1 = end), in any order;
+        cuts at the ends or repeated (within 1e-9) cut nothing.  NaN,
+        infinity and fractions outside ``[0, 1]`` are refused.
 
         Examples
         --------
         >>> pieces = Arc((0.0, 0.0), 1.0, 0.0, np.pi).split([0.5])
         >>> [round(piece.sweep / np.pi, 12) for piece in pieces]
         [0.5, 0.5]
+        >>> Arc((0.0, 0.0), 1.0, 0.0, np.pi).split([float("nan")])
+        Traceback (most recent call last):
+        ...
+        ValueError: fractions must be finite numbers (0 = start, 1 = end of the arc); entry (0,) is nan
         """
-        cuts = np.unique(np.clip(real_array(fractions, "fractions").ravel(), 0.0, 1.0))
+        cuts = _finite_fractions(fractions, "fractions").ravel()
+        if np.any((cuts < 0.0) | (cuts > 1.0)):
+            outside = cuts[(cuts < 0.0) | (cuts > 1.0)][0]
+            raise ValueError(f"fractions must lie in [0, 1] (0 = start, 1 = end of the arc); got {outside}")
+        cuts = np.unique(cuts)
         cuts = cuts[(cuts > 1e-9) & (cuts < 1.0 - 1e-9)]
         edges = np.concatenate([[0.0], cuts, [1.0]])
         return [
             Arc(self.centre, self.radius, self.start + self.sweep * low, self.sweep * (high - low), self.label, self.kind)
             for low, high in zip(edges[:-1], edges[1:])
         ]
+
+
+def _finite_fractions(values: ArrayLike, name: str) -> NDArray[np.float64]:
+    """``values`` as a float array of finite fractions along an arc, or an error naming the first that is not."""
+    fractions = real_array(values, name)
+    if not np.all(np.isfinite(fractions)):
+        bad = tuple(int(i) for i in np.argwhere(~np.isfinite(fractions))[0])
+        raise ValueError(
+            f"{name} must be finite numbers (0 = start, 1 = end of the arc); entry {bad} is {fractions[bad]}"
+        )
+    return fractions
 
 
 def circle_intersections(centre_a: ArrayLike, radius_a: float, centre_b: ArrayLike, radius_b: float) -> NDArray[np.float64]:

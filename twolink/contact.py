@@ -178,7 +178,8 @@ class TipForce:
         """The controller's torques alone, N m (zeros without a controller)."""
         if self.controller is None:
             return np.zeros(2)
-        tau = as_pairs(self.controller(t, np.asarray(q), np.asarray(qd)), "controller(t, q, qd)")
+        q, qd = _one_state(q, qd)
+        tau = as_pairs(self.controller(t, q, qd), "controller(t, q, qd)")
         if tau.shape != (2,):
             raise ValueError(f"controller(t, q, qd) must return shape (2,) (N m); got shape {tau.shape}")
         return tau

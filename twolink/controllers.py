@@ -47,7 +47,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.interpolate import CubicSpline
 
-from ._validate import as_configuration, as_finite_scalar, as_pairs, broadcast_shape, real_array, require_arm
+from ._validate import as_configuration, as_finite_scalar, as_flag, as_pairs, broadcast_shape, real_array, require_arm
 from .dynamics import gravity_jacobian, mass_matrix_derivative
 from .kinematics import jacobian_derivative, joint_torques
 
@@ -137,10 +137,12 @@ def _point(value: ArrayLike, name: str) -> NDArray[np.float64]:
     return point
 
 
-def _flag(value: object, name: str) -> bool:
-    if not isinstance(value, (bool, np.bool_)):
-        raise ValueError(f"{name} must be True or False; got {value!r}")
-    return bool(value)
+def _state(q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """``(q, qd)`` as float arrays of shape ``(..., 2)`` whose leading axes broadcast, or a message naming both."""
+    q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
+    if q.shape != qd.shape:
+        broadcast_shape(q=q, qd=qd)
+    return q, qd
 
 
 @dataclass(frozen=True, eq=False, init=False)
@@ -293,7 +295,7 @@ class Impedance:
         object.__setattr__(self, "stiffness", gain_matrix(stiffness, "stiffness K (N/m)"))
         object.__setattr__(self, "damping", gain_matrix(damping, "damping D (N s/m)"))
         object.__setattr__(self, "rest_point", _point(rest_point, "rest_point x0"))
-        object.__setattr__(self, "gravity_compensation", _flag(gravity_compensation, "gravity_compensation"))
+        object.__setattr__(self, "gravity_compensation", as_flag(gravity_compensation, "gravity_compensation"))
 
     @property
     def spring(self) -> CartesianSpring:
@@ -302,9 +304,7 @@ class Impedance:
 
     def force_on_tip(self, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """The force the controller makes act on the tip, ``K (x0 - x) - D xdot``, N; shape ``(..., 2)``."""
-        q = as_pairs(q, "q")
-        qd = as_pairs(qd, "qd")
-        broadcast_shape(q=q, qd=qd)
+        q, qd = _state(q, qd)
         tip_velocity = np.einsum("...ij,...j->...i", self.arm.jacobian(q), qd)
         return (self.rest_point - self.arm.fk(q)) @ self.stiffness.T - tip_velocity @ self.damping.T
 
@@ -384,11 +384,17 @@ class JointReference:
             _pair_function(getattr(self, name), name)
 
     def __call__(self, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
-        """``(q_ref, qd_ref, qdd_ref)`` at time ``t``, each an array of shape (2,)."""
+        """``(q_ref, qd_ref, qdd_ref)`` at time ``t``, each an array of shape (2,).
+
+        Raises
+        ------
+        ValueError
+            When one of the three functions does not return two numbers.
+        """
         return (
-            np.asarray(self.position(t), dtype=float),
-            np.asarray(self.velocity(t), dtype=float),
-            np.asarray(self.acceleration(t), dtype=float),
+            _reference_pair(self.position(t), "position", "rad", t),
+            _reference_pair(self.velocity(t), "velocity", "rad/s", t),
+            _reference_pair(self.acceleration(t), "acceleration", "rad/s^2", t),
         )
 
     @classmethod
@@ -472,6 +478,16 @@ class JointReference:
         return cls(position, inside(rate), inside(acceleration))
 
 
+def _reference_pair(value: object, name: str, unit: str, t: float) -> NDArray[np.float64]:
+    try:
+        array = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        array = np.empty(0)
+    if array.shape != (2,):
+        raise ValueError(f"the reference's {name}(t) must return two numbers ({unit}), shape (2,); got {value!r} at t = {t}")
+    return array
+
+
 def _as_reference(reference: JointReference | ArrayLike) -> JointReference:
     if isinstance(reference, JointReference):
         return reference
@@ -529,13 +545,27 @@ class JointPD:
         object.__setattr__(self, "kp", gain_matrix(kp, "kp (joint stiffness, N m/rad)"))
         object.__setattr__(self, "kd", gain_matrix(kd, "kd (joint damping, N m s/rad)"))
         object.__setattr__(self, "reference", _as_reference(reference))
-        object.__setattr__(self, "gravity_compensation", _flag(gravity_compensation, "gravity_compensation"))
+        object.__setattr__(self, "gravity_compensation", as_flag(gravity_compensation, "gravity_compensation"))
 
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
-        """The motor torques at time ``t`` and state ``(q, qd)``, N m."""
-        q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
+        """The motor torques at time ``t`` and state ``(q, qd)``, N m; vectorised over ``q`` and ``qd`` ``(..., 2)``.
+
+        Examples
+        --------
+        >>> from twolink import arms
+        >>> hold = JointPD(arms.two_metre, kp=100.0, kd=20.0, reference=[0.0, 0.0], gravity_compensation=False)
+        >>> hold(0.0, [[0.1, 0.0], [0.0, 0.2]], [0.0, 1.0]).round(12)
+        array([[-10., -20.],
+               [  0., -40.]])
+        >>> hold(0.0, [0.1, 0.0, 0.3], [0.0, 1.0])
+        Traceback (most recent call last):
+        ...
+        ValueError: q must have shape (..., 2) (two joint angles or an x, y pair per row); got shape (3,)
+        """
+        q, qd = _state(q, qd)
         q_ref, qd_ref, _ = self.reference(t)
-        tau = self.kp @ (q_ref - q) + self.kd @ (qd_ref - qd)
+        # K e for each row e: e @ K^T
+        tau = (q_ref - q) @ self.kp.T + (qd_ref - qd) @ self.kd.T
         if self.gravity_compensation:
             tau = tau + self.arm.gravity(q)
         return tau
@@ -613,14 +643,19 @@ class ComputedTorque:
         object.__setattr__(self, "model", arm if model is None else require_arm(model, "ComputedTorque's model"))
 
     def commanded_acceleration(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
-        """``v = qdd_ref + Kd (qd_ref - qd) + Kp (q_ref - q)``, rad/s^2."""
+        """``v = qdd_ref + Kd (qd_ref - qd) + Kp (q_ref - q)``, rad/s^2; vectorised over ``q`` and ``qd`` ``(..., 2)``."""
+        q, qd = _state(q, qd)
+        return self._acceleration(t, q, qd)
+
+    def _acceleration(self, t: float, q: NDArray[np.float64], qd: NDArray[np.float64]) -> NDArray[np.float64]:
         q_ref, qd_ref, qdd_ref = self.reference(t)
-        return qdd_ref + self.kd @ (qd_ref - np.asarray(qd)) + self.kp @ (q_ref - np.asarray(q))
+        # K e for each row e: e @ K^T
+        return qdd_ref + (qd_ref - qd) @ self.kd.T + (q_ref - q) @ self.kp.T
 
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
-        """The motor torques at time ``t`` and state ``(q, qd)``, N m."""
-        q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
-        return self.model.inverse_dynamics(q, qd, self.commanded_acceleration(t, q, qd))
+        """The motor torques at time ``t`` and state ``(q, qd)``, N m; vectorised over ``q`` and ``qd`` ``(..., 2)``."""
+        q, qd = _state(q, qd)
+        return self.model.inverse_dynamics(q, qd, self._acceleration(t, q, qd))
 
     def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``, from the model.
@@ -641,7 +676,7 @@ class ComputedTorque:
         True
         """
         q = as_configuration(q)
-        acceleration = self.commanded_acceleration(t, q, np.zeros(2))
+        acceleration = self._acceleration(t, q, np.zeros(2))
         M = self.model.mass_matrix(q)
         by_q = -M @ self.kp + gravity_jacobian(self.model, q)
         by_q += np.einsum("ijk,j->ik", mass_matrix_derivative(self.model, q), acceleration)

@@ -25,7 +25,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 
 from . import dynamics
-from ._validate import InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, torque_floats
+from ._validate import (
+    InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, real_array, torque_floats,
+)
 from .errors import SimulationError
 from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME
 from .kinematics import fk
@@ -58,10 +60,35 @@ _EXPLICIT_METHODS = ("RK23", "RK45", "DOP853")
 _EXPLICIT_COST = {"RK23": (3, 2.5), "RK45": (6, 3.3), "DOP853": (12, 6.0)}
 
 
+#: Mean seconds per right-hand-side call above which a spent wall-time budget is blamed on a slow
+#: torque function (the arm's own dynamics take about 1e-5 s a call; 1e-3 s is a hundred times that).
+SLOW_CALL = 1e-3
+
+
 class _BudgetExceeded(Exception):
-    def __init__(self, t, state, what):
+    def __init__(self, t, state, what, wall_time=False):
         super().__init__(what)
         self.t, self.state, self.what = t, np.array(state, dtype=float), what
+        self.wall_time = wall_time
+
+
+def _timed_events(events, out_of_time):
+    """``events`` (one callable or a list) wrapped so that each call, between the solver's steps, checks the wall clock."""
+
+    def timed(event):
+        if not callable(event):
+            raise InputTypeError(f"events must be callables event(t, y) (or a list of them); got {event!r}")
+
+        def checked(t, state):
+            out_of_time(t, state)
+            return event(t, state)
+
+        # solve_ivp reads these two attributes of an event function
+        setattr(checked, "terminal", getattr(event, "terminal", False))
+        setattr(checked, "direction", getattr(event, "direction", 0.0))
+        return checked
+
+    return timed(events) if callable(events) else [timed(event) for event in events]
 
 
 def _jacobian_eigenvalues(right_hand_side, t, state):
@@ -97,12 +124,35 @@ def _explicit_evaluations(method, rate, duration):
     return per_step * rate * duration / interval
 
 
+def _budget_advice(inner, stop, evaluations, used, t_end):
+    """What to change when a budget ran out at a fast right-hand side: the stiffness there decides."""
+    rate = _stiffness(inner, stop.t, stop.state)
+    explicit = isinstance(used, str) and used in _EXPLICIT_METHODS
+    if explicit and rate is not None:
+        # stiff: the steps taken were no longer than the explicit method's stability limit allows
+        per_step, interval = _EXPLICIT_COST[used]
+        stiff = stop.t * per_step < 3.0 * interval / rate * evaluations
+    else:
+        stiff = rate is not None and rate * t_end > 1e4
+    if stiff:
+        advice = (
+            f"the closed loop is stiff there (fastest rate {rate:.3g} 1/s, time constant {1.0 / rate:.2g} s, "
+            f"against {t_end:.6g} s to simulate)"
+        )
+        if explicit:
+            return advice + f": use an implicit method, method='Radau' or method='LSODA', instead of {used!r}"
+        return advice + ": loosen rtol/atol or raise the budget"
+    if explicit:
+        return "try looser tolerances, method='Radau' or method='LSODA' (if the loop is stiff), or a larger budget"
+    return (
+        f"with the implicit method {used!r}, loosen rtol/atol (the defaults 1e-10 suit smooth motion; "
+        "a contact or a switching controller is not smooth), give max_step, or raise the budget"
+    )
+
+
 def _check_t_eval(t_eval, t_end):
-    try:
-        times = np.asarray(t_eval, dtype=float)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"t_eval must be times in seconds (numbers); got {t_eval!r}") from exc
-    if times.dtype != float or times.ndim != 1 or times.size == 0:
+    times = real_array(t_eval, "t_eval", "times in seconds (real numbers)")
+    if times.ndim != 1 or times.size == 0:
         raise ValueError(f"t_eval must be a non-empty 1-D array of times (s); got shape {times.shape}")
     if not np.all(np.isfinite(times)):
         raise ValueError("t_eval must be finite times (s); it holds NaN or infinity")
@@ -399,34 +449,30 @@ def simulate(
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
     max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
+    started = time.monotonic()
+    deadline = started + max_wall_time
     inner = dynamics.state_derivative(arm, torque)
     options: dict[str, Any] = dict(DEFAULT_SOLVER_OPTIONS)
     options.update(solver_options)
     if t_eval is not None:
         t_eval = _check_t_eval(t_eval, t_end)
     start = np.concatenate([q_start, qd_start])
+    calls = 0  # every call of the right-hand side, the stiffness estimates included
+
+    def out_of_time(t, state):
+        if time.monotonic() > deadline:
+            raise _BudgetExceeded(t, state, f"its budget of max_wall_time = {max_wall_time:.3g} s", wall_time=True)
+
+    def timed(t, state):
+        nonlocal calls
+        calls += 1
+        out_of_time(t, state)
+        return inner(t, state)
+
+    if options.get("events") is not None:
+        options["events"] = _timed_events(options["events"], out_of_time)
     note = ""
-    method = options.get("method")
-    if isinstance(method, str) and method in _EXPLICIT_METHODS:
-        rate = _stiffness(inner, 0.0, start)
-        needed = _explicit_evaluations(method, rate, t_end) if rate is not None else 0.0
-        if needed > max_evaluations / 4:
-            if "method" in solver_options:
-                if needed > max_evaluations:
-                    raise SimulationError(
-                        f"the closed loop is stiff at t = 0 (fastest rate {rate:.3g} 1/s, time constant "
-                        f"{1.0 / rate:.2g} s): the explicit method {method!r} would need about {needed:.2g} "
-                        f"evaluations for {t_end:.6g} s, more than max_evaluations = {max_evaluations}; "
-                        "use an implicit method, method='Radau' or method='LSODA'"
-                    )
-                note = f" (the loop is stiff: fastest rate {rate:.3g} 1/s at t = 0; method='Radau' would be faster)"
-            else:
-                options["method"] = "Radau"
-                note = f" (the loop is stiff, fastest rate {rate:.3g} 1/s at t = 0: integrated with method='Radau')"
-
     evaluations = 0
-    deadline = time.monotonic() + max_wall_time
-
     last = [0.0, start]
 
     def right_hand_side(t, state):
@@ -435,10 +481,8 @@ def simulate(
         last[0], last[1] = t, state
         if evaluations > max_evaluations:
             raise _BudgetExceeded(t, state, f"its budget of max_evaluations = {max_evaluations} evaluations")
-        if not evaluations & 63 and time.monotonic() > deadline:
-            raise _BudgetExceeded(t, state, f"its budget of max_wall_time = {max_wall_time:.3g} s")
         try:
-            derivative = inner(t, state)
+            derivative = timed(t, state)
         except NonFiniteTorque as exc:
             if evaluations == 1:
                 raise
@@ -455,6 +499,23 @@ def simulate(
         return derivative
 
     try:
+        method = options.get("method")
+        if isinstance(method, str) and method in _EXPLICIT_METHODS:
+            rate = _stiffness(timed, 0.0, start)
+            needed = _explicit_evaluations(method, rate, t_end) if rate is not None else 0.0
+            if needed > max_evaluations / 4:
+                if "method" in solver_options:
+                    if needed > max_evaluations:
+                        raise SimulationError(
+                            f"the closed loop is stiff at t = 0 (fastest rate {rate:.3g} 1/s, time constant "
+                            f"{1.0 / rate:.2g} s): the explicit method {method!r} would need about {needed:.2g} "
+                            f"evaluations for {t_end:.6g} s, more than max_evaluations = {max_evaluations}; "
+                            "use an implicit method, method='Radau' or method='LSODA'"
+                        )
+                    note = f" (the loop is stiff: fastest rate {rate:.3g} 1/s at t = 0; method='Radau' would be faster)"
+                else:
+                    options["method"] = "Radau"
+                    note = f" (the loop is stiff, fastest rate {rate:.3g} 1/s at t = 0: integrated with method='Radau')"
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             solution = solve_ivp(right_hand_side, (0.0, t_end), start, t_eval=t_eval, **options)
     except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
@@ -469,31 +530,17 @@ def simulate(
             "check the controller's gains and the torques it returns"
         ) from exc
     except _BudgetExceeded as stop:
-        rate = _stiffness(inner, stop.t, stop.state)
-        used = options.get("method", "RK45")
-        explicit = isinstance(used, str) and used in _EXPLICIT_METHODS
-        if explicit and rate is not None:
-            # stiff: the steps taken were no longer than the explicit method's stability limit allows
-            per_step, interval = _EXPLICIT_COST[used]
-            stiff = stop.t / (evaluations / per_step) < 3.0 * interval / rate
-        else:
-            stiff = rate is not None and rate * t_end > 1e4
-        if stiff:
+        if evaluations == 0:  # stopped while the stiffness at the start was estimated (around the start)
+            stop.t, stop.state = 0.0, start
+        per_call = (time.monotonic() - started) / max(calls, 1)
+        if stop.wall_time and torque is not None and per_call > SLOW_CALL:
             advice = (
-                f"the closed loop is stiff there (fastest rate {rate:.3g} 1/s, time constant {1.0 / rate:.2g} s, "
-                f"against {t_end:.6g} s to simulate)"
+                f"the torque function is the likely cause: the dynamics were evaluated only {calls} times, "
+                f"{per_call:.3g} s a call (the arm's own part takes about 1e-5 s), so torque(t, q, qd) is slow; "
+                "make it faster (no printing, plotting or sleeping in it) or raise max_wall_time"
             )
-            if explicit:
-                advice += f": use an implicit method, method='Radau' or method='LSODA', instead of {used!r}"
-            else:
-                advice += ": loosen rtol/atol or raise the budget"
-        elif explicit:
-            advice = "try looser tolerances, method='Radau' or method='LSODA' (if the loop is stiff), or a larger budget"
         else:
-            advice = (
-                f"with the implicit method {used!r}, loosen rtol/atol (the defaults 1e-10 suit smooth motion; "
-                "a contact or a switching controller is not smooth), give max_step, or raise the budget"
-            )
+            advice = _budget_advice(inner, stop, evaluations, options.get("method", "RK45"), t_end)
         raise SimulationError(
             f"the integration used up {stop.what} at t = {stop.t:.6g} s of {t_end:.6g} s "
             f"(state q = ({stop.state[0]:.6g}, {stop.state[1]:.6g}) rad, qd = ({stop.state[2]:.6g}, "
@@ -510,9 +557,17 @@ def simulate(
     if torque is None:
         tau = np.zeros_like(q)
     else:
-        tau = np.array(
-            [torque_floats(torque(t, q_t.copy(), qd_t.copy()), t) for t, q_t, qd_t in zip(solution.t, q, qd)]
-        ).reshape(q.shape)
+        torques: list[tuple[float, float]] = []
+        for t, q_t, qd_t in zip(solution.t, q, qd):
+            if time.monotonic() > deadline:
+                raise SimulationError(
+                    f"the integration reached t = {t_end:.6g} s, but recomputing the torques at the {len(solution.t)} "
+                    f"output times used up the budget of max_wall_time = {max_wall_time:.3g} s after "
+                    f"{len(torques)} of them: torque(t, q, qd) is slow; make it faster, pass fewer t_eval times "
+                    "or raise max_wall_time"
+                )
+            torques.append(torque_floats(torque(t, q_t.copy(), qd_t.copy()), t))
+        tau = np.array(torques).reshape(q.shape)
     return SimulationResult(
         arm=arm,
         t=_frozen(solution.t),

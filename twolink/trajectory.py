@@ -33,6 +33,7 @@ Examples
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Literal, Union, overload
 
@@ -40,10 +41,10 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 
-from ._validate import as_configuration, as_count, as_finite_scalar, as_pairs, real_array, require_arm
+from ._validate import as_configuration, as_count, as_finite_scalar, as_pairs, finite_result, real_array, require_arm
 from .controllers import JointReference
 from .conventions import check_elbow
-from .budgets import DEFAULT_MAX_EVALUATIONS
+from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME
 from .errors import InputTypeError, SimulationError, SingularityError, UnreachableError
 from .kinematics import fk, jacobian, require_nonsingular, require_within_reach
 from .velocity import joint_rates, joint_rates_dls
@@ -161,6 +162,14 @@ def _point(value: ArrayLike, name: str) -> _Array:
 #: Most samples a path may be cut into (memory budget: a few arrays of n x 2 floats, ~100 MB).
 MAX_SAMPLES = 10_000_000
 
+#: Largest ``gain * duration`` of :func:`resolved_rate_trajectory`: the tracking error
+#: decays as ``exp(-gain t)``, at round-off within ``1e-9 duration`` already.
+MAX_FEEDBACK = 1e9
+
+#: Most turns of a :class:`CirclePath` either way: at ``2 pi 1e6`` rad float64 still
+#: places the angle to about 1e-9 rad, so a point on the circle to 1e-9 of the radius.
+MAX_TURNS = 1e6
+
 
 def _sample_times(duration: float, n: int) -> _Array:
     n = as_count(n, "n (samples, both ends included)", minimum=2, maximum=MAX_SAMPLES)
@@ -262,8 +271,10 @@ class LinePath(_TimedPath):
 
     def _at(self, t: ArrayLike) -> _Three:
         s, s_dot, s_ddot = time_scaling(t, self.duration, self.law, with_acceleration=True)
-        start, chord = np.asarray(self.p_start), np.subtract(self.p_end, self.p_start)
-        return start + np.multiply.outer(s, chord), np.multiply.outer(s_dot, chord), np.multiply.outer(s_ddot, chord)
+        with np.errstate(over="ignore", invalid="ignore"):  # _finite_motion names an overflow
+            start, chord = np.asarray(self.p_start), np.subtract(self.p_end, self.p_start)
+            p, v, a = start + np.multiply.outer(s, chord), np.multiply.outer(s_dot, chord), np.multiply.outer(s_ddot, chord)
+        return _finite_motion(self, p, v, a)
 
 
 @dataclass(frozen=True, init=False)
@@ -283,7 +294,17 @@ class CirclePath(_TimedPath):
     start_angle : float
         Angle of the first point about the centre, radians.
     turns : float
-        How far round (negative: clockwise); 1 is a closed circle.
+        How far round (negative: clockwise); 1 is a closed circle.  Non-zero,
+        at most ``MAX_TURNS`` = 1e6 round either way (beyond that the angle
+        ``2 pi turns`` is too large for float64 to place a point on the
+        circle to better than 1e-9 of its radius).
+
+    Raises
+    ------
+    ValueError
+        For a centre that is not one finite point, a radius or duration
+        that is not finite and positive, an unknown law, or a ``turns``
+        that is zero, not finite or beyond ``MAX_TURNS``.
 
     Examples
     --------
@@ -318,8 +339,11 @@ class CirclePath(_TimedPath):
         object.__setattr__(self, "law", law)
         object.__setattr__(self, "start_angle", as_finite_scalar(start_angle, "start_angle (rad)"))
         turns = as_finite_scalar(turns, "turns")
-        if turns == 0.0:
-            raise ValueError("turns must be non-zero (1 is once round, counter-clockwise)")
+        if turns == 0.0 or abs(turns) > MAX_TURNS:
+            raise ValueError(
+                f"turns must be non-zero and at most {MAX_TURNS:.0e} round either way (1 is once round, "
+                f"counter-clockwise); got {turns:.6g}"
+            )
         object.__setattr__(self, "turns", turns)
         time_scaling(0.0, self.duration, self.law)
 
@@ -330,17 +354,25 @@ class CirclePath(_TimedPath):
 
     def _at(self, t: ArrayLike) -> _Three:
         s, s_dot, s_ddot = time_scaling(t, self.duration, self.law, with_acceleration=True)
-        sweep = 2.0 * np.pi * self.turns
-        angle = self.start_angle + sweep * s
-        rate, angular_acceleration = sweep * s_dot, sweep * s_ddot  # rad/s, rad/s^2
-        direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
-        tangent = np.stack([-np.sin(angle), np.cos(angle)], axis=-1)
-        p = np.asarray(self.centre) + self.radius * direction
-        v = (self.radius * rate)[..., None] * tangent
-        # tangential r theta'' along the tangent, centripetal r theta'^2 towards the centre
-        a = (self.radius * angular_acceleration)[..., None] * tangent
-        a -= (self.radius * rate * rate)[..., None] * direction
-        return p, v, a
+        with np.errstate(over="ignore", invalid="ignore"):  # _finite_motion names an overflow
+            sweep = 2.0 * np.pi * self.turns
+            angle = self.start_angle + sweep * s
+            rate, angular_acceleration = sweep * s_dot, sweep * s_ddot  # rad/s, rad/s^2
+            direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+            tangent = np.stack([-np.sin(angle), np.cos(angle)], axis=-1)
+            p = np.asarray(self.centre) + self.radius * direction
+            v = (self.radius * rate)[..., None] * tangent
+            # tangential r theta'' along the tangent, centripetal r theta'^2 towards the centre
+            a = (self.radius * angular_acceleration)[..., None] * tangent
+            a -= (self.radius * rate * rate)[..., None] * direction
+        return _finite_motion(self, p, v, a)
+
+
+def _finite_motion(path: _TimedPath, p: _Array, v: _Array, a: _Array) -> _Three:
+    """``(p, v, a)`` of a path if all are finite, else an error saying which overflows float64."""
+    for values, what in ((p, "positions (m)"), (v, "velocities (m/s)"), (a, "accelerations (m/s^2)")):
+        finite_result(values, f"path's {what}", f"{path!r} is too large or too fast for float64")
+    return p, v, a
 
 
 #: What :func:`ik_trajectory` follows: a timed path, or points in order.
@@ -885,6 +917,7 @@ def resolved_rate_trajectory(
     rtol: float = 1e-8,
     method: str | None = None,
     max_evaluations: int = DEFAULT_MAX_EVALUATIONS,
+    max_wall_time: float = DEFAULT_MAX_WALL_TIME,
 ) -> JointTrajectory:
     """Follow a path by resolved-rate control: integrate ``qd = J^-1 (v_ref + gain (p_ref - fk(q)))``.
 
@@ -909,7 +942,11 @@ def resolved_rate_trajectory(
         is refused).  With ``q0`` given, ``"down"`` or ``"up"`` must be
         ``q0``'s own branch.
     gain : float
-        Position feedback gain, 1/s (>= 0).
+        Position feedback gain, 1/s (>= 0), with ``gain * duration`` at most
+        ``MAX_FEEDBACK`` = 1e9: the tracking error decays as
+        ``exp(-gain t)``, so a larger gain only makes the integration
+        stiffer (the error is at round-off within a billionth of the path's
+        duration already).
     damping : float
         Damped-least-squares damping, m/rad (>= 0); 0 uses the exact inverse.
     rtol : float
@@ -922,6 +959,9 @@ def resolved_rate_trajectory(
     max_evaluations : int
         Budget of rate evaluations (default 1e6); when it runs out a
         :class:`twolink.SimulationError` says where and what to change.
+    max_wall_time : float
+        Budget of wall-clock seconds (default ``DEFAULT_MAX_WALL_TIME`` = 30),
+        with the same error.
 
     Returns
     -------
@@ -938,9 +978,10 @@ def resolved_rate_trajectory(
     twolink.SingularityError
         If the exact inverse meets a singularity (the message gives the time).
     twolink.SimulationError
-        If the integration fails or uses up ``max_evaluations``.
+        If the integration fails or uses up ``max_evaluations`` or ``max_wall_time``.
     ValueError
-        For bad arguments, or a ``q0`` on the other branch than ``elbow``.
+        For bad arguments (a ``gain`` beyond ``MAX_FEEDBACK / duration``
+        among them), or a ``q0`` on the other branch than ``elbow``.
 
     Examples
     --------
@@ -958,7 +999,16 @@ def resolved_rate_trajectory(
     damping = as_finite_scalar(damping, "damping (m/rad)", minimum=0.0)
     rtol = as_finite_scalar(rtol, "rtol", minimum=0.0, strictly=True)
     max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
+    max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
+    deadline = time.monotonic() + max_wall_time
     t, points, v_ref, a_ref = path.sample(n, with_acceleration=True)
+    duration = float(t[-1] - t[0])
+    if gain * duration > MAX_FEEDBACK:
+        raise ValueError(
+            f"gain (1/s) times the path's duration must be at most MAX_FEEDBACK = {MAX_FEEDBACK:.0e}; got "
+            f"gain = {gain:.3g} 1/s over {duration:.6g} s: the tracking error decays as exp(-gain t), so "
+            f"a gain above {MAX_FEEDBACK / duration:.3g} 1/s only makes the integration stiff"
+        )
     if q0 is None:
         start = ik_trajectory(arm, points, elbow=elbow)
         q_begin, start_branch = start.q[0], start.elbow
@@ -973,12 +1023,12 @@ def resolved_rate_trajectory(
                 f"elbow={elbow!r} was asked for: leave elbow='auto' to start from q0's branch"
             )
 
-    def command(time: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
-        p_now, v_now = path.at(time)
+    def command(now: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        p_now, v_now = path.at(now)
         return v_now + gain * (p_now - fk(arm, q))
 
-    def rates(time: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
-        v_command = command(time, q)
+    def rates(now: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        v_command = command(now, q)
         if damping > 0.0:
             return joint_rates_dls(arm, q, v_command, damping)
         try:
@@ -986,37 +1036,44 @@ def resolved_rate_trajectory(
         except SingularityError:
             pass
         try:  # the package's one singularity message, with the time
-            require_nonsingular(arm, q, f"resolved rate at t = {time:.6g} s")
+            require_nonsingular(arm, q, f"resolved rate at t = {now:.6g} s")
         except SingularityError as exc:
             raise SingularityError(f"{exc}; pass damping > 0 (damped least squares) to pass it") from None
         return joint_rates(arm, q, v_command)  # raises joint_rates' own error (its tolerance)
 
     if method is None:
-        method = "LSODA" if gain * (t[-1] - t[0]) / 3.3 > 1e4 else "RK45"
+        method = "LSODA" if gain * duration / 3.3 > 1e4 else "RK45"
     evaluations = 0
+    reached = float(t[0])
+    advice = (
+        "pass method='LSODA' or 'Radau' (the feedback is stiff)"
+        if method in ("RK23", "RK45", "DOP853")
+        else "loosen rtol or lower the gain"
+    )
 
-    def budgeted_rates(time: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
-        nonlocal evaluations
+    def budgeted_rates(now: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        nonlocal evaluations, reached
         evaluations += 1
+        reached = now
         if evaluations > max_evaluations:
-            raise SimulationError(
-                f"resolved rate used up its budget of max_evaluations = {max_evaluations} at t = {time:.6g} s "
-                f"(method {method!r}, gain {gain:.3g} 1/s): "
-                + (
-                    "pass method='LSODA' or 'Radau' (the feedback is stiff)"
-                    if method in ("RK23", "RK45", "DOP853")
-                    else "loosen rtol or lower the gain"
-                )
-            )
-        return rates(time, q)
+            budget = f"max_evaluations = {max_evaluations}"
+        elif time.monotonic() > deadline:
+            budget = f"max_wall_time = {max_wall_time:.3g} s ({evaluations} evaluations)"
+        else:
+            return rates(now, q)
+        raise SimulationError(
+            f"resolved rate used up its budget of {budget} at t = {now:.6g} s of {duration:.6g} s "
+            f"(method {method!r}, gain {gain:.3g} 1/s): {advice}"
+        )
 
     solution = solve_ivp(budgeted_rates, (t[0], t[-1]), q_begin, t_eval=t, rtol=rtol, atol=rtol * 1e-2, method=method)
     if not solution.success:
         raise SimulationError(
-            f"resolved rate: the integration failed at t = {solution.t[-1]:.6g} s: {solution.message}"
+            f"resolved rate: the integration failed at t = {reached:.6g} s of {duration:.6g} s "
+            f"(method {method!r}, gain {gain:.3g} 1/s): {solution.message}"
         )
     q = solution.y.T
-    qd = np.array([rates(time, q_now) for time, q_now in zip(t, q)])
+    qd = np.array([rates(now, q_now) for now, q_now in zip(t, q)])
     qdd = _rate_derivative(arm, q, qd, points, v_ref, a_ref, gain, damping)
     return JointTrajectory(
         arm=arm, t=t, q=q, qd=qd, qdd=qdd, p_ref=points, elbow=start_branch, method="resolved rate"

@@ -32,6 +32,7 @@ array([ True, False, False])
 
 from __future__ import annotations
 
+import time
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -40,6 +41,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
 from .arcs import Arc, circle_intersections
+from .budgets import DEFAULT_MAX_WALL_TIME
 from .conventions import check_elbow, to_absolute, to_relative, wrap_angle
 from .errors import UnreachableError
 from .ik.analytic import closed_form
@@ -67,6 +69,14 @@ _TWO_PI = 2.0 * np.pi
 #: Most samples or points a workspace helper makes (memory budget: 1e7 x 2 floats, 160 MB per array).
 MAX_SAMPLES = 10_000_000
 
+#: The ring radius of :func:`boundary_arcs`, relative to the reach: above the slack ``LIMIT_TOL``
+#: (1e-7 rad) at the limits, which a smaller ring would not leave, and small beside the
+#: narrowest part of a workspace, across which a larger ring would reach.
+PROBE_RANGE = (1e-6, 1e-2)
+
+#: Reachable points :func:`largest_inscribed_circle` samples to pick its starts from (so at most this many starts).
+START_CANDIDATES = 4000
+
 
 def describe_limits(arm: TwoLinkArm) -> str:
     """The joint limits in words and degrees, for messages and tables.
@@ -78,7 +88,12 @@ def describe_limits(arm: TwoLinkArm) -> str:
     'q1 in [0, 90] deg, q2 in [-90, 90] deg (relative joint angles)'
     >>> describe_limits(arms.two_metre_limited)
     'link 1 angle q1 in [35, 145] deg, link 2 angle q1 + q2 in [35, 145] deg (absolute angles from the x-axis)'
+    >>> describe_limits(None)
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: arm must be a twolink.TwoLinkArm; got None (NoneType)
     """
+    require_arm(arm)
     if arm.q_min is None or arm.q_max is None:
         return "no joint limits"
     low, high = np.degrees(arm.q_min), np.degrees(arm.q_max)
@@ -243,6 +258,7 @@ def sample_reachable(
     >>> p.shape, bool(np.all(arms.ten.within_limits(q))), bool(np.all(is_reachable(arms.ten, p)))
     ((500, 2), True, True)
     """
+    require_arm(arm)
     n = as_count(n, "n (samples)", minimum=1, maximum=MAX_SAMPLES)
     if not (seed is None or isinstance(seed, (int, np.integer)) and not isinstance(seed, (bool, np.bool_))):
         raise InputTypeError(f"seed must be an integer (or None); got {seed!r}")
@@ -314,6 +330,7 @@ def candidate_arcs(arm: TwoLinkArm) -> list[Arc]:
     >>> [arc.label for arc in candidate_arcs(arms.two_metre)]
     ['q2 = 0 deg (full stretch)', 'q2 = 180 deg (full fold)']
     """
+    require_arm(arm)
     l1, l2 = arm.l1, arm.l2
     origin = (0.0, 0.0)
     if not arm.has_limits:
@@ -389,7 +406,8 @@ def boundary_arcs(arm: TwoLinkArm, probe: float = 1e-5, elbow: str = "auto") -> 
     ----------
     arm : TwoLinkArm
     probe : float
-        Ring radius relative to the reach used to tell boundary from inside.
+        Ring radius relative to the reach used to tell boundary from inside,
+        within ``PROBE_RANGE`` = [1e-6, 1e-2].
     elbow : {"auto", "down", "up", "both"}
         Whose workspace: of either branch (``"auto"``), of one branch only
         (``"down"`` / ``"up"``; the singular arcs ``q2 = 0``, ``pi``, where the
@@ -410,7 +428,17 @@ def boundary_arcs(arm: TwoLinkArm, probe: float = 1e-5, elbow: str = "auto") -> 
     (20.0, 90.0)
     >>> [arc.label for arc in boundary_arcs(arms.ten, elbow="down")]
     ['q1 = 0 deg', 'q1 = 90 deg', 'q2 = 90 deg', 'q2 = 0 deg (full stretch)']
+    >>> boundary_arcs(arms.ten, 0)
+    Traceback (most recent call last):
+    ...
+    ValueError: probe (ring radius / reach) must be in [1e-06, 0.01]; got 0.0
     """
+    require_arm(arm)
+    probe = as_finite_scalar(probe, "probe (ring radius / reach)")
+    if not PROBE_RANGE[0] <= probe <= PROBE_RANGE[1]:
+        raise ValueError(
+            f"probe (ring radius / reach) must be in [{PROBE_RANGE[0]:g}, {PROBE_RANGE[1]:g}]; got {probe}"
+        )
     elbow = check_elbow(elbow)
     scale = arm.reach[1]
     candidates = candidate_arcs(arm)
@@ -480,8 +508,16 @@ def clearance(
     return np.where(is_reachable(arm, points, elbow=elbow), distance, -distance)
 
 
+class _OutOfTime(Exception):
+    """Raised inside the optimiser's objective when the wall-time budget is spent (never reaches users)."""
+
+
 def largest_inscribed_circle(
-    arm: TwoLinkArm, starts: int = 6, seed: int | None = 0, elbow: str = "auto"
+    arm: TwoLinkArm,
+    starts: int = 6,
+    seed: int | None = 0,
+    elbow: str = "auto",
+    max_wall_time: float = DEFAULT_MAX_WALL_TIME,
 ) -> tuple[NDArray[np.float64], float]:
     """The largest circle that fits inside the reachable set: ``(centre, radius)``.
 
@@ -504,18 +540,30 @@ def largest_inscribed_circle(
     ----------
     arm : TwoLinkArm
     starts : int
-        Number of optimiser starts.
+        Number of optimiser starts, at most ``START_CANDIDATES`` = 4000 (the
+        reachable points sampled to choose them from); each takes about 0.2 s.
     seed : int or None
         Seed for the sampled starting points.
     elbow : {"auto", "down", "up", "both"}
         The largest circle in the workspace of either branch (``"auto"``),
         of one branch only (a circle the arm can trace without flipping its
         elbow), or of the points both branches reach.
+    max_wall_time : float
+        Budget of wall-clock seconds (default ``DEFAULT_MAX_WALL_TIME`` = 30):
+        nothing runs for minutes.
 
     Returns
     -------
     centre : numpy.ndarray, shape (2,)
     radius : float
+
+    Raises
+    ------
+    ValueError
+        For a bad ``starts``, ``elbow`` or budget, or when no point is reachable.
+    RuntimeError
+        When the starts use up ``max_wall_time`` (the message says how many
+        were done and what to change).
 
     Examples
     --------
@@ -526,8 +574,11 @@ def largest_inscribed_circle(
     >>> round(float(np.hypot(*centre)), 6)  # on the mid-circle of the band 10 sqrt 2 <= r <= 20
     17.071068
     """
-    starts = as_count(starts, "starts", minimum=1)
+    require_arm(arm)
+    starts = as_count(starts, "starts", minimum=1, maximum=START_CANDIDATES)
     elbow = check_elbow(elbow)
+    max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
+    deadline = time.monotonic() + max_wall_time
     arcs = boundary_arcs(arm, elbow=elbow)
     if not arcs:
         reached = {
@@ -538,7 +589,7 @@ def largest_inscribed_circle(
         }[elbow]
         raise ValueError(f"no circle fits: no configuration within the joint limits ({describe_limits(arm)}) {reached}")
     scale = arm.reach[1]
-    samples, _ = sample_reachable(arm, n=4000, seed=seed)
+    samples, _ = sample_reachable(arm, n=START_CANDIDATES, seed=seed)
     room = clearance(arm, samples, arcs, elbow=elbow)
     chosen: list[int] = []
     for index in np.argsort(room)[::-1]:
@@ -548,17 +599,26 @@ def largest_inscribed_circle(
             break
 
     def negative_clearance(centre: NDArray[np.float64]) -> float:
+        if time.monotonic() > deadline:
+            raise _OutOfTime
         return -float(clearance(arm, centre, arcs, elbow=elbow))
 
     best_centre, best_radius = samples[chosen[0]], float(room[chosen[0]])
-    for index in chosen:
-        outcome = scipy.optimize.minimize(
-            negative_clearance,
-            samples[index],
-            method="Nelder-Mead",
-            options={"xatol": 1e-12 * scale, "fatol": 1e-14 * scale, "maxiter": 4000, "maxfev": 8000},
-        )
-        radius = -negative_clearance(outcome.x)
+    for done, index in enumerate(chosen):
+        try:
+            outcome = scipy.optimize.minimize(
+                negative_clearance,
+                samples[index],
+                method="Nelder-Mead",
+                options={"xatol": 1e-12 * scale, "fatol": 1e-14 * scale, "maxiter": 4000, "maxfev": 8000},
+            )
+        except _OutOfTime:
+            raise RuntimeError(
+                f"largest_inscribed_circle used up its budget of max_wall_time = {max_wall_time:.3g} s after "
+                f"{done} of {len(chosen)} starts (best radius so far {best_radius:.6g} m): pass fewer starts "
+                f"(the default is 6) or a larger max_wall_time"
+            ) from None
+        radius = float(clearance(arm, outcome.x, arcs, elbow=elbow))
         if radius > best_radius:
             best_centre, best_radius = np.asarray(outcome.x, dtype=float), radius
     return best_centre, best_radius

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validate import as_finite_scalar
+from .._validate import as_finite_scalar, real_array
 from ..kinematics import distance_outside_reach
 from .result import IKResult, assemble_result
 from .targets import reachable_targets
@@ -41,7 +41,22 @@ def grid_axis(low: float, high: float, step: float) -> NDArray[np.float64]:
     array([ 0., 30., 60., 90.])
     >>> np.degrees(grid_axis(0.0, np.radians(90.0), np.radians(40.0))).round(9)
     array([ 0., 40., 80., 90.])
+    >>> grid_axis(0.0, 1.0, 0.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: step (radians) must be > 0.0; got 0.0
+
+    Raises
+    ------
+    ValueError
+        For ends that are not finite with ``low <= high``, a step that is
+        not finite and positive, or more than ``MAX_AXIS_POINTS`` values.
     """
+    low = as_finite_scalar(low, "low (radians)")
+    high = as_finite_scalar(high, "high (radians)")
+    step = as_finite_scalar(step, "step (radians)", minimum=0.0, strictly=True)
+    if low > high:
+        raise ValueError(f"a grid axis needs low <= high; got [{low:.6g}, {high:.6g}] rad")
     intervals = (high - low) / step
     if not intervals < MAX_AXIS_POINTS:
         raise ValueError(
@@ -61,9 +76,14 @@ def _joint_ranges(
     ranges = []
     q_min, q_max = arm.q_min, arm.q_max
     for joint, given in enumerate((q1_range, q2_range)):
-        low, high = (-np.pi, np.pi) if given is None else given
-        low = as_finite_scalar(low, f"q{joint + 1}_range[0]")
-        high = as_finite_scalar(high, f"q{joint + 1}_range[1]")
+        name = f"q{joint + 1}_range"
+        if given is None:
+            low, high = -np.pi, np.pi
+        else:
+            ends = real_array(given, name, "None or a pair (low, high) of angles in radians")
+            if ends.shape != (2,) or not np.all(np.isfinite(ends)):
+                raise ValueError(f"{name} must be None or a pair (low, high) of finite angles in radians; got {given!r}")
+            low, high = ends.tolist()
         # relative limits bound both joints; absolute ones bound q1 here (link 2 is masked on the grid)
         if q_min is not None and q_max is not None and (arm.limit_convention == "relative" or joint == 0):
             low, high = max(low, q_min[joint]), min(high, q_max[joint])

@@ -12,7 +12,7 @@ import numpy as np
 import scipy.optimize
 from numpy.typing import ArrayLike, NDArray
 
-from .._validate import as_finite_scalar, broadcast_start
+from .._validate import as_finite_scalar, as_flag, broadcast_start
 from ..kinematics import distance_outside_reach, fk, jacobian
 from .result import IKResult, assemble_result
 from .targets import reachable_targets
@@ -98,6 +98,9 @@ def minimize(
         For targets outside the reach.
     ValueError
         For NaN/inf targets or starts, or a non-positive ``tol``.
+    twolink.errors.InputTypeError
+        For a ``constrained`` that is not ``True`` or ``False`` (a string
+        ``"False"`` would be truthy).
 
     Examples
     --------
@@ -109,6 +112,7 @@ def minimize(
     'minimize-slsqp'
     """
     p = reachable_targets(arm, p)
+    constrained = as_flag(constrained, "constrained")
     tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
     q0_flat = broadcast_start(q0, p.shape, "q0").reshape(-1, 2)
     p_flat = p.reshape(-1, 2)

@@ -7,7 +7,13 @@ what is meant.
 
 from __future__ import annotations
 
+import math
+import numbers
+
+import numpy as np
 import sympy as sp
+
+from ..errors import InputTypeError
 
 __all__ = ["planar_symbols", "dh_matrix", "planar_fk"]
 
@@ -38,9 +44,13 @@ def dh_matrix(theta: sp.Expr | float, d: sp.Expr | float, a: sp.Expr | float, al
 
     Parameters
     ----------
-    theta, d, a, alpha : sympy expression or number
+    theta, d, a, alpha : sympy expression, number or symbol name
         The DH row: joint angle (rad), offset along z, length along x, twist
-        about x (rad).
+        about x (rad).  A real number (Python, numpy, or a 0-d numpy
+        array) is taken as it is; a string that is a Python identifier
+        (``"q1"``) becomes the plain symbol of that name (it is never
+        evaluated as code).  Booleans, complex numbers, NaN, infinity and
+        other strings are refused.
 
     Returns
     -------
@@ -55,7 +65,14 @@ def dh_matrix(theta: sp.Expr | float, d: sp.Expr | float, a: sp.Expr | float, al
     [sin(q),  cos(q), 0, a*sin(q)],
     [     0,       0, 1,        0],
     [     0,       0, 0,        1]])
+    >>> dh_matrix("q", 0, np.array(2.0), 0)[0, 3]
+    2.0*cos(q)
+    >>> dh_matrix("__import__('os')", 0, 1, 0)
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: theta must be a sympy expression, a real number or a symbol name (a Python identifier such as 'q1'); got the string "__import__('os')", which is not a name (it is never evaluated)
     """
+    theta, d, a, alpha = (_dh_entry(value, name) for value, name in ((theta, "theta"), (d, "d"), (a, "a"), (alpha, "alpha")))
     return sp.Matrix(
         [
             [sp.cos(theta), -sp.sin(theta) * sp.cos(alpha), sp.sin(theta) * sp.sin(alpha), a * sp.cos(theta)],
@@ -64,6 +81,26 @@ def dh_matrix(theta: sp.Expr | float, d: sp.Expr | float, a: sp.Expr | float, al
             [0, 0, 0, 1],
         ]
     )
+
+
+_ALLOWED = "a sympy expression, a real number or a symbol name (a Python identifier such as 'q1')"
+
+
+def _dh_entry(value: object, name: str) -> sp.Expr:
+    """One DH parameter as a sympy expression: an expression, a real number, or a symbol name; never code."""
+    if isinstance(value, np.ndarray) and value.ndim == 0:
+        value = value.item()
+    if isinstance(value, sp.Expr):
+        return value
+    if isinstance(value, str):
+        if not value.isidentifier():
+            raise InputTypeError(f"{name} must be {_ALLOWED}; got the string {value!r}, which is not a name (it is never evaluated)")
+        return sp.Symbol(value)
+    if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
+        if not math.isfinite(value):
+            raise ValueError(f"{name} must be finite; got {value}")
+        return sp.sympify(value, strict=True)
+    raise InputTypeError(f"{name} must be {_ALLOWED}; got {value!r} ({type(value).__name__})")
 
 
 def planar_fk(with_offset: bool = False) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:

@@ -1,0 +1,37 @@
+"""The sympy DH transform: symbols, numbers and names in; never a string evaluated as code."""
+
+import builtins
+import numpy as np
+import pytest
+import sympy as sp
+
+from twolink.errors import InputTypeError
+from twolink.symbolic import dh_matrix
+
+
+def test_a_zero_dimensional_array_is_a_number():
+    assert dh_matrix(np.array(0.5), 0, 1, 0) == dh_matrix(0.5, 0, 1, 0)
+
+
+def test_an_identifier_becomes_a_plain_symbol():
+    q, a = sp.symbols("q a")
+    assert dh_matrix("q", 0, "a", 0) == dh_matrix(q, 0, a, 0)
+
+
+def test_a_string_of_code_is_refused_and_never_run():
+    code = "__import__('builtins').setattr(__import__('builtins'), 'twolink_code_ran', 1) or 0"
+    with pytest.raises(InputTypeError, match=r"theta must be a sympy expression, a real number or a symbol name .*never evaluated"):
+        dh_matrix(code, 0, 1, 0)
+    assert not hasattr(builtins, "twolink_code_ran")
+
+
+@pytest.mark.parametrize("bad", [True, None, 1 + 2j, [1.0, 2.0], np.array([0.5]), "q 1", sp.true])
+def test_other_values_are_refused_naming_the_parameter(bad):
+    with pytest.raises(InputTypeError, match=r"^alpha must be a sympy expression, a real number or a symbol name"):
+        dh_matrix(0.0, 0, 1, bad)
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf")])
+def test_nan_and_infinity_are_refused(bad):
+    with pytest.raises(ValueError, match=r"^d must be finite; got "):
+        dh_matrix(0.0, bad, 1, 0)
