@@ -458,9 +458,10 @@ def simulate(
         t_eval = _check_t_eval(t_eval, t_end)
     start = np.concatenate([q_start, qd_start])
     calls = 0  # every call of the right-hand side, the stiffness estimates included
+    monotonic = time.monotonic
 
     def out_of_time(t, state):
-        if time.monotonic() > deadline:
+        if monotonic() > deadline:
             raise _BudgetExceeded(t, state, f"its budget of max_wall_time = {max_wall_time:.3g} s", wall_time=True)
 
     def timed(t, state):
@@ -476,13 +477,16 @@ def simulate(
     last = [0.0, start]
 
     def right_hand_side(t, state):
-        nonlocal evaluations
+        nonlocal evaluations, calls
         evaluations += 1
+        calls += 1
         last[0], last[1] = t, state
         if evaluations > max_evaluations:
             raise _BudgetExceeded(t, state, f"its budget of max_evaluations = {max_evaluations} evaluations")
+        if monotonic() > deadline:  # read at every call: one call of a slow torque function may take seconds
+            raise _BudgetExceeded(t, state, f"its budget of max_wall_time = {max_wall_time:.3g} s", wall_time=True)
         try:
-            derivative = timed(t, state)
+            derivative = inner(t, state)
         except NonFiniteTorque as exc:
             if evaluations == 1:
                 raise
