@@ -3,7 +3,8 @@
 :func:`twolink.simulate.simulate` and
 :func:`twolink.trajectory.resolved_rate_trajectory` stop with a
 :class:`~twolink.errors.SimulationError` that names the budget when one is
-spent; callers pass larger ones explicitly.
+spent, and :func:`twolink.workspace.largest_inscribed_circle` (wall time
+only) with a :class:`RuntimeError`; callers pass larger ones explicitly.
 
 Examples
 --------
