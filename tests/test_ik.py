@@ -616,7 +616,9 @@ def test_lm_step_formula_solves_the_damped_normal_equations(l1, l2, rx, ry, damp
         expected = np.linalg.solve(normal, -(J.T @ [rx, ry]))
         det_j = l1 * l2 * np.sin(q2)
         step = _lm_step(*J.ravel().tolist(), float(det_j), rx, ry, damping)
-        scale = np.linalg.norm(expected) + 1e-300
+        # round-off of the adjugate's products: the size of its terms, |J^T J + lam I| |J^T r| / det(J^T J + lam I)
+        # (plus 1e-250: a step below 1e-262 rad, whose products underflow, counts as zero)
+        scale = np.linalg.norm(normal) * np.linalg.norm(J.T @ [rx, ry]) / np.linalg.det(normal) + 1e-250
         assert np.allclose(step, expected, rtol=1e-8 * np.linalg.cond(normal), atol=1e-12 * scale)
         arrays = _lm_step(*(np.full(3, value) for value in (*J.ravel(), det_j, rx, ry, damping)))
         assert np.array_equal(arrays[0], np.full(3, step[0])) and np.array_equal(arrays[1], np.full(3, step[1]))

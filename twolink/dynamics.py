@@ -181,7 +181,7 @@ def _blockwise(formula, constants, q, qd, last):
     (``last`` is ``qdd``).
     """
     shape = broadcast_shape(**{"q": q, "qd": qd, "tau" if formula is _forward else "qdd": last})
-    kinematics.link_angles(q)  # q1 + q2 must not overflow
+    kinematics.require_finite_angle_sum(q)
     q_flat, qd_flat, last_flat = (np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last))
     columns = (q_flat[:, 0], q_flat[:, 1], qd_flat[:, 0], qd_flat[:, 1], last_flat[:, 0], last_flat[:, 1])
     result = np.empty(shape)

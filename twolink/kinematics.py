@@ -34,6 +34,7 @@ __all__ = [
     "jacobian_from_trig",
     "torques_from_jacobian",
     "link_angles",
+    "require_finite_angle_sum",
     "fk",
     "joint_positions",
     "jacobian",
@@ -166,32 +167,45 @@ def link_angles(q: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np
     ------
     ValueError
         Naming the first configuration whose ``q1 + q2`` overflows float64
-        (angles near 1e308 rad: finite, but without a finite sum).
+        (angles near 1e308 rad: finite, but without a finite sum); see
+        :func:`require_finite_angle_sum`.
 
     Examples
     --------
     >>> link_angles(np.array([0.5, 0.25]))
     (array(0.5), array(0.75))
-    >>> link_angles(np.array([1e308, 1e308]))
+    """
+    require_finite_angle_sum(q)
+    q1 = q[..., 0]
+    return np.asarray(q1), np.asarray(q1 + q[..., 1])
+
+
+def require_finite_angle_sum(q: NDArray[np.float64]) -> None:
+    """Raise ValueError naming the first configuration of ``q`` ``(..., 2)`` whose ``q1 + q2`` overflows float64.
+
+    Two passes over ``q`` (its largest and smallest entry) when nothing is
+    near the float64 limit.
+
+    Examples
+    --------
+    >>> require_finite_angle_sum(np.array([[0.5, 0.25], [1e308, -1e308]]))  # finite sums
+    >>> require_finite_angle_sum(np.array([1e308, 1e308]))
     Traceback (most recent call last):
     ...
     ValueError: q = (1e+308, 1e+308) rad: q1 + q2 overflows float64; the joint angles must have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)
     """
-    q1 = q[..., 0]
-    if q.size and (q.max() >= _HALF_MAX or q.min() <= -_HALF_MAX):
-        with np.errstate(over="ignore"):
-            q12 = q1 + q[..., 1]
-        overflowed = ~np.isfinite(q12)
-        if np.any(overflowed):
-            index = tuple(int(i) for i in np.argwhere(overflowed)[0]) if overflowed.ndim else ()
-            where = f" (index {index}, first of {int(np.count_nonzero(overflowed))})" if overflowed.ndim else ""
-            first, second = q[index]
-            raise ValueError(
-                f"q = ({first:.6g}, {second:.6g}) rad{where}: q1 + q2 overflows float64; the joint angles must "
-                "have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)"
-            )
-        return q1, q12
-    return np.asarray(q1), np.asarray(q1 + q[..., 1])
+    if not q.size or -_HALF_MAX < q.min() and q.max() < _HALF_MAX:
+        return
+    with np.errstate(over="ignore"):
+        overflowed = ~np.isfinite(q[..., 0] + q[..., 1])
+    if np.any(overflowed):
+        index = tuple(int(i) for i in np.argwhere(overflowed)[0]) if overflowed.ndim else ()
+        where = f" (index {index}, first of {int(np.count_nonzero(overflowed))})" if overflowed.ndim else ""
+        first, second = q[index]
+        raise ValueError(
+            f"q = ({first:.6g}, {second:.6g}) rad{where}: q1 + q2 overflows float64; the joint angles must "
+            "have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)"
+        )
 
 
 def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
@@ -222,7 +236,7 @@ def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         l1, l2 = arm_lengths(arm)
         try:
             x, y = tip_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
-        except ValueError:  # math.cos(inf): q1 + q2 overflows, and link_angles below says so
+        except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
             pass
         else:
             p_tip = _empty(2)  # then two item assignments: faster than np.array of a tuple
@@ -231,7 +245,7 @@ def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
             return p_tip
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    link_angles(q)
+    require_finite_angle_sum(q)
     p_tips = np.empty(q.shape)
     flat = q.reshape(-1, 2)
     evaluate_blockwise(_tip_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), p_tips.reshape(-1, 2))
@@ -305,7 +319,7 @@ def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         l1, l2 = arm_lengths(arm)
         try:
             j11, j12, j21, j22 = jacobian_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
-        except ValueError:  # math.cos(inf): q1 + q2 overflows, and link_angles below says so
+        except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
             pass
         else:
             J = _empty((2, 2))  # then four item assignments: faster than np.array of a list
@@ -316,7 +330,7 @@ def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
             return J
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    link_angles(q)
+    require_finite_angle_sum(q)
     Js = np.empty(q.shape[:-1] + (2, 2))
     flat = q.reshape(-1, 2)
     evaluate_blockwise(_jacobian_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), Js.reshape(-1, 4))
@@ -369,7 +383,7 @@ def joint_torques(arm: TwoLinkArm, q: ArrayLike, force_by_tip: ArrayLike) -> NDA
         l1, l2 = arm_lengths(arm)
         try:
             J_entries = jacobian_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
-        except ValueError:  # math.cos(inf): q1 + q2 overflows, and link_angles says so
+        except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
             pass
         else:
             tau = _empty(2)  # then two item assignments: faster than np.array of a tuple
