@@ -460,15 +460,3 @@ def test_largest_inscribed_circle_stops_at_its_wall_time_budget_saying_what_to_c
     with pytest.raises(RuntimeError, match=r"used up its budget of max_wall_time = 0.3 s after \d+ of \d+ starts .*fewer starts"):
         workspace.largest_inscribed_circle(arms.ten, starts=200, max_wall_time=0.3)
 
-
-@pytest.mark.parametrize("convention", ["relative", "absolute"])
-def test_the_base_is_reachable_when_a_folded_configuration_is_within_the_limits(convention):
-    """fk of a folded equal-link arm lands a round-off from the base, in a direction that says nothing about q1."""
-    arm = TwoLinkArm(1.0, 1.0, q_min=(1.0, np.pi), q_max=(2.0, np.pi + 1.0), limit_convention=convention)
-    q_folded = [1.0, np.pi]  # relative angles; the link angles (1, 1 + pi) are within the absolute limits too
-    assert arm.within_limits(q_folded)
-    assert workspace.is_reachable(arm, [arm.fk(q_folded), [0.0, 0.0]]).all()
-    q_both, valid = ik.solutions_within_limits(arm, [0.0, 0.0])
-    assert valid.all() and arm.within_limits(q_both, tol=workspace.LIMIT_TOL).all()
-    narrow = TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(0.5, 3.0), limit_convention=convention)
-    assert not workspace.is_reachable(narrow, [0.0, 0.0])  # no folded configuration within these limits

@@ -33,24 +33,6 @@ LIMIT_TOL = 1e-7
 
 _TWO_PI = 2.0 * np.pi
 
-#: Within this distance of the base (relative to the reach) the direction of a
-#: point is round-off: at the base of an arm with ``l1 == l2`` (folded,
-#: ``q2 = pi``) every ``q1`` reaches it, and fk of a folded configuration lands
-#: a few ``eps`` from the base in a direction that says nothing about ``q1``.
-BASE_ROUND_OFF = 64 * float(np.finfo(float).eps)
-
-
-def _folded_q1(arm: TwoLinkArm) -> float | None:
-    """A ``q1`` whose folded configuration (``q2 = pi``) is within the arm's limits, or None if there is none."""
-    assert arm.q_min is not None and arm.q_max is not None
-    (low_1, low_2), (high_1, high_2) = arm.q_min, arm.q_max
-    if arm.limit_convention == "relative":
-        return (low_1 + high_1) / 2.0  # q2 = pi is checked with the other angles (by whole turns)
-    # link angles (q1, q1 + pi): q1 in [low_1, high_1] and in [low_2, high_2] - pi + 2 pi k
-    turn = np.ceil((low_1 - (high_2 - np.pi)) / _TWO_PI)
-    first = max(low_1, low_2 - np.pi + _TWO_PI * turn)
-    return float(first) if first <= high_1 else None
-
 
 def _turns_into_range(
     angles: NDArray[np.float64], low: NDArray[np.float64], high: NDArray[np.float64], tol: float
@@ -134,9 +116,6 @@ def solutions_within_limits(
     (:func:`move_into_limits`); absolute limits are applied to the link
     angles ``(q1, q1 + q2)``.  Unlike :func:`twolink.ik.closed_form`, points
     out of reach are not refused: they are answered, and marked invalid.
-    At the base of an arm with ``l1 == l2`` (within ``BASE_ROUND_OFF`` of
-    the reach), where the folded arm reaches with every ``q1``, the ``q1``
-    of both branches is one within the limits, if there is one.
 
     Parameters
     ----------
@@ -182,11 +161,6 @@ def solutions_within_limits(
     q_both = np.ascontiguousarray(np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2))
     valid = np.broadcast_to(in_reach[..., None], q_both.shape[:-1]).copy()
     if arm.has_limits:
-        at_base = in_reach & (distance <= BASE_ROUND_OFF * r_max)
-        if np.any(at_base) and r_min <= BASE_ROUND_OFF * r_max:
-            free_q1 = _folded_q1(arm)
-            if free_q1 is not None:  # both branches are folded there; any q1 within the limits reaches the base
-                q_both[at_base, :, 0] = free_q1
         q_both, inside = move_into_limits(arm, q_both, tol)
         valid &= inside
     return q_both, valid
