@@ -60,16 +60,67 @@ def test_expanded_h02_at_30_45_degrees():
     assert np.allclose(H_wrong[2:, :], H_right[2:, :])  # the height row and the last row are right
 
 
-# --- H3.2: o_2 - o_1 in the first Jacobian column
+# --- H3.2: the Jacobian printed under the derivation carries the expanded H_0^2's product error
+def right_jacobian_cm(q):
+    return arms.osake.geometric_jacobian(q) * np.array([[CM], [CM], [CM], [1.0], [1.0], [1.0]])
+
+
 @given(q=configurations())
-def test_derived_jacobian_first_column_is_link_2_alone(q):
-    J_derived = osake.jacobian_as_derived(q)
-    J_right = arms.osake.geometric_jacobian(q) * np.array([[CM], [CM], [CM], [1.0], [1.0], [1.0]])
-    assert np.allclose(J_derived[:, 0], J_derived[:, 1])
-    assert np.allclose(J_derived[:, 1], J_right[:, 1], atol=1e-12)
-    # the first column misses z_0 x o_1, a vector of length l1 per unit joint rate, at every configuration
-    assert np.isclose(np.linalg.norm(J_right[:, 0] - J_derived[:, 0]), osake.L1_CM)
-    assert np.isclose(np.linalg.det(J_derived[:2]), 0.0, atol=1e-9)
+def test_printed_jacobian_misses_l2_sin_q2_along_link_1_in_both_columns(q):
+    J_printed, J_right = osake.jacobian_as_printed(q), right_jacobian_cm(q)
+    # -l2 s12 -> -l2 s1 c2 drops -l2 c1 s2; l2 c12 -> l2 c1 c2 drops -l2 s1 s2: printed - right = l2 s2 (c1, s1)
+    error_along_link_1 = osake.L2_CM * np.sin(q[1]) * np.array([np.cos(q[0]), np.sin(q[0])])
+    for column in range(2):
+        assert np.allclose(J_printed[:2, column] - J_right[:2, column], error_along_link_1, atol=1e-12)
+        assert np.isclose(np.linalg.norm(J_printed[:2, column] - J_right[:2, column]),
+                          osake.L2_CM * abs(np.sin(q[1])), atol=1e-12)
+    assert np.allclose(J_printed[2:], J_right[2:], atol=0.0)  # v_z = 0, omega = (0, 0, 1): as in the right Jacobian
+
+
+@given(q1=angles, stretched=st.booleans())
+def test_printed_jacobian_is_right_where_the_product_error_vanishes(q1, stretched):
+    q = [q1, 0.0 if stretched else np.pi]  # sin q2 = 0: cos q1 cos q2 = cos(q1 + q2), sin q1 cos q2 = sin(q1 + q2)
+    assert np.allclose(osake.jacobian_as_printed(q), right_jacobian_cm(q), atol=1e-12)
+
+
+@given(q=configurations())
+def test_printed_jacobian_is_wrong_wherever_the_elbow_is_bent(q):
+    assume(0.05 < abs(q[1]) < np.pi - 0.05)
+    errors_cm = np.linalg.norm(osake.jacobian_as_printed(q)[:2] - right_jacobian_cm(q)[:2], axis=0)
+    assert np.all(errors_cm > osake.L2_CM * np.sin(0.05) * 0.99)
+
+
+@given(q=configurations())
+def test_printed_jacobian_columns_differ_by_the_l1_lever(q):
+    # what the source got right: column 1 has the lever from the base, column 2 the one from the elbow
+    J_printed = osake.jacobian_as_printed(q)
+    lever_l1 = osake.L1_CM * np.array([-np.sin(q[0]), np.cos(q[0])])
+    assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], lever_l1, atol=1e-12)
+    assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], right_jacobian_cm(q)[:2, 0] - right_jacobian_cm(q)[:2, 1],
+                       atol=1e-12)
+
+
+def test_printed_jacobian_at_30_45_degrees():
+    printed_cm = np.array([[-9.07, -4.07], [15.70, 7.04]])  # the source's numbers, cm per rad
+    right_cm = np.array([[-16.11, -11.11], [11.64, 2.98]])
+    J_printed = osake.jacobian_as_printed(q_example)
+    assert J_printed.shape == (6, 2)
+    assert np.allclose(J_printed[:2], printed_cm, atol=0.005, rtol=0.0)
+    assert np.allclose(right_jacobian_cm(q_example)[:2], right_cm, atol=0.005, rtol=0.0)
+
+
+def test_printed_jacobian_checks_its_inputs():
+    with pytest.raises(ValueError, match="q"):
+        osake.jacobian_as_printed([0.1, 0.2, 0.3])
+    with pytest.raises(ValueError, match="l2"):
+        osake.jacobian_as_printed([0.1, 0.2], l2=0.0)
+
+
+def test_printed_jacobian_broadcasts_over_configurations():
+    q_many = np.random.default_rng(3).uniform(-np.pi, np.pi, size=(4, 5, 2))
+    J_many = osake.jacobian_as_printed(q_many)
+    assert J_many.shape == (4, 5, 6, 2)
+    assert np.allclose(J_many[2, 3], osake.jacobian_as_printed(q_many[2, 3]))
 
 
 # --- H3.3: the C++ forward-kinematics program

@@ -11,8 +11,10 @@ source's method before correcting it:
 - :func:`h02_as_expanded`: the hand-expanded ``H_0^2`` (``cos q1 cos q2`` and
   ``sin q1 cos q2`` where ``cos(q1+q2)`` and ``sin(q1+q2)`` belong, ``l1`` and
   ``l2`` swapped in the position column);
-- :func:`jacobian_as_derived`: the derivation's first column
-  ``z_0 x (o_2 - o_1)``, taken literally with ``o_1`` the origin of frame 1;
+- :func:`jacobian_as_printed`: the 6x2 Jacobian the derivation prints under
+  its recipe (column 1 with the lever from the base, column 2 from the
+  elbow, both with the expanded ``H_0^2``'s ``sin q1 cos q2`` and
+  ``cos q1 cos q2`` where ``sin(q1+q2)`` and ``cos(q1+q2)`` belong);
 - :func:`cpp_fk_tip`: the C++ forward-kinematics program (link lengths read
   into ``int``, no z-offset in ``H01``, triple-loop matrix product);
 - :func:`velocity_program_speed`: the C++ velocity program (angles meant in
@@ -42,7 +44,7 @@ __all__ = [
     "L2_CM",
     "D_CM",
     "h02_as_expanded",
-    "jacobian_as_derived",
+    "jacobian_as_printed",
     "cpp_read_int",
     "matmul_triple_loop",
     "cpp_fk_tip",
@@ -110,47 +112,75 @@ def h02_as_expanded(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM, d: float
     return H
 
 
-def jacobian_as_derived(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM) -> NDArray[np.float64]:
-    """The 6x2 geometric Jacobian with the derivation's first column ``z_0 x (o_2 - o_1)``.
+def jacobian_as_printed(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM) -> NDArray[np.float64]:
+    """The 6x2 Jacobian the source's derivation printed, with the expanded ``H_0^2``'s product error.
 
-    The source's derivation wrote ``o_2 - o_1`` in the first column and said
-    the origin of frame 1 is zero.  In DH numbering frame 0 is the base (its
-    origin is zero) and frame 1 sits at the elbow, ``o_1 = (l1 c1, l1 s1, d)``;
-    the first column needs ``z_0 x (o_2 - o_0)``.  Taken literally, ``o_2 - o_1``
-    makes the first column equal to the second (link 2 alone): the joint-1
-    column loses ``z_0 x o_1``, a vector of length ``l1`` per rad/s at every
-    configuration, and the 2x2 block is singular everywhere.  (The source's
-    final Jacobian, quoted above its derivation, is right; this is what its
-    derivation gives to a reader who follows it.)
+    The derivation writes its recipe with ``(d_2^0 - d_1^0)`` in both columns,
+    then states that ``d_1^0`` is the zero matrix (although it had written
+    ``d_1^0 = (l1 c1, l1 s1, d)``, the elbow, just above) and that ``R_0^0`` is
+    the 4x4 identity (``R_0^0`` is 3x3).  The matrix printed under it follows neither reading of
+    that recipe: column 1 does contain the ``l1`` terms (the lever from the
+    base, as ``z_0 x (o_2 - o_0)`` needs) and column 2 does not (the lever from
+    the elbow, as ``z_1 x (o_2 - o_1)`` needs), but both columns carry the
+    product error of the source's expanded ``H_0^2`` (:func:`h02_as_expanded`),
+    ``sin q1 cos q2`` and ``cos q1 cos q2`` where ``sin(q1 + q2)`` and
+    ``cos(q1 + q2)`` belong::
+
+        column 1 = (-l1 s1 - l2 s1 c2,  l1 c1 + l2 c1 c2)
+        column 2 = (        -l2 s1 c2,          l2 c1 c2)
+
+    (This gives the printed numbers at ``q = (30, 45)`` deg, below.  There
+    ``cos q2 = sin q2``, so those numbers alone cannot tell ``cos q1 cos q2``
+    from ``cos q1 sin q2`` in an entry.)
+
+    In each position column, printed minus right is ``l2 sin q2 (c1, s1)``
+    (the dropped ``cos q1 sin q2`` and ``sin q1 sin q2`` terms): a vector along
+    link 1 of length ``l2 |sin q2|``, zero only where ``sin q2 = 0`` (arm
+    stretched or folded).  Column 1 minus column 2 is the ``l1`` lever
+    ``(-l1 s1, l1 c1)``, as it should be.
+
+    Rows: the ``v_x`` and ``v_y`` rows are the reproduction of the printed
+    matrix (they give its printed numbers, below); the ``v_z`` row (0) and
+    the ``omega`` rows (``(0, 0, 1)`` for both joints) are set as in the
+    correct Jacobian, so that the shape matches
+    :meth:`twolink.TwoLinkArm.geometric_jacobian`.  The course compares the
+    source with the correct Jacobian on the 2x2 position block only.
 
     Parameters
     ----------
     q : array_like, shape (..., 2)
-        Joint angles, radians.
+        Joint angles ``(q1, q2)``, radians.
     l1, l2 : float
         Link lengths (> 0), cm.
 
     Returns
     -------
     numpy.ndarray, shape (..., 6, 2)
-        Rows ``v_x, v_y, v_z`` (cm per rad) and ``omega`` (1 per joint).
+        Rows ``v_x, v_y, v_z`` (cm per rad) and ``omega_x, omega_y, omega_z``
+        (1 per rad), one column per joint.
 
     Examples
     --------
-    >>> J = jacobian_as_derived(np.radians([30.0, 45.0]))
-    >>> J[:2].round(3)                    # both columns are link 2's
-    array([[-11.108, -11.108],
-           [  2.976,   2.976]])
-    >>> float(np.linalg.det(J[:2]))
-    0.0
+    The printed numbers at ``q = (30, 45)`` deg, cm per rad, to the two
+    decimals the source printed (the right block is
+    ``[[-16.11, -11.11], [11.64, 2.98]]``):
+
+    >>> from twolink.display import rounded
+    >>> J = jacobian_as_printed(np.radians([30.0, 45.0]))
+    >>> rounded(J[0], 2), rounded(J[1], 2)          # v_x row, v_y row
+    ('(-9.07, -4.07)', '(15.70, 7.04)')
+    >>> J[2:, 0], J.shape
+    (array([0., 0., 0., 1.]), (6, 2))
+    >>> bool(np.allclose(J[:2, 0] - J[:2, 1], [-L1_CM * np.sin(np.pi / 6), L1_CM * np.cos(np.pi / 6)]))
+    True
     """
     q = as_pairs(q, "q (rad)")
     l1, l2 = _lengths(l1, l2)
-    q12 = q[..., 0] + q[..., 1]
+    c1, s1, c2 = np.cos(q[..., 0]), np.sin(q[..., 0]), np.cos(q[..., 1])
     J = np.zeros(q.shape[:-1] + (6, 2))
-    link2_column = np.stack([-l2 * np.sin(q12), l2 * np.cos(q12)], axis=-1)  # z x (o_2 - o_1)
-    J[..., :2, 0] = link2_column
-    J[..., :2, 1] = link2_column
+    J[..., 0, 1], J[..., 1, 1] = -l2 * s1 * c2, l2 * c1 * c2   # l2 (-s12, c12) with s12 -> s1 c2, c12 -> c1 c2
+    J[..., 0, 0] = -l1 * s1 + J[..., 0, 1]                      # plus the l1 lever from the base
+    J[..., 1, 0] = l1 * c1 + J[..., 1, 1]
     J[..., 5, :] = 1.0
     return J
 
