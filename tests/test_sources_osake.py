@@ -157,29 +157,66 @@ def test_triple_loop_is_the_matrix_product(left, right):
     assert np.allclose(osake.matmul_triple_loop(left, right), np.array(left) @ np.array(right), atol=1e-9)
 
 
-# --- H3.4: the C++ velocity program
-@given(t=st.floats(min_value=0.0, max_value=120.0))
-def test_velocity_program_prints_three_rad_per_s_times_the_radius_at_60_rad(t):
-    l1, l2 = osake.L1_CM, osake.L2_CM
-    radius_at_60_rad = np.sqrt(l1**2 + l2**2 + 2 * l1 * l2 * np.cos(60.0))
-    assert np.isclose(osake.velocity_program_speed(t), 3.0 * radius_at_60_rad, rtol=1e-7)
+# --- H3.4: the C++ velocity program (l1 = 10.0, l2 = 11.5, t = 2, forward difference, delta_t = 1e-6)
+def exact_program_speed(l1=osake.L1_CM, l2=osake.L2_CM):
+    """The program's number with the exact slope (3, 0) of its angle functions: 3 rad/s times |p| at 60 rad."""
+    return 3.0 * np.sqrt(l1**2 + l2**2 + 2 * l1 * l2 * np.cos(60.0))
+
+
+def forward_difference_bound(t, step):
+    """Relative error the program's forward difference of 3 t can carry: round-off only (the function is linear).
+
+    fl(t + step), 3 fl(t + step) and 3 t each round by at most eps/2 of a number
+    of size 3 (|t| + step), and the difference is divided by 3 step: at most
+    1.5 eps (|t| + step) / step of the slope 3.  Add a few dozen eps for the
+    subtraction, the division, J and the norm (at 60 rad |p| = 3.6 cm comes out
+    of a cancellation of 10 cm and 11.5 cm terms).
+    """
+    return np.finfo(float).eps * (2.0 * (abs(t) + step) / step + 32.0)
+
+
+def test_velocity_program_reproduces_the_printed_number():
+    assert osake.PRINTED_SPEED_CM_S == 10.8975
+    assert round(osake.velocity_program_speed(), 4) == osake.PRINTED_SPEED_CM_S  # the defaults: t = 2, 1e-6 s
+    assert round(osake.velocity_program_speed(t=2.0, step=1e-6), 4) == osake.PRINTED_SPEED_CM_S
+
+
+def test_velocity_program_forward_difference_costs_only_round_off_at_t_2():
+    t, step = 2.0, 1e-6
+    printed, exact = osake.velocity_program_speed(t, step=step), exact_program_speed()
+    bound = forward_difference_bound(t, step)
+    assert bound < 1e-9
+    assert abs(printed - exact) <= bound * exact
+
+
+@given(t=st.floats(min_value=-120.0, max_value=120.0), step=st.sampled_from([1e-6, 1e-4, 1e-2, 1.0]))
+def test_velocity_program_is_three_rad_per_s_times_the_radius_at_60_rad_for_any_t(t, step):
+    printed = osake.velocity_program_speed(t, step=step)
+    assert abs(printed - exact_program_speed()) <= forward_difference_bound(t, step) * exact_program_speed()
 
 
 def test_velocity_program_number_against_the_jacobian():
-    printed = osake.velocity_program_speed(1.0)
-    assert round(printed, 2) == 10.9  # cm/s, a linear speed
-    q = np.radians([3.0, 60.0])
+    printed = osake.velocity_program_speed()
+    q = np.radians([3.0 * 2.0, 60.0])  # t = 2 s: theta1 = 6 deg, theta2 = 60 deg
     right_cm_s = CM * np.linalg.norm(arms.osake.tip_velocity(q, np.radians([3.0, 0.0])))
     assert np.isclose(right_cm_s, np.radians(3.0) * CM * np.linalg.norm(arms.osake.fk(q)))
-    assert round(right_cm_s, 3) == 0.976
-    assert 11.0 < printed / right_cm_s < 11.3
+    assert round(right_cm_s, 4) == 0.9757
+    assert 11.1 < printed / right_cm_s < 11.2
     # each mistake alone: 3 used as rad/s multiplies by 180/pi; 60 rad for 60 deg shrinks the radius
     rate_only = CM * np.linalg.norm(arms.osake.tip_velocity(q, [3.0, 0.0]))
     assert np.isclose(rate_only / right_cm_s, 180.0 / np.pi)
-    angle_only = CM * np.linalg.norm(arms.osake.tip_velocity([0.0, 60.0], np.radians([3.0, 0.0])))
+    angle_only = CM * np.linalg.norm(arms.osake.tip_velocity([6.0, 60.0], np.radians([3.0, 0.0])))
     assert np.isclose(printed / angle_only, 180.0 / np.pi)
+    # the program is the package's tip velocity at its radian-read angles and rates
+    assert np.isclose(printed, CM * np.linalg.norm(arms.osake.tip_velocity([6.0, 60.0], [3.0, 0.0])), rtol=1e-9)
 
 
-def test_velocity_program_rejects_a_zero_step():
+def test_velocity_program_checks_its_inputs():
     with pytest.raises(ValueError, match="step"):
-        osake.velocity_program_speed(1.0, step=0.0)
+        osake.velocity_program_speed(step=0.0)
+    with pytest.raises(ValueError, match="step"):
+        osake.velocity_program_speed(2.0, step=-1e-6)
+    with pytest.raises(ValueError, match="t"):
+        osake.velocity_program_speed(float("nan"))
+    with pytest.raises(ValueError, match="l2"):
+        osake.velocity_program_speed(l2=0.0)

@@ -18,8 +18,11 @@ source's method before correcting it:
 - :func:`cpp_fk_tip`: the C++ forward-kinematics program (link lengths read
   into ``int``, no z-offset in ``H01``, triple-loop matrix product);
 - :func:`velocity_program_speed`: the C++ velocity program (angles meant in
-  degrees passed to ``cos``/``sin``, 3 deg/s used as 3 rad/s, the tip's linear
-  speed printed as its "angular velocity").
+  degrees passed to ``cos``/``sin``, 3 deg/s used as 3 rad/s, the linear angle
+  functions differentiated by a forward difference, the tip's linear speed
+  printed as its "end-tip angular velocity"); at its ``t = 2`` s it gives the
+  printed 10.8975 cm/s (:data:`PRINTED_SPEED_CM_S`), where the right tip speed
+  is 0.9757 cm/s.
 
 Lengths are in the source's unit, centimetres (as it typed them); angles are
 plain numbers handed to ``cos``/``sin``, i.e. radians, unless a docstring
@@ -48,6 +51,7 @@ __all__ = [
     "cpp_read_int",
     "matmul_triple_loop",
     "cpp_fk_tip",
+    "PRINTED_SPEED_CM_S",
     "velocity_program_speed",
 ]
 
@@ -57,6 +61,8 @@ L2_CM = 11.5
 """Link 2 of the OSAKE arm, cm."""
 D_CM = 6.5
 """Height of the arm's plane above the base frame (first DH row's ``d``), cm."""
+PRINTED_SPEED_CM_S = 10.8975
+"""The number the C++ velocity program printed as its "end-tip angular velocity" (a linear speed, cm/s)."""
 
 
 def _lengths(l1: float, l2: float) -> tuple[float, float]:
@@ -309,45 +315,56 @@ def cpp_fk_tip(
     return np.array([H02[0][3], H02[1][3], H02[2][3]])
 
 
-def velocity_program_speed(t: float, l1: float = L1_CM, l2: float = L2_CM, step: float = 1e-3) -> float:
+def velocity_program_speed(t: float = 2.0, l1: float = L1_CM, l2: float = L2_CM, step: float = 1e-6) -> float:
     """The number the source's C++ velocity program prints as its "end-tip angular velocity", reproduced.
 
-    The coursework's printed value is not known to the course; this is what the
-    program described below gives, under the assumptions stated.
+    The program states all its details, and this function follows them:
+    ``double l1 = 10.0; double l2 = 11.5;`` (cm), the angle functions
+    ``theta1 = 3 t`` and ``theta2 = 60``, both meant in degrees, evaluated at
+    ``t = 2`` s and passed to ``cos``/``sin``, which take radians.  It
+    differentiates the two angle functions numerically by a **forward**
+    difference with ``delta_t = 1e-6`` s; for these linear functions that only
+    returns their slopes ``(3, 0)`` (to round-off), which it uses as joint
+    rates in rad/s, although 3 was meant as 3 deg/s.  It evaluates the tip
+    velocity ``(vx, vy) = J(theta) theta_dot`` and prints
+    ``sqrt(vx^2 + vy^2)``, the tip's **linear** speed in cm/s, as the "end-tip
+    angular velocity": 10.8975 (:data:`PRINTED_SPEED_CM_S`), which this
+    reproduction gives.  (Its comment "relation for theta2" stands above
+    theta1's function, and it computes the tip position ``px``, ``py`` and
+    never uses it; neither changes the number.)
 
-    The program set ``theta1 = 3 t`` and ``theta2 = 60``, both meant in
-    degrees, and passed them to ``cos``/``sin``, which take radians; it
-    differentiated the two angle functions numerically (for these linear
-    functions the derivative is just the slope, ``(3, 0)``) and used that as
-    the joint rates in rad/s, although 3 was meant as 3 deg/s; then it printed
-    the length of ``J(theta) theta_dot``, which is the tip's **linear** speed,
-    in cm/s.  Details the description leaves open and this reproduction
-    assumes: a central difference with ``step`` seconds (any step gives the
-    same slope to rounding), the lengths as doubles (10 and 11.5 cm), and the
-    speed as the Euclidean length of the planar tip velocity.  The result does
-    not depend on ``t``: the arm turns rigidly about the base.
+    The number is ``3 |p(60 rad)|``, 3 rad/s times the tip's distance from the
+    base at ``q2 = 60`` rad (3.63 cm); it does not depend on ``t``: the arm turns
+    rigidly about the base.  The right tip speed at ``t = 2`` s, with
+    ``q = (6, 60)`` deg and ``q_dot = (3, 0)`` deg/s, is 0.9757 cm/s
+    (:meth:`twolink.TwoLinkArm.tip_velocity` of :data:`twolink.arms.osake`);
+    the right angular velocity of the arm is ``3 deg/s = 0.05236 rad/s``.
 
     Parameters
     ----------
     t : float
-        Time, s.
+        Time, s (the program's ``t = 2``).
     l1, l2 : float
-        Link lengths (> 0), cm.
+        Link lengths (> 0), cm (the program's 10.0 and 11.5).
     step : float
-        Finite-difference step (> 0), s.
+        Forward-difference step (> 0), s (the program's ``delta_t = 1e-6``).
 
     Returns
     -------
     float
-        The number the program would print, cm/s, under the assumptions
-        above (a linear speed; the source called it an angular velocity).
+        The number the program prints, cm/s (a linear speed; the source
+        called it an angular velocity).
 
     Examples
     --------
-    >>> round(velocity_program_speed(1.0), 3)     # the correct tip speed is 0.976 cm/s
-    10.897
-    >>> round(velocity_program_speed(1.0, l2=11.0), 3)   # if the lengths were ints too
-    10.16
+    >>> round(velocity_program_speed(), 4)          # the program's t = 2, delta_t = 1e-6
+    10.8975
+    >>> round(velocity_program_speed(), 4) == PRINTED_SPEED_CM_S
+    True
+    >>> from twolink import arms
+    >>> q, q_dot = np.radians([3.0 * 2.0, 60.0]), np.radians([3.0, 0.0])   # t = 2 s, in radians
+    >>> round(100 * float(np.linalg.norm(arms.osake.tip_velocity(q, q_dot))), 4)   # the right tip speed, cm/s
+    0.9757
     """
     t = as_finite_scalar(t, "t (s)")
     step = as_finite_scalar(step, "step (s)", minimum=0.0, strictly=True)
@@ -357,8 +374,9 @@ def velocity_program_speed(t: float, l1: float = L1_CM, l2: float = L2_CM, step:
         return np.array([3.0 * time, 60.0])
 
     theta = angles(t)
-    theta_dot = (angles(t + step) - angles(t - step)) / (2.0 * step)  # numerically: the slope (3, 0)
+    theta_dot = (angles(t + step) - angles(t)) / step  # forward difference: the slope (3, 0), to round-off
     q12 = theta[0] + theta[1]
     J = np.array([[-l1 * np.sin(theta[0]) - l2 * np.sin(q12), -l2 * np.sin(q12)],
                   [l1 * np.cos(theta[0]) + l2 * np.cos(q12), l2 * np.cos(q12)]])
-    return float(np.linalg.norm(J @ theta_dot))
+    vx, vy = J @ theta_dot
+    return float(np.sqrt(vx**2 + vy**2))
