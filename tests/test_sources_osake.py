@@ -168,11 +168,17 @@ def forward_difference_bound(t, step):
 
     fl(t + step), 3 fl(t + step) and 3 t each round by at most eps/2 of a number
     of size 3 (|t| + step), and the difference is divided by 3 step: at most
-    1.5 eps (|t| + step) / step of the slope 3.  Add a few dozen eps for the
-    subtraction, the division, J and the norm (at 60 rad |p| = 3.6 cm comes out
-    of a cancellation of 10 cm and 11.5 cm terms).
+    1.5 eps (|t| + step) / step of the slope 3.  The angles themselves round
+    too: theta1 = 3 t and theta1 + theta2 carry absolute errors up to eps times
+    their size, which the lever arms l1 and l2 turn into position errors; the
+    tip's radius |p| = 3.6 cm at 60 rad comes out of a cancellation of 10 cm
+    and 11.5 cm terms, so divide by it.  Add a few dozen eps for the
+    subtraction, the division, J and the norm.
     """
-    return np.finfo(float).eps * (2.0 * (abs(t) + step) / step + 32.0)
+    eps = np.finfo(float).eps
+    radius_cm = exact_program_speed() / 3.0
+    angle_term = (osake.L1_CM * 3.0 * abs(t) + osake.L2_CM * (3.0 * abs(t) + 60.0)) / radius_cm
+    return eps * (2.0 * (abs(t) + step) / step + angle_term + 32.0)
 
 
 def test_velocity_program_reproduces_the_printed_number():
