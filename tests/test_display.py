@@ -251,3 +251,17 @@ def test_significant_examples():
     assert display.significant(-0.0, 2) == "0.0"
     with pytest.raises(ValueError, match="digits"):
         display.significant(1.0, 0)
+
+
+@pytest.mark.parametrize(
+    "bound, shown",
+    [(0.5, "0.5"), (0.01, "0.01"), (5e-3, "5e-3"), (1e-3, "1e-3"), (1e-4, "1e-4"), (2.5e-5, "2.5e-5"), (1e-12, "1e-12"), (1e6, "1e6")],
+)
+def test_every_small_bound_reads_in_one_style(bound, shown):
+    assert display.below(0.0, bound) == f"below {shown}"
+
+
+def test_the_degree_sign_follows_the_number_and_other_units_a_space():
+    assert display.rounded(45.0, 1, "°") == "45.0°"
+    assert display.at_most(7.4, 8, "°") == "at most 8°"
+    assert display.rounded(45.0, 1, "deg") == "45.0 deg"

@@ -40,7 +40,11 @@ COMPARED = ("text/plain", "text/markdown", "text/html", "text/latex")
 VIDEO_PAYLOAD = re.compile(r"data:video/mp4;base64,[A-Za-z0-9+/=\n]+")
 # A number in e-notation at round-off size: it must be a stated bound ("below 1e-12"), not a measurement.
 TINY_NUMBER = re.compile(r"(?<![\w.])\d(?:\.\d+)?[eE]-(?:0?[7-9]|[1-9]\d)\b")
-BOUND_WORDS = re.compile(r"(below|at most|less than|tolerance|tol|bound|under|within)\W*$", re.IGNORECASE)
+# "below 1e-12", "tolerance 1e-8", or a bound word and then the bound's formula: "no more than `RTOL` x (a1 + a2) = 2e-9".
+BOUND_WORDS = re.compile(
+    r"(?:below|at most|less than|no more than|tolerance|tol|bound|under|within)(?:\W*|\b[^;|\n]{0,80}=\s*)$", re.IGNORECASE
+)
+REFUSAL = re.compile(r"^.*\b(?:UnreachableError|SingularityError|ValueError|TypeError): .*$", re.MULTILINE)
 # A number typed in the code (an input such as q2 = 1e-7, a tolerance) is exact, not a measurement.
 LITERAL = re.compile(r"(?<![\w.])\d+(?:\.\d+)?[eE]-?\d+")
 
@@ -117,10 +121,12 @@ def test_round_off_sized_numbers_are_shown_as_bounds(notebook):
     for index, cell in enumerate(content["cells"]):
         texts = compared_texts(cell) if cell["cell_type"] == "code" else ["".join(cell["source"])]
         for text in texts:
+            # A refusal printed by display.print_error quotes the package's message about the input it refused.
+            text = REFUSAL.sub("", text)
             for match in TINY_NUMBER.finditer(text):
-                before = text[max(0, match.start() - 30) : match.start()]
+                before = text[max(0, match.start() - 100) : match.start()]
                 if not BOUND_WORDS.search(before) and float(match.group(0)) not in inputs:
-                    found.append(f"cell {index}: ...{before}{match.group(0)}")
+                    found.append(f"cell {index}: ...{before[-40:]}{match.group(0)}")
     assert not found, (
         f"{path.name}: numbers at round-off size shown as measurements ({'; '.join(found)}): another machine prints "
         "other digits; show them as bounds with twolink.display.below"

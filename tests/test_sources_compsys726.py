@@ -1,10 +1,12 @@
 """COMPSYS726 assignments 3-4 reproduced (twolink.sources.compsys726), and the course's corrections.
 
 The printed numbers checked here are those COURSE.md section H quotes from the
-source: the angle columns' first and last rows.  (The printed rate column is
-not quoted there, only that -10 x the vertical formula at the printed angles
-matches it within 0.2 % in every row, so the test checks the reproduction's
-construction and the corrected rates.)
+source: the angle columns' first and last rows and the rate at x = 10 (0.6132).
+The printed angle table is derived as H2.4 describes it (every angle the
+reproduction rounded to whole degrees, the last q1 printed -3.3); the rest of
+the printed rate column is not quoted there, only that -10 x the vertical
+formula at those printed, rounded angles matches it within 0.16 % in every row,
+and the same formula at the unrounded angles is up to 1.24 % off.
 """
 
 import numpy as np
@@ -32,6 +34,35 @@ def test_ik_as_written_gives_the_printed_first_and_last_rows():
     assert round(q2_last, 1) == 90.0
     # H quotes -3.3; the reproduction gives -3.379, which shows as -3.3 if the digits were cut, not rounded
     assert np.trunc(10 * q1_last) / 10 == -3.3
+
+
+def test_printed_angles_are_the_reproduction_rounded_as_printed():
+    q_source = source.ik_as_written(source.X_LINE)
+    printed = source.PRINTED_ANGLES_DEG
+    assert printed.shape == (10, 2)
+    expected = np.round(q_source)
+    expected[-1, 0] = -3.3  # the one angle not printed as the rounded reproduction (-3.379 -> -3.4)
+    assert np.array_equal(printed, expected)
+    assert tuple(printed[0]) == (49, 172) and tuple(printed[-1]) == (-3.3, 90)
+    # every printed angle is the reproduction to its printed rounding, but the last q1
+    assert np.all(np.abs(q_source - printed)[:-1] <= 0.5) and abs(q_source[-1, 1] - printed[-1, 1]) <= 0.5
+    assert round(q_source[-1, 0], 2) == -3.38
+    # "within 0.08 deg" would be false: the integer-printed entries are up to half a degree off
+    assert round(q_source[2, 0], 2) == 85.64 and printed[2, 0] == 86
+    assert np.abs(q_source - printed).max() > 0.4
+
+
+def test_the_rate_column_comes_from_the_printed_rounded_angles():
+    at_printed = source.rate_as_printed(source.PRINTED_ANGLES_DEG)
+    at_unrounded = source.rate_as_printed(source.ik_as_written(source.X_LINE))
+    assert round(float(at_printed[0]), 4) == source.PRINTED_RATE_FIRST_ROW == 0.6132  # H2.4: printed 0.6132
+    assert round(float(at_unrounded[0]), 4) == 0.6066  # H2.4: the unrounded angles give 0.6066
+    # the rounding of the angles moves the rates by up to 1.354 % (x = 30); H2.4's 1.24 % is the same gap
+    # measured against the printed column, which the reproduction at the printed angles matches within 0.16 %
+    gap = np.abs(at_unrounded - at_printed) / np.abs(at_printed)
+    assert 0.0135 < gap.max() < 0.0136 and int(np.argmax(gap)) == 2
+    assert abs(gap.max() - 0.0124) < 0.0016  # consistent with H2.4's 1.24 %, within the 0.16 % agreement
+    assert np.flatnonzero(gap > 0.01).tolist() == [0, 1, 2]  # x = 10, 20, 30: far above 0.16 %
 
 
 def test_q2_column_is_right_and_q1_column_is_wrong():
@@ -71,7 +102,7 @@ def test_the_source_special_case_formulas_are_right(arm, q, rate):
 
 
 def test_rate_column_is_minus_ten_times_the_vertical_formula_at_the_printed_angles():
-    q_source = source.ik_as_written(source.X_LINE)
+    q_source = source.PRINTED_ANGLES_DEG
     q = np.radians(q_source)
     a1, a2 = source.A1, source.A2
     vertical = (-a1 * np.sin(q[:, 0]) - a2 * np.sin(q.sum(axis=1))) / (a1 * a2 * np.sin(q[:, 1]))

@@ -60,16 +60,67 @@ def test_expanded_h02_at_30_45_degrees():
     assert np.allclose(H_wrong[2:, :], H_right[2:, :])  # the height row and the last row are right
 
 
-# --- H3.2: o_2 - o_1 in the first Jacobian column
+# --- H3.2: the Jacobian printed under the derivation carries the expanded H_0^2's product error
+def right_jacobian_cm(q):
+    return arms.osake.geometric_jacobian(q) * np.array([[CM], [CM], [CM], [1.0], [1.0], [1.0]])
+
+
 @given(q=configurations())
-def test_derived_jacobian_first_column_is_link_2_alone(q):
-    J_derived = osake.jacobian_as_derived(q)
-    J_right = arms.osake.geometric_jacobian(q) * np.array([[CM], [CM], [CM], [1.0], [1.0], [1.0]])
-    assert np.allclose(J_derived[:, 0], J_derived[:, 1])
-    assert np.allclose(J_derived[:, 1], J_right[:, 1], atol=1e-12)
-    # the first column misses z_0 x o_1, a vector of length l1 per unit joint rate, at every configuration
-    assert np.isclose(np.linalg.norm(J_right[:, 0] - J_derived[:, 0]), osake.L1_CM)
-    assert np.isclose(np.linalg.det(J_derived[:2]), 0.0, atol=1e-9)
+def test_printed_jacobian_misses_l2_sin_q2_along_link_1_in_both_columns(q):
+    J_printed, J_right = osake.jacobian_as_printed(q), right_jacobian_cm(q)
+    # -l2 s12 -> -l2 s1 c2 drops -l2 c1 s2; l2 c12 -> l2 c1 c2 drops -l2 s1 s2: printed - right = l2 s2 (c1, s1)
+    error_along_link_1 = osake.L2_CM * np.sin(q[1]) * np.array([np.cos(q[0]), np.sin(q[0])])
+    for column in range(2):
+        assert np.allclose(J_printed[:2, column] - J_right[:2, column], error_along_link_1, atol=1e-12)
+        assert np.isclose(np.linalg.norm(J_printed[:2, column] - J_right[:2, column]),
+                          osake.L2_CM * abs(np.sin(q[1])), atol=1e-12)
+    assert np.allclose(J_printed[2:], J_right[2:], atol=0.0)  # v_z = 0, omega = (0, 0, 1): as in the right Jacobian
+
+
+@given(q1=angles, stretched=st.booleans())
+def test_printed_jacobian_is_right_where_the_product_error_vanishes(q1, stretched):
+    q = [q1, 0.0 if stretched else np.pi]  # sin q2 = 0: cos q1 cos q2 = cos(q1 + q2), sin q1 cos q2 = sin(q1 + q2)
+    assert np.allclose(osake.jacobian_as_printed(q), right_jacobian_cm(q), atol=1e-12)
+
+
+@given(q=configurations())
+def test_printed_jacobian_is_wrong_wherever_the_elbow_is_bent(q):
+    assume(0.05 < abs(q[1]) < np.pi - 0.05)
+    errors_cm = np.linalg.norm(osake.jacobian_as_printed(q)[:2] - right_jacobian_cm(q)[:2], axis=0)
+    assert np.all(errors_cm > osake.L2_CM * np.sin(0.05) * 0.99)
+
+
+@given(q=configurations())
+def test_printed_jacobian_columns_differ_by_the_l1_lever(q):
+    # what the source got right: column 1 has the lever from the base, column 2 the one from the elbow
+    J_printed = osake.jacobian_as_printed(q)
+    lever_l1 = osake.L1_CM * np.array([-np.sin(q[0]), np.cos(q[0])])
+    assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], lever_l1, atol=1e-12)
+    assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], right_jacobian_cm(q)[:2, 0] - right_jacobian_cm(q)[:2, 1],
+                       atol=1e-12)
+
+
+def test_printed_jacobian_at_30_45_degrees():
+    printed_cm = np.array([[-9.07, -4.07], [15.70, 7.04]])  # the source's numbers, cm per rad
+    right_cm = np.array([[-16.11, -11.11], [11.64, 2.98]])
+    J_printed = osake.jacobian_as_printed(q_example)
+    assert J_printed.shape == (6, 2)
+    assert np.allclose(J_printed[:2], printed_cm, atol=0.005, rtol=0.0)
+    assert np.allclose(right_jacobian_cm(q_example)[:2], right_cm, atol=0.005, rtol=0.0)
+
+
+def test_printed_jacobian_checks_its_inputs():
+    with pytest.raises(ValueError, match="q"):
+        osake.jacobian_as_printed([0.1, 0.2, 0.3])
+    with pytest.raises(ValueError, match="l2"):
+        osake.jacobian_as_printed([0.1, 0.2], l2=0.0)
+
+
+def test_printed_jacobian_broadcasts_over_configurations():
+    q_many = np.random.default_rng(3).uniform(-np.pi, np.pi, size=(4, 5, 2))
+    J_many = osake.jacobian_as_printed(q_many)
+    assert J_many.shape == (4, 5, 6, 2)
+    assert np.allclose(J_many[2, 3], osake.jacobian_as_printed(q_many[2, 3]))
 
 
 # --- H3.3: the C++ forward-kinematics program
@@ -106,29 +157,72 @@ def test_triple_loop_is_the_matrix_product(left, right):
     assert np.allclose(osake.matmul_triple_loop(left, right), np.array(left) @ np.array(right), atol=1e-9)
 
 
-# --- H3.4: the C++ velocity program
-@given(t=st.floats(min_value=0.0, max_value=120.0))
-def test_velocity_program_prints_three_rad_per_s_times_the_radius_at_60_rad(t):
-    l1, l2 = osake.L1_CM, osake.L2_CM
-    radius_at_60_rad = np.sqrt(l1**2 + l2**2 + 2 * l1 * l2 * np.cos(60.0))
-    assert np.isclose(osake.velocity_program_speed(t), 3.0 * radius_at_60_rad, rtol=1e-7)
+# --- H3.4: the C++ velocity program (l1 = 10.0, l2 = 11.5, t = 2, forward difference, delta_t = 1e-6)
+def exact_program_speed(l1=osake.L1_CM, l2=osake.L2_CM):
+    """The program's number with the exact slope (3, 0) of its angle functions: 3 rad/s times |p| at 60 rad."""
+    return 3.0 * np.sqrt(l1**2 + l2**2 + 2 * l1 * l2 * np.cos(60.0))
+
+
+def forward_difference_bound(t, step):
+    """Relative error the program's forward difference of 3 t can carry: round-off only (the function is linear).
+
+    fl(t + step), 3 fl(t + step) and 3 t each round by at most eps/2 of a number
+    of size 3 (|t| + step), and the difference is divided by 3 step: at most
+    1.5 eps (|t| + step) / step of the slope 3.  The angles themselves round
+    too: theta1 = 3 t and theta1 + theta2 carry absolute errors up to eps times
+    their size, which the lever arms l1 and l2 turn into position errors; the
+    tip's radius |p| = 3.6 cm at 60 rad comes out of a cancellation of 10 cm
+    and 11.5 cm terms, so divide by it.  Add a few dozen eps for the
+    subtraction, the division, J and the norm.
+    """
+    eps = np.finfo(float).eps
+    radius_cm = exact_program_speed() / 3.0
+    angle_term = (osake.L1_CM * 3.0 * abs(t) + osake.L2_CM * (3.0 * abs(t) + 60.0)) / radius_cm
+    return eps * (2.0 * (abs(t) + step) / step + angle_term + 32.0)
+
+
+def test_velocity_program_reproduces_the_printed_number():
+    assert osake.PRINTED_SPEED_CM_S == 10.8975
+    assert round(osake.velocity_program_speed(), 4) == osake.PRINTED_SPEED_CM_S  # the defaults: t = 2, 1e-6 s
+    assert round(osake.velocity_program_speed(t=2.0, step=1e-6), 4) == osake.PRINTED_SPEED_CM_S
+
+
+def test_velocity_program_forward_difference_costs_only_round_off_at_t_2():
+    t, step = 2.0, 1e-6
+    printed, exact = osake.velocity_program_speed(t, step=step), exact_program_speed()
+    bound = forward_difference_bound(t, step)
+    assert bound < 1e-9
+    assert abs(printed - exact) <= bound * exact
+
+
+@given(t=st.floats(min_value=-120.0, max_value=120.0), step=st.sampled_from([1e-6, 1e-4, 1e-2, 1.0]))
+def test_velocity_program_is_three_rad_per_s_times_the_radius_at_60_rad_for_any_t(t, step):
+    printed = osake.velocity_program_speed(t, step=step)
+    assert abs(printed - exact_program_speed()) <= forward_difference_bound(t, step) * exact_program_speed()
 
 
 def test_velocity_program_number_against_the_jacobian():
-    printed = osake.velocity_program_speed(1.0)
-    assert round(printed, 2) == 10.9  # cm/s, a linear speed
-    q = np.radians([3.0, 60.0])
+    printed = osake.velocity_program_speed()
+    q = np.radians([3.0 * 2.0, 60.0])  # t = 2 s: theta1 = 6 deg, theta2 = 60 deg
     right_cm_s = CM * np.linalg.norm(arms.osake.tip_velocity(q, np.radians([3.0, 0.0])))
     assert np.isclose(right_cm_s, np.radians(3.0) * CM * np.linalg.norm(arms.osake.fk(q)))
-    assert round(right_cm_s, 3) == 0.976
-    assert 11.0 < printed / right_cm_s < 11.3
+    assert round(right_cm_s, 4) == 0.9757
+    assert 11.1 < printed / right_cm_s < 11.2
     # each mistake alone: 3 used as rad/s multiplies by 180/pi; 60 rad for 60 deg shrinks the radius
     rate_only = CM * np.linalg.norm(arms.osake.tip_velocity(q, [3.0, 0.0]))
     assert np.isclose(rate_only / right_cm_s, 180.0 / np.pi)
-    angle_only = CM * np.linalg.norm(arms.osake.tip_velocity([0.0, 60.0], np.radians([3.0, 0.0])))
+    angle_only = CM * np.linalg.norm(arms.osake.tip_velocity([6.0, 60.0], np.radians([3.0, 0.0])))
     assert np.isclose(printed / angle_only, 180.0 / np.pi)
+    # the program is the package's tip velocity at its radian-read angles and rates
+    assert np.isclose(printed, CM * np.linalg.norm(arms.osake.tip_velocity([6.0, 60.0], [3.0, 0.0])), rtol=1e-9)
 
 
-def test_velocity_program_rejects_a_zero_step():
+def test_velocity_program_checks_its_inputs():
     with pytest.raises(ValueError, match="step"):
-        osake.velocity_program_speed(1.0, step=0.0)
+        osake.velocity_program_speed(step=0.0)
+    with pytest.raises(ValueError, match="step"):
+        osake.velocity_program_speed(2.0, step=-1e-6)
+    with pytest.raises(ValueError, match="t"):
+        osake.velocity_program_speed(float("nan"))
+    with pytest.raises(ValueError, match="l2"):
+        osake.velocity_program_speed(l2=0.0)

@@ -44,8 +44,16 @@ class BoundError(ValueError):
 
 
 def _number_text(value: float) -> str:
-    """``format(value, "g")`` with a plain exponent (``1e-05`` -> ``1e-5``) and ``-0`` -> ``0``."""
-    return _plain_exponent(format(value + 0.0, "g"))
+    """A bound as text: ``0.5``, ``0.01``, and below 0.01 with a plain exponent (``1e-3``, ``2.5e-5``); ``-0`` -> ``0``.
+
+    One style for every small bound, so that a table's ``below 1e-3`` and
+    ``below 1e-8`` read alike.
+    """
+    value += 0.0
+    if value != 0.0 and (abs(value) < 0.01 or abs(value) >= 1e6):
+        mantissa, exponent = format(value, ".6e").split("e")
+        return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
+    return _plain_exponent(format(value, "g"))
 
 
 def _plain_exponent(text: str) -> str:
@@ -55,9 +63,12 @@ def _plain_exponent(text: str) -> str:
 
 
 def _with_unit(text: str, unit: str) -> str:
+    """``"3 m"``: a space before a unit, none before the degree sign (``"45°"``)."""
     if not isinstance(unit, str):
-        raise InputTypeError(f"unit must be a string such as 'm' or 'deg'; got {unit!r} ({type(unit).__name__})")
-    return f"{text} {unit}" if unit else text
+        raise InputTypeError(f"unit must be a string such as 'm' or '°'; got {unit!r} ({type(unit).__name__})")
+    if not unit:
+        return text
+    return f"{text}{unit}" if unit.startswith("°") else f"{text} {unit}"
 
 
 def _largest_magnitude(value: ArrayLike, name: str) -> float:
@@ -85,7 +96,8 @@ def below(value: ArrayLike, bound: float, unit: str = "") -> str:
     bound : float
         A positive, finite bound, e.g. ``1e-12`` or a solver's tolerance.
     unit : str
-        Appended after a space (``"m"``, ``"rad"``, ``"N"``); ``""`` for none.
+        Appended after a space (``"m"``, ``"rad"``, ``"N"``), the degree sign
+        ``"°"`` without one; ``""`` for none.
 
     Returns
     -------
@@ -103,10 +115,12 @@ def below(value: ArrayLike, bound: float, unit: str = "") -> str:
     'below 1e-12 m'
     >>> below([3e-9, -4e-9], 1e-6)
     'below 1e-6'
+    >>> below(2e-5, 1e-3, "°")
+    'below 1e-3°'
     >>> below(0.02, 1e-3, "m")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    twolink.display.BoundError: value's largest magnitude 0.02 is not below the stated bound 0.001 m; ...
+    twolink.display.BoundError: value's largest magnitude 0.02 is not below the stated bound 1e-3 m; ...
     """
     limit = as_finite_scalar(bound, "bound", minimum=0.0, strictly=True)
     largest = _largest_magnitude(value, "value")

@@ -11,10 +11,16 @@ also correct:
 
 Then they tabulated joint angles and a joint rate for the tip on the line
 ``y = 50`` at ``x = 10, 20, ..., 100`` (bare numbers; the arm is not stated).
-The arm ``a1 = 100``, ``a2 = 50`` reproduces both printed angle columns to within
-0.08 deg: every quoted value to rounding except the last q1, where the method
-gives -3.379 deg (-3.4 rounded) and the quoted value is -3.3 (a cut value, or a
-slip in the transcription).
+The arm ``a1 = 100``, ``a2 = 50`` reproduces both printed angle columns to their
+printed rounding (:data:`PRINTED_ANGLES_DEG`: whole degrees, e.g. 49, 172 at
+``x = 10``), except the last q1, where the method gives -3.38 deg and the
+printed value is -3.3 (a cut value, or a slip in the transcription).
+The rate column is reproduced from the **printed**, rounded angles:
+:func:`rate_as_printed` of :data:`PRINTED_ANGLES_DEG` gives 0.6132 at ``x = 10``
+(:data:`PRINTED_RATE_FIRST_ROW`) and is within 0.16 % of every printed row.  At
+the unrounded angles of the same IK it would be up to 1.24 % off the printed
+column (0.6066 at ``x = 10``): the source computed its rates from its rounded
+table.
 The table has three faults, reproduced here:
 
 1. :func:`ik_as_written`: ``q2 = acosd(...)`` (degrees, right), then
@@ -23,7 +29,8 @@ The table has three faults, reproduced here:
    wrong.  (``atand(y/x)`` does no harm on this line, where ``x > 0``.)
 2. and 3. :func:`rate_as_printed`: the rate column is the **vertical**
    formula, where horizontal motion was asked, evaluated at the printed
-   (wrong) angles and multiplied by -10 (a velocity the text never states).
+   (wrong, rounded) angles and multiplied by -10 (a velocity the text never
+   states).
 
 Lengths are the source's bare numbers; angles in the source's functions are
 in degrees, as the source printed them.  Nothing here is for new code: use
@@ -43,6 +50,8 @@ __all__ = [
     "Y_LINE",
     "X_LINE",
     "RATE_FACTOR",
+    "PRINTED_ANGLES_DEG",
+    "PRINTED_RATE_FIRST_ROW",
     "ik_as_written",
     "q2_rate_vertical",
     "q1_rate_horizontal",
@@ -59,6 +68,20 @@ X_LINE = np.arange(10.0, 101.0, 10.0)
 """The table's points, ``x = 10, 20, ..., 100``."""
 RATE_FACTOR = -10.0
 """The factor the printed rate column carries (a tip velocity the text never states)."""
+PRINTED_ANGLES_DEG = np.array([
+    [49.0, 172.0], [61.0, 164.0], [86.0, 156.0], [28.0, 147.0], [38.0, 139.0],
+    [70.0, 130.0], [13.0, 121.0], [62.0, 111.0], [21.0, 101.0], [-3.3, 90.0],
+])
+"""The source's printed angle table ``(q1, q2)`` in degrees, one row per ``x`` of :data:`X_LINE`, shape (10, 2).
+
+Derived, not transcribed: the reproduction :func:`ik_as_written` at
+:data:`X_LINE` rounded as the source printed it, to whole degrees, except the
+last row's q1, printed -3.3 (the reproduction gives -3.38, which rounds to
+-3.4).  The source's first and last rows, (49, 172) and (-3.3, 90), are of
+this form.  :func:`rate_as_printed` of this table is the printed rate column.
+"""
+PRINTED_RATE_FIRST_ROW = 0.6132
+"""The printed rate at ``x = 10``: :func:`rate_as_printed` of the printed angles (49, 172), to 4 decimals."""
 
 
 def _array(values: ArrayLike, name: str) -> NDArray[np.float64]:
@@ -105,7 +128,7 @@ def ik_as_written(x: ArrayLike, y: ArrayLike = Y_LINE, a1: float = A1, a2: float
     --------
     >>> ik_as_written(10.0).round(2)      # printed: 49, 172; right: (70.74, 171.89)
     array([ 49.1 , 171.89])
-    >>> ik_as_written(100.0).round(3)     # quoted -3.3 (rounds from -3.379 to -3.4), 90; right: (0, 90)
+    >>> ik_as_written(100.0).round(3)     # printed -3.3, 90 (-3.379 rounds to -3.4); right: (0, 90)
     array([-3.379, 90.   ])
     """
     x, y = np.broadcast_arrays(_array(x, "x"), _array(y, "y"))
@@ -183,7 +206,12 @@ def rate_as_printed(q_deg: ArrayLike, a1: float = A1, a2: float = A2) -> NDArray
     The table was to give the joint rates for horizontal motion; its printed
     column equals ``RATE_FACTOR * (-a1 s1 - a2 s12) / (a1 a2 s2)``, the
     vertical-motion ``q2dot`` per unit ``ydot``, evaluated at the table's
-    (wrong) angles (:func:`ik_as_written`, converted to radians).
+    printed angles: the (wrong) angles of :func:`ik_as_written`, rounded as
+    printed (:data:`PRINTED_ANGLES_DEG`), converted to radians.  That gives
+    the printed column to within 0.16 % in every row (0.6132 at ``x = 10``).
+    At the unrounded angles the column would be up to 1.24 % off the printed
+    one (0.6066 at ``x = 10``): the source computed its rates from its
+    rounded table.
 
     Parameters
     ----------
@@ -199,8 +227,12 @@ def rate_as_printed(q_deg: ArrayLike, a1: float = A1, a2: float = A2) -> NDArray
 
     Examples
     --------
-    >>> rate_as_printed(ik_as_written(X_LINE)).round(3)   # within 0.2 % of the printed column
-    array([0.607, 0.373, 0.27 , 0.188, 0.195, 0.201, 0.136, 0.202, 0.16 , 0.088])
+    >>> rate_as_printed(PRINTED_ANGLES_DEG).round(4)   # the printed column, at the printed angles
+    array([0.6132, 0.3781, 0.2734, 0.1884, 0.1957, 0.2007, 0.1364, 0.2022,
+           0.1594, 0.0883])
+    >>> rate_as_printed(ik_as_written(X_LINE)).round(4)   # at the unrounded angles: not the printed column
+    array([0.6066, 0.3734, 0.2697, 0.1881, 0.1954, 0.2007, 0.1358, 0.2022,
+           0.1596, 0.088 ])
     """
     q = np.radians(_array(q_deg, "q_deg"))
     if q.shape[-1:] != (2,):

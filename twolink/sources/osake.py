@@ -11,13 +11,18 @@ source's method before correcting it:
 - :func:`h02_as_expanded`: the hand-expanded ``H_0^2`` (``cos q1 cos q2`` and
   ``sin q1 cos q2`` where ``cos(q1+q2)`` and ``sin(q1+q2)`` belong, ``l1`` and
   ``l2`` swapped in the position column);
-- :func:`jacobian_as_derived`: the derivation's first column
-  ``z_0 x (o_2 - o_1)``, taken literally with ``o_1`` the origin of frame 1;
+- :func:`jacobian_as_printed`: the 6x2 Jacobian the derivation prints under
+  its recipe (column 1 with the lever from the base, column 2 from the
+  elbow, both with the expanded ``H_0^2``'s ``sin q1 cos q2`` and
+  ``cos q1 cos q2`` where ``sin(q1+q2)`` and ``cos(q1+q2)`` belong);
 - :func:`cpp_fk_tip`: the C++ forward-kinematics program (link lengths read
   into ``int``, no z-offset in ``H01``, triple-loop matrix product);
 - :func:`velocity_program_speed`: the C++ velocity program (angles meant in
-  degrees passed to ``cos``/``sin``, 3 deg/s used as 3 rad/s, the tip's linear
-  speed printed as its "angular velocity").
+  degrees passed to ``cos``/``sin``, 3 deg/s used as 3 rad/s, the linear angle
+  functions differentiated by a forward difference, the tip's linear speed
+  printed as its "end-tip angular velocity"); at its ``t = 2`` s it gives the
+  printed 10.8975 cm/s (:data:`PRINTED_SPEED_CM_S`), where the right tip speed
+  is 0.9757 cm/s.
 
 Lengths are in the source's unit, centimetres (as it typed them); angles are
 plain numbers handed to ``cos``/``sin``, i.e. radians, unless a docstring
@@ -42,10 +47,11 @@ __all__ = [
     "L2_CM",
     "D_CM",
     "h02_as_expanded",
-    "jacobian_as_derived",
+    "jacobian_as_printed",
     "cpp_read_int",
     "matmul_triple_loop",
     "cpp_fk_tip",
+    "PRINTED_SPEED_CM_S",
     "velocity_program_speed",
 ]
 
@@ -55,6 +61,8 @@ L2_CM = 11.5
 """Link 2 of the OSAKE arm, cm."""
 D_CM = 6.5
 """Height of the arm's plane above the base frame (first DH row's ``d``), cm."""
+PRINTED_SPEED_CM_S = 10.8975
+"""The number the C++ velocity program printed as its "end-tip angular velocity" (a linear speed, cm/s)."""
 
 
 def _lengths(l1: float, l2: float) -> tuple[float, float]:
@@ -110,47 +118,75 @@ def h02_as_expanded(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM, d: float
     return H
 
 
-def jacobian_as_derived(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM) -> NDArray[np.float64]:
-    """The 6x2 geometric Jacobian with the derivation's first column ``z_0 x (o_2 - o_1)``.
+def jacobian_as_printed(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM) -> NDArray[np.float64]:
+    """The 6x2 Jacobian the source's derivation printed, with the expanded ``H_0^2``'s product error.
 
-    The source's derivation wrote ``o_2 - o_1`` in the first column and said
-    the origin of frame 1 is zero.  In DH numbering frame 0 is the base (its
-    origin is zero) and frame 1 sits at the elbow, ``o_1 = (l1 c1, l1 s1, d)``;
-    the first column needs ``z_0 x (o_2 - o_0)``.  Taken literally, ``o_2 - o_1``
-    makes the first column equal to the second (link 2 alone): the joint-1
-    column loses ``z_0 x o_1``, a vector of length ``l1`` per rad/s at every
-    configuration, and the 2x2 block is singular everywhere.  (The source's
-    final Jacobian, quoted above its derivation, is right; this is what its
-    derivation gives to a reader who follows it.)
+    The derivation writes its recipe with ``(d_2^0 - d_1^0)`` in both columns,
+    then states that ``d_1^0`` is the zero matrix (although it had written
+    ``d_1^0 = (l1 c1, l1 s1, d)``, the elbow, just above) and that ``R_0^0`` is
+    the 4x4 identity (``R_0^0`` is 3x3).  The matrix printed under it follows neither reading of
+    that recipe: column 1 does contain the ``l1`` terms (the lever from the
+    base, as ``z_0 x (o_2 - o_0)`` needs) and column 2 does not (the lever from
+    the elbow, as ``z_1 x (o_2 - o_1)`` needs), but both columns carry the
+    product error of the source's expanded ``H_0^2`` (:func:`h02_as_expanded`),
+    ``sin q1 cos q2`` and ``cos q1 cos q2`` where ``sin(q1 + q2)`` and
+    ``cos(q1 + q2)`` belong::
+
+        column 1 = (-l1 s1 - l2 s1 c2,  l1 c1 + l2 c1 c2)
+        column 2 = (        -l2 s1 c2,          l2 c1 c2)
+
+    (This gives the printed numbers at ``q = (30, 45)`` deg, below.  There
+    ``cos q2 = sin q2``, so those numbers alone cannot tell ``cos q1 cos q2``
+    from ``cos q1 sin q2`` in an entry.)
+
+    In each position column, printed minus right is ``l2 sin q2 (c1, s1)``
+    (the dropped ``cos q1 sin q2`` and ``sin q1 sin q2`` terms): a vector along
+    link 1 of length ``l2 |sin q2|``, zero only where ``sin q2 = 0`` (arm
+    stretched or folded).  Column 1 minus column 2 is the ``l1`` lever
+    ``(-l1 s1, l1 c1)``, as it should be.
+
+    Rows: the ``v_x`` and ``v_y`` rows are the reproduction of the printed
+    matrix (they give its printed numbers, below); the ``v_z`` row (0) and
+    the ``omega`` rows (``(0, 0, 1)`` for both joints) are set as in the
+    correct Jacobian, so that the shape matches
+    :meth:`twolink.TwoLinkArm.geometric_jacobian`.  The course compares the
+    source with the correct Jacobian on the 2x2 position block only.
 
     Parameters
     ----------
     q : array_like, shape (..., 2)
-        Joint angles, radians.
+        Joint angles ``(q1, q2)``, radians.
     l1, l2 : float
         Link lengths (> 0), cm.
 
     Returns
     -------
     numpy.ndarray, shape (..., 6, 2)
-        Rows ``v_x, v_y, v_z`` (cm per rad) and ``omega`` (1 per joint).
+        Rows ``v_x, v_y, v_z`` (cm per rad) and ``omega_x, omega_y, omega_z``
+        (1 per rad), one column per joint.
 
     Examples
     --------
-    >>> J = jacobian_as_derived(np.radians([30.0, 45.0]))
-    >>> J[:2].round(3)                    # both columns are link 2's
-    array([[-11.108, -11.108],
-           [  2.976,   2.976]])
-    >>> float(np.linalg.det(J[:2]))
-    0.0
+    The printed numbers at ``q = (30, 45)`` deg, cm per rad, to the two
+    decimals the source printed (the right block is
+    ``[[-16.11, -11.11], [11.64, 2.98]]``):
+
+    >>> from twolink.display import rounded
+    >>> J = jacobian_as_printed(np.radians([30.0, 45.0]))
+    >>> rounded(J[0], 2), rounded(J[1], 2)          # v_x row, v_y row
+    ('(-9.07, -4.07)', '(15.70, 7.04)')
+    >>> J[2:, 0], J.shape
+    (array([0., 0., 0., 1.]), (6, 2))
+    >>> bool(np.allclose(J[:2, 0] - J[:2, 1], [-L1_CM * np.sin(np.pi / 6), L1_CM * np.cos(np.pi / 6)]))
+    True
     """
     q = as_pairs(q, "q (rad)")
     l1, l2 = _lengths(l1, l2)
-    q12 = q[..., 0] + q[..., 1]
+    c1, s1, c2 = np.cos(q[..., 0]), np.sin(q[..., 0]), np.cos(q[..., 1])
     J = np.zeros(q.shape[:-1] + (6, 2))
-    link2_column = np.stack([-l2 * np.sin(q12), l2 * np.cos(q12)], axis=-1)  # z x (o_2 - o_1)
-    J[..., :2, 0] = link2_column
-    J[..., :2, 1] = link2_column
+    J[..., 0, 1], J[..., 1, 1] = -l2 * s1 * c2, l2 * c1 * c2   # l2 (-s12, c12) with s12 -> s1 c2, c12 -> c1 c2
+    J[..., 0, 0] = -l1 * s1 + J[..., 0, 1]                      # plus the l1 lever from the base
+    J[..., 1, 0] = l1 * c1 + J[..., 1, 1]
     J[..., 5, :] = 1.0
     return J
 
@@ -279,45 +315,56 @@ def cpp_fk_tip(
     return np.array([H02[0][3], H02[1][3], H02[2][3]])
 
 
-def velocity_program_speed(t: float, l1: float = L1_CM, l2: float = L2_CM, step: float = 1e-3) -> float:
+def velocity_program_speed(t: float = 2.0, l1: float = L1_CM, l2: float = L2_CM, step: float = 1e-6) -> float:
     """The number the source's C++ velocity program prints as its "end-tip angular velocity", reproduced.
 
-    The coursework's printed value is not known to the course; this is what the
-    program described below gives, under the assumptions stated.
+    The program states all its details, and this function follows them:
+    ``double l1 = 10.0; double l2 = 11.5;`` (cm), the angle functions
+    ``theta1 = 3 t`` and ``theta2 = 60``, both meant in degrees, evaluated at
+    ``t = 2`` s and passed to ``cos``/``sin``, which take radians.  It
+    differentiates the two angle functions numerically by a **forward**
+    difference with ``delta_t = 1e-6`` s; for these linear functions that only
+    returns their slopes ``(3, 0)`` (to round-off), which it uses as joint
+    rates in rad/s, although 3 was meant as 3 deg/s.  It evaluates the tip
+    velocity ``(vx, vy) = J(theta) theta_dot`` and prints
+    ``sqrt(vx^2 + vy^2)``, the tip's **linear** speed in cm/s, as the "end-tip
+    angular velocity": 10.8975 (:data:`PRINTED_SPEED_CM_S`), which this
+    reproduction gives.  (Its comment "relation for theta2" stands above
+    theta1's function, and it computes the tip position ``px``, ``py`` and
+    never uses it; neither changes the number.)
 
-    The program set ``theta1 = 3 t`` and ``theta2 = 60``, both meant in
-    degrees, and passed them to ``cos``/``sin``, which take radians; it
-    differentiated the two angle functions numerically (for these linear
-    functions the derivative is just the slope, ``(3, 0)``) and used that as
-    the joint rates in rad/s, although 3 was meant as 3 deg/s; then it printed
-    the length of ``J(theta) theta_dot``, which is the tip's **linear** speed,
-    in cm/s.  Details the description leaves open and this reproduction
-    assumes: a central difference with ``step`` seconds (any step gives the
-    same slope to rounding), the lengths as doubles (10 and 11.5 cm), and the
-    speed as the Euclidean length of the planar tip velocity.  The result does
-    not depend on ``t``: the arm turns rigidly about the base.
+    The number is ``3 |p(60 rad)|``, 3 rad/s times the tip's distance from the
+    base at ``q2 = 60`` rad (3.63 cm); it does not depend on ``t``: the arm turns
+    rigidly about the base.  The right tip speed at ``t = 2`` s, with
+    ``q = (6, 60)`` deg and ``q_dot = (3, 0)`` deg/s, is 0.9757 cm/s
+    (:meth:`twolink.TwoLinkArm.tip_velocity` of :data:`twolink.arms.osake`);
+    the right angular velocity of the arm is ``3 deg/s = 0.05236 rad/s``.
 
     Parameters
     ----------
     t : float
-        Time, s.
+        Time, s (the program's ``t = 2``).
     l1, l2 : float
-        Link lengths (> 0), cm.
+        Link lengths (> 0), cm (the program's 10.0 and 11.5).
     step : float
-        Finite-difference step (> 0), s.
+        Forward-difference step (> 0), s (the program's ``delta_t = 1e-6``).
 
     Returns
     -------
     float
-        The number the program would print, cm/s, under the assumptions
-        above (a linear speed; the source called it an angular velocity).
+        The number the program prints, cm/s (a linear speed; the source
+        called it an angular velocity).
 
     Examples
     --------
-    >>> round(velocity_program_speed(1.0), 3)     # the correct tip speed is 0.976 cm/s
-    10.897
-    >>> round(velocity_program_speed(1.0, l2=11.0), 3)   # if the lengths were ints too
-    10.16
+    >>> round(velocity_program_speed(), 4)          # the program's t = 2, delta_t = 1e-6
+    10.8975
+    >>> round(velocity_program_speed(), 4) == PRINTED_SPEED_CM_S
+    True
+    >>> from twolink import arms
+    >>> q, q_dot = np.radians([3.0 * 2.0, 60.0]), np.radians([3.0, 0.0])   # t = 2 s, in radians
+    >>> round(100 * float(np.linalg.norm(arms.osake.tip_velocity(q, q_dot))), 4)   # the right tip speed, cm/s
+    0.9757
     """
     t = as_finite_scalar(t, "t (s)")
     step = as_finite_scalar(step, "step (s)", minimum=0.0, strictly=True)
@@ -327,8 +374,9 @@ def velocity_program_speed(t: float, l1: float = L1_CM, l2: float = L2_CM, step:
         return np.array([3.0 * time, 60.0])
 
     theta = angles(t)
-    theta_dot = (angles(t + step) - angles(t - step)) / (2.0 * step)  # numerically: the slope (3, 0)
+    theta_dot = (angles(t + step) - angles(t)) / step  # forward difference: the slope (3, 0), to round-off
     q12 = theta[0] + theta[1]
     J = np.array([[-l1 * np.sin(theta[0]) - l2 * np.sin(q12), -l2 * np.sin(q12)],
                   [l1 * np.cos(theta[0]) + l2 * np.cos(q12), l2 * np.cos(q12)]])
-    return float(np.linalg.norm(J @ theta_dot))
+    vx, vy = J @ theta_dot
+    return float(np.sqrt(vx**2 + vy**2))
