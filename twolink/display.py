@@ -146,7 +146,7 @@ def at_most(value: ArrayLike, bound: float, unit: str = "") -> str:
     bound : float
         A non-negative, finite bound.
     unit : str
-        Appended after a space; ``""`` for none.
+        Appended after a space (the degree sign ``"°"`` without one); ``""`` for none.
 
     Returns
     -------
@@ -174,6 +174,16 @@ def at_most(value: ArrayLike, bound: float, unit: str = "") -> str:
     return "at most " + _with_unit(_number_text(limit), unit)
 
 
+def _entries_to_show(value: ArrayLike) -> tuple[list[float], bool]:
+    """The finite numbers of a scalar or a vector, as floats, and whether it was a scalar."""
+    values = real_array(value, "value")
+    if values.ndim > 1:
+        raise ValueError(f"value must be one number or a vector; got an array of shape {values.shape}")
+    if not np.all(np.isfinite(values)):
+        raise ValueError("value has a NaN or infinite entry: it cannot be shown rounded; find where it came from")
+    return [float(entry) for entry in values.reshape(-1)], values.ndim == 0
+
+
 def _joined(texts: list[str], scalar: bool) -> str:
     return texts[0] if scalar else "(" + ", ".join(texts) + ")"
 
@@ -192,7 +202,7 @@ def rounded(value: ArrayLike, decimals: int, unit: str = "") -> str:
     decimals : int
         Decimals shown (>= 0).
     unit : str
-        Appended after a space; ``""`` for none.
+        Appended after a space (the degree sign ``"°"`` without one); ``""`` for none.
 
     Returns
     -------
@@ -206,13 +216,8 @@ def rounded(value: ArrayLike, decimals: int, unit: str = "") -> str:
     '(1.20, 0.00) m'
     """
     places = as_count(decimals, "decimals (decimals shown)", minimum=0)
-    values = real_array(value, "value")
-    if values.ndim > 1:
-        raise ValueError(f"value must be one number or a vector; got an array of shape {values.shape}")
-    if not np.all(np.isfinite(values)):
-        raise ValueError("value has a NaN or infinite entry: it cannot be shown rounded; find where it came from")
-    texts = [f"{round(float(entry), places) + 0.0:.{places}f}" for entry in values.reshape(-1)]
-    return _with_unit(_joined(texts, values.ndim == 0), unit)
+    entries, scalar = _entries_to_show(value)
+    return _with_unit(_joined([f"{round(entry, places) + 0.0:.{places}f}" for entry in entries], scalar), unit)
 
 
 def significant(value: ArrayLike, digits: int, unit: str = "") -> str:
@@ -227,7 +232,7 @@ def significant(value: ArrayLike, digits: int, unit: str = "") -> str:
     digits : int
         Significant digits shown (>= 1).
     unit : str
-        Appended after a space; ``""`` for none.
+        Appended after a space (the degree sign ``"°"`` without one); ``""`` for none.
 
     Returns
     -------
@@ -241,13 +246,8 @@ def significant(value: ArrayLike, digits: int, unit: str = "") -> str:
     '(2.5e4, -0.50)'
     """
     count = as_count(digits, "digits (significant digits shown)", minimum=1)
-    values = real_array(value, "value")
-    if values.ndim > 1:
-        raise ValueError(f"value must be one number or a vector; got an array of shape {values.shape}")
-    if not np.all(np.isfinite(values)):
-        raise ValueError("value has a NaN or infinite entry: it cannot be shown rounded; find where it came from")
-    texts = [_plain_exponent(format(float(entry) + 0.0, f"#.{count}g")).rstrip(".") for entry in values.reshape(-1)]
-    return _with_unit(_joined(texts, values.ndim == 0), unit)
+    entries, scalar = _entries_to_show(value)
+    return _with_unit(_joined([_plain_exponent(format(entry + 0.0, f"#.{count}g")).rstrip(".") for entry in entries], scalar), unit)
 
 
 def markdown_table(headers: Sequence[str], rows: Iterable[Sequence[Any]], formats: Sequence[str] | None = None) -> str:
