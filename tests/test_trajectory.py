@@ -4,6 +4,7 @@ from types import SimpleNamespace
 
 import numpy as np
 import pytest
+import scipy.integrate
 from conftest import unit
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
@@ -633,7 +634,7 @@ def test_a_failed_resolved_rate_integration_names_the_time_it_reached(monkeypatc
         fun(0.25, y0)
         return SimpleNamespace(success=False, status=-1, t=np.empty(0), message="Required step size is less than spacing between numbers.")
 
-    monkeypatch.setattr(trajectory, "solve_ivp", failing_at_once)
+    monkeypatch.setattr(scipy.integrate, "solve_ivp", failing_at_once)  # imported by the call: patch it at the source
     line = LinePath([-3.5, 1.0], [-1.0, 3.5], duration=1.0)
     with pytest.raises(SimulationError, match=r"resolved rate: the integration failed at t = 0.25 s of 1 s \(method 'RK45', gain 10 1/s\): Required step"):
         trajectory.resolved_rate_trajectory(arms.two_metre, line, n=20)

@@ -45,7 +45,6 @@ from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.interpolate import CubicSpline
 
 from ._validate import as_configuration, as_finite_scalar, as_flag, as_pairs, broadcast_shape, real_array, require_arm
 from .dynamics import gravity_jacobian, mass_matrix_derivative
@@ -449,6 +448,8 @@ class JointReference:
             raise ValueError(
                 f"q must have shape ({len(times)}, 2), one configuration per time; got {samples.shape}"
             )
+        from scipy.interpolate import CubicSpline  # here, not at the top: import twolink stays light
+
         if qd is None:
             if len(times) < 4:
                 raise ValueError("a not-a-knot spline needs at least 4 samples; give more, or the end rates qd")

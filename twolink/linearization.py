@@ -36,8 +36,6 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
-import scipy.linalg
-import scipy.optimize
 from numpy.typing import ArrayLike, NDArray
 
 from ._optional import require
@@ -167,6 +165,8 @@ def critical_damping(arm: TwoLinkArm, q: ArrayLike, stiffness: ArrayLike, kind: 
                 f"got K = {K.tolist()}: use kind='matrix'"
             )
         return float(2.0 * np.sqrt(K[0, 0] * np.linalg.eigvalsh(Lambda)[-1]))
+    import scipy.linalg  # here, not at the top: import twolink stays light
+
     root = np.real(scipy.linalg.sqrtm(Lambda))
     inverse_root = np.linalg.inv(root)
     omega = np.real(scipy.linalg.sqrtm(inverse_root @ K @ inverse_root))
@@ -221,6 +221,8 @@ def equilibrium(
     """
     start = as_configuration(q0, "q0")
     t = as_finite_scalar(t, "t (s)")
+    import scipy.optimize
+
     solution = scipy.optimize.root(lambda q: _net_torque(arm, controller, t, q), start, tol=tol)
     if not solution.success:
         raise ValueError(f"no equilibrium found near q0 = {start} rad: {solution.message}")

@@ -22,7 +22,6 @@ from typing import TYPE_CHECKING, Any, Callable
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.integrate import solve_ivp
 
 from . import dynamics
 from ._validate import (
@@ -501,6 +500,8 @@ def simulate(
                 f"q = ({state[0]:.6g}, {state[1]:.6g}) rad, qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
             )
         return derivative
+
+    from scipy.integrate import solve_ivp  # here, not at the top: import twolink stays light
 
     try:
         method = options.get("method")

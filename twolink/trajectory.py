@@ -39,7 +39,6 @@ from typing import TYPE_CHECKING, Any, Callable, Literal, Union, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.integrate import solve_ivp
 
 from ._validate import as_configuration, as_count, as_finite_scalar, as_pairs, finite_result, real_array, require_arm
 from .controllers import JointReference
@@ -1065,6 +1064,8 @@ def resolved_rate_trajectory(
             f"resolved rate used up its budget of {budget} at t = {now:.6g} s of {duration:.6g} s "
             f"(method {method!r}, gain {gain:.3g} 1/s): {advice}"
         )
+
+    from scipy.integrate import solve_ivp  # here, not at the top: import twolink stays light
 
     solution = solve_ivp(budgeted_rates, (t[0], t[-1]), q_begin, t_eval=t, rtol=rtol, atol=rtol * 1e-2, method=method)
     if not solution.success:

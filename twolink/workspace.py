@@ -36,7 +36,6 @@ import time
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import scipy.optimize
 from numpy.typing import ArrayLike, NDArray
 
 from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
@@ -602,6 +601,8 @@ def largest_inscribed_circle(
         if time.monotonic() > deadline:
             raise _OutOfTime
         return -float(clearance(arm, centre, arcs, elbow=elbow))
+
+    import scipy.optimize  # here, not at the top: import twolink stays light
 
     best_centre, best_radius = samples[chosen[0]], float(room[chosen[0]])
     for done, index in enumerate(chosen):

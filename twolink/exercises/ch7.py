@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-import scipy.optimize
 
 from .. import arms, trajectory, workspace
 from ..ik.analytic import closed_form
@@ -90,6 +89,8 @@ def peak_rate_7_3() -> float:
     rates = np.abs(arms.two_metre.joint_rates(motion.q, v)).max(axis=-1)
     i = int(np.argmax(rates))
     low, high = t[max(i - 1, 0)], t[min(i + 1, len(t) - 1)]
+    import scipy.optimize  # here, not at the top: import twolink stays light
+
     best = scipy.optimize.minimize_scalar(lambda time: -_peak_rate_at(time, motion.elbow)[0], bounds=(low, high), method="bounded",
                                           options={"xatol": 1e-10})
     return float(max(rates[i], -best.fun))

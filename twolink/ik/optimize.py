@@ -9,7 +9,6 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import scipy.optimize
 from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_finite_scalar, as_flag, broadcast_start
@@ -30,6 +29,8 @@ def _solve_one(
     constrained: bool,
     bounds: list[tuple[float, float]] | None,
 ) -> Any:
+    import scipy.optimize  # here, not at the top: import twolink stays light
+
     scale = arm.l1 + arm.l2
     if not constrained:
 

@@ -29,7 +29,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import scipy.optimize
 from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
@@ -251,6 +250,8 @@ def numerical_ik(
         q1_trials.append(float(q1_vector[0]))
         objective_trials.append(value)
         return value
+
+    import scipy.optimize  # here, not at the top: import twolink stays light
 
     outcome = scipy.optimize.minimize(objective, [float(q1_start)], method="BFGS")
     q1 = float(outcome.x[0])
