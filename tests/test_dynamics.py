@@ -523,3 +523,41 @@ def test_angles_whose_sum_overflows_are_refused_naming_q(call, q):
     """A bare 'math domain error' (or a NaN, or an overflow blamed on the rates) before."""
     with pytest.raises(ValueError, match=r"q = \(1e\+308, 1e\+308\) rad.*q1 \+ q2 overflows float64"):
         call(q)
+
+
+# ----------------------------------------------------------------- the right-hand side of an ODE solver
+@given(state=st.lists(rates, min_size=4, max_size=4), driven=st.booleans())
+def test_state_derivative_takes_any_sequence_of_four_numbers_as_the_array(state, driven):
+    torque = (lambda t, q, qd: [0.5 * q[0], -qd[1]]) if driven else None
+    rhs = dynamics.state_derivative(arms.ten, torque)
+    from_array = rhs(0.0, np.array(state))
+    assert rhs(0.0, state) == from_array
+    assert rhs(0.0, tuple(state)) == from_array
+    assert rhs(0.0, [int(value) for value in state]) == rhs(0.0, np.array([int(value) for value in state], float))
+
+
+@pytest.mark.parametrize("driven", [False, True])
+@pytest.mark.parametrize(
+    "state, fragment",
+    [
+        ([0.1, 0.2, 0.0], "got shape (3,)"),
+        ([0.1, 0.2, 0.0, 0.0, 0.0], "got shape (5,)"),
+        ([[0.1, 0.2], [0.0, 0.0]], "got shape (2, 2)"),
+        (np.zeros((4, 1)), "got shape (4, 1)"),
+        (np.zeros(3), "got shape (3,)"),
+        ("abcd", "(str)"),
+        ([0.1, "0.2", 0.0, 0.0], "entry (1,) is str"),
+        (np.array(["0.1", "0.2", "0", "0"]), "<U3 entries"),
+        ([True, 0.2, 0.0, 0.0], "entry (0,) is bool"),
+        ([0.1, float("nan"), 0.0, 0.0], "got [0.1, nan, 0.0, 0.0]"),
+        ([0.1, 0.2, float("inf"), 0.0], "got [0.1, 0.2, inf, 0.0]"),
+        (None, "(NoneType)"),
+    ],
+)
+def test_state_derivative_refuses_junk_naming_state_and_the_allowed_shape(state, fragment, driven):
+    rhs = dynamics.state_derivative(arms.ten, (lambda t, q, qd: [0.0, 0.0]) if driven else None)
+    with pytest.raises((ValueError, TypeError)) as caught:
+        rhs(0.0, state)
+    message = str(caught.value)
+    assert message.startswith("state must be four finite real numbers (q1, q2, qd1, qd2), shape (4,)")
+    assert fragment in message

@@ -41,7 +41,16 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import kinematics
-from ._validate import NonFiniteTorque, as_pairs, broadcast_shape, finite_result, pair_floats, require_arm, torque_floats
+from ._validate import (
+    NonFiniteTorque,
+    as_pairs,
+    broadcast_shape,
+    finite_result,
+    pair_floats,
+    real_array,
+    require_arm,
+    torque_floats,
+)
 from .errors import SimulationError
 
 if TYPE_CHECKING:
@@ -581,10 +590,12 @@ def state_derivative(
 ) -> Callable[[float, NDArray[np.float64]], list[float]]:
     """The right-hand side ``f(t, x)`` of ``dx/dt = (qd, qdd)`` for an ODE solver.
 
-    The state is ``x = (q1, q2, qd1, qd2)``.  The arm is checked once, here;
-    the returned function does no array checks, so that a solver can call it
-    many thousand times cheaply (use :func:`twolink.simulate` rather than
-    calling it yourself).
+    The state is ``x = (q1, q2, qd1, qd2)``: a float array of shape ``(4,)``,
+    as an ODE solver passes it, or any sequence of four finite real numbers.
+    The arm is checked once, here; the returned function reads a float array
+    without further checks, so that a solver can call it many thousand times
+    cheaply (use :func:`twolink.simulate` rather than calling it yourself),
+    and checks anything else (a list, an array of another shape or type).
 
     Parameters
     ----------
@@ -599,7 +610,9 @@ def state_derivative(
     Returns
     -------
     callable
-        ``f(t, x) -> [qd1, qd2, qdd1, qdd2]`` (a list of floats).
+        ``f(t, x) -> [qd1, qd2, qdd1, qdd2]`` (a list of floats).  It raises
+        :class:`ValueError` (or :class:`twolink.errors.InputTypeError`)
+        naming ``state`` for a state that is not four finite real numbers.
 
     Examples
     --------
@@ -607,14 +620,26 @@ def state_derivative(
     >>> f = state_derivative(TwoLinkArm(2.0, 2.0, g=10.0))
     >>> np.round(f(0.0, np.array([0.0, 0.0, 0.0, 0.0])), 6)
     array([ 0.      ,  0.      , -6.428571,  8.571429])
+    >>> f(0.0, [0.0, 0.0, 0.0, 0.0]) == f(0.0, np.zeros(4))
+    True
+    >>> f(0.0, [0.0, 0.0, 0.0])
+    Traceback (most recent call last):
+    ...
+    ValueError: state must be four finite real numbers (q1, q2, qd1, qd2), shape (4,); got shape (3,)
     """
     constants = _invertible_constants(arm)
-    cos, sin = math.cos, math.sin
+    cos, sin, state_array = math.cos, math.sin, _state_array
     if torque is None:
 
         def free_motion(t, state):
-            q1, q2, qd1, qd2 = state.tolist()
-            if not math.isfinite(q1 + q2 + qd1 + qd2):
+            try:  # a float array of four, as a solver passes: no checks
+                q1, q2, qd1, qd2 = state.tolist()
+                finite = math.isfinite(q1 + q2 + qd1 + qd2)
+            except (AttributeError, TypeError, ValueError):  # a list, or an array of another shape or type
+                state = state_array(state)
+                q1, q2, qd1, qd2 = state.tolist()
+                finite = True
+            if not finite:
                 _raise_blow_up(t, state)
             qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, 0.0, 0.0)
             return [qd1, qd2, qdd1, qdd2]
@@ -624,14 +649,33 @@ def state_derivative(
         raise ValueError(f"torque must be None or a callable torque(t, q, qd) -> tau; got {torque!r}")
 
     def driven_motion(t, state):
-        q1, q2, qd1, qd2 = state.tolist()
-        if not math.isfinite(q1 + q2 + qd1 + qd2):
+        try:  # a float array of four, as a solver passes: no checks
+            q1, q2, qd1, qd2 = state.tolist()
+            finite = math.isfinite(q1 + q2 + qd1 + qd2)
+        except (AttributeError, TypeError, ValueError):  # a list, or an array of another shape or type
+            state = state_array(state)
+            q1, q2, qd1, qd2 = state.tolist()
+            finite = True
+        if not finite:
             _raise_blow_up(t, state)
         tau1, tau2 = torque_floats(torque(t, state[:2].copy(), state[2:].copy()), t)
         qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2)
         return [qd1, qd2, qdd1, qdd2]
 
     return driven_motion
+
+
+_STATE_WORDS = "four finite real numbers (q1, q2, qd1, qd2), shape (4,)"
+
+
+def _state_array(state: object) -> NDArray[np.float64]:
+    """The state of :func:`state_derivative` as a float array of shape ``(4,)``, or a clear error naming ``state``."""
+    values = real_array(state, "state", _STATE_WORDS)
+    if values.shape != (4,):
+        raise ValueError(f"state must be {_STATE_WORDS}; got shape {values.shape}")
+    if not np.all(np.isfinite(values)):
+        raise ValueError(f"state must be {_STATE_WORDS}; got {state!r}")
+    return values
 
 
 def _raise_blow_up(t, state):
