@@ -19,7 +19,9 @@ SCRIPTS = sorted((ROOT / "benchmarks").glob("bench_*.py"))
 
 def test_every_benchmark_script_is_covered():
     names = {script.name for script in SCRIPTS}
-    assert {"bench_single_call.py", "bench_kinematics.py", "bench_dynamics.py", "bench_ik_methods.py"} <= names
+    assert {
+        "bench_single_call.py", "bench_kinematics.py", "bench_dynamics.py", "bench_ik_methods.py", "bench_import.py",
+    } <= names
 
 
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda path: path.name)

@@ -119,7 +119,8 @@ LATE_SCIPY_CALLS = {
         scalar = twolink.linearization.critical_damping(arm, q, 100.0)
         assert np.allclose(matrix, matrix.T) and np.linalg.eigvalsh(matrix)[-1] <= scalar + 1e-9, (matrix, scalar)
         spring = twolink.CartesianSpring(arms.two_metre, 600.0, [3.0, 1.0])
-        q_sag = twolink.linearization.equilibrium(arms.two_metre, spring, twolink.ik.closed_form(arms.two_metre, [3.0, 1.0]).q)
+        q_rest = twolink.ik.closed_form(arms.two_metre, [3.0, 1.0]).q
+        q_sag = twolink.linearization.equilibrium(arms.two_metre, spring, q_rest)
         assert np.allclose(arms.two_metre.fk(q_sag), [3.0, 1.0], atol=0.05), q_sag
     """,
     "sources.mae6245.numerical_ik (scipy.optimize)": """

@@ -4,6 +4,10 @@ Conventions: DH / relative joint angles (``q2`` measured from link 1),
 radians, SI units.  Start with :class:`TwoLinkArm` and the presets in
 :mod:`twolink.arms`; inverse kinematics lives in :mod:`twolink.ik`.
 
+``import twolink`` loads numpy and no other library: scipy is imported by the
+first call that needs it (``ik.minimize``, ``simulate``, ...), matplotlib by
+:mod:`twolink.plot` and sympy by :mod:`twolink.symbolic`.
+
 Examples
 --------
 >>> import numpy as np
