@@ -5,7 +5,7 @@ import re
 import numpy as np
 import pytest
 from conftest import angles, lengths, unit
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 from twolink import TwoLinkArm, UnreachableError, arms, ik, kinematics, to_absolute, workspace
@@ -142,6 +142,9 @@ def test_sampled_points_are_reachable_and_their_configurations_within_limits():
         assert np.all(workspace.is_reachable(arm, p))
 
 
+# the folded equal-link arm: fk lands a round-off from the base, in a direction that says nothing about q1
+@example(arm=TwoLinkArm(1.0, 1.0, q_min=(1.0, np.pi), q_max=(2.0, np.pi + 1.0)), u=0.0, v=0.0)
+@example(arm=TwoLinkArm(1.0, 1.0, q_min=(1.0, np.pi + 1.0), q_max=(2.0, np.pi + 2.0), limit_convention="absolute"), u=0.0, v=0.0)
 @given(arm=limited_arms(), u=unit, v=unit)
 def test_every_configuration_within_limits_reaches_a_reachable_point(arm, u, v):
     """Completeness: with the soundness test above, is_reachable(p) <=> some configuration within limits reaches p."""
@@ -460,3 +463,26 @@ def test_largest_inscribed_circle_stops_at_its_wall_time_budget_saying_what_to_c
     with pytest.raises(RuntimeError, match=r"used up its budget of max_wall_time = 0.3 s after \d+ of \d+ starts .*fewer starts"):
         workspace.largest_inscribed_circle(arms.ten, starts=200, max_wall_time=0.3)
 
+
+
+@pytest.mark.parametrize("convention", ["relative", "absolute"])
+def test_the_base_is_reachable_when_a_folded_configuration_is_within_the_limits(convention):
+    """At the base of an equal-link arm every q1 reaches: both branches take one within the limits."""
+    q_min, q_max = ((1.0, np.pi), (2.0, np.pi + 1.0)) if convention == "relative" else ((1.0, np.pi + 1.0), (2.0, np.pi + 2.0))
+    arm = TwoLinkArm(1.0, 1.0, q_min=q_min, q_max=q_max, limit_convention=convention)
+    q_folded = [1.5, np.pi]  # relative angles
+    assert arm.within_limits(q_folded)
+    p = np.array([arm.fk(q_folded), [0.0, 0.0], [-1e-16, 0.0]])
+    assert workspace.is_reachable(arm, p, elbow="both").all()
+    q_both, valid = ik.solutions_within_limits(arm, p)
+    assert valid.all() and arm.within_limits(q_both, tol=workspace.LIMIT_TOL).all()
+    assert np.max(np.hypot(*(arm.fk(q_both) - p[:, None, :]).T)) <= 1e-13
+    auto = ik.closed_form(arm, p, elbow="auto")  # the same choice
+    assert auto.within_limits.all() and auto.all_success
+    for target in p:
+        assert ik.closed_form(arm, target.tolist(), elbow="auto").within_limits
+    narrow = TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(0.5, 3.0), limit_convention=convention)
+    assert not workspace.is_reachable(narrow, [0.0, 0.0])  # no folded configuration within these limits
+    assert not ik.closed_form(narrow, [0.0, 0.0], elbow="auto").within_limits
+    unequal = TwoLinkArm(1.0, 1.0 + 1e-6, q_min=q_min, q_max=q_max, limit_convention=convention)
+    assert not workspace.is_reachable(unequal, [0.0, 0.0])  # the base is out of reach

@@ -177,10 +177,18 @@ def _failure_detail(index: int, residual: float) -> str:
 def _within_limits_first(
     arm: TwoLinkArm, p: NDArray[np.float64], flat: NDArray[np.float64], terms: _Terms
 ) -> tuple[NDArray[np.float64], str]:
-    """``elbow="auto"`` for an arm with limits: per target the down branch, else up, moved into the limits."""
-    from .limits import move_into_limits  # late import: limits builds on closed_form
+    """``elbow="auto"`` for an arm with limits: per target the down branch, else up, moved into the limits.
+
+    At the base of an equal-link arm, where every ``q1`` reaches, both
+    branches take the ``q1`` that :func:`twolink.ik.solutions_within_limits`
+    takes (:func:`twolink.ik.limits.free_q1_at_base`), so the two agree.
+    """
+    from .limits import free_q1_at_base, move_into_limits  # late import: limits builds on closed_form
 
     q_both = _branches(arm, p, flat, terms, "both")
+    at_base, free_q1 = free_q1_at_base(arm, flat)
+    if free_q1 is not None:
+        q_both[:, at_base, 0] = free_q1
     moved, inside = move_into_limits(arm, q_both)
     q = np.where(inside[0][:, None], moved[0], q_both[0])
     take_up = ~inside[0] & inside[1]

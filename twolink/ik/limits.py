@@ -31,6 +31,13 @@ __all__ = ["LIMIT_TOL", "move_into_limits", "solutions_within_limits"]
 #: configuration on a limit needs this much slack to be recognised.
 LIMIT_TOL = 1e-7
 
+#: Within this distance of the base (relative to the reach ``l1 + l2``) the
+#: direction of a point is round-off: an arm with ``l1 == l2`` folded
+#: (``q2 = pi``) reaches its base with every ``q1``, and fk of a folded
+#: configuration lands a few ``eps`` from the base in a direction that says
+#: nothing about ``q1``.
+BASE_ROUND_OFF = 64 * float(np.finfo(float).eps)
+
 _TWO_PI = 2.0 * np.pi
 
 
@@ -106,6 +113,56 @@ def move_into_limits(
     return angles + turns, np.all(inside, axis=-1)
 
 
+def free_q1_at_base(arm: TwoLinkArm, points: NDArray[np.float64]) -> tuple[NDArray[np.bool_], float | None]:
+    """Where ``points`` are the base of an arm with ``l1 == l2``, and a ``q1`` with which the folded arm is within limits.
+
+    At the base (within ``BASE_ROUND_OFF * (l1 + l2)``, for an arm whose
+    ``|l1 - l2|`` is that small too) the folded arm ``q2 = pi`` reaches the
+    point with every ``q1``, while the closed form picks the ``q1`` of the
+    round-off direction of the point.  The one choice of ``q1`` there, made
+    for :func:`solutions_within_limits` and ``ik.closed_form(...,
+    elbow="auto")`` alike: the lowest ``q1`` within the limits whose folded
+    configuration is within them (``None`` when there is none, or the arm
+    has no limits).
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+    points : numpy.ndarray, shape (..., 2)
+        Tip positions, metres (checked by the caller).
+
+    Returns
+    -------
+    at_base : numpy.ndarray of bool, shape (...)
+        Where the point is the base of an equal-link arm (all false otherwise).
+    q1 : float or None
+        A ``q1`` for those points, or ``None``.
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> arm = TwoLinkArm(1.0, 1.0, q_min=(1.0, np.pi), q_max=(2.0, np.pi + 1.0))
+    >>> free_q1_at_base(arm, np.array([[0.0, 1e-16], [0.5, 0.0]]))
+    (array([ True, False]), 1.0)
+    >>> free_q1_at_base(TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(1.0, 3.0)), np.zeros(2))
+    (array(True), None)
+    """
+    r_min, r_max = arm.reach
+    if r_min > BASE_ROUND_OFF * r_max:  # the base is out of reach
+        return np.zeros(points.shape[:-1], dtype=np.bool_), None
+    at_base = np.asarray(np.hypot(points[..., 0], points[..., 1]) <= BASE_ROUND_OFF * r_max)
+    if arm.q_min is None or arm.q_max is None:
+        return at_base, None
+    (low_1, low_2), (high_1, high_2) = arm.q_min, arm.q_max
+    if arm.limit_convention == "relative":
+        q1 = low_1  # q2 = pi is within its limits by some whole turn, or no q1 will do
+    else:  # link angles (q1, q1 + pi): q1 in [low_1, high_1] and in [low_2 - pi, high_2 - pi] + 2 pi k
+        turn = np.ceil((low_1 - (high_2 - np.pi)) / _TWO_PI)
+        q1 = max(low_1, float(low_2 - np.pi + _TWO_PI * turn))
+    folded_inside = q1 <= high_1 and bool(move_into_limits(arm, [q1, np.pi])[1])
+    return at_base, q1 if folded_inside else None
+
+
 def solutions_within_limits(
     arm: TwoLinkArm, p: ArrayLike, tol: float = LIMIT_TOL
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
@@ -116,6 +173,10 @@ def solutions_within_limits(
     (:func:`move_into_limits`); absolute limits are applied to the link
     angles ``(q1, q1 + q2)``.  Unlike :func:`twolink.ik.closed_form`, points
     out of reach are not refused: they are answered, and marked invalid.
+    At the base of an arm with ``l1 == l2``, which the folded arm reaches
+    with every ``q1``, both branches take the ``q1`` of
+    :func:`free_q1_at_base` (one within the limits) when there is one, as
+    ``ik.closed_form(..., elbow="auto")`` does.
 
     Parameters
     ----------
@@ -161,6 +222,9 @@ def solutions_within_limits(
     q_both = np.ascontiguousarray(np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2))
     valid = np.broadcast_to(in_reach[..., None], q_both.shape[:-1]).copy()
     if arm.has_limits:
+        at_base, free_q1 = free_q1_at_base(arm, points)
+        if free_q1 is not None:
+            q_both[at_base & in_reach, :, 0] = free_q1
         q_both, inside = move_into_limits(arm, q_both, tol)
         valid &= inside
     return q_both, valid
