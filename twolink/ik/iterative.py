@@ -185,9 +185,12 @@ def _checked_tol(tol: object, reach: float) -> float:
 _Number = TypeVar("_Number", float, NDArray[np.float64])
 
 
+_PI, _TWO_PI = math.pi, 2.0 * math.pi
+
+
 def _wrap(angle: _Number) -> _Number:
     """Angles wrapped to ``[-pi, pi)`` (as :func:`twolink.wrap_angle`), floats or arrays."""
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+    return (angle + _PI) % _TWO_PI - _PI
 
 
 def _trig(cos: Callable[[Any], Any], sin: Callable[[Any], Any], q1: Any, q2: Any) -> tuple[Any, Any, Any, Any, Any]:
@@ -237,18 +240,19 @@ def _newton_pair(
     iterations = 0
     if error > threshold:
         for iterations in range(1, max_iter + 1):
+            j11, j12, j21, j22 = jacobian_from_trig(l1, l2, c1, s1, c12, s12)
             try:
-                dq1, dq2 = _lm_step(*jacobian_from_trig(l1, l2, c1, s1, c12, s12), l1l2 * s2, rx, ry, damping)
+                dq1, dq2 = _lm_step(j11, j12, j21, j22, l1l2 * s2, rx, ry, damping)
             except ZeroDivisionError:  # the damping underflowed at a singular J; the step is rejected
                 dq1 = dq2 = math.nan
             t1, t2 = _wrap(q1 + dq1), _wrap(q2 + dq2)
-            trial = _trig(cos, sin, t1, t2)
-            tip_x, tip_y = tip_from_trig(l1, l2, *trial[:4])
+            tc1, ts1, tc12, ts12, ts2 = _trig(cos, sin, t1, t2)
+            tip_x, tip_y = tip_from_trig(l1, l2, tc1, ts1, tc12, ts12)
             trx, try_ = tip_x - x, tip_y - y
             error_trial = sqrt(trx * trx + try_ * try_)
             if error_trial < error:
                 q1, q2 = t1, t2
-                c1, s1, c12, s12, s2 = trial
+                c1, s1, c12, s12, s2 = tc1, ts1, tc12, ts12, ts2
                 rx, ry, error = trx, try_, error_trial
                 damping *= DAMPING_DOWN
             else:

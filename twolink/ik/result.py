@@ -116,12 +116,17 @@ class IKResult:
         method: str,
         message: str,
     ) -> None:
-        # The __init__ dataclass would write: the same fields, set at once rather than through one
-        # object.__setattr__ call each (a frozen dataclass's way, which costs as much as the closed form).
-        self.__dict__.update(
-            q=q, success=success, residual=residual, within_limits=within_limits, iterations=iterations,
-            method=method, message=message,
-        )
+        # The __init__ dataclass would write: the same fields, stored straight into the instance's
+        # dictionary rather than through one object.__setattr__ call each (a frozen dataclass's way,
+        # which costs as much as the closed form itself).
+        fields = self.__dict__
+        fields["q"] = q
+        fields["success"] = success
+        fields["residual"] = residual
+        fields["within_limits"] = within_limits
+        fields["iterations"] = iterations
+        fields["method"] = method
+        fields["message"] = message
 
     @property
     def all_success(self) -> bool:
