@@ -66,7 +66,7 @@ def test_stubs_ask_for_the_checked_answers_only():
         "cells": [
             {"cell_type": "code", "source": "### BEGIN SOLUTION\nrho = 2.0\nradius_ex = rho * 3\n### END SOLUTION\n", "outputs": [], "execution_count": 1},
             {"cell_type": "markdown", "source": "check it"},
-            {"cell_type": "code", "source": "selfcheck.check_close('Ex', radius_ex, 6.0)", "outputs": [], "execution_count": 2},
+            {"cell_type": "code", "source": "selfcheck.check('9.1', radius_ex)", "outputs": [], "execution_count": 2},
         ]
     }
     student = editions.student_notebook(notebook)

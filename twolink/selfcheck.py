@@ -8,20 +8,14 @@ line: ``correct.``, ``not solved yet`` (an answer left as ``...``, the stub of
 the student edition, so a notebook runs top to bottom with unsolved
 exercises), or ``wrong:`` with the reason and the hint.
 
-:func:`check_close` and :func:`check_true` are the lower-level helpers for a
-check whose reference is at hand (not used by the chapters' exercises).
 """
 
 from __future__ import annotations
 
 import re
-from collections.abc import Callable
-from typing import NamedTuple, TypeVar
+from typing import NamedTuple
 
-import numpy as np
-from numpy.typing import ArrayLike
-
-__all__ = ["check", "check_close", "check_true", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
+__all__ = ["check", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
 
 NOT_SOLVED = "not solved yet"
 CORRECT = "correct"
@@ -29,8 +23,6 @@ WRONG = "wrong"
 
 _LINE = re.compile(r"^Exercise (?P<number>\d+\.\d+)(?: \((?P<part>[^)]*)\))?: "
                    r"(?P<status>correct|not solved yet|wrong|not right yet)\b")
-
-_Answer = TypeVar("_Answer")
 
 
 class PartResult(NamedTuple):
@@ -131,100 +123,6 @@ def parse_line(line: str) -> tuple[str, str, str] | None:
     match = _LINE.match(line.strip())
     if not match:
         return None
-    status = WRONG if match["status"] == "not right yet" else match["status"]  # check_close's word for wrong
+    status = WRONG if match["status"] == "not right yet" else match["status"]  # the word for wrong in older notebooks' outputs
     return match["number"], match["part"] or "", status
 
-
-def _unsolved(answer: object) -> bool:
-    return answer is ... or answer is None
-
-
-def check_close(label: str, answer: object, expected: ArrayLike, atol: float = 1e-6, rtol: float = 0.0,
-                hint: str = "") -> bool:
-    """Print whether ``answer`` matches ``expected`` (same shape, within tolerance).
-
-    Parameters
-    ----------
-    label : str
-        Which exercise, e.g. ``"Exercise 1.1"``.
-    answer : array_like or Ellipsis
-        The learner's value; ``...`` or ``None`` means not attempted yet.
-    expected : array_like
-        The reference value.
-    atol, rtol : float
-        Tolerances as in :func:`numpy.allclose`.
-    hint : str
-        Shown when the answer is wrong.
-
-    Returns
-    -------
-    bool
-        True when correct.
-
-    Examples
-    --------
-    >>> check_close("Exercise 0.1", [1.0, 2.0], [1.0, 2.0 + 1e-9])
-    Exercise 0.1: correct.
-    True
-    >>> check_close("Exercise 0.1", ..., [1.0, 2.0])
-    Exercise 0.1: not solved yet (replace the ... with your answer).
-    False
-    >>> check_close("Exercise 0.1", [2.0, 1.0], [1.0, 2.0], hint="order is (x, y)")
-    Exercise 0.1: not right yet. Hint: order is (x, y)
-    False
-    """
-    if _unsolved(answer):
-        print(f"{label}: {NOT_SOLVED} (replace the ... with your answer).")
-        return False
-    try:
-        answer_array = np.asarray(answer, dtype=float)
-    except (TypeError, ValueError):
-        print(f"{label}: expected numbers, got {type(answer).__name__}. Hint: {hint}")
-        return False
-    expected_array = np.asarray(expected, dtype=float)
-    if answer_array.shape != expected_array.shape:
-        print(f"{label}: expected shape {expected_array.shape}, got {answer_array.shape}. Hint: {hint}")
-        return False
-    if np.allclose(answer_array, expected_array, atol=atol, rtol=rtol):
-        print(f"{label}: correct.")
-        return True
-    print(f"{label}: not right yet. Hint: {hint}")
-    return False
-
-
-def check_true(label: str, answer: _Answer, condition: Callable[[_Answer], object], hint: str = "") -> bool:
-    """Print whether a learner's answer satisfies ``condition(answer)``.
-
-    Parameters
-    ----------
-    label : str
-        Which exercise, e.g. ``"Exercise 0.2"``.
-    answer : object
-        The learner's value; ``...`` or ``None`` means not attempted yet.
-    condition : callable
-        ``condition(answer)``, true when the answer is right (an exception
-        it raises counts as wrong, with its message).
-    hint : str
-        Shown when the answer is wrong.
-
-    Returns
-    -------
-    bool
-        True when correct.
-
-    Examples
-    --------
-    >>> check_true("Exercise 0.2", 3, lambda n: n > 2)
-    Exercise 0.2: correct.
-    True
-    """
-    if _unsolved(answer):
-        print(f"{label}: {NOT_SOLVED} (replace the ... with your answer).")
-        return False
-    try:
-        ok = bool(condition(answer))
-    except Exception as exc:  # the learner's value may be of any type
-        print(f"{label}: the check could not use your answer ({type(exc).__name__}: {exc}). Hint: {hint}")
-        return False
-    print(f"{label}: correct." if ok else f"{label}: not right yet. Hint: {hint}")
-    return ok

@@ -24,7 +24,7 @@ if TYPE_CHECKING:
 #: Longest measurement :func:`median_time` accepts per batch, seconds.
 MAX_SECONDS = 60.0
 
-__all__ = ["median_time", "IK_METHODS", "compare_ik_methods", "brute_force_sweep"]
+__all__ = ["median_time", "IK_METHODS", "compare_ik_methods"]
 
 
 def median_time(function: Callable[[], object], repeat: int = 5, min_seconds: float = 0.05) -> float:
@@ -172,42 +172,3 @@ def compare_ik_methods(
         )
     return rows
 
-
-def brute_force_sweep(
-    arm: TwoLinkArm, targets: ArrayLike, steps: ArrayLike, repeat: int = 3
-) -> list[dict[str, Any]]:
-    """How brute-force IK cost and error grow with the grid resolution.
-
-    Runs :func:`compare_ik_methods` (brute force only, one vectorised call
-    per grid) at each grid step.
-
-    Parameters
-    ----------
-    arm : TwoLinkArm
-    targets : array_like, shape (n, 2)
-        Reachable targets in metres.
-    steps : array_like of float
-        Grid steps in radians.
-    repeat : int
-        Timing repeats (the median is kept).
-
-    Returns
-    -------
-    list of dict
-        One row per step: ``step`` (rad), ``grid_points`` (per target),
-        ``seconds_per_target``, ``max_residual`` (m) and ``solved``.
-
-    Examples
-    --------
-    >>> from twolink import arms
-    >>> rows = brute_force_sweep(arms.ten, [[10.0, 10.0]], np.radians([2.0, 1.0]), repeat=1)
-    >>> [row["grid_points"] for row in rows]
-    [4186, 16471]
-    """
-    points: NDArray[np.float64] = require_within_reach(arm, as_pairs(targets, "targets"))
-    rows = []
-    for step in np.ravel(steps):
-        row = compare_ik_methods(arm, points, step=float(step), methods=["brute force"], repeat=repeat, per_call=False)[0]
-        grid_points = int(np.ravel(ik.brute_force(arm, points[:1], step=float(step)).iterations)[0])
-        rows.append({"step": float(step), "grid_points": grid_points, **{k: v for k, v in row.items() if k != "method"}})
-    return rows
