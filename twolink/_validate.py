@@ -27,7 +27,7 @@ _REAL_TYPES = (int, float, np.integer, np.floating)
 
 __all__ = [
     "finite_result", "InputTypeError", "real_array", "require_arm", "as_pairs", "pair_floats", "as_finite_scalar",
-    "as_count", "as_flag", "broadcast_start", "broadcast_shape",
+    "as_count", "as_flag", "broadcast_start", "broadcast_shape", "frozen_array",
 ]
 
 #: Scalar types the one-input fast path converts itself (``float`` is tested
@@ -465,3 +465,15 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
     if not (math.isfinite(tau1) and math.isfinite(tau2)):
         raise NonFiniteTorque(f"torque(t, q, qd) returned non-finite torques {array} at t = {t}")
     return tau1, tau2
+
+
+def frozen_array(array: object) -> NDArray[np.float64]:
+    """A read-only float copy of ``array`` (the arrays of a simulation's result).
+
+    >>> a = frozen_array([1, 2])
+    >>> a, a.flags.writeable
+    (array([1., 2.]), False)
+    """
+    frozen = np.array(array, dtype=float)
+    frozen.setflags(write=False)
+    return frozen

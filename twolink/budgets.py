@@ -10,9 +10,19 @@ Examples
 --------
 >>> DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME
 (1000000, 30.0)
+
+:data:`MAX_SAMPLES` bounds the samples a path (:mod:`twolink.trajectory`) or a
+workspace helper (:mod:`twolink.workspace`) makes; both modules re-export it.
+
+>>> MAX_SAMPLES
+10000000
 """
 
-__all__ = ["DEFAULT_MAX_EVALUATIONS", "DEFAULT_MAX_WALL_TIME"]
+__all__ = ["DEFAULT_MAX_EVALUATIONS", "DEFAULT_MAX_WALL_TIME", "MAX_SAMPLES"]
+
+#: Most samples a path is cut into or a workspace helper makes (memory budget:
+#: 1e7 x 2 floats, 160 MB per array).
+MAX_SAMPLES = 10_000_000
 
 #: Right-hand-side evaluations (a free motion of 10 s takes about 7e3; a stiff
 #: loop on an explicit method takes millions).

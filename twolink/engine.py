@@ -42,7 +42,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import export
 from ._optional import require
-from ._validate import as_configuration, as_finite_scalar, torque_floats
+from ._validate import as_configuration, as_finite_scalar, frozen_array, torque_floats
 from .conventions import check_elbow
 from .kinematics import jacobian
 from .simulate import SimulationError, SimulationResult
@@ -204,12 +204,6 @@ class EngineResult(SimulationResult):
     p_tip_mujoco: NDArray[np.float64]
     force_by_tip: NDArray[np.float64]
     timestep: float
-
-
-def _frozen(array: ArrayLike) -> NDArray[np.float64]:
-    array = np.array(array, dtype=float)
-    array.setflags(write=False)
-    return array
 
 
 def _force_by_tip(mujoco: Any, model: Any, data: Any, wall_id: int, buffer: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -390,15 +384,15 @@ def simulate(
                 record(step // sample_every, t, tau_now)
     return EngineResult(
         arm=arm,
-        t=_frozen(times),
-        q=_frozen(q),
-        qd=_frozen(qd),
-        tau=_frozen(tau),
+        t=frozen_array(times),
+        q=frozen_array(q),
+        qd=frozen_array(qd),
+        tau=frozen_array(tau),
         status=0,
         message=f"MuJoCo {integrator}, fixed step {timestep:.6g} s, {(n_samples - 1) * sample_every} steps",
         nfev=(n_samples - 1) * sample_every,
-        p_tip_mujoco=_frozen(p_tip),
-        force_by_tip=_frozen(force),
+        p_tip_mujoco=frozen_array(p_tip),
+        force_by_tip=frozen_array(force),
         timestep=timestep,
     )
 

@@ -25,7 +25,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import dynamics
 from ._validate import (
-    InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, real_array, torque_floats,
+    InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, frozen_array, real_array,
+    torque_floats,
 )
 from .errors import SimulationError
 from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME
@@ -166,12 +167,6 @@ def _check_t_eval(t_eval, t_end):
             f"t_eval must lie in [0, t_end] = [0, {t_end:.6g}] s; got [{times[0]:.6g}, {times[-1]:.6g}] s"
         )
     return times
-
-
-def _frozen(array):
-    array = np.array(array, dtype=float)
-    array.setflags(write=False)
-    return array
 
 
 @dataclass(frozen=True)
@@ -575,10 +570,10 @@ def simulate(
         tau = np.array(torques).reshape(q.shape)
     return SimulationResult(
         arm=arm,
-        t=_frozen(solution.t),
-        q=_frozen(q),
-        qd=_frozen(qd),
-        tau=_frozen(tau),
+        t=frozen_array(solution.t),
+        q=frozen_array(q),
+        qd=frozen_array(qd),
+        tau=frozen_array(tau),
         status=int(solution.status),
         message=str(solution.message) + note,
         nfev=int(solution.nfev),

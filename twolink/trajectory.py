@@ -43,9 +43,9 @@ from numpy.typing import ArrayLike, NDArray
 from ._validate import as_configuration, as_count, as_finite_scalar, as_pairs, finite_result, real_array, require_arm
 from .controllers import JointReference
 from .conventions import check_elbow
-from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME
+from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
 from .errors import InputTypeError, SimulationError, SingularityError, UnreachableError
-from .kinematics import fk, jacobian, require_nonsingular, require_within_reach
+from .kinematics import fk, jacobian, jacobian_rate, require_nonsingular, require_within_reach
 from .velocity import joint_rates, joint_rates_dls
 from .ik import LIMIT_TOL, solutions_within_limits
 from .workspace import describe_limits, require_reachable
@@ -158,8 +158,6 @@ def _point(value: ArrayLike, name: str) -> _Array:
     return as_configuration(value, name, what="one (x, y) point", unit="metres")
 
 
-#: Most samples a path may be cut into (memory budget: a few arrays of n x 2 floats, ~100 MB).
-MAX_SAMPLES = 10_000_000
 
 #: Largest ``gain * duration`` of :func:`resolved_rate_trajectory`: the tracking error
 #: decays as ``exp(-gain t)``, at round-off within ``1e-9 duration`` already.
@@ -737,21 +735,6 @@ def _first_jump(q: _Array) -> tuple[int, float] | None:
     return (int(jumps[0]), float(steps[jumps[0]])) if jumps.size else None
 
 
-def _jacobian_rate(arm: TwoLinkArm, q: _Array, qd: _Array) -> _Array:
-    """``dJ/dt`` along a motion through ``q`` at rates ``qd``, shape ``(..., 2, 2)``, m/(rad s)."""
-    l1, l2 = arm.l1, arm.l2
-    q1 = q[..., 0]
-    q12 = q1 + q[..., 1]
-    rate_1 = qd[..., 0]
-    rate_12 = rate_1 + qd[..., 1]
-    rate = np.empty(q.shape[:-1] + (2, 2))
-    rate[..., 0, 1] = -l2 * np.cos(q12) * rate_12
-    rate[..., 1, 1] = -l2 * np.sin(q12) * rate_12
-    rate[..., 0, 0] = -l1 * np.cos(q1) * rate_1 + rate[..., 0, 1]
-    rate[..., 1, 0] = -l1 * np.sin(q1) * rate_1 + rate[..., 1, 1]
-    return rate
-
-
 def _times(matrix: _Array, vector: _Array) -> _Array:
     """``A x`` over leading axes."""
     return np.einsum("...ij,...j->...i", matrix, vector)
@@ -897,7 +880,7 @@ def ik_trajectory(
     qdd = _finite_differences(qd, t)
     if np.any(regular):
         # differentiating v = J qd: a = J qdd + Jdot qd
-        centripetal = _times(_jacobian_rate(arm, q[regular], qd[regular]), qd[regular])
+        centripetal = _times(jacobian_rate(arm, q[regular], qd[regular]), qd[regular])
         qdd[regular] = joint_rates(arm, q[regular], a_path[regular] - centripetal)
     return JointTrajectory(
         arm=arm, t=t, q=q, qd=qd, qdd=qdd, p_ref=points, elbow=_BRANCHES[branch], method="closed form",
@@ -1093,7 +1076,7 @@ def _rate_derivative(
     without damping that is ``J^-1 (v_c' - Jdot qd)``.
     """
     J = jacobian(arm, q)
-    J_rate = _jacobian_rate(arm, q, qd)
+    J_rate = jacobian_rate(arm, q, qd)
     v_tip = _times(J, qd)
     v_command = v_ref + gain * (p_ref - fk(arm, q))
     wanted = a_ref + gain * (v_ref - v_tip) - _times(J_rate, qd)  # J qdd should give this

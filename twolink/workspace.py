@@ -40,7 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
 from .arcs import Arc, circle_intersections
-from .budgets import DEFAULT_MAX_WALL_TIME
+from .budgets import DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
 from .conventions import check_elbow, to_absolute, to_relative, wrap_angle
 from .errors import UnreachableError
 from .ik.analytic import closed_form
@@ -65,8 +65,6 @@ __all__ = [
 
 _TWO_PI = 2.0 * np.pi
 
-#: Most samples or points a workspace helper makes (memory budget: 1e7 x 2 floats, 160 MB per array).
-MAX_SAMPLES = 10_000_000
 
 #: The ring radius of :func:`boundary_arcs`, relative to the reach: above the slack ``LIMIT_TOL``
 #: (1e-7 rad) at the limits, which a smaller ring would not leave, and small beside the

@@ -1,0 +1,30 @@
+"""The package's budgets live in one module: twolink.budgets."""
+
+import sys
+
+import numpy as np
+import pytest
+
+from twolink import budgets, trajectory, workspace
+
+
+def test_max_samples_is_one_constant_reexported():
+    assert trajectory.MAX_SAMPLES is budgets.MAX_SAMPLES
+    assert workspace.MAX_SAMPLES is budgets.MAX_SAMPLES
+
+
+def test_max_samples_bounds_the_sample_counts():
+    with pytest.raises(ValueError, match="10000000"):
+        workspace.circle_points([0.0, 0.0], 1.0, n=budgets.MAX_SAMPLES + 1)
+
+
+def test_simulation_results_share_one_read_only_helper():
+    import twolink.engine  # noqa: F401  (the module, not a function)
+
+    simulate_module = sys.modules["twolink.simulate"]
+    engine_module = sys.modules["twolink.engine"]
+    assert not hasattr(simulate_module, "_frozen") and not hasattr(engine_module, "_frozen")
+    from twolink._validate import frozen_array
+
+    array = frozen_array(np.arange(3))
+    assert array.dtype == float and not array.flags.writeable
