@@ -28,3 +28,23 @@ def test_simulation_results_share_one_read_only_helper():
 
     array = frozen_array(np.arange(3))
     assert array.dtype == float and not array.flags.writeable
+
+
+def test_simulate_and_resolved_rate_spend_the_same_budget():
+    from twolink import TwoLinkArm, simulate
+    from twolink.errors import SimulationError
+
+    arm = TwoLinkArm(1.0, 1.0)
+    with pytest.raises(SimulationError, match=r"max_evaluations = 20 evaluations"):
+        simulate(arm, [0.3, 0.4], [0.0, 0.0], 10.0, max_evaluations=20)
+    path = trajectory.LinePath([1.2, 0.3], [0.3, 1.2], duration=1.0)
+    with pytest.raises(SimulationError, match=r"max_evaluations = 20 evaluations"):
+        trajectory.resolved_rate_trajectory(arm, path, max_evaluations=20)
+
+
+def test_a_budget_refuses_junk():
+    with pytest.raises(ValueError, match="max_wall_time"):
+        budgets.EvaluationBudget(10, -1.0)
+    budget = budgets.EvaluationBudget(10, 1e-9)
+    budget.deadline = budget.started - 1.0  # spent
+    assert budget.out_of_time() and budget.spend() == "max_wall_time"

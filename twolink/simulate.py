@@ -29,7 +29,7 @@ from ._validate import (
     torque_floats,
 )
 from .errors import SimulationError
-from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME
+from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME, EvaluationBudget
 from .kinematics import fk
 from .trajectory import path_positions
 
@@ -441,10 +441,8 @@ def simulate(
     q_start = as_configuration(q0, "q0")
     qd_start = as_configuration(qd0, "qd0", what="one pair of joint rates", unit="rad/s")
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
-    max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
-    max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
-    started = time.monotonic()
-    deadline = started + max_wall_time
+    budget = EvaluationBudget(max_evaluations, max_wall_time)
+    max_evaluations, max_wall_time = budget.max_evaluations, budget.max_wall_time
     inner = dynamics.state_derivative(arm, torque)
     options: dict[str, Any] = dict(DEFAULT_SOLVER_OPTIONS)
     options.update(solver_options)
@@ -452,11 +450,10 @@ def simulate(
         t_eval = _check_t_eval(t_eval, t_end)
     start = np.concatenate([q_start, qd_start])
     calls = 0  # every call of the right-hand side, the stiffness estimates included
-    monotonic = time.monotonic
 
     def out_of_time(t, state):
-        if monotonic() > deadline:
-            raise _BudgetExceeded(t, state, f"its budget of max_wall_time = {max_wall_time:.3g} s", wall_time=True)
+        if budget.out_of_time():
+            raise _BudgetExceeded(t, state, f"its budget of {budget.describe('max_wall_time')}", wall_time=True)
 
     def timed(t, state):
         nonlocal calls
@@ -467,22 +464,19 @@ def simulate(
     if options.get("events") is not None:
         options["events"] = _timed_events(options["events"], out_of_time)
     note = ""
-    evaluations = 0
     last = [0.0, start]
 
     def right_hand_side(t, state):
-        nonlocal evaluations, calls
-        evaluations += 1
+        nonlocal calls
         calls += 1
         last[0], last[1] = t, state
-        if evaluations > max_evaluations:
-            raise _BudgetExceeded(t, state, f"its budget of max_evaluations = {max_evaluations} evaluations")
-        if monotonic() > deadline:  # read at every call: one call of a slow torque function may take seconds
-            raise _BudgetExceeded(t, state, f"its budget of max_wall_time = {max_wall_time:.3g} s", wall_time=True)
+        spent = budget.spend()
+        if spent is not None:
+            raise _BudgetExceeded(t, state, f"its budget of {budget.describe(spent)}", wall_time=spent == "max_wall_time")
         try:
             derivative = inner(t, state)
         except NonFiniteTorque as exc:
-            if evaluations == 1:
+            if budget.evaluations == 1:
                 raise
             raise SimulationError(
                 f"the motion blew up at t = {t:.6g} s: {exc} in the state q = ({state[0]:.6g}, {state[1]:.6g}) rad, "
@@ -519,20 +513,20 @@ def simulate(
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             solution = solve_ivp(right_hand_side, (0.0, t_end), start, t_eval=t_eval, **options)
     except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
-        if evaluations <= 1 or isinstance(exc, NonFiniteTorque):
+        if budget.evaluations <= 1 or isinstance(exc, NonFiniteTorque):
             raise
         # the solver's own arithmetic broke down (overflowing rates or Jacobian): a blow-up, not bad input
         t_last, state = last[0], np.asarray(last[1], dtype=float)
         raise SimulationError(
-            f"the integration broke down at t = {t_last:.6g} s after {evaluations} evaluations "
+            f"the integration broke down at t = {t_last:.6g} s after {budget.evaluations} evaluations "
             f"({type(exc).__name__}: {exc}), last state q = ({state[0]:.6g}, {state[1]:.6g}) rad, "
             f"qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s: the rates or the torques overflow; "
             "check the controller's gains and the torques it returns"
         ) from exc
     except _BudgetExceeded as stop:
-        if evaluations == 0:  # stopped while the stiffness at the start was estimated (around the start)
+        if budget.evaluations == 0:  # stopped while the stiffness at the start was estimated (around the start)
             stop.t, stop.state = 0.0, start
-        per_call = (time.monotonic() - started) / max(calls, 1)
+        per_call = (time.monotonic() - budget.started) / max(calls, 1)
         if stop.wall_time and torque is not None and per_call > SLOW_CALL:
             advice = (
                 f"the torque function is the likely cause: the dynamics were evaluated only {calls} times, "
@@ -540,7 +534,7 @@ def simulate(
                 "make it faster (no printing, plotting or sleeping in it) or raise max_wall_time"
             )
         else:
-            advice = _budget_advice(inner, stop, evaluations, options.get("method", "RK45"), t_end)
+            advice = _budget_advice(inner, stop, budget.evaluations, options.get("method", "RK45"), t_end)
         raise SimulationError(
             f"the integration used up {stop.what} at t = {stop.t:.6g} s of {t_end:.6g} s "
             f"(state q = ({stop.state[0]:.6g}, {stop.state[1]:.6g}) rad, qd = ({stop.state[2]:.6g}, "
@@ -559,7 +553,7 @@ def simulate(
     else:
         torques: list[tuple[float, float]] = []
         for t, q_t, qd_t in zip(solution.t, q, qd):
-            if time.monotonic() > deadline:
+            if budget.out_of_time():
                 raise SimulationError(
                     f"the integration reached t = {t_end:.6g} s, but recomputing the torques at the {len(solution.t)} "
                     f"output times used up the budget of max_wall_time = {max_wall_time:.3g} s after "

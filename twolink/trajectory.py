@@ -33,7 +33,6 @@ Examples
 
 from __future__ import annotations
 
-import time
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Callable, Literal, Union, overload
 
@@ -43,7 +42,7 @@ from numpy.typing import ArrayLike, NDArray
 from ._validate import as_configuration, as_count, as_finite_scalar, as_pairs, finite_result, real_array, require_arm
 from .controllers import JointReference
 from .conventions import check_elbow
-from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
+from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME, MAX_SAMPLES, EvaluationBudget
 from .errors import InputTypeError, SimulationError, SingularityError, UnreachableError
 from .kinematics import fk, jacobian, jacobian_rate, require_nonsingular, require_within_reach
 from .velocity import joint_rates, joint_rates_dls
@@ -980,9 +979,7 @@ def resolved_rate_trajectory(
     gain = as_finite_scalar(gain, "gain (1/s)", minimum=0.0)
     damping = as_finite_scalar(damping, "damping (m/rad)", minimum=0.0)
     rtol = as_finite_scalar(rtol, "rtol", minimum=0.0, strictly=True)
-    max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
-    max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
-    deadline = time.monotonic() + max_wall_time
+    budget = EvaluationBudget(max_evaluations, max_wall_time)
     t, points, v_ref, a_ref = path.sample(n, with_acceleration=True)
     duration = float(t[-1] - t[0])
     if gain * duration > MAX_FEEDBACK:
@@ -1025,7 +1022,6 @@ def resolved_rate_trajectory(
 
     if method is None:
         method = "LSODA" if gain * duration / 3.3 > 1e4 else "RK45"
-    evaluations = 0
     reached = float(t[0])
     advice = (
         "pass method='LSODA' or 'Radau' (the feedback is stiff)"
@@ -1034,17 +1030,16 @@ def resolved_rate_trajectory(
     )
 
     def budgeted_rates(now: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
-        nonlocal evaluations, reached
-        evaluations += 1
+        nonlocal reached
         reached = now
-        if evaluations > max_evaluations:
-            budget = f"max_evaluations = {max_evaluations}"
-        elif time.monotonic() > deadline:
-            budget = f"max_wall_time = {max_wall_time:.3g} s ({evaluations} evaluations)"
-        else:
+        spent = budget.spend()
+        if spent is None:
             return rates(now, q)
+        what = budget.describe(spent)
+        if spent == "max_wall_time":
+            what += f" ({budget.evaluations} evaluations)"
         raise SimulationError(
-            f"resolved rate used up its budget of {budget} at t = {now:.6g} s of {duration:.6g} s "
+            f"resolved rate used up its budget of {what} at t = {now:.6g} s of {duration:.6g} s "
             f"(method {method!r}, gain {gain:.3g} 1/s): {advice}"
         )
 
