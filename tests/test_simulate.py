@@ -1,6 +1,7 @@
 """twolink.simulate: free and driven motion, energy conservation, failures, the result object."""
 
 import dataclasses
+import importlib.util
 import inspect
 import time
 
@@ -317,3 +318,26 @@ def test_the_torques_at_the_output_times_are_within_the_budget_too():
 def test_t_eval_refuses_bools_masked_arrays_and_strings(bad):
     with pytest.raises(InputTypeError, match=r"t_eval must be times in seconds \(real numbers\)"):
         simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, t_eval=bad)
+
+
+def _nan_from(t_start):
+    return lambda t, q, qd: [np.nan, 0.0] if t >= t_start else [0.0, 0.0]
+
+
+@pytest.mark.parametrize("t_start", [0.0, 0.5, 1.0], ids=["at the start", "mid-motion", "at the end"])
+def test_a_non_finite_torque_gives_a_public_error(t_start):
+    """The private NonFiniteTorque never reaches users: a ValueError or a SimulationError, named as such."""
+    from twolink import dynamics
+
+    calls = [
+        lambda: simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, _nan_from(t_start)),
+        lambda: dynamics.state_derivative(arms.two_metre, _nan_from(t_start))(t_start, np.zeros(4)),
+    ]
+    if importlib.util.find_spec("mujoco") is not None:
+        from twolink import engine
+
+        calls.append(lambda: engine.simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, _nan_from(t_start)))
+    for call in calls:
+        with pytest.raises((ValueError, SimulationError), match="non-finite torques") as error:
+            call()
+        assert type(error.value) in (ValueError, SimulationError), type(error.value)

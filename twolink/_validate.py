@@ -27,7 +27,7 @@ _REAL_TYPES = (int, float, np.integer, np.floating)
 
 __all__ = [
     "finite_result", "InputTypeError", "real_array", "require_arm", "as_pairs", "pair_floats", "as_finite_scalar",
-    "as_count", "as_flag", "broadcast_start", "broadcast_shape", "frozen_array",
+    "as_count", "as_flag", "broadcast_start", "broadcast_shape", "frozen_array", "public_torque_floats",
 ]
 
 #: Scalar types the one-input fast path converts itself (``float`` is tested
@@ -465,6 +465,20 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
     if not (math.isfinite(tau1) and math.isfinite(tau2)):
         raise NonFiniteTorque(f"torque(t, q, qd) returned non-finite torques {array} at t = {t}")
     return tau1, tau2
+
+
+def public_torque_floats(value: object, t: float) -> tuple[float, float]:
+    """:func:`torque_floats` for a public function: a non-finite torque raises a plain ``ValueError``.
+
+    >>> public_torque_floats([1.0, float("inf")], 0.5)
+    Traceback (most recent call last):
+    ...
+    ValueError: torque(t, q, qd) returned non-finite torques [ 1. inf] at t = 0.5
+    """
+    try:
+        return torque_floats(value, t)
+    except NonFiniteTorque as exc:
+        raise ValueError(str(exc)) from None
 
 
 def frozen_array(array: object) -> NDArray[np.float64]:

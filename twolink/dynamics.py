@@ -626,7 +626,22 @@ def state_derivative(
     Traceback (most recent call last):
     ...
     ValueError: state must be four finite real numbers (q1, q2, qd1, qd2), shape (4,); got shape (3,)
+    >>> g = state_derivative(TwoLinkArm(2.0, 2.0), lambda t, q, qd: [float("nan"), 0.0])
+    >>> g(0.5, np.zeros(4))
+    Traceback (most recent call last):
+    ...
+    ValueError: torque(t, q, qd) returned non-finite torques [nan  0.] at t = 0.5
     """
+    return _right_hand_side(arm, torque, signal_non_finite=False)
+
+
+def _right_hand_side(
+    arm: TwoLinkArm,
+    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | None,
+    signal_non_finite: bool,
+) -> Callable[[float, NDArray[np.float64]], list[float]]:
+    """:func:`state_derivative`; with ``signal_non_finite`` a non-finite torque raises the private
+    ``NonFiniteTorque`` (for :func:`twolink.simulate`, which turns it into a clear error), else a ``ValueError``."""
     constants = _invertible_constants(arm)
     cos, sin, state_array = math.cos, math.sin, _state_array
     if torque is None:
@@ -658,7 +673,12 @@ def state_derivative(
             finite = True
         if not finite:
             _raise_blow_up(t, state)
-        tau1, tau2 = torque_floats(torque(t, state[:2].copy(), state[2:].copy()), t)
+        try:
+            tau1, tau2 = torque_floats(torque(t, state[:2].copy(), state[2:].copy()), t)
+        except NonFiniteTorque as exc:
+            if signal_non_finite:
+                raise
+            raise ValueError(str(exc)) from None  # the private class never reaches users
         qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2)
         return [qd1, qd2, qdd1, qdd2]
 

@@ -42,7 +42,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import export
 from ._optional import require
-from ._validate import as_configuration, as_finite_scalar, frozen_array, torque_floats
+from ._validate import as_configuration, as_finite_scalar, frozen_array, public_torque_floats
 from .conventions import check_elbow
 from .kinematics import jacobian
 from .simulate import SimulationError, SimulationResult
@@ -353,7 +353,7 @@ def simulate(
         if constant is not None:
             return constant
         assert callable(torque)  # constant is None only for a callable torque
-        return torque_floats(torque(t, data.qpos.copy(), data.qvel.copy()), t)
+        return public_torque_floats(torque(t, data.qpos.copy(), data.qvel.copy()), t)
 
     if wall_id is None and not arm.has_limits:
         # no limit, no wall: nothing for MuJoCo's constraint solver to do (halves the cost of a step)

@@ -25,8 +25,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import dynamics
 from ._validate import (
-    InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, frozen_array, real_array,
-    torque_floats,
+    InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, frozen_array,
+    public_torque_floats, real_array,
 )
 from .errors import SimulationError
 from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME, EvaluationBudget
@@ -443,7 +443,7 @@ def simulate(
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     budget = EvaluationBudget(max_evaluations, max_wall_time)
     max_evaluations, max_wall_time = budget.max_evaluations, budget.max_wall_time
-    inner = dynamics.state_derivative(arm, torque)
+    inner = dynamics._right_hand_side(arm, torque, signal_non_finite=True)
     options: dict[str, Any] = dict(DEFAULT_SOLVER_OPTIONS)
     options.update(solver_options)
     if t_eval is not None:
@@ -476,8 +476,8 @@ def simulate(
         try:
             derivative = inner(t, state)
         except NonFiniteTorque as exc:
-            if budget.evaluations == 1:
-                raise
+            if budget.evaluations == 1:  # at the start: the torque function, not the motion
+                raise ValueError(str(exc)) from None
             raise SimulationError(
                 f"the motion blew up at t = {t:.6g} s: {exc} in the state q = ({state[0]:.6g}, {state[1]:.6g}) rad, "
                 f"qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
@@ -513,7 +513,9 @@ def simulate(
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             solution = solve_ivp(right_hand_side, (0.0, t_end), start, t_eval=t_eval, **options)
     except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
-        if budget.evaluations <= 1 or isinstance(exc, NonFiniteTorque):
+        if isinstance(exc, NonFiniteTorque):  # from the stiffness estimate at the start
+            raise ValueError(str(exc)) from None
+        if budget.evaluations <= 1:
             raise
         # the solver's own arithmetic broke down (overflowing rates or Jacobian): a blow-up, not bad input
         t_last, state = last[0], np.asarray(last[1], dtype=float)
@@ -560,7 +562,7 @@ def simulate(
                     f"{len(torques)} of them: torque(t, q, qd) is slow; make it faster, pass fewer t_eval times "
                     "or raise max_wall_time"
                 )
-            torques.append(torque_floats(torque(t, q_t.copy(), qd_t.copy()), t))
+            torques.append(public_torque_floats(torque(t, q_t.copy(), qd_t.copy()), t))
         tau = np.array(torques).reshape(q.shape)
     return SimulationResult(
         arm=arm,
