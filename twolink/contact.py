@@ -187,8 +187,10 @@ class TipForce:
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """``motor_torque + J(q)^T force_on_tip`` at time ``t`` and state ``(q, qd)``, N m."""
         q, qd = _one_state(q, qd)
-        # the joint torque of a force acting on the tip: J^T force_on_tip (kinematics.joint_torques)
-        return self.motor_torque(t, q, qd) + joint_torques(self.arm, q, self.force_on_tip_at(t, q, qd))
+        # the joint torque of a force acting on the tip, J^T force_on_tip: minus the torque that holds
+        # the force the tip exerts back, force_by_tip = -force_on_tip (kinematics.joint_torques)
+        force_on_tip = self.force_on_tip_at(t, q, qd)
+        return self.motor_torque(t, q, qd) - joint_torques(self.arm, q, force_by_tip=-force_on_tip)
 
 
 def _one_state(q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:

@@ -20,7 +20,9 @@ force ``F``: by virtual work (chapter 4), motor torques ``J^T F`` do the same
 work as a force ``F`` applied at the tip, so in ``M qdd + C qd + g = tau``
 they act exactly like that force.  The Cartesian controllers' ``F`` is
 therefore a ``force_on_tip`` (a virtual force acting on the tip); their
-torques are :func:`twolink.kinematics.joint_torques` of it.  (Were the tip
+torques ``J^T force_on_tip`` are written
+``-joint_torques(arm, q, force_by_tip=-force_on_tip)`` (minus the torques
+that would hold the opposite force, :func:`twolink.kinematics.joint_torques`).  (Were the tip
 held still by a wall, it would push on the wall with that same ``F``.)
 
 Each controller also gives its derivatives at rest,
@@ -194,7 +196,7 @@ class CartesianSpring:
 
     def torque(self, q: ArrayLike) -> NDArray[np.float64]:
         """The joint torques ``J(q)^T force_on_tip``, N m; vectorised over ``q`` ``(..., 2)``."""
-        return joint_torques(self.arm, q, self.force_on_tip(q))
+        return -joint_torques(self.arm, q, force_by_tip=-self.force_on_tip(q))  # J^T force_on_tip
 
     def potential_energy(self, q: ArrayLike) -> NDArray[np.float64]:
         """Energy stored in the spring, ``(x0 - x)^T K (x0 - x) / 2``, joules; shape ``(...)``."""
@@ -309,7 +311,7 @@ class Impedance:
 
     def torque(self, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """The motor torques ``J^T force_on_tip [+ g(q)]``, N m; vectorised over ``q`` and ``qd`` ``(..., 2)``."""
-        tau = joint_torques(self.arm, q, self.force_on_tip(q, qd))
+        tau = -joint_torques(self.arm, q, force_by_tip=-self.force_on_tip(q, qd))  # J^T force_on_tip
         if self.gravity_compensation:
             tau = tau + self.arm.gravity(q)
         return tau

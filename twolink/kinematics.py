@@ -350,8 +350,10 @@ def joint_torques(arm: TwoLinkArm, q: ArrayLike, force_by_tip: ArrayLike) -> NDA
     that a force ``force_on_tip`` acting on the tip from outside puts on the
     joints: it enters ``M qdd + C qd + g = tau + J^T force_on_tip``, so
     holding it at rest takes ``tau = -J^T force_on_tip``, consistent with
-    ``force_by_tip = -force_on_tip``.  :mod:`twolink.contact` and
-    :mod:`twolink.controllers` call this function with a ``force_on_tip``.
+    ``force_by_tip = -force_on_tip``.  So :mod:`twolink.contact`,
+    :mod:`twolink.controllers` and :mod:`twolink.linearization` write the
+    torque of a force acting on the tip as
+    ``-joint_torques(arm, q, force_by_tip=-force_on_tip)``.
 
     Parameters
     ----------

@@ -402,7 +402,8 @@ def closed_loop_system(arm: TwoLinkArm, controller: Controller, name: str | None
 
     def update(t: float, state: NDArray[np.float64], force_on_tip: NDArray[np.float64], params: Any) -> NDArray[np.float64]:
         q, qd = state[:2], state[2:]
-        tau = np.asarray(controller(t, q, qd), dtype=float) + joint_torques(arm, q, force_on_tip)
+        # J^T force_on_tip, the joint torque of the input force acting on the tip (force_by_tip = -force_on_tip)
+        tau = np.asarray(controller(t, q, qd), dtype=float) - joint_torques(arm, q, force_by_tip=-force_on_tip)
         return np.concatenate([qd, arm.forward_dynamics(q, qd, tau)])
 
     def output(t: float, state: NDArray[np.float64], force_on_tip: NDArray[np.float64], params: Any) -> NDArray[np.float64]:

@@ -374,7 +374,8 @@ def correct_spring_torques_dh(
     arm = TwoLinkArm(l1=l1, l2=l2)
     q = as_pairs(q_dh, "q_dh")
     spring_force_on_tip = k * (rest - arm.fk(q))
-    return arm.joint_torques(q, spring_force_on_tip)  # J^T F: the torque the spring applies at the joints
+    # J^T F, the torque the spring applies at the joints: minus the torque that holds force_by_tip = -F
+    return -arm.joint_torques(q, force_by_tip=-spring_force_on_tip)
 
 
 def dh_to_motor_torques(tau_dh: ArrayLike) -> NDArray[np.float64]:
