@@ -632,15 +632,16 @@ def state_derivative(
     ...
     ValueError: torque(t, q, qd) returned non-finite torques [nan  0.] at t = 0.5
     """
-    return _right_hand_side(arm, torque, signal_non_finite=False)
+    return solver_state_derivative(arm, torque, signal_non_finite=False)
 
 
-def _right_hand_side(
+def solver_state_derivative(
     arm: TwoLinkArm,
     torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | None,
     signal_non_finite: bool,
 ) -> Callable[[float, NDArray[np.float64]], list[float]]:
-    """:func:`state_derivative`; with ``signal_non_finite`` a non-finite torque raises the private
+    """:func:`state_derivative` for :func:`twolink.simulate` (not in ``__all__``): with ``signal_non_finite``
+    a non-finite torque raises the private
     ``NonFiniteTorque`` (for :func:`twolink.simulate`, which turns it into a clear error), else a ``ValueError``."""
     constants = _invertible_constants(arm)
     cos, sin, state_array = math.cos, math.sin, _state_array

@@ -443,7 +443,7 @@ def simulate(
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     budget = EvaluationBudget(max_evaluations, max_wall_time)
     max_evaluations, max_wall_time = budget.max_evaluations, budget.max_wall_time
-    inner = dynamics._right_hand_side(arm, torque, signal_non_finite=True)
+    inner = dynamics.solver_state_derivative(arm, torque, signal_non_finite=True)
     options: dict[str, Any] = dict(DEFAULT_SOLVER_OPTIONS)
     options.update(solver_options)
     if t_eval is not None:
