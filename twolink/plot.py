@@ -27,7 +27,7 @@ from matplotlib.text import Text
 from matplotlib.typing import ColorType
 from numpy.typing import ArrayLike, NDArray
 
-from ._optional import HTMLDisplay
+from ._optional import COURSE_INSTALL, HTMLDisplay, html, require
 from ._validate import InputTypeError, as_configuration, as_finite_scalar, as_pairs, real_array, require_arm
 from .velocity import Ellipse
 
@@ -369,8 +369,6 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
         (or an object with the same ``_repr_html_`` when IPython is absent)
     """
     import matplotlib
-
-    from ._optional import COURSE_INSTALL, html, require
 
     plt.close(getattr(anim, "_fig"))  # matplotlib keeps the figure in _fig, outside its type stubs
     try:

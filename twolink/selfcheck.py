@@ -15,6 +15,8 @@ from __future__ import annotations
 import re
 from typing import NamedTuple
 
+from . import exercises
+
 __all__ = ["check", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
 
 NOT_SOLVED = "not solved yet"
@@ -75,8 +77,6 @@ convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with si
     >>> report.passed
     False
     """
-    from . import exercises
-
     entry = exercises.get(exercise)
     names = [part.name for part in entry.parts]
     if len(answers) > len(names):

@@ -20,6 +20,7 @@ from .._validate import arm_lengths, as_pairs, pair_floats, require_arm
 from ..conventions import check_elbow
 from ..kinematics import BLOCK_ROWS, REACH_RTOL, require_within_reach
 from .result import IKResult, assemble_result, one_answer_result
+from .turns import free_q1_at_base, move_into_limits
 
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
@@ -183,8 +184,6 @@ def _within_limits_first(
     branches take the ``q1`` that :func:`twolink.ik.solutions_within_limits`
     takes (:func:`twolink.ik.limits.free_q1_at_base`), so the two agree.
     """
-    from .limits import free_q1_at_base, move_into_limits  # late import: limits builds on closed_form
-
     q_both = _branches(arm, p, flat, terms, "both")
     at_base, free_q1 = free_q1_at_base(arm, flat)
     if free_q1 is not None:

@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_finite_scalar, real_array
 from ..kinematics import distance_outside_reach
+from .limits import solutions_within_limits
 from .result import IKResult, assemble_result
 from .targets import reachable_targets
 
@@ -212,12 +213,10 @@ def brute_force(
 
     bound = (arm.l1 + 2.0 * arm.l2) * step / 2.0
     grid_points = len(q1_axis) * len(q2_axis)
-    from ..workspace import is_reachable  # late import: workspace builds on ik
-
     # success needs a grid point within the bound, the point within the limits, and the target
     # inside the workspace the limits leave (a target just outside it is near a limit's grid point)
     within = np.asarray(arm.within_limits(q))
-    reachable = np.ravel(is_reachable(arm, p_flat))
+    reachable = np.ravel(np.any(solutions_within_limits(arm, p_flat)[1], axis=-1))  # workspace.is_reachable
     threshold = np.where(within & reachable, bound + distance_outside_reach(arm, p_flat), -np.inf)
 
     def failure_detail(index: int, residual: float) -> str:

@@ -36,6 +36,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_finite_scalar, as_pairs
+from ..arm import TwoLinkArm
 from ..errors import UnreachableError
 
 __all__ = [
@@ -367,8 +368,6 @@ def correct_spring_torques_dh(
     >>> correct_spring_torques_dh(q, [3.0, 1.0]).round(9) + 0.0
     array([0., 0.])
     """
-    from ..arm import TwoLinkArm
-
     k = as_finite_scalar(k, "k")
     rest = as_pairs(p_rest, "p_rest")
     arm = TwoLinkArm(l1=l1, l2=l2)

@@ -1,0 +1,132 @@
+"""The package's layers: its internal imports form no cycle, and none hides in a function.
+
+Every ``twolink`` module is parsed (``ast``, nothing imported).  An import under
+``if TYPE_CHECKING:`` is for the type checker only and is left out of the
+graph; any other import of a ``twolink`` module must sit at module level.
+(A function-level ``import scipy...`` keeps ``import twolink`` light and is
+allowed: only the package's own modules are checked.)
+"""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+PACKAGE = Path(__file__).resolve().parent.parent / "twolink"
+
+
+def _module_name(path: Path) -> str:
+    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+MODULES = {_module_name(path): path for path in sorted(PACKAGE.rglob("*.py"))}
+
+
+def _is_type_checking(node: ast.If) -> bool:
+    test = node.test
+    return (isinstance(test, ast.Name) and test.id == "TYPE_CHECKING") or (
+        isinstance(test, ast.Attribute) and test.attr == "TYPE_CHECKING"
+    )
+
+
+def _targets(module: str, node: ast.Import | ast.ImportFrom) -> list[str]:
+    """The ``twolink`` modules an import statement loads (a name imported from a package may be a module)."""
+    is_package = MODULES[module].name == "__init__.py"
+    if isinstance(node, ast.Import):
+        names = [alias.name for alias in node.names]
+    else:
+        if node.level:
+            base = module.split(".") if is_package else module.split(".")[:-1]
+            base = base[: len(base) - (node.level - 1)]
+            origin = ".".join(base + ([node.module] if node.module else []))
+        else:
+            origin = node.module or ""
+        names = [origin] + [f"{origin}.{alias.name}" for alias in node.names]
+    return [name for name in names if name in MODULES]
+
+
+def _imports(module: str) -> tuple[set[str], list[tuple[int, str]]]:
+    """(module-level imports of twolink modules, [(line, target)] of function-level ones)."""
+    tree = ast.parse(MODULES[module].read_text(encoding="utf-8"))
+    top: set[str] = set()
+    late: list[tuple[int, str]] = []
+
+    def visit(node: ast.AST, in_function: bool) -> None:
+        for child in ast.iter_child_nodes(node):
+            if isinstance(child, ast.If) and _is_type_checking(child):
+                continue
+            if isinstance(child, (ast.Import, ast.ImportFrom)):
+                for target in _targets(module, child):
+                    if in_function:
+                        late.append((child.lineno, target))
+                    else:
+                        top.add(target)
+            visit(child, in_function or isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)))
+
+    visit(tree, False)
+    # importing a submodule runs its package's __init__ first
+    for target in list(top):
+        parts = target.split(".")
+        top.update(".".join(parts[:i]) for i in range(1, len(parts)) if ".".join(parts[:i]) in MODULES)
+    top.discard(module)
+    return top, late
+
+
+def _find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
+    state: dict[str, int] = {}
+    stack: list[str] = []
+
+    def visit(node: str) -> list[str] | None:
+        state[node] = 1
+        stack.append(node)
+        for nxt in sorted(graph[node]):
+            if state.get(nxt) == 1:
+                return stack[stack.index(nxt):] + [nxt]
+            if nxt not in state:
+                found = visit(nxt)
+                if found:
+                    return found
+        stack.pop()
+        state[node] = 2
+        return None
+
+    for node in sorted(graph):
+        if node not in state:
+            found = visit(node)
+            if found:
+                return found
+    return None
+
+
+def _graph() -> dict[str, set[str]]:
+    # a package's __init__ importing its own submodules is not a cycle with them
+    graph = {}
+    for module in MODULES:
+        top, _ = _imports(module)
+        graph[module] = {target for target in top if not module.startswith(target + ".")}
+    return graph
+
+
+def test_the_walk_sees_the_package():
+    graph = _graph()
+    assert "twolink.ik.grid_search" in graph and "twolink.ik.result" in graph["twolink.ik.analytic"]
+    assert "twolink.kinematics" in graph["twolink.arm"]
+
+
+def test_the_internal_import_graph_has_no_cycle():
+    cycle = _find_cycle(_graph())
+    assert cycle is None, "import cycle: " + " -> ".join(cycle or [])
+
+
+def test_the_cycle_check_can_fail():
+    assert _find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
+    assert _find_cycle({"a": {"b"}, "b": set()}) is None
+
+
+@pytest.mark.parametrize("module", sorted(MODULES))
+def test_no_function_level_import_of_a_twolink_module(module):
+    _, late = _imports(module)
+    assert late == [], f"{module} imports twolink modules inside functions (line, module): {late}"
