@@ -73,3 +73,32 @@ def test_an_unknown_notebook_is_refused_by_name(tmp_path, capsys):
     with pytest.raises(SystemExit):
         portable.main([str(tmp_path / "missing.ipynb")])
     assert "no such notebook" in capsys.readouterr().err
+
+
+def _scripted_runs(monkeypatch, outcomes):
+    """Replace run_nbval by a script of (exit code, output) pairs; return the list of calls made."""
+    calls = []
+
+    def fake_run_nbval(variant, notebooks, workers):
+        code, output = outcomes[len(calls)]
+        calls.append(variant.name)
+        portable._last_output = output
+        return code, "1 passed" if code == 0 else "1 failed", 0.0
+
+    monkeypatch.setattr(portable, "run_nbval", fake_run_nbval)
+    return calls
+
+
+def test_a_kernel_that_did_not_start_is_run_again_once(monkeypatch, tmp_path, capsys):
+    good = _notebook(tmp_path / "good.ipynb", "0.3\n")
+    calls = _scripted_runs(monkeypatch, [(1, "ERROR nbval:kernel.py:59 Failure starting kernel"), (0, "")])
+    assert portable.main([good, "--variant", "as-installed"]) == 0
+    assert calls == ["as-installed", "as-installed"]
+    assert "a kernel failed to start (not a mismatch of outputs)" in capsys.readouterr().out
+
+
+def test_a_mismatch_is_never_run_again(monkeypatch, tmp_path):
+    good = _notebook(tmp_path / "good.ipynb", "0.3\n")
+    calls = _scripted_runs(monkeypatch, [(1, "assert reference_output == test_output failed"), (0, "")])
+    assert portable.main([good, "--variant", "as-installed"]) == 1
+    assert calls == ["as-installed"]
