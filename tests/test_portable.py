@@ -82,8 +82,7 @@ def _scripted_runs(monkeypatch, outcomes):
     def fake_run_nbval(variant, notebooks, workers):
         code, output = outcomes[len(calls)]
         calls.append(variant.name)
-        portable._last_output = output
-        return code, "1 passed" if code == 0 else "1 failed", 0.0
+        return code, "1 passed" if code == 0 else "1 failed", 0.0, output
 
     monkeypatch.setattr(portable, "run_nbval", fake_run_nbval)
     return calls

@@ -116,24 +116,21 @@ def probe(variant: Variant) -> dict[str, Any]:
 
 
 KERNEL_START_FAILED = "Failure starting kernel"
-_last_output = ""
 
 
-def run_nbval(variant: Variant, notebooks: list[str], workers: str) -> tuple[int, str, float]:
-    """Strict nbval (the options in pyproject.toml) of ``notebooks`` under a variant: exit code, summary, seconds."""
+def run_nbval(variant: Variant, notebooks: list[str], workers: str) -> tuple[int, str, float, str]:
+    """Strict nbval (the options in pyproject.toml) of ``notebooks`` under a variant: exit code, summary, seconds, output."""
     start = time.monotonic()
     # The options of pyproject.toml (strict nbval, the sanitize file), wherever the notebooks are.
     command = [sys.executable, "-m", "pytest", "-c", str(ROOT / "pyproject.toml"), "--rootdir", str(ROOT), *notebooks, "-q", "-n", workers]
     result = subprocess.run(command, cwd=ROOT, env=variant_env(variant), capture_output=True, text=True, timeout=1800, check=False)
     seconds = time.monotonic() - start
-    global _last_output
-    _last_output = result.stdout + result.stderr
     lines = [line for line in result.stdout.splitlines() if line.strip()]
     summary = next((line for line in reversed(lines) if re.search(r"\b(passed|failed|error|no tests ran)\b", line)), "")
     if result.returncode != 0:
         failed = [line for line in lines if line.startswith(("FAILED", "ERROR"))]
         print("\n".join(failed) or result.stdout[-4000:], file=sys.stderr)
-    return result.returncode, re.sub(r"\x1b\[[0-9;]*m", "", summary).strip("= "), seconds
+    return result.returncode, re.sub(r"\x1b\[[0-9;]*m", "", summary).strip("= "), seconds, result.stdout + result.stderr
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -169,13 +166,13 @@ def main(argv: list[str] | None = None) -> int:
         above = [group for group in seen["simd"] if group != "X86_V2"]
         print(f"[{variant.name}] {variant.why}; numpy SIMD above the x86-64-v2 baseline: {', '.join(above) or 'none'}; "
               f"OpenBLAS kernel {seen['blas_core']}, {seen['blas_threads']} thread(s)", flush=True)
-        code, summary, seconds = run_nbval(variant, notebooks, args.workers)
-        if code != 0 and KERNEL_START_FAILED in _last_output:
+        code, summary, seconds, output = run_nbval(variant, notebooks, args.workers)
+        if code != 0 and KERNEL_START_FAILED in output:
             # Not a number that differs: a kernel that did not start (jupyter_client picks free TCP
             # ports by probing, and two kernels started at once on a loaded machine can collide).
             print(f"[{variant.name}] a kernel failed to start (not a mismatch of outputs); running this variant again",
                   flush=True)
-            code, summary, seconds = run_nbval(variant, notebooks, args.workers)
+            code, summary, seconds, output = run_nbval(variant, notebooks, args.workers)
         # pytest's exit 5 (nothing collected) is a failure too.
         rows.append((variant.name, "pass" if code == 0 else f"FAIL (exit {code})", summary, seconds))
         print(f"[{variant.name}] {rows[-1][1]}: {summary} ({seconds:.0f} s)", flush=True)
