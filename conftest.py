@@ -12,7 +12,11 @@ import pathlib
 
 def pytest_configure(config):
     sanitize = getattr(config.option, "nbval_sanitize_with", None)
-    if sanitize and not pathlib.Path(sanitize).is_absolute() and not pathlib.Path(sanitize).exists():
+    if (
+        sanitize
+        and not pathlib.Path(sanitize).is_absolute()
+        and not pathlib.Path(sanitize).exists()
+    ):
         from_root = pathlib.Path(config.rootpath) / sanitize
         if from_root.exists():
             config.option.nbval_sanitize_with = str(from_root)

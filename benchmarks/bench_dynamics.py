@@ -37,11 +37,19 @@ def numpy_solve_forward_dynamics(arm, q, qd, tau):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="tiny sizes: checks the script runs, not the speed")
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="tiny sizes: checks the script runs, not the speed",
+    )
     quick = parser.parse_args(argv).quick
 
     def median_time(function, repeat, min_seconds=0.05):
-        return _median_time(function, repeat=1 if quick else repeat, min_seconds=1e-9 if quick else min_seconds)
+        return _median_time(
+            function,
+            repeat=1 if quick else repeat,
+            min_seconds=1e-9 if quick else min_seconds,
+        )
 
     arm = arms.two_metre
     rng = np.random.default_rng(5)
@@ -50,44 +58,126 @@ def main(argv=None):
     rows = []
 
     seconds = median_time(lambda: arm.forward_dynamics(q, qd, tau), repeat=7)
-    rows.append(("arm.forward_dynamics, 1e5 states (vectorised)", f"{seconds / count * 1e9:.0f} ns/state", "<= 300 ns", seconds / count <= 300e-9))
-    seconds = median_time(lambda: numpy_solve_forward_dynamics(arm, q, qd, tau), repeat=7)
-    rows.append(("  reference: M, C, g stacked + numpy.linalg.solve", f"{seconds / count * 1e9:.0f} ns/state", "(info)", True))
+    rows.append(
+        (
+            "arm.forward_dynamics, 1e5 states (vectorised)",
+            f"{seconds / count * 1e9:.0f} ns/state",
+            "<= 300 ns",
+            seconds / count <= 300e-9,
+        )
+    )
+    seconds = median_time(
+        lambda: numpy_solve_forward_dynamics(arm, q, qd, tau), repeat=7
+    )
+    rows.append(
+        (
+            "  reference: M, C, g stacked + numpy.linalg.solve",
+            f"{seconds / count * 1e9:.0f} ns/state",
+            "(info)",
+            True,
+        )
+    )
     seconds = median_time(lambda: arm.inverse_dynamics(q, qd, tau), repeat=7)
-    rows.append(("arm.inverse_dynamics, 1e5 states (vectorised)", f"{seconds / count * 1e9:.0f} ns/state", "(info)", True))
+    rows.append(
+        (
+            "arm.inverse_dynamics, 1e5 states (vectorised)",
+            f"{seconds / count * 1e9:.0f} ns/state",
+            "(info)",
+            True,
+        )
+    )
 
     q1, qd1, tau1 = q[0], qd[0], tau[0]
     seconds = median_time(lambda: arm.forward_dynamics(q1, qd1, tau1), repeat=7)
-    rows.append(("arm.forward_dynamics, one state per call (arrays)", f"{seconds * 1e6:.2f} us/call", "<= 10 us", seconds <= 10e-6))
+    rows.append(
+        (
+            "arm.forward_dynamics, one state per call (arrays)",
+            f"{seconds * 1e6:.2f} us/call",
+            "<= 10 us",
+            seconds <= 10e-6,
+        )
+    )
     q_list, qd_list, tau_list = q1.tolist(), qd1.tolist(), tau1.tolist()
-    seconds = median_time(lambda: arm.forward_dynamics(q_list, qd_list, tau_list), repeat=7)
-    rows.append(("arm.forward_dynamics, one state per call (lists)", f"{seconds * 1e6:.2f} us/call", "<= 10 us", seconds <= 10e-6))
+    seconds = median_time(
+        lambda: arm.forward_dynamics(q_list, qd_list, tau_list), repeat=7
+    )
+    rows.append(
+        (
+            "arm.forward_dynamics, one state per call (lists)",
+            f"{seconds * 1e6:.2f} us/call",
+            "<= 10 us",
+            seconds <= 10e-6,
+        )
+    )
     seconds = median_time(lambda: arm.inverse_dynamics(q1, qd1, tau1), repeat=7)
-    rows.append(("arm.inverse_dynamics, one state per call (arrays)", f"{seconds * 1e6:.2f} us/call", "(info)", True))
+    rows.append(
+        (
+            "arm.inverse_dynamics, one state per call (arrays)",
+            f"{seconds * 1e6:.2f} us/call",
+            "(info)",
+            True,
+        )
+    )
     numeric = lambdify_dynamics("relative")
 
     def lambdified_forward():
         rhs = tau1 - numeric.coriolis(arm, q1, qd1) @ qd1 - numeric.gravity(arm, q1)
         return np.linalg.solve(numeric.mass_matrix(arm, q1), rhs)
 
-    assert np.allclose(lambdified_forward(), arm.forward_dynamics(q1, qd1, tau1), rtol=1e-12, atol=1e-12)
+    assert np.allclose(
+        lambdified_forward(),
+        arm.forward_dynamics(q1, qd1, tau1),
+        rtol=1e-12,
+        atol=1e-12,
+    )
     seconds = median_time(lambdified_forward, repeat=7)
-    rows.append(("  reference: sympy-lambdified M, C, g + numpy.linalg.solve", f"{seconds * 1e6:.2f} us/call", "(info)", True))
+    rows.append(
+        (
+            "  reference: sympy-lambdified M, C, g + numpy.linalg.solve",
+            f"{seconds * 1e6:.2f} us/call",
+            "(info)",
+            True,
+        )
+    )
 
-    start = dict(arm=arm, q0=[np.pi / 4, 0.0], qd0=[0.0, 0.0], t_end=0.5 if quick else 10.0, method="DOP853", rtol=1e-10, atol=1e-10)
+    start = dict(
+        arm=arm,
+        q0=[np.pi / 4, 0.0],
+        qd0=[0.0, 0.0],
+        t_end=0.5 if quick else 10.0,
+        method="DOP853",
+        rtol=1e-10,
+        atol=1e-10,
+    )
     result = simulate(**start)
     seconds = median_time(lambda: simulate(**start), repeat=5, min_seconds=0.2)
-    rows.append((
-        f"simulate {start['t_end']:g} s free motion from (pi/4, 0), DOP853 1e-10 ({result.nfev} RHS calls)",
-        f"{seconds:.3f} s",
-        "< 0.15 s",
-        seconds < 0.15,
-    ))
+    rows.append(
+        (
+            f"simulate {start['t_end']:g} s free motion from (pi/4, 0), DOP853 1e-10 ({result.nfev} RHS calls)",
+            f"{seconds:.3f} s",
+            "< 0.15 s",
+            seconds < 0.15,
+        )
+    )
     drift = result.energy_drift()
-    rows.append((f"  relative energy drift max abs(E - E0) / max T over those {start['t_end']:g} s", f"{drift:.1e}", "< 1e-8", drift < 1e-8))
+    rows.append(
+        (
+            f"  relative energy drift max abs(E - E0) / max T over those {start['t_end']:g} s",
+            f"{drift:.1e}",
+            "< 1e-8",
+            drift < 1e-8,
+        )
+    )
 
-    print(f"# twolink dynamics benchmark ({platform.processor() or platform.machine()}, numpy {np.__version__})\n")
-    print(markdown_table(["quantity", "measured", "target", "meets target"], [(a, b, c, "yes" if ok else "NO") for a, b, c, ok in rows]))
+    print(
+        f"# twolink dynamics benchmark ({platform.processor() or platform.machine()}, numpy {np.__version__})\n"
+    )
+    print(
+        markdown_table(
+            ["quantity", "measured", "target", "meets target"],
+            [(a, b, c, "yes" if ok else "NO") for a, b, c, ok in rows],
+        )
+    )
     return quick or all(ok for *_, ok in rows)
 
 

@@ -37,13 +37,36 @@ def twolink_rows(arm, targets, steps_deg=BRUTE_FORCE_STEPS_DEG, repeat=3):
     for per_call in (True, False):
         mode = "per call" if per_call else "vectorised"
         methods = [name for name in timing.IK_METHODS if name != "brute force"]
-        for row in timing.compare_ik_methods(arm, targets, q0=Q0, methods=methods, repeat=repeat, per_call=per_call):
-            rows.append((row["method"], mode, row["seconds_per_target"], row["max_residual"], row["solved"]))
+        for row in timing.compare_ik_methods(
+            arm, targets, q0=Q0, methods=methods, repeat=repeat, per_call=per_call
+        ):
+            rows.append(
+                (
+                    row["method"],
+                    mode,
+                    row["seconds_per_target"],
+                    row["max_residual"],
+                    row["solved"],
+                )
+            )
         for step_deg in steps_deg:
             (row,) = timing.compare_ik_methods(
-                arm, targets, step=np.radians(step_deg), methods=["brute force"], repeat=repeat, per_call=per_call
+                arm,
+                targets,
+                step=np.radians(step_deg),
+                methods=["brute force"],
+                repeat=repeat,
+                per_call=per_call,
             )
-            rows.append((f"brute force, {step_deg:g} deg grid", mode, row["seconds_per_target"], row["max_residual"], row["solved"]))
+            rows.append(
+                (
+                    f"brute force, {step_deg:g} deg grid",
+                    mode,
+                    row["seconds_per_target"],
+                    row["max_residual"],
+                    row["solved"],
+                )
+            )
     return rows
 
 
@@ -52,35 +75,60 @@ def robotics_toolbox_rows(arm, targets, repeat=3):
     try:
         import roboticstoolbox as rtb
     except ImportError:
-        return [], "roboticstoolbox-python is not installed: no ik_LM row (optional extra)"
-    robot = rtb.DHRobot([rtb.RevoluteDH(a=arm.l1), rtb.RevoluteDH(a=arm.l2)], name="two-link")
-    ets = robot.ets()  # built once: robot.ik_LM rebuilds it on every call (~20x the C++ solve)
+        return (
+            [],
+            "roboticstoolbox-python is not installed: no ik_LM row (optional extra)",
+        )
+    robot = rtb.DHRobot(
+        [rtb.RevoluteDH(a=arm.l1), rtb.RevoluteDH(a=arm.l2)], name="two-link"
+    )
+    ets = (
+        robot.ets()
+    )  # built once: robot.ik_LM rebuilds it on every call (~20x the C++ solve)
     poses = []
     for x, y in targets:
         pose = np.eye(4)
         pose[:2, 3] = (x, y)
         poses.append(pose)
-    mask = np.array([1.0, 1.0, 0.0, 0.0, 0.0, 0.0])  # position only: a planar arm cannot choose its orientation
+    mask = np.array(
+        [1.0, 1.0, 0.0, 0.0, 0.0, 0.0]
+    )  # position only: a planar arm cannot choose its orientation
     rows = []
     for label, tol in (("default tol 1e-6", 1e-6), ("tol 1e-20", 1e-20)):
 
         def solve_all(tol=tol):
-            return [ets.ik_LM(pose, q0=np.array(Q0), mask=mask, tol=tol) for pose in poses]
+            return [
+                ets.ik_LM(pose, q0=np.array(Q0), mask=mask, tol=tol) for pose in poses
+            ]
 
         solutions = solve_all()
         q = np.array([solution[0] for solution in solutions])
         residual = np.hypot(*(arm.fk(q) - targets).T)
         seconds = timing.median_time(solve_all, repeat=repeat) / len(targets)
         solved = float(np.mean(residual <= 1e-9 * (arm.l1 + arm.l2)))
-        rows.append((f"roboticstoolbox ik_LM ({label})", "per call", seconds, float(residual.max()), solved))
+        rows.append(
+            (
+                f"roboticstoolbox ik_LM ({label})",
+                "per call",
+                seconds,
+                float(residual.max()),
+                solved,
+            )
+        )
     return rows, f"roboticstoolbox-python {rtb.__version__}"
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="tiny sizes: checks the script runs, not the speed")
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="tiny sizes: checks the script runs, not the speed",
+    )
     quick = parser.parse_args(argv).quick
-    points, steps_deg, repeat = (3, (2.0,), 1) if quick else (CIRCLE_POINTS, BRUTE_FORCE_STEPS_DEG, 3)
+    points, steps_deg, repeat = (
+        (3, (2.0,), 1) if quick else (CIRCLE_POINTS, BRUTE_FORCE_STEPS_DEG, 3)
+    )
     arm = arms.ten
     targets = workspace.circle_points(CIRCLE_CENTRE, CIRCLE_RADIUS, points)
     rows = twolink_rows(arm, targets, steps_deg, repeat)
@@ -112,7 +160,15 @@ def main(argv=None):
     ]
     print(
         markdown_table(
-            ["method", "calls", "time per target [us]", "max error [m]", "solved", "within 1 ms", "real time"],
+            [
+                "method",
+                "calls",
+                "time per target [us]",
+                "max error [m]",
+                "solved",
+                "within 1 ms",
+                "real time",
+            ],
             table,
             ["", "", ".2f", ".1e", "", "", ""],
         )

@@ -51,12 +51,21 @@ print(json.dumps(steps))
 CHAINS = [
     ("numpy (alone)", ["numpy"], None),
     ("twolink, after numpy", ["numpy", "twolink"], TARGET_MS),
-    ("scipy.optimize, after twolink (first ik.minimize, workspace.largest_inscribed_circle)",
-     ["numpy", "twolink", "scipy.optimize"], None),
-    ("scipy.integrate, after twolink (first simulate, resolved_rate_trajectory)",
-     ["numpy", "twolink", "scipy.integrate"], None),
-    ("scipy.interpolate, after twolink (first JointReference.from_samples)",
-     ["numpy", "twolink", "scipy.interpolate"], None),
+    (
+        "scipy.optimize, after twolink (first ik.minimize, workspace.largest_inscribed_circle)",
+        ["numpy", "twolink", "scipy.optimize"],
+        None,
+    ),
+    (
+        "scipy.integrate, after twolink (first simulate, resolved_rate_trajectory)",
+        ["numpy", "twolink", "scipy.integrate"],
+        None,
+    ),
+    (
+        "scipy.interpolate, after twolink (first JointReference.from_samples)",
+        ["numpy", "twolink", "scipy.interpolate"],
+        None,
+    ),
 ]
 
 
@@ -64,10 +73,15 @@ def run_chain(modules):
     """One fresh process importing ``modules`` in turn: ``[seconds, modules added, heavy added]`` per step."""
     done = subprocess.run(
         [sys.executable, "-c", _CHILD.format(heavy=HEAVY), *modules],
-        capture_output=True, text=True, timeout=120, check=False,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
     )
     if done.returncode != 0:
-        raise RuntimeError(f"importing {' then '.join(modules)} failed:\n{done.stderr[-2000:]}")
+        raise RuntimeError(
+            f"importing {' then '.join(modules)} failed:\n{done.stderr[-2000:]}"
+        )
     return json.loads(done.stdout)
 
 
@@ -83,15 +97,21 @@ def measure(processes):
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument(
-        "--quick", action="store_true", help="2 processes per row: checks the script runs, not the speed"
+        "--quick",
+        action="store_true",
+        help="2 processes per row: checks the script runs, not the speed",
     )
-    parser.add_argument("--processes", type=int, default=15, help="fresh processes per row (default 15)")
+    parser.add_argument(
+        "--processes", type=int, default=15, help="fresh processes per row (default 15)"
+    )
     args = parser.parse_args(argv)
     processes = 2 if args.quick else args.processes
     samples = measure(processes)
 
-    print(f"# import twolink, median of {processes} fresh processes ({platform.machine()}, "
-          f"{platform.python_implementation()} {platform.python_version()}, numpy {np.__version__})\n")
+    print(
+        f"# import twolink, median of {processes} fresh processes ({platform.machine()}, "
+        f"{platform.python_implementation()} {platform.python_version()}, numpy {np.__version__})\n"
+    )
     table = []
     met = True
     for label, _, target in CHAINS:
@@ -100,16 +120,37 @@ def main(argv=None):
         added = int(statistics.median(step[1] for step in steps))
         heavy = sorted({name for step in steps for name in step[2]})
         # a row with a target meets it in time and without loading a heavy module
-        meets = "-" if target is None else "yes" if milliseconds <= target and not heavy else "NO"
+        meets = (
+            "-"
+            if target is None
+            else "yes"
+            if milliseconds <= target and not heavy
+            else "NO"
+        )
         met = met and meets != "NO"
-        table.append((
-            label, f"{milliseconds:.1f}", str(added), ", ".join(heavy) or "none",
-            "(info)" if target is None else f"<= {target:g} ms", meets,
-        ))
-    print(markdown_table(
-        ["import", "median [ms]", "modules added", f"heavy modules added ({', '.join(HEAVY)})", "target", "meets"],
-        table,
-    ))
+        table.append(
+            (
+                label,
+                f"{milliseconds:.1f}",
+                str(added),
+                ", ".join(heavy) or "none",
+                "(info)" if target is None else f"<= {target:g} ms",
+                meets,
+            )
+        )
+    print(
+        markdown_table(
+            [
+                "import",
+                "median [ms]",
+                "modules added",
+                f"heavy modules added ({', '.join(HEAVY)})",
+                "target",
+                "meets",
+            ],
+            table,
+        )
+    )
     return met or args.quick
 
 

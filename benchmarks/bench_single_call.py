@@ -61,7 +61,10 @@ SIMULATE_TARGET_RATIO = 1.2
 
 def plain_fk(l1, l2, q1, q2):
     q12 = q1 + q2
-    return (l1 * math.cos(q1) + l2 * math.cos(q12), l1 * math.sin(q1) + l2 * math.sin(q12))
+    return (
+        l1 * math.cos(q1) + l2 * math.cos(q12),
+        l1 * math.sin(q1) + l2 * math.sin(q12),
+    )
 
 
 def plain_jacobian(l1, l2, q1, q2):
@@ -164,18 +167,29 @@ def check_references_agree(arm, q, qd, tau, p):
     """The plain versions compute what twolink computes (else the ratios mean nothing)."""
     q1, q2 = q
     assert np.allclose(plain_fk(arm.l1, arm.l2, q1, q2), arm.fk(q), rtol=0, atol=1e-12)
-    assert np.allclose(plain_jacobian(arm.l1, arm.l2, q1, q2), arm.jacobian(q), rtol=0, atol=1e-12)
+    assert np.allclose(
+        plain_jacobian(arm.l1, arm.l2, q1, q2), arm.jacobian(q), rtol=0, atol=1e-12
+    )
     result = ik.closed_form(arm, p, elbow="down")
     assert np.allclose(plain_closed_form(arm.l1, arm.l2, *p), result.q, atol=1e-9)
     *_, plain_residual, plain_success = plain_closed_form_judged(arm.l1, arm.l2, *p)
-    assert plain_success and bool(result.success) and abs(plain_residual - float(result.residual)) <= 1e-12
+    assert (
+        plain_success
+        and bool(result.success)
+        and abs(plain_residual - float(result.residual)) <= 1e-12
+    )
     q_newton = plain_newton(arm.l1, arm.l2, *p)
     assert np.allclose(plain_fk(arm.l1, arm.l2, *q_newton), p, atol=1e-9)
     assert np.allclose(
-        plain_forward_dynamics(arm, *q, *qd, *tau), dynamics.forward_dynamics(arm, q, qd, tau), rtol=1e-9, atol=1e-9
+        plain_forward_dynamics(arm, *q, *qd, *tau),
+        dynamics.forward_dynamics(arm, q, qd, tau),
+        rtol=1e-9,
+        atol=1e-9,
     )
     qdd = dynamics.forward_dynamics(arm, q, qd, tau)
-    assert np.allclose(plain_inverse_dynamics(arm, *q, *qd, *qdd), tau, rtol=1e-9, atol=1e-9)
+    assert np.allclose(
+        plain_inverse_dynamics(arm, *q, *qd, *qdd), tau, rtol=1e-9, atol=1e-9
+    )
 
 
 def interleaved_medians(first, second, repeat, min_seconds):
@@ -195,7 +209,9 @@ def interleaved_medians(first, second, repeat, min_seconds):
             if elapsed >= min_seconds / 10 or number >= 10**9:
                 break
             number *= 10
-        numbers.append(max(1, int(math.ceil(number * min_seconds / max(elapsed, 1e-12)))))
+        numbers.append(
+            max(1, int(math.ceil(number * min_seconds / max(elapsed, 1e-12))))
+        )
     samples = ([], [])
     for _ in range(repeat):
         for timer, number, sample in zip(timers, numbers, samples):
@@ -220,8 +236,18 @@ def single_call_rows(arm, repeat, min_seconds, batch):
     p_batch = arm.fk(rng.uniform([0.2, 0.3], [1.2, 2.5], (batch, 2)))
 
     cases = [
-        ("fk", lambda: arm.fk(q_list), lambda: plain_fk(l1, l2, *q_list), lambda: arm.fk(q_batch)),
-        ("jacobian", lambda: arm.jacobian(q_list), lambda: plain_jacobian(l1, l2, *q_list), lambda: arm.jacobian(q_batch)),
+        (
+            "fk",
+            lambda: arm.fk(q_list),
+            lambda: plain_fk(l1, l2, *q_list),
+            lambda: arm.fk(q_batch),
+        ),
+        (
+            "jacobian",
+            lambda: arm.jacobian(q_list),
+            lambda: plain_jacobian(l1, l2, *q_list),
+            lambda: arm.jacobian(q_batch),
+        ),
         (
             "ik.closed_form",
             lambda: ik.closed_form(arm, p_list, elbow="down"),
@@ -255,8 +281,12 @@ def single_call_rows(arm, repeat, min_seconds, batch):
     ]
     rows = []
     for name, twolink_call, plain_call, batch_call in cases:
-        t_twolink, t_plain = interleaved_medians(twolink_call, plain_call, repeat, min_seconds)
-        t_batch = median_time(batch_call, repeat=repeat, min_seconds=min_seconds) / batch
+        t_twolink, t_plain = interleaved_medians(
+            twolink_call, plain_call, repeat, min_seconds
+        )
+        t_batch = (
+            median_time(batch_call, repeat=repeat, min_seconds=min_seconds) / batch
+        )
         ratio = t_twolink / t_plain
         rows.append((name, t_twolink, t_plain, ratio, TARGET_RATIO[name], t_batch))
     return rows
@@ -278,31 +308,68 @@ def simulate_row(arm, t_end, repeat):
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="tiny sizes: checks the script runs, not the speed")
+    parser.add_argument(
+        "--quick",
+        action="store_true",
+        help="tiny sizes: checks the script runs, not the speed",
+    )
     args = parser.parse_args(argv)
-    repeat, min_seconds, batch, t_end = (1, 1e-9, 100, 0.2) if args.quick else (15, 0.02, 100_000, 10.0)
+    repeat, min_seconds, batch, t_end = (
+        (1, 1e-9, 100, 0.2) if args.quick else (15, 0.02, 100_000, 10.0)
+    )
 
     arm = TwoLinkArm(l1=1.0, l2=0.7, m1=2.0, m2=1.2)
     rows = single_call_rows(arm, repeat, min_seconds, batch)
-    t_sim, t_sim_plain, sim_ratio = simulate_row(arm, t_end, repeat=1 if args.quick else 5)
+    t_sim, t_sim_plain, sim_ratio = simulate_row(
+        arm, t_end, repeat=1 if args.quick else 5
+    )
 
-    print(f"# twolink, one call at a time ({platform.machine()}, {platform.python_implementation()} "
-          f"{platform.python_version()}, numpy {np.__version__})\n")
+    print(
+        f"# twolink, one call at a time ({platform.machine()}, {platform.python_implementation()} "
+        f"{platform.python_version()}, numpy {np.__version__})\n"
+    )
     table = []
     for name, t_twolink, t_plain, ratio, target, t_batch in rows:
-        table.append((
-            name, f"{t_twolink * 1e6:.2f}", f"{t_plain * 1e6:.2f}", f"{ratio:.2f}x",
-            "(info)" if target is None else f"<= {target:g}x",
-            "-" if target is None else "yes" if ratio <= target else "NO", f"{t_batch * 1e9:.0f}",
-        ))
-    table.append((
-        f"simulate, {t_end:g} s free motion, DOP853 rtol 1e-10", f"{t_sim * 1e6:.0f}", f"{t_sim_plain * 1e6:.0f}",
-        f"{sim_ratio:.2f}x", f"<= {SIMULATE_TARGET_RATIO:g}x", "yes" if sim_ratio <= SIMULATE_TARGET_RATIO else "NO", "",
-    ))
-    print(markdown_table(
-        ["call (one input)", "twolink [us]", "plain Python [us]", "ratio", "target", "meets", "batched [ns/item]"], table,
-    ))
-    met = all(target is None or ratio <= target for _, _, _, ratio, target, _ in rows) and sim_ratio <= SIMULATE_TARGET_RATIO
+        table.append(
+            (
+                name,
+                f"{t_twolink * 1e6:.2f}",
+                f"{t_plain * 1e6:.2f}",
+                f"{ratio:.2f}x",
+                "(info)" if target is None else f"<= {target:g}x",
+                "-" if target is None else "yes" if ratio <= target else "NO",
+                f"{t_batch * 1e9:.0f}",
+            )
+        )
+    table.append(
+        (
+            f"simulate, {t_end:g} s free motion, DOP853 rtol 1e-10",
+            f"{t_sim * 1e6:.0f}",
+            f"{t_sim_plain * 1e6:.0f}",
+            f"{sim_ratio:.2f}x",
+            f"<= {SIMULATE_TARGET_RATIO:g}x",
+            "yes" if sim_ratio <= SIMULATE_TARGET_RATIO else "NO",
+            "",
+        )
+    )
+    print(
+        markdown_table(
+            [
+                "call (one input)",
+                "twolink [us]",
+                "plain Python [us]",
+                "ratio",
+                "target",
+                "meets",
+                "batched [ns/item]",
+            ],
+            table,
+        )
+    )
+    met = (
+        all(target is None or ratio <= target for _, _, _, ratio, target, _ in rows)
+        and sim_ratio <= SIMULATE_TARGET_RATIO
+    )
     return met or args.quick
 
 

@@ -48,9 +48,15 @@ def link_distributions(target, names, with_dependencies=True):
     """Symlink the top-level files of ``names`` (and what they need) into ``target``."""
     target = pathlib.Path(target)
     target.mkdir(parents=True, exist_ok=True)
-    dists = closure(names) if with_dependencies else [importlib.metadata.distribution(name) for name in names]
+    dists = (
+        closure(names)
+        if with_dependencies
+        else [importlib.metadata.distribution(name) for name in names]
+    )
     for dist in dists:
-        top_levels = {pathlib.PurePath(str(entry)).parts[0] for entry in dist.files or []}
+        top_levels = {
+            pathlib.PurePath(str(entry)).parts[0] for entry in dist.files or []
+        }
         for top in top_levels:
             if top in ("..", "__pycache__") or top.endswith(".pth"):
                 continue
@@ -71,8 +77,14 @@ def bare_venv(root, distributions, with_dependencies=True):
     venv.EnvBuilder(with_pip=False, symlinks=True).create(env_dir)
     python = env_dir / "bin" / "python"
     site = subprocess.run(
-        [str(python), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
-        capture_output=True, text=True, check=True,
+        [
+            str(python),
+            "-c",
+            "import sysconfig; print(sysconfig.get_paths()['purelib'])",
+        ],
+        capture_output=True,
+        text=True,
+        check=True,
     ).stdout.strip()
     shared = link_distributions(root / "shared-site", distributions, with_dependencies)
     (pathlib.Path(site) / "twolink_test_shared.pth").write_text(f"{shared}\n")
@@ -82,6 +94,16 @@ def bare_venv(root, distributions, with_dependencies=True):
 def pip(python, *args, **kwargs):
     """Run the project's pip against another interpreter (``pip --python``)."""
     return subprocess.run(
-        [sys.executable, "-m", "pip", "--python", str(python), "--disable-pip-version-check", *args],
-        capture_output=True, text=True, **kwargs,
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "--python",
+            str(python),
+            "--disable-pip-version-check",
+            *args,
+        ],
+        capture_output=True,
+        text=True,
+        **kwargs,
     )

@@ -19,8 +19,12 @@ settings.register_profile(
 )
 settings.load_profile("course")
 
-lengths = st.floats(min_value=0.05, max_value=20.0, allow_nan=False, allow_infinity=False)
-angles = st.floats(min_value=-np.pi, max_value=np.pi, allow_nan=False, allow_infinity=False)
+lengths = st.floats(
+    min_value=0.05, max_value=20.0, allow_nan=False, allow_infinity=False
+)
+angles = st.floats(
+    min_value=-np.pi, max_value=np.pi, allow_nan=False, allow_infinity=False
+)
 unit = st.floats(min_value=0.0, max_value=1.0, allow_nan=False, allow_infinity=False)
 
 
@@ -30,7 +34,11 @@ def arms(draw, ratio_max=20.0):
     from twolink import TwoLinkArm
 
     l1 = draw(lengths)
-    l2 = draw(st.floats(min_value=max(0.05, l1 / ratio_max), max_value=min(20.0, l1 * ratio_max)))
+    l2 = draw(
+        st.floats(
+            min_value=max(0.05, l1 / ratio_max), max_value=min(20.0, l1 * ratio_max)
+        )
+    )
     m1 = draw(st.floats(min_value=0.0, max_value=10.0))
     m2 = draw(st.floats(min_value=0.0, max_value=10.0))
     return TwoLinkArm(l1=l1, l2=l2, m1=m1, m2=m2)
@@ -42,7 +50,9 @@ def configurations(draw):
 
 
 # --- dynamics
-rates = st.floats(min_value=-10.0, max_value=10.0, allow_nan=False, allow_infinity=False)
+rates = st.floats(
+    min_value=-10.0, max_value=10.0, allow_nan=False, allow_infinity=False
+)
 
 
 @st.composite
@@ -75,8 +85,15 @@ def acceleration_scale(arm, q, qd, tau):
     term at q2 = 0) while MuJoCo's recursive algorithm leaves round-off there.
     """
     q, qd, tau = (np.asarray(v, dtype=float) for v in (q, qd, tau))
-    from_torque = arm.forward_dynamics(q, np.zeros(2), tau) - arm.forward_dynamics(q, np.zeros(2), np.zeros(2))
-    parts = [arm.forward_dynamics(q, qd, tau), from_torque, arm.forward_dynamics(q, qd, np.zeros(2)), qd * qd]
+    from_torque = arm.forward_dynamics(q, np.zeros(2), tau) - arm.forward_dynamics(
+        q, np.zeros(2), np.zeros(2)
+    )
+    parts = [
+        arm.forward_dynamics(q, qd, tau),
+        from_torque,
+        arm.forward_dynamics(q, qd, np.zeros(2)),
+        qd * qd,
+    ]
     return max(float(np.max(np.abs(part))) for part in parts)
 
 
@@ -89,4 +106,6 @@ def matplotlib_backend_left_as_found():
     worker would inherit it and store no figures (strict nbval then fails far from the cause)."""
     before = os.environ.get("MPLBACKEND")
     yield
-    assert os.environ.get("MPLBACKEND") == before, "this test changed MPLBACKEND in os.environ; use matplotlib.use()"
+    assert os.environ.get("MPLBACKEND") == before, (
+        "this test changed MPLBACKEND in os.environ; use matplotlib.use()"
+    )

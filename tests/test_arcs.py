@@ -12,7 +12,10 @@ HALF = Arc((0.0, 0.0), 1.0, 0.0, np.pi)
 
 @pytest.mark.parametrize("bad", [float("nan"), float("inf"), [0.5, float("nan")]])
 def test_point_at_refuses_nan_and_infinity(bad):
-    with pytest.raises(ValueError, match=r"fraction must be finite numbers \(0 = start, 1 = end of the arc\); entry "):
+    with pytest.raises(
+        ValueError,
+        match=r"fraction must be finite numbers \(0 = start, 1 = end of the arc\); entry ",
+    ):
         HALF.point_at(bad)
 
 
@@ -32,6 +35,10 @@ def test_split_refuses_fractions_outside_the_arc(bad):
 def test_split_pieces_join_up_into_the_arc(fractions):
     pieces = HALF.split(fractions)
     assert pieces[0].start == HALF.start
-    assert np.isclose(sum(piece.sweep for piece in pieces), HALF.sweep, rtol=0.0, atol=1e-12)
+    assert np.isclose(
+        sum(piece.sweep for piece in pieces), HALF.sweep, rtol=0.0, atol=1e-12
+    )
     for before, after in zip(pieces, pieces[1:]):
-        assert np.isclose(before.start + before.sweep, after.start, rtol=0.0, atol=1e-12)
+        assert np.isclose(
+            before.start + before.sweep, after.start, rtol=0.0, atol=1e-12
+        )

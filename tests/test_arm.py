@@ -29,7 +29,9 @@ def test_uniform_rod_inertias_and_override():
     assert arm.inertias == pytest.approx((3.0 * 4.0 / 12.0, 6.0 / 12.0))
     assert TwoLinkArm(2.0, 1.0, I1=0.7, I2=0.2).inertias == (0.7, 0.2)
     # replace() recomputes the rod inertia from the new length
-    assert dataclasses.replace(arm, l1=4.0).inertias[0] == pytest.approx(3.0 * 16.0 / 12.0)
+    assert dataclasses.replace(arm, l1=4.0).inertias[0] == pytest.approx(
+        3.0 * 16.0 / 12.0
+    )
 
 
 @pytest.mark.parametrize(
@@ -42,16 +44,28 @@ def test_uniform_rod_inertias_and_override():
         ({"l1": 1.0, "l2": 1.0, "m2": float("inf")}, "must be finite"),
         ({"l1": 1.0, "l2": 1.0, "g": float("nan")}, "g (m/s^2) must be finite"),
         ({"l1": 1.0, "l2": 1.0, "q_min": (0.0, 0.0)}, "given together"),
-        ({"l1": 1.0, "l2": 1.0, "q_min": (1.0, 0.0), "q_max": (0.0, 1.0)}, "q_min must be <= q_max"),
+        (
+            {"l1": 1.0, "l2": 1.0, "q_min": (1.0, 0.0), "q_max": (0.0, 1.0)},
+            "q_min must be <= q_max",
+        ),
         ({"l1": 1.0, "l2": 1.0, "q_min": (0.0,), "q_max": (1.0, 1.0)}, "two angles"),
-        ({"l1": 1.0, "l2": 1.0, "q_min": (0.0, float("nan")), "q_max": (1.0, 1.0)}, "finite"),
+        (
+            {"l1": 1.0, "l2": 1.0, "q_min": (0.0, float("nan")), "q_max": (1.0, 1.0)},
+            "finite",
+        ),
         ({"l1": 1.0, "l2": 1.0, "I1": -0.1}, "I1 (inertia, kg m^2) must be >= 0"),
-        ({"l1": 1.0, "l2": 1.0, "limit_convention": "degrees"}, "limit_convention must be one of"),
+        (
+            {"l1": 1.0, "l2": 1.0, "limit_convention": "degrees"},
+            "limit_convention must be one of",
+        ),
         ({"l1": "one", "l2": 1.0}, "must be a real number"),
     ],
 )
 def test_invalid_parameters_raise_value_error(kwargs, fragment):
-    with pytest.raises(ValueError, match=fragment.replace("(", r"\(").replace(")", r"\)").replace("^", r"\^")):
+    with pytest.raises(
+        ValueError,
+        match=fragment.replace("(", r"\(").replace(")", r"\)").replace("^", r"\^"),
+    ):
         TwoLinkArm(**kwargs)
 
 
@@ -77,7 +91,15 @@ def test_within_limits_relative_and_absolute():
 
 
 def test_public_api_names():
-    for name in ["TwoLinkArm", "arms", "ik", "to_absolute", "to_relative", "UnreachableError", "SingularityError"]:
+    for name in [
+        "TwoLinkArm",
+        "arms",
+        "ik",
+        "to_absolute",
+        "to_relative",
+        "UnreachableError",
+        "SingularityError",
+    ]:
         assert hasattr(twolink, name), name
     assert issubclass(twolink.UnreachableError, ValueError)
     assert issubclass(twolink.SingularityError, ValueError)
@@ -91,9 +113,18 @@ angles_around = st.floats(-4.0, 4.0, allow_nan=False)
 
 @settings(max_examples=200, deadline=None)
 @given(angles_around, angles_around, st.sampled_from(["relative", "absolute"]))
-def test_within_limits_of_one_configuration_is_a_bool_equal_to_the_batch(q1, q2, convention):
-    arm = TwoLinkArm(1.0, 1.0, q_min=(-1.0, -2.0), q_max=(1.5, 2.5), limit_convention=convention)
-    for q in ([q1, q2], (q1, q2), np.array([q1, q2]), np.array([q1, q2], dtype=np.float32)):
+def test_within_limits_of_one_configuration_is_a_bool_equal_to_the_batch(
+    q1, q2, convention
+):
+    arm = TwoLinkArm(
+        1.0, 1.0, q_min=(-1.0, -2.0), q_max=(1.5, 2.5), limit_convention=convention
+    )
+    for q in (
+        [q1, q2],
+        (q1, q2),
+        np.array([q1, q2]),
+        np.array([q1, q2], dtype=np.float32),
+    ):
         one = arm.within_limits(q)
         assert type(one) is bool
     batch = arm.within_limits(np.array([[q1, q2]]))
@@ -101,16 +132,30 @@ def test_within_limits_of_one_configuration_is_a_bool_equal_to_the_batch(q1, q2,
     assert arm.within_limits([q1, q2]) == bool(batch[0])
     # a configuration exactly on a limit counts as inside on both paths
     on_limit = [1.5, 2.5 - 1.5] if convention == "absolute" else [1.5, 2.5]
-    assert arm.within_limits(on_limit) is True and arm.within_limits(np.array([on_limit]))[0]
+    assert (
+        arm.within_limits(on_limit) is True
+        and arm.within_limits(np.array([on_limit]))[0]
+    )
 
 
 def test_within_limits_of_an_arm_without_limits_has_the_same_types():
     """It gave a 0-d array here (and numpy.bool_ for an arm with limits): a bool, or an array for a batch."""
     free = TwoLinkArm(1.0, 1.0)
-    assert free.within_limits([9.0, -9.0]) is True and free.within_limits(np.array([9.0, -9.0])) is True
+    assert (
+        free.within_limits([9.0, -9.0]) is True
+        and free.within_limits(np.array([9.0, -9.0])) is True
+    )
     batch = free.within_limits(np.zeros((3, 4, 2)))
-    assert isinstance(batch, np.ndarray) and batch.dtype == bool and batch.shape == (3, 4) and batch.all()
-    assert arms.ten.within_limits([0.5, 1.0]) is True and arms.ten.within_limits([-0.5, 1.0]) is False
+    assert (
+        isinstance(batch, np.ndarray)
+        and batch.dtype == bool
+        and batch.shape == (3, 4)
+        and batch.all()
+    )
+    assert (
+        arms.ten.within_limits([0.5, 1.0]) is True
+        and arms.ten.within_limits([-0.5, 1.0]) is False
+    )
 
 
 @pytest.mark.parametrize("tol", [-1e-3, float("nan"), "0.1", None], ids=repr)

@@ -20,25 +20,43 @@ SCRIPTS = sorted((ROOT / "benchmarks").glob("bench_*.py"))
 def test_every_benchmark_script_is_covered():
     names = {script.name for script in SCRIPTS}
     assert {
-        "bench_single_call.py", "bench_kinematics.py", "bench_dynamics.py", "bench_ik_methods.py", "bench_import.py",
+        "bench_single_call.py",
+        "bench_kinematics.py",
+        "bench_dynamics.py",
+        "bench_ik_methods.py",
+        "bench_import.py",
     } <= names
 
 
 @pytest.mark.parametrize("script", SCRIPTS, ids=lambda path: path.name)
 def test_benchmark_runs_quick_and_prints_a_table(script):
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])))
+    env = dict(
+        os.environ,
+        PYTHONPATH=os.pathsep.join(
+            filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])
+        ),
+    )
     env.setdefault("MPLBACKEND", "Agg")
     done = subprocess.run(
-        [sys.executable, str(script), "--quick"], capture_output=True, text=True, timeout=240, cwd=ROOT, env=env
+        [sys.executable, str(script), "--quick"],
+        capture_output=True,
+        text=True,
+        timeout=240,
+        cwd=ROOT,
+        env=env,
     )
     assert done.returncode == 0, done.stderr[-3000:]
     lines = done.stdout.splitlines()
     assert lines and lines[0].startswith("# "), done.stdout[:500]
     header = next(index for index, line in enumerate(lines) if line.startswith("| "))
-    assert set(lines[header + 1].replace("|", "").strip()) <= set("-: "), "no markdown table rule under the header"
+    assert set(lines[header + 1].replace("|", "").strip()) <= set("-: "), (
+        "no markdown table rule under the header"
+    )
     rows = [line for line in lines[header + 2 :] if line.startswith("| ")]
     assert rows, "the table has no rows"
-    assert all(line.count("|") == lines[header].count("|") for line in rows), "ragged table"
+    assert all(line.count("|") == lines[header].count("|") for line in rows), (
+        "ragged table"
+    )
     assert "nan" not in done.stdout.lower().replace("nanosec", ""), "a NaN in the table"
 
 
@@ -47,7 +65,11 @@ def test_peers_script_reports_missing_peers_clearly():
     env = dict(os.environ, PYTHONPATH=str(ROOT))
     done = subprocess.run(
         [sys.executable, str(ROOT / "benchmarks" / "peers.py"), "--quick"],
-        capture_output=True, text=True, timeout=240, cwd=ROOT, env=env,
+        capture_output=True,
+        text=True,
+        timeout=240,
+        cwd=ROOT,
+        env=env,
     )
     assert done.returncode == 0, done.stderr[-3000:]
     assert "| " in done.stdout

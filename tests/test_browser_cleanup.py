@@ -40,7 +40,9 @@ RUNNER = textwrap.dedent(f"""
 
 def alive(pid):
     try:
-        state = pathlib.Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        state = (
+            pathlib.Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+        )
     except (OSError, IndexError):
         return False
     return state != "Z"
@@ -49,8 +51,12 @@ def alive(pid):
 @pytest.mark.skipif(not pathlib.Path("/proc").is_dir(), reason="needs /proc (Linux)")
 @pytest.mark.parametrize("how", ["SIGTERM", "SIGINT", "exit"])
 def test_server_and_kernel_are_gone_after(how):
-    runner = subprocess.Popen([sys.executable, "-c", RUNNER, how], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                              text=True)
+    runner = subprocess.Popen(
+        [sys.executable, "-c", RUNNER, how],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     try:
         pids = [int(runner.stdout.readline()), int(runner.stdout.readline())]
         assert all(alive(pid) for pid in pids)
@@ -60,7 +66,9 @@ def test_server_and_kernel_are_gone_after(how):
         deadline = time.monotonic() + 10
         while any(alive(pid) for pid in pids) and time.monotonic() < deadline:
             time.sleep(0.1)
-        assert not [pid for pid in pids if alive(pid)], f"left running after {how}: {pids}"
+        assert not [pid for pid in pids if alive(pid)], (
+            f"left running after {how}: {pids}"
+        )
     finally:
         runner.kill()
         for pid in pids if "pids" in locals() else []:

@@ -23,7 +23,9 @@ def test_simulation_results_share_one_read_only_helper():
 
     simulate_module = sys.modules["twolink.simulate"]
     engine_module = sys.modules["twolink.engine"]
-    assert not hasattr(simulate_module, "_frozen") and not hasattr(engine_module, "_frozen")
+    assert not hasattr(simulate_module, "_frozen") and not hasattr(
+        engine_module, "_frozen"
+    )
     from twolink._validate import frozen_array
 
     array = frozen_array(np.arange(3))

@@ -4,14 +4,21 @@ import dataclasses
 
 import numpy as np
 import pytest
-from conftest import arms as arm_strategy
-from conftest import configurations, dynamic_arms
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from conftest import arms as arm_strategy
+from conftest import configurations, dynamic_arms
 from twolink import TwoLinkArm, arms, dynamics, ik, simulate, statics
 from twolink.contact import SpringWall, TipForce
-from twolink.controllers import CartesianSpring, ComputedTorque, Impedance, JointPD, JointReference, gain_matrix
+from twolink.controllers import (
+    CartesianSpring,
+    ComputedTorque,
+    Impedance,
+    JointPD,
+    JointReference,
+    gain_matrix,
+)
 from twolink.linearization import critical_damping, equilibrium
 
 TIGHT = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
@@ -31,14 +38,20 @@ points = st.tuples(st.floats(-5.0, 5.0), st.floats(-5.0, 5.0)).map(np.array)
 
 def jacobian_by_differences(arm, q, step=1e-6):
     """d fk / dq by central differences (independent of arm.jacobian)."""
-    return np.column_stack([(arm.fk(q + step * e) - arm.fk(q - step * e)) / (2 * step) for e in np.eye(2)])
+    return np.column_stack(
+        [(arm.fk(q + step * e) - arm.fk(q - step * e)) / (2 * step) for e in np.eye(2)]
+    )
 
 
 # ---------------------------------------------------------------- gains
 def test_gain_matrix_accepts_scalars_and_psd_matrices():
     assert np.array_equal(gain_matrix(3, "k"), 3.0 * np.eye(2))
-    assert np.array_equal(gain_matrix([[2.0, 1.0], [1.0, 2.0]], "k"), [[2.0, 1.0], [1.0, 2.0]])
-    assert np.array_equal(gain_matrix(np.zeros((2, 2)), "k"), np.zeros((2, 2)))  # no spring at all is allowed
+    assert np.array_equal(
+        gain_matrix([[2.0, 1.0], [1.0, 2.0]], "k"), [[2.0, 1.0], [1.0, 2.0]]
+    )
+    assert np.array_equal(
+        gain_matrix(np.zeros((2, 2)), "k"), np.zeros((2, 2))
+    )  # no spring at all is allowed
     assert not gain_matrix(1.0, "k").flags.writeable
 
 
@@ -87,7 +100,9 @@ def test_bad_controller_parameters_raise_value_errors(build):
 
 
 def test_error_messages_say_what_is_allowed():
-    with pytest.raises(ValueError, match=r"stiffness K \(N/m\) must be >= 0.0; got -600.0"):
+    with pytest.raises(
+        ValueError, match=r"stiffness K \(N/m\) must be >= 0.0; got -600.0"
+    ):
         CartesianSpring(arms.two_metre, -600.0, [3.0, 1.0])
     with pytest.raises(ValueError, match=r"must be symmetric \(K = K\^T\)"):
         Impedance(arms.two_metre, [[600.0, 10.0], [0.0, 600.0]], 10.0, [3.0, 1.0])
@@ -101,9 +116,19 @@ def test_spring_torque_is_J_transpose_K_times_stretch(arm, q, K, rest_point):
     spring = CartesianSpring(arm, K, rest_point)
     J = jacobian_by_differences(arm, q)
     expected = J.T @ K @ (rest_point - arm.fk(q))
-    scale = np.linalg.norm(J) * np.linalg.norm(K) * (np.linalg.norm(rest_point) + arm.l1 + arm.l2) + 1.0
+    scale = (
+        np.linalg.norm(J)
+        * np.linalg.norm(K)
+        * (np.linalg.norm(rest_point) + arm.l1 + arm.l2)
+        + 1.0
+    )
     assert np.allclose(spring(0.0, q, ZERO), expected, rtol=0.0, atol=1e-6 * scale)
-    assert np.allclose(spring.force_on_tip(q), K @ (rest_point - arm.fk(q)), rtol=1e-12, atol=1e-9 * scale)
+    assert np.allclose(
+        spring.force_on_tip(q),
+        K @ (rest_point - arm.fk(q)),
+        rtol=1e-12,
+        atol=1e-9 * scale,
+    )
 
 
 @given(arm_strategy(), configurations(), psd_matrices(), points)
@@ -111,8 +136,19 @@ def test_spring_torque_is_minus_the_gradient_of_its_energy(arm, q, K, rest_point
     """tau = -dV/dq: the virtual spring is conservative (checked without the Jacobian)."""
     spring = CartesianSpring(arm, K, rest_point)
     step = 1e-6
-    gradient = np.array([(spring.potential_energy(q + step * e) - spring.potential_energy(q - step * e)) / (2 * step) for e in np.eye(2)])
-    scale = np.linalg.norm(K) * (np.linalg.norm(rest_point) + arm.l1 + arm.l2) ** 2 + 1.0
+    gradient = np.array(
+        [
+            (
+                spring.potential_energy(q + step * e)
+                - spring.potential_energy(q - step * e)
+            )
+            / (2 * step)
+            for e in np.eye(2)
+        ]
+    )
+    scale = (
+        np.linalg.norm(K) * (np.linalg.norm(rest_point) + arm.l1 + arm.l2) ** 2 + 1.0
+    )
     assert np.allclose(spring.torque(q), -gradient, rtol=0.0, atol=1e-6 * scale)
 
 
@@ -120,14 +156,34 @@ def test_spring_torque_is_minus_the_gradient_of_its_energy(arm, q, K, rest_point
     "build",
     [
         lambda arm: CartesianSpring(arm, [[600.0, 100.0], [100.0, 300.0]], [2.5, 1.5]),
-        lambda arm: Impedance(arm, [[600.0, 100.0], [100.0, 300.0]], [[40.0, 5.0], [5.0, 20.0]], [2.5, 1.5]),
+        lambda arm: Impedance(
+            arm,
+            [[600.0, 100.0], [100.0, 300.0]],
+            [[40.0, 5.0], [5.0, 20.0]],
+            [2.5, 1.5],
+        ),
         lambda arm: Impedance(arm, 600.0, 30.0, [2.5, 1.5], gravity_compensation=False),
-        lambda arm: JointPD(arm, [[80.0, 10.0], [10.0, 40.0]], [[9.0, 1.0], [1.0, 4.0]], [0.2, 0.9]),
-        lambda arm: ComputedTorque(arm, 100.0, 12.0, JointReference(
-            lambda t: np.array([0.2 + np.sin(t), 0.9]), lambda t: np.array([np.cos(t), 0.0]),
-            lambda t: np.array([-np.sin(t), 0.3]))),
+        lambda arm: JointPD(
+            arm, [[80.0, 10.0], [10.0, 40.0]], [[9.0, 1.0], [1.0, 4.0]], [0.2, 0.9]
+        ),
+        lambda arm: ComputedTorque(
+            arm,
+            100.0,
+            12.0,
+            JointReference(
+                lambda t: np.array([0.2 + np.sin(t), 0.9]),
+                lambda t: np.array([np.cos(t), 0.0]),
+                lambda t: np.array([-np.sin(t), 0.3]),
+            ),
+        ),
     ],
-    ids=["spring", "impedance", "impedance without compensation", "joint PD", "computed torque"],
+    ids=[
+        "spring",
+        "impedance",
+        "impedance without compensation",
+        "joint PD",
+        "computed torque",
+    ],
 )
 @pytest.mark.parametrize("q", [[0.4, 1.3], [-2.0, -0.5], [1.0, 2.5]])
 def test_torque_derivatives_are_the_derivatives_of_the_torque(build, q):
@@ -135,20 +191,31 @@ def test_torque_derivatives_are_the_derivatives_of_the_torque(build, q):
     arm = TwoLinkArm(1.0, 0.6, m1=3.0, m2=1.0, I2=0.1, g=-4.0)
     controller, q, t, step = build(arm), np.array(q), 0.7, 1e-6
     by_q, by_qd = controller.torque_derivatives(t, q)
-    columns_q = [(controller(t, q + step * e, ZERO) - controller(t, q - step * e, ZERO)) / (2 * step) for e in np.eye(2)]
-    columns_qd = [(controller(t, q, step * e) - controller(t, q, -step * e)) / (2 * step) for e in np.eye(2)]
+    columns_q = [
+        (controller(t, q + step * e, ZERO) - controller(t, q - step * e, ZERO))
+        / (2 * step)
+        for e in np.eye(2)
+    ]
+    columns_qd = [
+        (controller(t, q, step * e) - controller(t, q, -step * e)) / (2 * step)
+        for e in np.eye(2)
+    ]
     scale = 1.0 + np.max(np.abs(by_q)) + np.max(np.abs(by_qd))
     assert np.allclose(by_q, np.column_stack(columns_q), rtol=0.0, atol=1e-7 * scale)
     assert np.allclose(by_qd, np.column_stack(columns_qd), rtol=0.0, atol=1e-7 * scale)
 
 
 def test_spring_is_vectorised_and_matches_single_states():
-    spring = CartesianSpring(arms.two_metre, [[600.0, 100.0], [100.0, 300.0]], [3.0, 1.0])
+    spring = CartesianSpring(
+        arms.two_metre, [[600.0, 100.0], [100.0, 300.0]], [3.0, 1.0]
+    )
     q_grid = np.random.default_rng(1).uniform(-np.pi, np.pi, size=(4, 3, 2))
     batch = spring.torque(q_grid)
     assert batch.shape == (4, 3, 2)
     for index in np.ndindex(4, 3):
-        assert np.allclose(batch[index], spring(0.0, q_grid[index], ZERO), rtol=1e-14, atol=1e-12)
+        assert np.allclose(
+            batch[index], spring(0.0, q_grid[index], ZERO), rtol=1e-14, atol=1e-12
+        )
     assert spring.potential_energy(q_grid).shape == (4, 3)
 
 
@@ -161,8 +228,12 @@ def test_the_source_exercise_numbers():
             tau = spring(0.0, q, ZERO)
             assert tau[0] == pytest.approx(3.0 * 600.0 * (1.0 - y), abs=1e-9)
             elbow = arm.joint_positions(q)[1]
-            assert tau[1] == pytest.approx((3.0 - elbow[0]) * 600.0 * (1.0 - y), abs=1e-9)
-    assert np.allclose(spring(0.0, ik.closed_form(arm, [3.0, 1.0]).q, ZERO), 0.0, atol=1e-9)
+            assert tau[1] == pytest.approx(
+                (3.0 - elbow[0]) * 600.0 * (1.0 - y), abs=1e-9
+            )
+    assert np.allclose(
+        spring(0.0, ik.closed_form(arm, [3.0, 1.0]).q, ZERO), 0.0, atol=1e-9
+    )
 
 
 def test_impedance_torque_adds_damping_and_gravity():
@@ -175,22 +246,38 @@ def test_impedance_torque_adds_damping_and_gravity():
     expected = J.T @ (600.0 * (np.array([3.0, 1.0]) - arm.fk(q)) - D @ J @ qd)
     assert np.allclose(without(0.0, q, qd), expected, rtol=1e-13)
     assert np.allclose(with_gravity(0.0, q, qd), expected + arm.gravity(q), rtol=1e-13)
-    assert np.allclose(with_gravity.spring(0.0, q, qd), J.T @ (600.0 * (np.array([3.0, 1.0]) - arm.fk(q))))
+    assert np.allclose(
+        with_gravity.spring(0.0, q, qd),
+        J.T @ (600.0 * (np.array([3.0, 1.0]) - arm.fk(q))),
+    )
 
 
 # ---------------------------------------------------------------- on the simulated arm
 @settings(max_examples=15)
-@given(dynamic_arms(), st.floats(0.1, 0.9), st.floats(-np.pi, np.pi), st.sampled_from(["down", "up"]))
-def test_at_the_rest_point_with_gravity_compensation_the_arm_stays_at_rest(arm, reach_fraction, direction, elbow):
+@given(
+    dynamic_arms(),
+    st.floats(0.1, 0.9),
+    st.floats(-np.pi, np.pi),
+    st.sampled_from(["down", "up"]),
+)
+def test_at_the_rest_point_with_gravity_compensation_the_arm_stays_at_rest(
+    arm, reach_fraction, direction, elbow
+):
     r_low, r_high = arm.reach
-    rest_point = (r_low + reach_fraction * (r_high - r_low)) * np.array([np.cos(direction), np.sin(direction)])
+    rest_point = (r_low + reach_fraction * (r_high - r_low)) * np.array(
+        [np.cos(direction), np.sin(direction)]
+    )
     q_rest = ik.closed_form(arm, rest_point, elbow=elbow).q
     assume(abs(np.sin(q_rest[1])) > 0.05)
-    control = Impedance(arm, 100.0 * (arm.m1 + arm.m2), 5.0 * (arm.m1 + arm.m2), rest_point)
+    control = Impedance(
+        arm, 100.0 * (arm.m1 + arm.m2), 5.0 * (arm.m1 + arm.m2), rest_point
+    )
     result = simulate(arm, q_rest, ZERO, 2.0, torque=control, **TIGHT)
     # Bounds set by the solver's accuracy (atol = 1e-10 on the state), far below the sag of a missing g(q)
     # (the next test): the tip stays put to 1e-8 of the arm's size and the joints barely stir.
-    assert np.max(np.linalg.norm(arm.fk(result.q) - rest_point, axis=-1)) < 1e-8 * (arm.l1 + arm.l2)
+    assert np.max(np.linalg.norm(arm.fk(result.q) - rest_point, axis=-1)) < 1e-8 * (
+        arm.l1 + arm.l2
+    )
     assert np.max(np.abs(result.qd)) < 1e-6
 
 
@@ -203,37 +290,67 @@ def test_without_gravity_compensation_the_arm_sags():
     assert np.max(np.abs(result.q - q_rest)) > 1e-3
 
 
-@pytest.mark.parametrize("arm", [arms.two_metre, dataclasses.replace(arms.two_metre, g=0.0)])
+@pytest.mark.parametrize(
+    "arm", [arms.two_metre, dataclasses.replace(arms.two_metre, g=0.0)]
+)
 @pytest.mark.parametrize("start", [[3.0, 2.0], [2.0, 0.5], [3.5, 1.5]])
 def test_the_critically_damped_loop_settles_at_the_rest_point(arm, start):
     rest_point = np.array([3.0, 1.0])
     q_rest = ik.closed_form(arm, rest_point).q
     control = Impedance(arm, 600.0, critical_damping(arm, q_rest, 600.0), rest_point)
-    result = simulate(arm, ik.closed_form(arm, start).q, ZERO, 3.0, torque=control, t_eval=[0.0, 0.2, 3.0], **TIGHT)
+    result = simulate(
+        arm,
+        ik.closed_form(arm, start).q,
+        ZERO,
+        3.0,
+        torque=control,
+        t_eval=[0.0, 0.2, 3.0],
+        **TIGHT,
+    )
     p_end = arm.fk(result.q[-1])
     assert np.linalg.norm(p_end - rest_point) < 1e-6  # metres, after 3 s
     assert np.linalg.norm(arm.tip_velocity(result.q[-1], result.qd[-1])) < 1e-5  # m/s
-    assert np.linalg.norm(arm.fk(result.q[1]) - rest_point) > 1e-2  # it was still on its way at 0.2 s
+    assert (
+        np.linalg.norm(arm.fk(result.q[1]) - rest_point) > 1e-2
+    )  # it was still on its way at 0.2 s
 
 
 def test_without_compensation_it_settles_where_spring_and_weight_balance():
     arm = arms.two_metre
     rest_point = np.array([3.0, 1.0])
     q_rest = ik.closed_form(arm, rest_point).q
-    control = Impedance(arm, 600.0, critical_damping(arm, q_rest, 600.0), rest_point, gravity_compensation=False)
+    control = Impedance(
+        arm,
+        600.0,
+        critical_damping(arm, q_rest, 600.0),
+        rest_point,
+        gravity_compensation=False,
+    )
     q_balance = equilibrium(arm, control, q_rest)
-    result = simulate(arm, ik.closed_form(arm, [3.0, 2.0]).q, ZERO, 4.0, torque=control, t_eval=[0.0, 4.0], **TIGHT)
+    result = simulate(
+        arm,
+        ik.closed_form(arm, [3.0, 2.0]).q,
+        ZERO,
+        4.0,
+        torque=control,
+        t_eval=[0.0, 4.0],
+        **TIGHT,
+    )
     assert np.allclose(result.q[-1], q_balance, atol=1e-6)
     sag = rest_point - arm.fk(q_balance)
     assert sag[1] > 0.01  # below the rest point by more than a centimetre
     # Statics: the spring's pull on the tip carries the weight: J^T K (x0 - x) = g(q)
-    assert np.allclose(arm.jacobian(q_balance).T @ (600.0 * sag), arm.gravity(q_balance), atol=1e-8)
+    assert np.allclose(
+        arm.jacobian(q_balance).T @ (600.0 * sag), arm.gravity(q_balance), atol=1e-8
+    )
 
 
 def test_the_pure_spring_conserves_arm_plus_spring_energy():
     arm = arms.two_metre
     spring = CartesianSpring(arm, 600.0, [3.0, 1.0])
-    result = simulate(arm, ik.closed_form(arm, [3.0, 2.0]).q, ZERO, 2.0, torque=spring, **TIGHT)
+    result = simulate(
+        arm, ik.closed_form(arm, [3.0, 2.0]).q, ZERO, 2.0, torque=spring, **TIGHT
+    )
     kinetic, potential = result.energy()
     total = kinetic + potential + spring.potential_energy(result.q)
     assert np.max(kinetic) > 100.0  # it really swings
@@ -264,7 +381,11 @@ def test_reference_from_samples_reproduces_a_cubic_and_holds_its_ends():
         assert np.allclose(qdd_ref, [6 * time, 1.0], atol=1e-11)
     for time, end in [(-1.0, 0), (3.0, -1)]:
         q_ref, qd_ref, qdd_ref = reference(time)
-        assert np.array_equal(q_ref, q[end]) and np.array_equal(qd_ref, ZERO) and np.array_equal(qdd_ref, ZERO)
+        assert (
+            np.array_equal(q_ref, q[end])
+            and np.array_equal(qd_ref, ZERO)
+            and np.array_equal(qdd_ref, ZERO)
+        )
 
 
 @pytest.mark.parametrize(
@@ -281,7 +402,9 @@ def test_reference_from_bad_samples_raises(t, q, message):
         JointReference.from_samples(t, q)
 
 
-@pytest.mark.parametrize("arm", [arms.two_metre, TwoLinkArm(1.0, 0.6, m1=3.0, m2=1.0, I2=0.1)])
+@pytest.mark.parametrize(
+    "arm", [arms.two_metre, TwoLinkArm(1.0, 0.6, m1=3.0, m2=1.0, I2=0.1)]
+)
 def test_computed_torque_tracks_a_smooth_trajectory(arm):
     """Started on the reference, the error stays below 1e-7 rad (only the solver's error);
     started off it, each joint's error stays inside the critically damped envelope e0 (1 + wn t) exp(-wn t)."""
@@ -289,14 +412,32 @@ def test_computed_torque_tracks_a_smooth_trajectory(arm):
     omega_n = 10.0
     control = ComputedTorque(arm, kp=omega_n**2, kd=2 * omega_n, reference=reference)
     t_eval = np.linspace(0.0, 3.0, 301)
-    on_track = simulate(arm, reference(0.0)[0], reference(0.0)[1], 3.0, torque=control, t_eval=t_eval, **TIGHT)
+    on_track = simulate(
+        arm,
+        reference(0.0)[0],
+        reference(0.0)[1],
+        3.0,
+        torque=control,
+        t_eval=t_eval,
+        **TIGHT,
+    )
     error = np.array([reference(t)[0] for t in t_eval]) - on_track.q
     assert np.max(np.abs(error)) < 1e-7
 
     e0 = np.array([0.2, -0.15])
-    off_track = simulate(arm, reference(0.0)[0] - e0, reference(0.0)[1], 3.0, torque=control, t_eval=t_eval, **TIGHT)
+    off_track = simulate(
+        arm,
+        reference(0.0)[0] - e0,
+        reference(0.0)[1],
+        3.0,
+        torque=control,
+        t_eval=t_eval,
+        **TIGHT,
+    )
     error = np.array([reference(t)[0] for t in t_eval]) - off_track.q
-    envelope = np.abs(e0) * ((1 + omega_n * t_eval) * np.exp(-omega_n * t_eval))[:, None]
+    envelope = (
+        np.abs(e0) * ((1 + omega_n * t_eval) * np.exp(-omega_n * t_eval))[:, None]
+    )
     assert np.max(np.abs(error) - envelope) < 1e-7
     assert np.max(np.abs(error[-1])) < 1e-9
 
@@ -313,7 +454,10 @@ def test_model_errors_and_pd_control_leave_tracking_errors():
         return np.max(np.abs(np.array([reference(t)[0] for t in t_eval]) - result.q))
 
     wrong_model = dataclasses.replace(arm, m2=2.0 * arm.m2)
-    assert worst_error(ComputedTorque(arm, 100.0, 20.0, reference, model=wrong_model)) > 1e-3
+    assert (
+        worst_error(ComputedTorque(arm, 100.0, 20.0, reference, model=wrong_model))
+        > 1e-3
+    )
     M_mid = arm.mass_matrix([0.3, 1.2])
     assert worst_error(JointPD(arm, 100.0 * M_mid, 20.0 * M_mid, reference)) > 1e-2
 
@@ -321,11 +465,22 @@ def test_model_errors_and_pd_control_leave_tracking_errors():
 def test_joint_pd_holds_its_reference_and_tracks_one_from_samples():
     arm = arms.two_metre
     q_ref = np.array([0.4, 0.9])
-    hold = simulate(arm, q_ref, ZERO, 2.0, torque=JointPD(arm, 200.0, 30.0, q_ref), **TIGHT)
+    hold = simulate(
+        arm, q_ref, ZERO, 2.0, torque=JointPD(arm, 200.0, 30.0, q_ref), **TIGHT
+    )
     assert np.max(np.abs(hold.q - q_ref)) < 1e-9
     t = np.linspace(0.0, 2.0, 41)
-    samples = JointReference.from_samples(t, np.column_stack([0.4 + 0.1 * t, 0.9 - 0.05 * t**2]))
-    follow = simulate(arm, q_ref, samples(0.0)[1], 2.0, torque=JointPD(arm, 400.0, 40.0, samples), **TIGHT)
+    samples = JointReference.from_samples(
+        t, np.column_stack([0.4 + 0.1 * t, 0.9 - 0.05 * t**2])
+    )
+    follow = simulate(
+        arm,
+        q_ref,
+        samples(0.0)[1],
+        2.0,
+        torque=JointPD(arm, 400.0, 40.0, samples),
+        **TIGHT,
+    )
     assert np.max(np.abs(follow.q[-1] - samples(2.0)[0])) < 0.05
 
 
@@ -339,32 +494,58 @@ def test_spring_wall_pushes_out_only_from_inside():
     outside, on_wall, inside = [2.0, 1.0], [2.0, 2.0], [2.0, 2.0] + 0.01 * normal
     assert np.array_equal(wall.force_on_tip(outside, [5.0, 5.0]), ZERO)
     assert np.array_equal(wall.force_on_tip(on_wall, ZERO), ZERO)
-    assert np.allclose(wall.force_on_tip(inside, ZERO), -100.0 * normal)  # k s = 1e4 * 0.01
-    assert np.allclose(wall.force_on_tip(inside, 0.5 * normal), -150.0 * normal)  # moving in: damping adds
-    assert np.array_equal(wall.force_on_tip(inside, -5.0 * normal), ZERO)  # leaving fast: never pulls
+    assert np.allclose(
+        wall.force_on_tip(inside, ZERO), -100.0 * normal
+    )  # k s = 1e4 * 0.01
+    assert np.allclose(
+        wall.force_on_tip(inside, 0.5 * normal), -150.0 * normal
+    )  # moving in: damping adds
+    assert np.array_equal(
+        wall.force_on_tip(inside, -5.0 * normal), ZERO
+    )  # leaving fast: never pulls
     assert wall.penetration([[2.0, 1.0], inside]).tolist() == pytest.approx([0.0, 0.01])
 
 
-@given(dynamic_arms(), configurations(), st.tuples(st.floats(-50, 50), st.floats(-50, 50)).map(np.array))
-def test_a_constant_force_on_tip_is_the_dynamics_force_by_tip_of_the_opposite_sign(arm, q, push):
+@given(
+    dynamic_arms(),
+    configurations(),
+    st.tuples(st.floats(-50, 50), st.floats(-50, 50)).map(np.array),
+)
+def test_a_constant_force_on_tip_is_the_dynamics_force_by_tip_of_the_opposite_sign(
+    arm, q, push
+):
     """A push F on the tip is the same as the tip exerting -F (dynamics' convention)."""
     qd = np.array([0.3, -0.2])
     pushed = TipForce(arm, lambda t, q_now, qd_now: arm.gravity(q_now), push)
     via_tip_force = arm.forward_dynamics(q, qd, pushed(0.0, q, qd))
-    via_dynamics = dynamics.forward_dynamics(arm, q, qd, arm.gravity(q), force_by_tip=-push)
+    via_dynamics = dynamics.forward_dynamics(
+        arm, q, qd, arm.gravity(q), force_by_tip=-push
+    )
     assert np.allclose(via_tip_force, via_dynamics, rtol=1e-9, atol=1e-9)
     assert np.array_equal(pushed.force_on_tip_at(0.0, q, qd), push)
 
 
-@given(dynamic_arms(), configurations(), st.tuples(st.floats(-3, 3), st.floats(-3, 3)).map(np.array),
-       st.floats(0.05, 0.5), st.floats(1.0, 1e4), st.floats(0.0, 100.0))
-def test_a_spring_walls_force_on_tip_and_force_by_tip_give_the_same_dynamics(arm, q, qd, depth, k, c):
+@given(
+    dynamic_arms(),
+    configurations(),
+    st.tuples(st.floats(-3, 3), st.floats(-3, 3)).map(np.array),
+    st.floats(0.05, 0.5),
+    st.floats(1.0, 1e4),
+    st.floats(0.0, 100.0),
+)
+def test_a_spring_walls_force_on_tip_and_force_by_tip_give_the_same_dynamics(
+    arm, q, qd, depth, k, c
+):
     """The two conventions agree: the wall's force_on_tip F enters as + J^T F, force_by_tip = -F as - J^T (-F)."""
     p_tip = arm.fk(q)
     distance = float(np.hypot(*p_tip))
     assume(distance > 1e-3 * (arm.l1 + arm.l2))
-    normal = p_tip / distance  # the wall across the radius, the tip depth * |p| inside it
-    wall = SpringWall(statics.Wall(p_tip - depth * distance * normal, normal), stiffness=k, damping=c)
+    normal = (
+        p_tip / distance
+    )  # the wall across the radius, the tip depth * |p| inside it
+    wall = SpringWall(
+        statics.Wall(p_tip - depth * distance * normal, normal), stiffness=k, damping=c
+    )
     v_tip = arm.jacobian(q) @ qd
     F = wall.force_on_tip(p_tip, v_tip)
     assume(np.any(F != 0.0))
@@ -381,11 +562,18 @@ def test_a_spring_walls_force_on_tip_and_force_by_tip_give_the_same_dynamics(arm
     # ... and inverse: that motion needs the motors' torques less J^T F
     qdd = np.array([0.5, -1.5])
     needed = dynamics.inverse_dynamics(arm, q, qd, qdd, force_by_tip=-F)
-    assert np.allclose(needed, arm.inverse_dynamics(q, qd, qdd) - world(0.0, q, qd), rtol=0.0, atol=1e-12 * scale)
+    assert np.allclose(
+        needed,
+        arm.inverse_dynamics(q, qd, qdd) - world(0.0, q, qd),
+        rtol=0.0,
+        atol=1e-12 * scale,
+    )
     # statics: the motors hold a force_on_tip F with tau = -J^T F = J^T force_by_tip
     held = arm.joint_torques(q, -F) + arm.gravity(q)
     at_rest = np.zeros(2)
-    still = arm.forward_dynamics(q, at_rest, held + TipForce(arm, None, F)(0.0, q, at_rest))
+    still = arm.forward_dynamics(
+        q, at_rest, held + TipForce(arm, None, F)(0.0, q, at_rest)
+    )
     assert np.allclose(still, 0.0, atol=1e-12 * M_inverse * scale)
 
 
@@ -398,11 +586,16 @@ def test_bad_contact_parameters_raise():
         SpringWall("x + y = 4", stiffness=1.0)
     with pytest.raises(ValueError, match="TipForce's arm must be a twolink.TwoLinkArm"):
         TipForce("arm", None, [1.0, 2.0])
-    with pytest.raises(ValueError, match="CartesianSpring's arm must be a twolink.TwoLinkArm"):
+    with pytest.raises(
+        ValueError, match="CartesianSpring's arm must be a twolink.TwoLinkArm"
+    ):
         CartesianSpring(None, 600.0, [3.0, 1.0])
     with pytest.raises(ValueError, match=r"force_on_tip must have shape \(\.\.\., 2\)"):
         TipForce(arms.two_metre, None, [1.0, 2.0, 3.0])
-    with pytest.raises(ValueError, match=r"force_on_tip must be one force \(Fx, Fy\) of shape \(2,\) \(N\); got shape \(1, 2\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"force_on_tip must be one force \(Fx, Fy\) of shape \(2,\) \(N\); got shape \(1, 2\)",
+    ):
         TipForce(arms.two_metre, None, [[1.0, 2.0]])
     with pytest.raises(ValueError, match="controller must be None or a callable"):
         TipForce(arms.two_metre, 3.0, [1.0, 2.0])
@@ -415,7 +608,9 @@ def test_impedance_pushing_on_a_stiff_wall_reproduces_the_statics_answer():
     k, k_wall, push = 600.0, 1e5, 500.0
     normal = WALL.into_wall()
     depth = push / k_wall
-    pressed_wall = statics.Wall(WALL.point + depth * normal, normal)  # where the tip will rest
+    pressed_wall = statics.Wall(
+        WALL.point + depth * normal, normal
+    )  # where the tip will rest
     statics_answer = statics.wall_contact(arm, pressed_wall, push, include_gravity=True)
     p_contact = statics_answer.p_contact[statics_answer.branch("down")]
     rest_point = p_contact + (push / k) * normal
@@ -424,36 +619,62 @@ def test_impedance_pushing_on_a_stiff_wall_reproduces_the_statics_answer():
     world = TipForce(arm, control, SpringWall(WALL, k_wall, damping=2000.0))
     result = simulate(arm, q_start, ZERO, 3.0, torque=world, t_eval=[0.0, 3.0], **TIGHT)
     q_end = result.q[-1]
-    contact_force = -world.force_on_tip_at(3.0, q_end, result.qd[-1]) @ normal  # what the tip exerts on the wall
+    contact_force = (
+        -world.force_on_tip_at(3.0, q_end, result.qd[-1]) @ normal
+    )  # what the tip exerts on the wall
     assert contact_force == pytest.approx(push, rel=1e-6)
-    assert np.allclose(q_end, statics_answer.q[statics_answer.branch("down")], atol=1e-7)
-    assert np.allclose(control(3.0, q_end, ZERO), statics_answer.tau[statics_answer.branch("down")], rtol=1e-6, atol=1e-4)
+    assert np.allclose(
+        q_end, statics_answer.q[statics_answer.branch("down")], atol=1e-7
+    )
+    assert np.allclose(
+        control(3.0, q_end, ZERO),
+        statics_answer.tau[statics_answer.branch("down")],
+        rtol=1e-6,
+        atol=1e-4,
+    )
 
 
 # ----------------------------------------------------------------- edges: shapes named, batches of states
 def test_joint_pd_and_computed_torque_take_a_batch_of_states_row_by_row():
     rng = np.random.default_rng(0)
     q, qd = rng.normal(size=(5, 2)), rng.normal(size=(5, 2))
-    for control in (JointPD(arms.two_metre, 100.0, 20.0, [0.5, 0.5]), ComputedTorque(arms.two_metre, 100.0, 20.0, [0.5, 0.5])):
+    for control in (
+        JointPD(arms.two_metre, 100.0, 20.0, [0.5, 0.5]),
+        ComputedTorque(arms.two_metre, 100.0, 20.0, [0.5, 0.5]),
+    ):
         rows = np.array([control(0.3, q_row, qd_row) for q_row, qd_row in zip(q, qd)])
         assert np.allclose(control(0.3, q, qd), rows, rtol=1e-13, atol=1e-12)
 
 
-@pytest.mark.parametrize("control", [
-    JointPD(arms.two_metre, 100.0, 20.0, [0.5, 0.5]),
-    ComputedTorque(arms.two_metre, 100.0, 20.0, [0.5, 0.5]),
-    Impedance(arms.two_metre, 600.0, 50.0, [3.0, 1.0]),
-], ids=["JointPD", "ComputedTorque", "Impedance"])
+@pytest.mark.parametrize(
+    "control",
+    [
+        JointPD(arms.two_metre, 100.0, 20.0, [0.5, 0.5]),
+        ComputedTorque(arms.two_metre, 100.0, 20.0, [0.5, 0.5]),
+        Impedance(arms.two_metre, 600.0, 50.0, [3.0, 1.0]),
+    ],
+    ids=["JointPD", "ComputedTorque", "Impedance"],
+)
 def test_wrong_shapes_are_named_not_left_to_numpy_matmul(control):
-    with pytest.raises(ValueError, match=r"^q must have shape \(\.\.\., 2\) .*got shape \(3,\)"):
+    with pytest.raises(
+        ValueError, match=r"^q must have shape \(\.\.\., 2\) .*got shape \(3,\)"
+    ):
         control(0.0, [0.1, 0.2, 0.3], [0.0, 0.0])
-    with pytest.raises(ValueError, match=r"^q of shape \(3, 2\) and qd of shape \(4, 2\) do not broadcast together"):
+    with pytest.raises(
+        ValueError,
+        match=r"^q of shape \(3, 2\) and qd of shape \(4, 2\) do not broadcast together",
+    ):
         control(0.0, np.zeros((3, 2)), np.zeros((4, 2)))
 
 
 def test_a_reference_returning_the_wrong_shape_is_named():
-    three = JointReference(lambda t: [1.0, 2.0, 3.0], lambda t: [0.0, 0.0], lambda t: [0.0, 0.0])
-    with pytest.raises(ValueError, match=r"the reference's position\(t\) must return two numbers \(rad\), shape \(2,\); got \[1.0, 2.0, 3.0\] at t = 0.0"):
+    three = JointReference(
+        lambda t: [1.0, 2.0, 3.0], lambda t: [0.0, 0.0], lambda t: [0.0, 0.0]
+    )
+    with pytest.raises(
+        ValueError,
+        match=r"the reference's position\(t\) must return two numbers \(rad\), shape \(2,\); got \[1.0, 2.0, 3.0\] at t = 0.0",
+    ):
         JointPD(arms.two_metre, 100.0, 20.0, three)(0.0, [0.0, 0.0], [0.0, 0.0])
 
 

@@ -20,7 +20,10 @@ def test_every_public_name_is_fully_annotated(name):
     if inspect.isclass(item):
         return
     signature = inspect.signature(item)
-    assert all(p.annotation is not inspect.Parameter.empty for p in signature.parameters.values())
+    assert all(
+        p.annotation is not inspect.Parameter.empty
+        for p in signature.parameters.values()
+    )
     assert signature.return_annotation is not inspect.Signature.empty
 
 
@@ -36,7 +39,9 @@ def test_angles_deg_reads_back_to_the_angles_within_its_rounding(q, digits):
     match = ANGLES.fullmatch(text)
     assert match, text
     shown = np.array([float(group) for group in match.groups()])
-    assert np.all(np.abs(shown - np.degrees(q)) <= 0.5 * 10.0**-digits * (1 + 1e-9) + 1e-9)
+    assert np.all(
+        np.abs(shown - np.degrees(q)) <= 0.5 * 10.0**-digits * (1 + 1e-9) + 1e-9
+    )
     for group in match.groups():
         assert len(group.partition(".")[2]) == digits
         assert not re.fullmatch(r"-0(\.0*)?", group), f"negative zero shown in {text}"
@@ -51,10 +56,25 @@ def test_angles_deg_examples():
 @pytest.mark.parametrize(
     "q, digits, error, message",
     [
-        ([[0.1, 0.2]], 1, ValueError, r"q must be one configuration of shape \(2,\) \(radians\)"),
+        (
+            [[0.1, 0.2]],
+            1,
+            ValueError,
+            r"q must be one configuration of shape \(2,\) \(radians\)",
+        ),
         ([0.1, np.nan], 1, ValueError, "q must be finite"),
-        ([0.1, 0.2], -1, ValueError, r"digits \(decimals shown\) must be an integer >= 0"),
-        ([0.1, 0.2], 1.5, ValueError, r"digits \(decimals shown\) must be an integer >= 0"),
+        (
+            [0.1, 0.2],
+            -1,
+            ValueError,
+            r"digits \(decimals shown\) must be an integer >= 0",
+        ),
+        (
+            [0.1, 0.2],
+            1.5,
+            ValueError,
+            r"digits \(decimals shown\) must be an integer >= 0",
+        ),
         (["a", 0.2], 1, InputTypeError, "q must be"),
     ],
 )
@@ -102,7 +122,7 @@ def test_print_error_lets_other_errors_through(capsys):
             ik.closed_form(arms.two_metre, [1.0, 2.0, 3.0])
     with pytest.raises(ZeroDivisionError):
         with display.print_error(errors=(ValueError,)):
-            1 / 0
+            _ = 1 / 0
     assert capsys.readouterr().out == ""
 
 
@@ -117,9 +137,15 @@ def test_print_error_catches_what_it_is_told_to(capsys):
     "arguments, message",
     [
         ({"prefix": 3}, "prefix must be a string"),
-        ({"errors": ValueError}, "errors must be a non-empty tuple of exception classes"),
+        (
+            {"errors": ValueError},
+            "errors must be a non-empty tuple of exception classes",
+        ),
         ({"errors": ()}, "errors must be a non-empty tuple of exception classes"),
-        ({"errors": (ValueError, "KeyError")}, "errors must be a non-empty tuple of exception classes"),
+        (
+            {"errors": (ValueError, "KeyError")},
+            "errors must be a non-empty tuple of exception classes",
+        ),
     ],
 )
 def test_print_error_refuses_bad_arguments(arguments, message):
@@ -155,7 +181,9 @@ def test_below_states_a_true_bound_or_refuses(value, exponent, unit):
         kind, shown, shown_unit = BOUND_TEXT.fullmatch(text).groups()
         assert kind == "below" and float(shown) == pytest.approx(bound, rel=1e-12)
         assert (shown_unit or "") == unit
-        assert "e-0" not in text and "e+" not in text  # plain exponents: 1e-5, not 1e-05
+        assert (
+            "e-0" not in text and "e+" not in text
+        )  # plain exponents: 1e-5, not 1e-05
     else:
         with pytest.raises(display.BoundError, match="not below the stated bound"):
             display.below(value, bound, unit)
@@ -164,7 +192,11 @@ def test_below_states_a_true_bound_or_refuses(value, exponent, unit):
 @given(noise=st.floats(0.0, 1e-13), sign=st.sampled_from([-1.0, 1.0]))
 def test_below_reads_the_same_for_any_round_off_under_the_bound(noise, sign):
     # The point of the helper: two machines whose round-off differs print one text.
-    assert display.below(sign * noise, 1e-12, "m") == display.below(2.2e-16, 1e-12, "m") == "below 1e-12 m"
+    assert (
+        display.below(sign * noise, 1e-12, "m")
+        == display.below(2.2e-16, 1e-12, "m")
+        == "below 1e-12 m"
+    )
 
 
 def test_below_checks_the_largest_entry_of_an_array():
@@ -176,7 +208,9 @@ def test_below_checks_the_largest_entry_of_an_array():
 def test_at_most_allows_equality_and_refuses_more():
     assert display.at_most(8, 8, "iterations") == "at most 8 iterations"
     assert display.at_most([0, 3, 7], 8) == "at most 8"
-    with pytest.raises(display.BoundError, match="exceeds the stated bound 8 iterations"):
+    with pytest.raises(
+        display.BoundError, match="exceeds the stated bound 8 iterations"
+    ):
         display.at_most(9, 8, "iterations")
 
 
@@ -203,7 +237,9 @@ def test_below_refuses_a_zero_bound():
         display.below(0.0, 0.0)
 
 
-@pytest.mark.parametrize("function", [display.below, display.at_most, display.rounded, display.significant])
+@pytest.mark.parametrize(
+    "function", [display.below, display.at_most, display.rounded, display.significant]
+)
 def test_number_helpers_refuse_a_unit_that_is_not_text(function):
     with pytest.raises(InputTypeError, match="unit must be a string"):
         function(1e-20, 1, 3)
@@ -216,7 +252,9 @@ def test_number_helpers_refuse_a_unit_that_is_not_text(function):
 )
 def test_rounded_hides_noise_far_below_its_last_decimal(value, decimals, noise):
     text = display.rounded(value, decimals)
-    assert float(text) == pytest.approx(round(value, decimals), abs=10.0**-decimals * 1e-6)
+    assert float(text) == pytest.approx(
+        round(value, decimals), abs=10.0**-decimals * 1e-6
+    )
     assert not text.startswith("-0") or float(text) != 0.0  # never "-0.00"
     step = 10.0**-decimals
     # A perturbation a thousandth of a step changes the text only when the value sits that close to a rounding tie.
@@ -226,7 +264,11 @@ def test_rounded_hides_noise_far_below_its_last_decimal(value, decimals, noise):
 
 
 def test_rounded_examples_and_shapes():
-    assert display.rounded(500.5405, 1, "N") == display.rounded(500.5362, 1, "N") == "500.5 N"
+    assert (
+        display.rounded(500.5405, 1, "N")
+        == display.rounded(500.5362, 1, "N")
+        == "500.5 N"
+    )
     assert display.rounded([1.2, -1e-17], 2, "m") == "(1.20, 0.00) m"
     assert display.rounded(-1e-17, 0) == "0"
     with pytest.raises(ValueError, match="one number or a vector"):
@@ -237,11 +279,18 @@ def test_rounded_examples_and_shapes():
         display.rounded(1.0, -1)
 
 
-@given(value=st.floats(-1e12, 1e12, allow_nan=False).filter(lambda v: v == 0 or abs(v) > 1e-12), digits=st.integers(1, 8))
+@given(
+    value=st.floats(-1e12, 1e12, allow_nan=False).filter(
+        lambda v: v == 0 or abs(v) > 1e-12
+    ),
+    digits=st.integers(1, 8),
+)
 def test_significant_reads_back_within_its_digits(value, digits):
     text = display.significant(value, digits)
     assert "e+" not in text and "e-0" not in text and not text.endswith(".")
-    assert float(text) == pytest.approx(value, rel=0.5 * 10.0 ** (1 - digits) * (1 + 1e-9), abs=1e-300)
+    assert float(text) == pytest.approx(
+        value, rel=0.5 * 10.0 ** (1 - digits) * (1 + 1e-9), abs=1e-300
+    )
 
 
 def test_significant_examples():
@@ -255,7 +304,16 @@ def test_significant_examples():
 
 @pytest.mark.parametrize(
     "bound, shown",
-    [(0.5, "0.5"), (0.01, "0.01"), (5e-3, "5e-3"), (1e-3, "1e-3"), (1e-4, "1e-4"), (2.5e-5, "2.5e-5"), (1e-12, "1e-12"), (1e6, "1e6")],
+    [
+        (0.5, "0.5"),
+        (0.01, "0.01"),
+        (5e-3, "5e-3"),
+        (1e-3, "1e-3"),
+        (1e-4, "1e-4"),
+        (2.5e-5, "2.5e-5"),
+        (1e-12, "1e-12"),
+        (1e6, "1e6"),
+    ],
 )
 def test_every_small_bound_reads_in_one_style(bound, shown):
     assert display.below(0.0, bound) == f"below {shown}"

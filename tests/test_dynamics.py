@@ -5,10 +5,10 @@ import dataclasses
 import numpy as np
 import pytest
 import sympy as sp
-from conftest import configurations, dynamic_arms, rates
 from hypothesis import given
 from hypothesis import strategies as st
 
+from conftest import configurations, dynamic_arms, rates
 from twolink import TwoLinkArm, arms, dynamics
 from twolink.symbolic import dynamics_symbols, equations_of_motion, lambdify_dynamics
 
@@ -31,9 +31,13 @@ def gravity_scale(arm):
 
 
 def assert_within(actual, expected, tolerance):
-    tolerance = max(tolerance, 1e-300)  # relative tolerances of exact zeros (g = 0) stay meaningful
+    tolerance = max(
+        tolerance, 1e-300
+    )  # relative tolerances of exact zeros (g = 0) stay meaningful
     error = float(np.max(np.abs(np.asarray(actual) - np.asarray(expected))))
-    assert error <= tolerance, f"max error {error:.3e} > {tolerance:.3e}\nactual {actual}\nexpected {expected}"
+    assert error <= tolerance, (
+        f"max error {error:.3e} > {tolerance:.3e}\nactual {actual}\nexpected {expected}"
+    )
 
 
 # ----------------------------------------------------------------- symbolic derivation
@@ -46,7 +50,11 @@ def test_m_c_g_reproduce_the_euler_lagrange_equations(model):
 def test_symbolic_mass_matrix_is_symmetric_and_coriolis_skew_property_holds(model):
     eom = equations_of_motion(model)
     assert sp.simplify(eom.M - eom.M.T) == sp.zeros(2, 2)
-    M_dot = sp.Matrix(2, 2, lambda i, j: sum(sp.diff(eom.M[i, j], q) * qd for q, qd in zip(eom.q, eom.qd)))
+    M_dot = sp.Matrix(
+        2,
+        2,
+        lambda i, j: sum(sp.diff(eom.M[i, j], q) * qd for q, qd in zip(eom.q, eom.qd)),
+    )
     N = M_dot - 2 * eom.C
     assert sp.simplify(N + N.T) == sp.zeros(2, 2)
 
@@ -58,7 +66,10 @@ def test_relative_model_matches_the_textbook_uniform_rod_form():
     l1, l2, m1, m2, q2 = s["l1"], s["l2"], s["m1"], s["m2"], s["q2"]
     expected_M = sp.Matrix(
         [
-            [m1 * l1**2 / 3 + m2 * (l1**2 + l2**2 / 3 + l1 * l2 * sp.cos(q2)), m2 * (l2**2 / 3 + l1 * l2 * sp.cos(q2) / 2)],
+            [
+                m1 * l1**2 / 3 + m2 * (l1**2 + l2**2 / 3 + l1 * l2 * sp.cos(q2)),
+                m2 * (l2**2 / 3 + l1 * l2 * sp.cos(q2) / 2),
+            ],
             [m2 * (l2**2 / 3 + l1 * l2 * sp.cos(q2) / 2), m2 * l2**2 / 3],
         ]
     )
@@ -68,7 +79,10 @@ def test_relative_model_matches_the_textbook_uniform_rod_form():
 def test_the_two_models_are_the_same_machine():
     """theta = (q1, q1 + q2) turns the absolute model into the relative one, with tau = T^T u."""
     s = dynamics_symbols()
-    relative, absolute = equations_of_motion("relative"), equations_of_motion("absolute")
+    relative, absolute = (
+        equations_of_motion("relative"),
+        equations_of_motion("absolute"),
+    )
     substitution = {
         s["theta1"]: s["q1"],
         s["theta2"]: s["q1"] + s["q2"],
@@ -78,11 +92,17 @@ def test_the_two_models_are_the_same_machine():
         s["thetadd2"]: s["qdd1"] + s["qdd2"],
     }
     T = sp.Matrix(TO_ABSOLUTE.astype(int))
-    absolute_lhs = (absolute.M * absolute.qdd + absolute.C * absolute.qd + absolute.g).subs(substitution)
+    absolute_lhs = (
+        absolute.M * absolute.qdd + absolute.C * absolute.qd + absolute.g
+    ).subs(substitution)
     relative_lhs = relative.M * relative.qdd + relative.C * relative.qd + relative.g
     assert sp.simplify(T.T * absolute_lhs - relative_lhs) == sp.zeros(2, 1)
-    assert sp.simplify(T.T * absolute.M.subs(substitution) * T - relative.M) == sp.zeros(2, 2)
-    assert sp.simplify(T.T * absolute.Q - sp.Matrix([s["u1"] + s["u2"], s["u2"]])) == sp.zeros(2, 1)
+    assert sp.simplify(
+        T.T * absolute.M.subs(substitution) * T - relative.M
+    ) == sp.zeros(2, 2)
+    assert sp.simplify(
+        T.T * absolute.Q - sp.Matrix([s["u1"] + s["u2"], s["u2"]])
+    ) == sp.zeros(2, 1)
     # The energies are the same function of the motion.
     assert sp.simplify(absolute.kinetic.subs(substitution) - relative.kinetic) == 0
     assert sp.simplify(absolute.potential.subs(substitution) - relative.potential) == 0
@@ -113,12 +133,18 @@ def test_numeric_matches_symbolic_relative_model(arm, q, qd):
     symbolic = NUMERIC["relative"]
     scale = mass_scale(arm)
     assert_within(arm.mass_matrix(q), symbolic.mass_matrix(arm, q), 1e-12 * scale)
-    assert_within(arm.coriolis(q, qd), symbolic.coriolis(arm, q, qd), 1e-12 * scale * (1 + np.abs(qd).sum()))
+    assert_within(
+        arm.coriolis(q, qd),
+        symbolic.coriolis(arm, q, qd),
+        1e-12 * scale * (1 + np.abs(qd).sum()),
+    )
     assert_within(arm.gravity(q), symbolic.gravity(arm, q), 1e-12 * gravity_scale(arm))
 
 
 @given(dynamic_arms(), configurations(), pairs, pairs)
-def test_numeric_matches_symbolic_absolute_model_after_change_of_variables(arm, q, qd, qdd):
+def test_numeric_matches_symbolic_absolute_model_after_change_of_variables(
+    arm, q, qd, qdd
+):
     """The absolute model's torques u, mapped by tau = T^T u, are the DH torques of the same motion."""
     symbolic = NUMERIC["absolute"]
     theta, thetad, thetadd = q @ TO_ABSOLUTE.T, qd @ TO_ABSOLUTE.T, qdd @ TO_ABSOLUTE.T
@@ -128,9 +154,15 @@ def test_numeric_matches_symbolic_absolute_model_after_change_of_variables(arm, 
         + symbolic.gravity(arm, theta)
     )
     tau = arm.inverse_dynamics(q, qd, qdd)
-    scale = mass_scale(arm) * (np.abs(qdd).sum() + np.abs(qd).sum() ** 2) + gravity_scale(arm)
+    scale = mass_scale(arm) * (
+        np.abs(qdd).sum() + np.abs(qd).sum() ** 2
+    ) + gravity_scale(arm)
     assert_within(TO_ABSOLUTE.T @ u, tau, 1e-12 * scale)
-    assert_within(TO_ABSOLUTE.T @ symbolic.mass_matrix(arm, theta) @ TO_ABSOLUTE, arm.mass_matrix(q), 1e-12 * mass_scale(arm))
+    assert_within(
+        TO_ABSOLUTE.T @ symbolic.mass_matrix(arm, theta) @ TO_ABSOLUTE,
+        arm.mass_matrix(q),
+        1e-12 * mass_scale(arm),
+    )
 
 
 # ----------------------------------------------------------------- properties of M and C
@@ -156,7 +188,9 @@ def test_mass_matrix_of_known_bodies():
 @given(dynamic_arms(), configurations(), pairs)
 def test_m_dot_minus_2c_is_skew_symmetric(arm, q, qd):
     step = 1e-6
-    M_dot = (arm.mass_matrix(q + step * qd) - arm.mass_matrix(q - step * qd)) / (2 * step)
+    M_dot = (arm.mass_matrix(q + step * qd) - arm.mass_matrix(q - step * qd)) / (
+        2 * step
+    )
     N = M_dot - 2 * arm.coriolis(q, qd)
     tolerance = 1e-8 * mass_scale(arm) * (1 + np.abs(qd).sum())
     assert_within(N + N.T, np.zeros((2, 2)), tolerance)
@@ -170,7 +204,9 @@ def test_skew_test_rejects_another_valid_coriolis_factorisation():
     other_C = np.array([[2 * h * qd[1], h * qd[1]], [-h * qd[0], 0.0]])
     assert np.allclose(other_C @ qd, arm.coriolis(q, qd) @ qd, atol=1e-12)
     step = 1e-6
-    M_dot = (arm.mass_matrix(q + step * qd) - arm.mass_matrix(q - step * qd)) / (2 * step)
+    M_dot = (arm.mass_matrix(q + step * qd) - arm.mass_matrix(q - step * qd)) / (
+        2 * step
+    )
     assert np.abs((M_dot - 2 * other_C) + (M_dot - 2 * other_C).T).max() > 0.1
 
 
@@ -180,7 +216,9 @@ def test_inverse_then_forward_returns_the_acceleration(arm, q, qd, qdd):
     tau = arm.inverse_dynamics(q, qd, qdd)
     M = arm.mass_matrix(q)
     # Error of the round trip: rounding of tau (scale of its terms) amplified by M^-1.
-    tau_scale = mass_scale(arm) * (np.abs(qdd).sum() + np.abs(qd).sum() ** 2) + gravity_scale(arm)
+    tau_scale = mass_scale(arm) * (
+        np.abs(qdd).sum() + np.abs(qd).sum() ** 2
+    ) + gravity_scale(arm)
     tolerance = 1e-13 * np.abs(np.linalg.inv(M)).max() * tau_scale
     assert_within(arm.forward_dynamics(q, qd, tau), qdd, tolerance)
 
@@ -190,7 +228,11 @@ def test_closed_form_solve_agrees_with_numpy_solve(arm, q, qd, tau):
     M = arm.mass_matrix(q)
     rhs = tau - arm.coriolis(q, qd) @ qd - arm.gravity(q)
     expected = np.linalg.solve(M, rhs)
-    tolerance = 1e-13 * np.linalg.cond(M) * (np.abs(expected).max() + np.abs(np.linalg.inv(M)).max() * np.abs(rhs).max())
+    tolerance = (
+        1e-13
+        * np.linalg.cond(M)
+        * (np.abs(expected).max() + np.abs(np.linalg.inv(M)).max() * np.abs(rhs).max())
+    )
     assert_within(arm.forward_dynamics(q, qd, tau), expected, tolerance)
 
 
@@ -200,7 +242,12 @@ def test_vectorised_and_single_state_paths_agree():
     q, qd, tau = rng.normal(size=(3, 50, 2))
     batch = arm.forward_dynamics(q, qd, tau)
     one_by_one = np.array([arm.forward_dynamics(*state) for state in zip(q, qd, tau)])
-    lists = np.array([arm.forward_dynamics(list(a), tuple(b), list(c)) for a, b, c in zip(q, qd, tau)])
+    lists = np.array(
+        [
+            arm.forward_dynamics(list(a), tuple(b), list(c))
+            for a, b, c in zip(q, qd, tau)
+        ]
+    )
     assert np.allclose(batch, one_by_one, rtol=1e-14, atol=1e-12)
     assert np.allclose(batch, lists, rtol=1e-14, atol=1e-12)
     tau_batch = arm.inverse_dynamics(q, qd, batch)
@@ -221,18 +268,31 @@ def test_leading_axes_broadcast():
     assert arm.forward_dynamics(qd, q, qd).shape == (3, 4, 2)
     kinetic, potential = arm.energy(qd, q)
     assert kinetic.shape == potential.shape == (3, 4)
-    assert arm.forward_dynamics([0, 0], [0, 0], [0, 0]).shape == (2,)  # ints take the checked path
+    assert arm.forward_dynamics([0, 0], [0, 0], [0, 0]).shape == (
+        2,
+    )  # ints take the checked path
 
 
 def test_arm_methods_delegate_to_the_dynamics_module():
-    arm, q, qd, qdd = arms.osake, np.array([0.4, -1.1]), np.array([2.0, 0.5]), np.array([-1.0, 3.0])
+    arm, q, qd, qdd = (
+        arms.osake,
+        np.array([0.4, -1.1]),
+        np.array([2.0, 0.5]),
+        np.array([-1.0, 3.0]),
+    )
     assert np.array_equal(arm.mass_matrix(q), dynamics.mass_matrix(arm, q))
     assert np.array_equal(arm.coriolis(q, qd), dynamics.coriolis(arm, q, qd))
     assert np.array_equal(arm.gravity(q), dynamics.gravity(arm, q))
-    assert np.array_equal(arm.inverse_dynamics(q, qd, qdd), dynamics.inverse_dynamics(arm, q, qd, qdd))
+    assert np.array_equal(
+        arm.inverse_dynamics(q, qd, qdd), dynamics.inverse_dynamics(arm, q, qd, qdd)
+    )
     tau = arm.inverse_dynamics(q, qd, qdd)
-    assert np.array_equal(arm.forward_dynamics(q, qd, tau), dynamics.forward_dynamics(arm, q, qd, tau))
-    assert np.array_equal(np.array(arm.energy(q, qd)), np.array(dynamics.energy(arm, q, qd)))
+    assert np.array_equal(
+        arm.forward_dynamics(q, qd, tau), dynamics.forward_dynamics(arm, q, qd, tau)
+    )
+    assert np.array_equal(
+        np.array(arm.energy(q, qd)), np.array(dynamics.energy(arm, q, qd))
+    )
 
 
 # ----------------------------------------------------------------- gravity and statics
@@ -243,7 +303,9 @@ def test_gravity_direction_and_switch():
     # Released there, link 1 falls (clockwise, qdd1 < 0).
     assert arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [0.0, 0.0])[0] < 0
     # Hanging straight down or standing straight up needs no torque.
-    assert np.allclose(arm.gravity([[-np.pi / 2, 0.0], [np.pi / 2, 0.0]]), 0.0, atol=1e-12)
+    assert np.allclose(
+        arm.gravity([[-np.pi / 2, 0.0], [np.pi / 2, 0.0]]), 0.0, atol=1e-12
+    )
     horizontal = dataclasses.replace(arm, g=0.0)
     q = np.random.default_rng(1).uniform(-np.pi, np.pi, (20, 2))
     assert np.all(horizontal.gravity(q) == 0.0)
@@ -261,7 +323,10 @@ def test_gravity_is_the_statics_of_the_link_weights(arm, q):
     def moment(arm_vector, force):
         return arm_vector[0] * force[1] - arm_vector[1] * force[0]
 
-    weight_1, weight_2 = np.array([0.0, -arm.m1 * arm.g]), np.array([0.0, -arm.m2 * arm.g])
+    weight_1, weight_2 = (
+        np.array([0.0, -arm.m1 * arm.g]),
+        np.array([0.0, -arm.m2 * arm.g]),
+    )
     # The motors balance the weights' moments: tau = -(moments of the weights).
     tau_shoulder = -(moment(centre_1, weight_1) + moment(centre_2, weight_2))
     tau_elbow = -moment(centre_2 - elbow, weight_2)
@@ -273,9 +338,9 @@ def test_gravity_is_the_gradient_of_the_potential_energy(arm, q, direction):
     step = 1e-6
     _, v_plus = arm.energy(q + step * direction, [0.0, 0.0])
     _, v_minus = arm.energy(q - step * direction, [0.0, 0.0])
-    assert abs((v_plus - v_minus) / (2 * step) - arm.gravity(q) @ direction) <= 1e-7 * gravity_scale(arm) * (
-        1 + np.abs(direction).sum()
-    )
+    assert abs(
+        (v_plus - v_minus) / (2 * step) - arm.gravity(q) @ direction
+    ) <= 1e-7 * gravity_scale(arm) * (1 + np.abs(direction).sum())
 
 
 @given(dynamic_arms(), configurations(), pairs)
@@ -284,10 +349,18 @@ def test_static_torques_plus_gravity_equal_inverse_dynamics_at_rest(arm, q, forc
     held = arm.joint_torques(q, force) + arm.gravity(q)
     at_rest = np.zeros(2)
     scale = gravity_scale(arm) + (arm.l1 + arm.l2) * np.abs(force).sum()
-    assert_within(dynamics.inverse_dynamics(arm, q, at_rest, at_rest, force_by_tip=force), held, 1e-12 * scale)
+    assert_within(
+        dynamics.inverse_dynamics(arm, q, at_rest, at_rest, force_by_tip=force),
+        held,
+        1e-12 * scale,
+    )
     # Forward: with those torques the arm pushing with F stays at rest.
     M_inverse = np.abs(np.linalg.inv(arm.mass_matrix(q))).max()
-    assert_within(dynamics.forward_dynamics(arm, q, at_rest, held, force_by_tip=force), at_rest, 1e-13 * M_inverse * scale)
+    assert_within(
+        dynamics.forward_dynamics(arm, q, at_rest, held, force_by_tip=force),
+        at_rest,
+        1e-13 * M_inverse * scale,
+    )
 
 
 # ----------------------------------------------------------------- energy
@@ -299,7 +372,9 @@ def test_energy_values():
     assert float(potential) == 0.0
     kinetic, potential = arm.energy([np.pi / 2, 0.0], [0.0, 0.0])
     assert float(kinetic) == 0.0
-    assert float(potential) == pytest.approx(3.0 * 10.0 * 1.0 + 3.0 * 10.0 * 3.0, rel=1e-14)
+    assert float(potential) == pytest.approx(
+        3.0 * 10.0 * 1.0 + 3.0 * 10.0 * 3.0, rel=1e-14
+    )
 
 
 @given(dynamic_arms(), configurations(), pairs, pairs)
@@ -310,9 +385,10 @@ def test_power_balance(arm, q, qd, tau):
     e_plus = sum(arm.energy(q + step * qd, qd + step * qdd))
     e_minus = sum(arm.energy(q - step * qd, qd - step * qdd))
     power = (e_plus - e_minus) / (2 * step)
-    scale = (mass_scale(arm) * (1 + np.abs(qd).sum() + np.abs(qdd).sum()) ** 2 + gravity_scale(arm)) * (
-        1 + np.abs(qd).sum()
-    )
+    scale = (
+        mass_scale(arm) * (1 + np.abs(qd).sum() + np.abs(qdd).sum()) ** 2
+        + gravity_scale(arm)
+    ) * (1 + np.abs(qd).sum())
     assert abs(power - qd @ tau) <= 1e-7 * scale
 
 
@@ -320,16 +396,41 @@ def test_power_balance(arm, q, qd, tau):
 @pytest.mark.parametrize(
     "call, fragment",
     [
-        (lambda arm: arm.mass_matrix([0.0, 1.0, 2.0]), r"q must have shape \(\.\.\., 2\)"),
+        (
+            lambda arm: arm.mass_matrix([0.0, 1.0, 2.0]),
+            r"q must have shape \(\.\.\., 2\)",
+        ),
         (lambda arm: arm.mass_matrix([np.nan, 1.0]), "q must be finite"),
         (lambda arm: arm.coriolis([0.0, 0.0], [1.0]), "qd must have shape"),
         (lambda arm: arm.gravity("up"), "q must be real numbers"),
-        (lambda arm: arm.inverse_dynamics([0.0, 0.0], [0.0, np.inf], [0.0, 0.0]), "qd must be finite"),
-        (lambda arm: arm.inverse_dynamics([0.0, 0.0], [0.0, 0.0], [[1.0, 2.0, 3.0]]), "qdd must have shape"),
-        (lambda arm: arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [np.nan, 0.0]), "tau must be finite"),
-        (lambda arm: arm.forward_dynamics([0.0, np.nan], [0.0, 0.0], [0.0, 0.0]), "q must be finite"),
-        (lambda arm: arm.forward_dynamics(np.zeros((3, 2)), np.zeros((4, 2)), np.zeros(2)), "broadcast"),
-        (lambda arm: dynamics.forward_dynamics(arm, [0.0, 0.0], [0.0, 0.0], [0.0, 0.0], force_by_tip=[1.0]), "force_by_tip must have shape"),
+        (
+            lambda arm: arm.inverse_dynamics([0.0, 0.0], [0.0, np.inf], [0.0, 0.0]),
+            "qd must be finite",
+        ),
+        (
+            lambda arm: arm.inverse_dynamics([0.0, 0.0], [0.0, 0.0], [[1.0, 2.0, 3.0]]),
+            "qdd must have shape",
+        ),
+        (
+            lambda arm: arm.forward_dynamics([0.0, 0.0], [0.0, 0.0], [np.nan, 0.0]),
+            "tau must be finite",
+        ),
+        (
+            lambda arm: arm.forward_dynamics([0.0, np.nan], [0.0, 0.0], [0.0, 0.0]),
+            "q must be finite",
+        ),
+        (
+            lambda arm: arm.forward_dynamics(
+                np.zeros((3, 2)), np.zeros((4, 2)), np.zeros(2)
+            ),
+            "broadcast",
+        ),
+        (
+            lambda arm: dynamics.forward_dynamics(
+                arm, [0.0, 0.0], [0.0, 0.0], [0.0, 0.0], force_by_tip=[1.0]
+            ),
+            "force_by_tip must have shape",
+        ),
         (lambda arm: arm.energy([0.0, 0.0], [[0.0, 0.0, 0.0]]), "qd must have shape"),
     ],
 )
@@ -338,7 +439,10 @@ def test_bad_input_raises_a_clear_value_error(call, fragment):
         call(arms.two_metre)
 
 
-@pytest.mark.parametrize("kwargs", [{"m2": 0.0}, {"m1": 0.0, "I1": 0.0, "m2": 1.0, "I2": 0.0}, {"m1": 0.0, "m2": 0.0}])
+@pytest.mark.parametrize(
+    "kwargs",
+    [{"m2": 0.0}, {"m1": 0.0, "I1": 0.0, "m2": 1.0, "I2": 0.0}, {"m1": 0.0, "m2": 0.0}],
+)
 def test_singular_mass_matrix_is_refused_by_forward_dynamics(kwargs):
     arm = TwoLinkArm(1.0, 1.0, **kwargs)
     with pytest.raises(ValueError, match="mass matrix is singular"):
@@ -351,14 +455,18 @@ def test_a_massless_link_1_is_fine_when_link_2_has_inertia():
     arm = TwoLinkArm(1.0, 1.0, m1=0.0, m2=2.0)
     qdd = arm.forward_dynamics([0.3, 0.5], [0.1, 0.2], [1.0, -1.0])
     assert np.all(np.isfinite(qdd))
-    assert np.allclose(arm.inverse_dynamics([0.3, 0.5], [0.1, 0.2], qdd), [1.0, -1.0], atol=1e-12)
+    assert np.allclose(
+        arm.inverse_dynamics([0.3, 0.5], [0.1, 0.2], qdd), [1.0, -1.0], atol=1e-12
+    )
 
 
 def test_lambdify_takes_a_derivation_or_a_model_name():
     arm, q, qd = arms.osake, np.array([0.3, -0.4]), np.array([1.0, 2.0])
     from_derivation = lambdify_dynamics(equations_of_motion("absolute"))
     assert from_derivation.model == NUMERIC["absolute"].model == "absolute"
-    assert np.array_equal(from_derivation.coriolis(arm, q, qd), NUMERIC["absolute"].coriolis(arm, q, qd))
+    assert np.array_equal(
+        from_derivation.coriolis(arm, q, qd), NUMERIC["absolute"].coriolis(arm, q, qd)
+    )
     assert NUMERIC["relative"].gravity(arm, q).shape == (2,)
 
 
@@ -367,7 +475,10 @@ def _symbolic_derivatives():
     """dM/dq (index k last) and dg/dq from the Euler-Lagrange derivation, as functions of (q, parameters)."""
     eom = equations_of_motion("relative")
     q = list(eom.q)
-    dM = [[[sp.diff(eom.M[i, j], q[k]) for k in range(2)] for j in range(2)] for i in range(2)]
+    dM = [
+        [[sp.diff(eom.M[i, j], q[k]) for k in range(2)] for j in range(2)]
+        for i in range(2)
+    ]
     dg = eom.g.jacobian(q)
     arguments = (*q, *eom.parameters)
     return sp.lambdify(arguments, dM, "numpy"), sp.lambdify(arguments, dg, "numpy")
@@ -384,21 +495,36 @@ def parameters(arm):
 @given(dynamic_arms(), configurations())
 def test_mass_matrix_derivative_is_sympys_derivative_of_M(arm, q):
     expected = np.array(SYMBOLIC_DM(*q, *parameters(arm)), dtype=float)
-    assert_within(dynamics.mass_matrix_derivative(arm, q), expected, 1e-12 * mass_scale(arm))
+    assert_within(
+        dynamics.mass_matrix_derivative(arm, q), expected, 1e-12 * mass_scale(arm)
+    )
 
 
 @given(dynamic_arms(), configurations())
 def test_gravity_jacobian_is_sympys_derivative_of_g(arm, q):
     expected = np.array(SYMBOLIC_DG(*q, *parameters(arm)), dtype=float)
-    assert_within(dynamics.gravity_jacobian(arm, q), expected, 1e-12 * gravity_scale(arm))
+    assert_within(
+        dynamics.gravity_jacobian(arm, q), expected, 1e-12 * gravity_scale(arm)
+    )
 
 
 @given(dynamic_arms(), configurations())
 def test_derivatives_of_M_and_g_match_finite_differences(arm, q):
     step = 1e-6
-    dM = np.stack([(arm.mass_matrix(q + step * e) - arm.mass_matrix(q - step * e)) / (2 * step) for e in np.eye(2)], axis=-1)
+    dM = np.stack(
+        [
+            (arm.mass_matrix(q + step * e) - arm.mass_matrix(q - step * e)) / (2 * step)
+            for e in np.eye(2)
+        ],
+        axis=-1,
+    )
     assert_within(dynamics.mass_matrix_derivative(arm, q), dM, 1e-8 * mass_scale(arm))
-    dg = np.column_stack([(arm.gravity(q + step * e) - arm.gravity(q - step * e)) / (2 * step) for e in np.eye(2)])
+    dg = np.column_stack(
+        [
+            (arm.gravity(q + step * e) - arm.gravity(q - step * e)) / (2 * step)
+            for e in np.eye(2)
+        ]
+    )
     G = dynamics.gravity_jacobian(arm, q)
     assert_within(G, dg, 1e-8 * gravity_scale(arm))
     assert np.array_equal(G, G.T)  # the Hessian of the potential energy
@@ -421,7 +547,11 @@ def test_coriolis_is_built_from_the_mass_matrix_derivative(arm, q, qd):
     """C_ij = sum_k (dM_ij/dq_k + dM_ik/dq_j - dM_jk/dq_i) qd_k / 2 (Christoffel symbols of dM/dq)."""
     dM = dynamics.mass_matrix_derivative(arm, q)
     christoffel = 0.5 * (dM + np.swapaxes(dM, 1, 2) - np.transpose(dM, (2, 0, 1)))
-    assert_within(arm.coriolis(q, qd), christoffel @ qd, 1e-12 * mass_scale(arm) * (1 + np.abs(qd).sum()))
+    assert_within(
+        arm.coriolis(q, qd),
+        christoffel @ qd,
+        1e-12 * mass_scale(arm) * (1 + np.abs(qd).sum()),
+    )
 
 
 # ----------------------------------------------------------------- one state on floats, a batch on arrays
@@ -440,8 +570,15 @@ def outcome(call):
         return "error", (type(error), str(error))
 
 
-@given(wide_angles, wide_angles, wide_rates, wide_rates, wide_rates, wide_rates,
-       st.sampled_from([ONE_ARM, arms.two_metre, TwoLinkArm(1e-3, 2.0, m1=0.1)]))
+@given(
+    wide_angles,
+    wide_angles,
+    wide_rates,
+    wide_rates,
+    wide_rates,
+    wide_rates,
+    st.sampled_from([ONE_ARM, arms.two_metre, TwoLinkArm(1e-3, 2.0, m1=0.1)]),
+)
 def test_dynamics_paths_agree(q1, q2, qd1, qd2, u1, u2, arm):
     q, qd, u = [q1, q2], [qd1, qd2], [u1, u2]
     for function in (dynamics.forward_dynamics, dynamics.inverse_dynamics):
@@ -451,13 +588,22 @@ def test_dynamics_paths_agree(q1, q2, qd1, qd2, u1, u2, arm):
     assert arm.forward_dynamics(tuple(q), np.array(qd), u).shape == (2,)
     # the inverse dynamics is M qdd + C qd + g, term by term
     expected = arm.mass_matrix(q) @ u + arm.coriolis(q, qd) @ qd + arm.gravity(q)
-    np.testing.assert_allclose(dynamics.inverse_dynamics(arm, q, qd, u), expected, rtol=1e-12, atol=1e-12)
+    np.testing.assert_allclose(
+        dynamics.inverse_dynamics(arm, q, qd, u), expected, rtol=1e-12, atol=1e-12
+    )
 
 
 @pytest.mark.parametrize(
     "bad",
-    [[float("nan"), 1.0], [0.0, float("inf")], ["a", 1.0], [None, 1.0], [1.0, 2.0, 3.0], [True, False],
-     np.array([np.nan, 1.0])],
+    [
+        [float("nan"), 1.0],
+        [0.0, float("inf")],
+        ["a", 1.0],
+        [None, 1.0],
+        [1.0, 2.0, 3.0],
+        [True, False],
+        np.array([np.nan, 1.0]),
+    ],
     ids=repr,
 )
 def test_single_bad_state_is_refused_as_the_vectorised_path_refuses_it(bad):
@@ -465,33 +611,52 @@ def test_single_bad_state_is_refused_as_the_vectorised_path_refuses_it(bad):
 
     one_zero, batch_zero = [0.0, 0.0], np.zeros((1, 2))
     fast = outcome(lambda: dynamics.forward_dynamics(ONE_ARM, bad, one_zero, one_zero))
-    slow = outcome(lambda: dynamics.forward_dynamics(ONE_ARM, as_pairs(bad, "q")[None, :], batch_zero, batch_zero))
+    slow = outcome(
+        lambda: dynamics.forward_dynamics(
+            ONE_ARM, as_pairs(bad, "q")[None, :], batch_zero, batch_zero
+        )
+    )
     assert fast[0] == slow[0] == "error" and fast[1] == slow[1]
     fast = outcome(lambda: dynamics.inverse_dynamics(ONE_ARM, one_zero, one_zero, bad))
-    slow = outcome(lambda: dynamics.inverse_dynamics(ONE_ARM, batch_zero, batch_zero, as_pairs(bad, "qdd")[None, :]))
+    slow = outcome(
+        lambda: dynamics.inverse_dynamics(
+            ONE_ARM, batch_zero, batch_zero, as_pairs(bad, "qdd")[None, :]
+        )
+    )
     assert fast[0] == slow[0] == "error" and fast[1] == slow[1]
 
 
 @pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)
-def test_single_state_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(not_an_arm):
+def test_single_state_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(
+    not_an_arm,
+):
     for function in (dynamics.forward_dynamics, dynamics.inverse_dynamics):
         fast = outcome(lambda: function(not_an_arm, [0.3, 0.4], [0.3, 0.4], [0.3, 0.4]))
         slow = outcome(lambda: function(not_an_arm, *[np.array([[0.3, 0.4]])] * 3))
-        assert fast[0] == slow[0] == "error" and fast[1] == slow[1] and "arm" in fast[1][1]
+        assert (
+            fast[0] == slow[0] == "error" and fast[1] == slow[1] and "arm" in fast[1][1]
+        )
 
 
 def test_dynamics_constants_are_cached_per_arm_and_follow_replace():
     arm = TwoLinkArm(1.0, 1.0, m1=1.0, m2=1.0)
     heavier = dataclasses.replace(arm, m2=5.0)
     q, qd, tau = [0.3, 0.4], [0.0, 0.0], [0.0, 0.0]
-    assert not np.allclose(arm.forward_dynamics(q, qd, tau), heavier.forward_dynamics(q, qd, tau))
-    np.testing.assert_allclose(
-        heavier.forward_dynamics(q, qd, tau), TwoLinkArm(1.0, 1.0, m1=1.0, m2=5.0).forward_dynamics(q, qd, tau)
+    assert not np.allclose(
+        arm.forward_dynamics(q, qd, tau), heavier.forward_dynamics(q, qd, tau)
     )
-    assert arm == TwoLinkArm(1.0, 1.0, m1=1.0, m2=1.0) and hash(arm) == hash(TwoLinkArm(1.0, 1.0, m1=1.0, m2=1.0))
+    np.testing.assert_allclose(
+        heavier.forward_dynamics(q, qd, tau),
+        TwoLinkArm(1.0, 1.0, m1=1.0, m2=5.0).forward_dynamics(q, qd, tau),
+    )
+    assert arm == TwoLinkArm(1.0, 1.0, m1=1.0, m2=1.0) and hash(arm) == hash(
+        TwoLinkArm(1.0, 1.0, m1=1.0, m2=1.0)
+    )
 
 
-@pytest.mark.parametrize("rates", [[1e200, 1e200], [1e155, -1e155], [3e153, 0.0]], ids=repr)
+@pytest.mark.parametrize(
+    "rates", [[1e200, 1e200], [1e155, -1e155], [3e153, 0.0]], ids=repr
+)
 def test_overflowing_single_state_is_refused_as_in_a_batch(rates):
     """Finite inputs whose dynamics overflow float64: the same OverflowError (or the same finite answer)."""
     for call in (
@@ -501,7 +666,9 @@ def test_overflowing_single_state_is_refused_as_in_a_batch(rates):
         fast = outcome(lambda: call([0.3, 0.4], rates))
         slow = outcome(lambda: call(np.array([[0.3, 0.4]]), np.array([rates]))[0])
         assert fast[0] == slow[0]
-        if fast[0] == "error":  # the messages differ only in the index of the overflowing entry
+        if (
+            fast[0] == "error"
+        ):  # the messages differ only in the index of the overflowing entry
             assert fast[1][0] is slow[1][0] is OverflowError
         else:
             np.testing.assert_allclose(fast[1], slow[1], rtol=0, atol=1e-12)
@@ -516,24 +683,38 @@ def test_overflowing_single_state_is_refused_as_in_a_batch(rates):
         lambda q: dynamics.gravity_jacobian(ONE_ARM, q),
         lambda q: dynamics.energy(ONE_ARM, q, [0.0, 0.0]),
     ],
-    ids=["forward_dynamics", "inverse_dynamics", "gravity", "gravity_jacobian", "energy"],
+    ids=[
+        "forward_dynamics",
+        "inverse_dynamics",
+        "gravity",
+        "gravity_jacobian",
+        "energy",
+    ],
 )
-@pytest.mark.parametrize("q", [[1e308, 1e308], [[0.1, 0.2], [1e308, 1e308]]], ids=["one", "batch"])
+@pytest.mark.parametrize(
+    "q", [[1e308, 1e308], [[0.1, 0.2], [1e308, 1e308]]], ids=["one", "batch"]
+)
 def test_angles_whose_sum_overflows_are_refused_naming_q(call, q):
     """A bare 'math domain error' (or a NaN, or an overflow blamed on the rates) before."""
-    with pytest.raises(ValueError, match=r"q = \(1e\+308, 1e\+308\) rad.*q1 \+ q2 overflows float64"):
+    with pytest.raises(
+        ValueError, match=r"q = \(1e\+308, 1e\+308\) rad.*q1 \+ q2 overflows float64"
+    ):
         call(q)
 
 
 # ----------------------------------------------------------------- the right-hand side of an ODE solver
 @given(state=st.lists(rates, min_size=4, max_size=4), driven=st.booleans())
-def test_state_derivative_takes_any_sequence_of_four_numbers_as_the_array(state, driven):
+def test_state_derivative_takes_any_sequence_of_four_numbers_as_the_array(
+    state, driven
+):
     torque = (lambda t, q, qd: [0.5 * q[0], -qd[1]]) if driven else None
     rhs = dynamics.state_derivative(arms.ten, torque)
     from_array = rhs(0.0, np.array(state))
     assert rhs(0.0, state) == from_array
     assert rhs(0.0, tuple(state)) == from_array
-    assert rhs(0.0, [int(value) for value in state]) == rhs(0.0, np.array([int(value) for value in state], float))
+    assert rhs(0.0, [int(value) for value in state]) == rhs(
+        0.0, np.array([int(value) for value in state], float)
+    )
 
 
 @pytest.mark.parametrize("driven", [False, True])
@@ -554,10 +735,16 @@ def test_state_derivative_takes_any_sequence_of_four_numbers_as_the_array(state,
         (None, "(NoneType)"),
     ],
 )
-def test_state_derivative_refuses_junk_naming_state_and_the_allowed_shape(state, fragment, driven):
-    rhs = dynamics.state_derivative(arms.ten, (lambda t, q, qd: [0.0, 0.0]) if driven else None)
+def test_state_derivative_refuses_junk_naming_state_and_the_allowed_shape(
+    state, fragment, driven
+):
+    rhs = dynamics.state_derivative(
+        arms.ten, (lambda t, q, qd: [0.0, 0.0]) if driven else None
+    )
     with pytest.raises((ValueError, TypeError)) as caught:
         rhs(0.0, state)
     message = str(caught.value)
-    assert message.startswith("state must be four finite real numbers (q1, q2, qd1, qd2), shape (4,)")
+    assert message.startswith(
+        "state must be four finite real numbers (q1, q2, qd1, qd2), shape (4,)"
+    )
     assert fragment in message

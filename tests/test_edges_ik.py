@@ -14,7 +14,9 @@ LIMITED = TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(np.pi / 2, np.pi / 2))
 
 # ----------------------------------------------------------------- class 5: honest results
 def test_brute_force_never_claims_a_target_outside_the_limited_workspace():
-    p_outside = LIMITED.fk(np.radians([-1.0, 60.0]))  # 1 deg below q1's limit, closer than the grid bound
+    p_outside = LIMITED.fk(
+        np.radians([-1.0, 60.0])
+    )  # 1 deg below q1's limit, closer than the grid bound
     assert not workspace.is_reachable(LIMITED, p_outside)
     result = ik.brute_force(LIMITED, p_outside, step=np.radians(2.0))
     assert not result.success
@@ -27,21 +29,31 @@ def test_brute_force_never_claims_a_target_outside_the_limited_workspace():
     step_deg=st.floats(0.5, 10.0),
     which=st.sampled_from(["ten", "two_metre_limited", "limited"]),
 )
-def test_brute_force_success_implies_within_limits_reachable_and_within_the_bound(q, step_deg, which):
-    arm = {"ten": arms.ten, "two_metre_limited": arms.two_metre_limited, "limited": LIMITED}[which]
+def test_brute_force_success_implies_within_limits_reachable_and_within_the_bound(
+    q, step_deg, which
+):
+    arm = {
+        "ten": arms.ten,
+        "two_metre_limited": arms.two_metre_limited,
+        "limited": LIMITED,
+    }[which]
     p = arm.fk(np.array(q))
     result = ik.brute_force(arm, p, step=np.radians(step_deg))
     assert bool(result.within_limits) == bool(arm.within_limits(result.q))
     if result.success:
         assert arm.within_limits(result.q) and workspace.is_reachable(arm, p)
-        assert result.residual <= (arm.l1 + 2 * arm.l2) * np.radians(step_deg) / 2 * (1 + 1e-9)
+        assert result.residual <= (arm.l1 + 2 * arm.l2) * np.radians(step_deg) / 2 * (
+            1 + 1e-9
+        )
     elif workspace.is_reachable(arm, p) and arm.limit_convention == "relative":
         pytest.fail(f"a reachable target was not solved: {result.message}")
 
 
 @pytest.mark.parametrize("step_deg", [7.0, 13.0, 40.0, 89.0])
 def test_the_grid_includes_both_ends_of_each_joint_range_whatever_the_step(step_deg):
-    result = ik.brute_force(arms.ten, [10.0, 10.0], step=np.radians(step_deg))  # exactly (0, 90) deg: two range ends
+    result = ik.brute_force(
+        arms.ten, [10.0, 10.0], step=np.radians(step_deg)
+    )  # exactly (0, 90) deg: two range ends
     assert np.allclose(np.degrees(result.q), [0.0, 90.0], atol=1e-9)
     assert result.success and result.residual < 1e-12
     axis = ik.grid_search.grid_axis(0.0, 1.0, 0.3)
@@ -83,12 +95,21 @@ EMPTY_SHAPES = [(0, 2), (3, 0, 2), (0, 0, 2)]
         lambda p: ik.minimize(arms.ten, p, constrained=True),
         lambda p: ik.brute_force(arms.ten, p, step=np.radians(5.0)),
     ],
-    ids=["closed-form", "closed-form-auto", "newton", "minimize", "minimize-constrained", "brute-force"],
+    ids=[
+        "closed-form",
+        "closed-form-auto",
+        "newton",
+        "minimize",
+        "minimize-constrained",
+        "brute-force",
+    ],
 )
 def test_an_empty_batch_gives_an_empty_result(solve, shape):
     result = solve(np.empty(shape))
     assert result.q.shape == shape and result.success.shape == shape[:-1]
-    assert result.residual.shape == shape[:-1] and result.within_limits.shape == shape[:-1]
+    assert (
+        result.residual.shape == shape[:-1] and result.within_limits.shape == shape[:-1]
+    )
     assert result.all_success
 
 
@@ -110,11 +131,12 @@ def test_empty_batches_through_the_vectorised_functions(shape):
     assert workspace.is_reachable(arm, empty).shape == lead
 
 
-@pytest.mark.parametrize(
-    "solve", [ik.newton, ik.minimize], ids=["newton", "minimize"]
-)
+@pytest.mark.parametrize("solve", [ik.newton, ik.minimize], ids=["newton", "minimize"])
 def test_a_start_of_the_wrong_shape_names_both_shapes(solve):
-    with pytest.raises(ValueError, match=r"q0 of shape \(3, 2\) does not match target p of shape \(2, 2\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"q0 of shape \(3, 2\) does not match target p of shape \(2, 2\)",
+    ):
         solve(arms.ten, [[10.0, 10.0], [5.0, 12.0]], q0=np.full((3, 2), 0.5))
 
 
@@ -122,15 +144,20 @@ def test_timing_an_empty_batch_is_refused_clearly():
     from twolink import timing
 
     with pytest.raises(ValueError, match=r"n >= 1"):
-        timing.compare_ik_methods(arms.ten, np.empty((0, 2)), methods=["closed form"], repeat=1)
+        timing.compare_ik_methods(
+            arms.ten, np.empty((0, 2)), methods=["closed form"], repeat=1
+        )
 
 
 # ----------------------------------------------------------------- grid and optimiser arguments
-@pytest.mark.parametrize(("step", "message"), [
-    (0.0, r"step \(radians\) must be > 0.0; got 0.0"),
-    (-0.1, r"step \(radians\) must be > 0.0; got -0.1"),
-    (float("inf"), r"step \(radians\) must be finite; got inf"),
-])
+@pytest.mark.parametrize(
+    ("step", "message"),
+    [
+        (0.0, r"step \(radians\) must be > 0.0; got 0.0"),
+        (-0.1, r"step \(radians\) must be > 0.0; got -0.1"),
+        (float("inf"), r"step \(radians\) must be finite; got inf"),
+    ],
+)
 def test_grid_axis_refuses_a_step_that_is_not_finite_and_positive(step, message):
     with pytest.raises(ValueError, match=message):
         grid_axis(0.0, 1.0, step)
@@ -138,17 +165,25 @@ def test_grid_axis_refuses_a_step_that_is_not_finite_and_positive(step, message)
 
 @pytest.mark.parametrize("bad", [b"ab", "ab", (True, 1.0)])
 def test_brute_force_refuses_a_range_that_is_not_two_angles(bad):
-    with pytest.raises(InputTypeError, match=r"q1_range must be None or a pair \(low, high\) of angles in radians"):
+    with pytest.raises(
+        InputTypeError,
+        match=r"q1_range must be None or a pair \(low, high\) of angles in radians",
+    ):
         ik.brute_force(arms.two_metre, [3.0, 1.0], q1_range=bad)
 
 
 @pytest.mark.parametrize("bad", [[0.0, 1.0, 2.0], (0.0, float("inf")), [[0.0, 1.0]]])
 def test_brute_force_refuses_a_range_of_another_shape_or_not_finite(bad):
-    with pytest.raises(ValueError, match=r"q2_range must be None or a pair \(low, high\) of finite angles in radians"):
+    with pytest.raises(
+        ValueError,
+        match=r"q2_range must be None or a pair \(low, high\) of finite angles in radians",
+    ):
         ik.brute_force(arms.two_metre, [3.0, 1.0], q2_range=bad)
 
 
 @pytest.mark.parametrize("bad", ["False", "True", 1, None])
 def test_minimize_takes_only_a_bool_for_constrained(bad):
-    with pytest.raises(InputTypeError, match=r"constrained must be True or False; got "):
+    with pytest.raises(
+        InputTypeError, match=r"constrained must be True or False; got "
+    ):
         ik.minimize(arms.two_metre, [3.0, 1.0], constrained=bad)

@@ -20,14 +20,20 @@ from twolink.arm import LENGTH_RANGE
         ({"l1": 1.0, "l2": 1.0, "g": 1e300}, "g"),
     ],
 )
-def test_parameters_outside_the_representable_range_are_refused_naming_the_range(kwargs, name):
-    with pytest.raises(ValueError, match=rf"{name} .* is outside the representable range"):
+def test_parameters_outside_the_representable_range_are_refused_naming_the_range(
+    kwargs, name
+):
+    with pytest.raises(
+        ValueError, match=rf"{name} .* is outside the representable range"
+    ):
         TwoLinkArm(**kwargs)
 
 
 @pytest.mark.parametrize("length", [LENGTH_RANGE[0], 1e-30, 1.0, 1e30, LENGTH_RANGE[1]])
 def test_arms_at_the_ends_of_the_range_are_exact(length):
-    arm = TwoLinkArm(length, length, m1=2.0, m2=3.0, g=0.0)  # with gravity, tiny arms are all weight (qdd lost to m g l)
+    arm = TwoLinkArm(
+        length, length, m1=2.0, m2=3.0, g=0.0
+    )  # with gravity, tiny arms are all weight (qdd lost to m g l)
     q = np.array([0.4, 1.1])
     qdd_wanted = np.array([0.8, -1.3])
     with warnings.catch_warnings():
@@ -41,7 +47,9 @@ def test_arms_at_the_ends_of_the_range_are_exact(length):
 
 
 def test_overflowing_joint_rates_are_reported_not_returned_as_inf():
-    with pytest.raises(OverflowError, match=r"joint rates qd \(rad/s\) overflow float64"):
+    with pytest.raises(
+        OverflowError, match=r"joint rates qd \(rad/s\) overflow float64"
+    ):
         arms.two_metre.joint_rates([0.3, 1e-5], [0.0, 1e305])
     with pytest.raises(OverflowError, match="joint rates"):
         arms.two_metre.joint_rates_dls([0.3, 1e-5], [0.0, 1e305], 1e-300)

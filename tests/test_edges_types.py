@@ -25,13 +25,36 @@ from twolink import (
 from twolink.errors import InputTypeError
 
 ARM = arms.two_metre
-BAD_NUMBERS = [None, "12", "abc", True, False, 1 + 2j, np.complex128(1.0), object(), [1.0], {"x": 1}]
+BAD_NUMBERS = [
+    None,
+    "12",
+    "abc",
+    True,
+    False,
+    1 + 2j,
+    np.complex128(1.0),
+    object(),
+    [1.0],
+    {"x": 1},
+]
+
+
 def stable_id(value):
     """A test id that is the same in every process (no memory addresses)."""
     return "object" if type(value) is object else repr(value)
 
 
-BAD_PAIRS = [None, "ab", [1.0, None], [1.0, "2"], [True, 0.5], [1.0, 2j], np.array([1.0, 2j]), np.array([True, False]), [None, 1.0]]
+BAD_PAIRS = [
+    None,
+    "ab",
+    [1.0, None],
+    [1.0, "2"],
+    [True, 0.5],
+    [1.0, 2j],
+    np.array([1.0, 2j]),
+    np.array([True, False]),
+    [None, 1.0],
+]
 
 
 @pytest.mark.parametrize("bad", BAD_NUMBERS, ids=stable_id)
@@ -44,7 +67,11 @@ def test_arm_parameters_refuse_non_numbers(field, bad):
         TwoLinkArm(**kwargs)
 
 
-@pytest.mark.parametrize("bad", ["12", "ab", [1.0, "2"], [True, 1.0], [1j, 1.0], 5.0, [[0.0, 1.0]]], ids=stable_id)
+@pytest.mark.parametrize(
+    "bad",
+    ["12", "ab", [1.0, "2"], [True, 1.0], [1j, 1.0], 5.0, [[0.0, 1.0]]],
+    ids=stable_id,
+)
 def test_joint_limits_refuse_strings_and_other_non_angles(bad):
     with pytest.raises(ValueError, match="q_min"):
         TwoLinkArm(1.0, 1.0, q_min=bad, q_max=(1.0, 1.0))
@@ -98,19 +125,36 @@ def test_complex_input_is_refused_not_stripped_of_its_imaginary_part():
         lambda x: simulate(ARM, [0.0, 0.0], [0.0, 0.0], x),
         lambda x: trajectory.time_scaling(0.5, x),
         lambda x: CartesianSpring(ARM, x, [3.0, 1.0]),
-        lambda x: statics.wall_contact(ARM, statics.Wall.through([4.0, 0.0], [0.0, 4.0]), x),
+        lambda x: statics.wall_contact(
+            ARM, statics.Wall.through([4.0, 0.0], [0.0, 4.0]), x
+        ),
     ],
-    ids=["within_limits-tol", "joint_rates-tol", "dls-damping", "dh_matrix-d", "Arc-radius", "circle_intersections",
-         "brute_force-step", "simulate-t_end", "time_scaling-duration", "spring-stiffness", "wall_contact-force"],
+    ids=[
+        "within_limits-tol",
+        "joint_rates-tol",
+        "dls-damping",
+        "dh_matrix-d",
+        "Arc-radius",
+        "circle_intersections",
+        "brute_force-step",
+        "simulate-t_end",
+        "time_scaling-duration",
+        "spring-stiffness",
+        "wall_contact-force",
+    ],
 )
 def test_scalars_refuse_non_numbers(call, bad):
     if isinstance(bad, list):
-        pytest.skip("a one-element list is a matrix or array argument for some of these")
+        pytest.skip(
+            "a one-element list is a matrix or array argument for some of these"
+        )
     with pytest.raises(ValueError, match=r"must be"):
         call(bad)
 
 
-@pytest.mark.parametrize("bad", [None, "0.3", [0.3, 1j], True, np.inf, [np.nan]], ids=stable_id)
+@pytest.mark.parametrize(
+    "bad", [None, "0.3", [0.3, 1j], True, np.inf, [np.nan]], ids=stable_id
+)
 def test_wrap_angle_and_dh_refuse_non_angles(bad):
     with pytest.raises(ValueError, match="must be"):
         wrap_angle(bad)
@@ -118,7 +162,9 @@ def test_wrap_angle_and_dh_refuse_non_angles(bad):
         dh.dh_matrix(bad, 0.0, 1.0, 0.0)
 
 
-@pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm", object(), {"l1": 1.0}], ids=stable_id)
+@pytest.mark.parametrize(
+    "not_an_arm", [None, 3.0, "arm", object(), {"l1": 1.0}], ids=stable_id
+)
 @pytest.mark.parametrize(
     "call",
     [
@@ -136,7 +182,9 @@ def test_wrap_angle_and_dh_refuse_non_angles(bad):
         lambda arm: dh.dh_table(arm),
         lambda arm: simulate(arm, [0.0, 0.0], [0.0, 0.0], 1.0),
         lambda arm: trajectory.ik_trajectory(arm, [[1.0, 1.0], [1.0, 1.5]]),
-        lambda arm: statics.wall_contact(arm, statics.Wall.through([4.0, 0.0], [0.0, 4.0]), 1.0),
+        lambda arm: statics.wall_contact(
+            arm, statics.Wall.through([4.0, 0.0], [0.0, 4.0]), 1.0
+        ),
         lambda arm: Impedance(arm, 1.0, 1.0, [1.0, 1.0]),
         lambda arm: JointPD(arm, 1.0, 1.0, [0.0, 0.0]),
     ],
@@ -147,8 +195,17 @@ def test_anything_but_an_arm_is_a_type_error_naming_arm(call, not_an_arm):
 
 
 # ----------------------------------------------------------------- class 8: counts and sizes
-BAD_COUNTS = [(0, ValueError), (-3, ValueError), (2.5, ValueError), ("10", TypeError), (None, TypeError),
-              (True, TypeError), (np.nan, ValueError), (np.inf, ValueError), (10**30, ValueError)]
+BAD_COUNTS = [
+    (0, ValueError),
+    (-3, ValueError),
+    (2.5, ValueError),
+    ("10", TypeError),
+    (None, TypeError),
+    (True, TypeError),
+    (np.nan, ValueError),
+    (np.inf, ValueError),
+    (10**30, ValueError),
+]
 
 
 @pytest.mark.parametrize("bad, error", BAD_COUNTS, ids=lambda v: repr(v))
@@ -164,24 +221,42 @@ BAD_COUNTS = [(0, ValueError), (-3, ValueError), (2.5, ValueError), ("10", TypeE
         (lambda n: timing.median_time(lambda: None, repeat=n), "repeat"),
         (lambda n: simulate(ARM, [0.0, 0.0], [0.0, 0.0], 0.1).frames(n), "max_frames"),
     ],
-    ids=["LinePath.sample", "sample_reachable", "circle_points", "Arc.points", "Ellipse.points", "newton", "median_time", "frames"],
+    ids=[
+        "LinePath.sample",
+        "sample_reachable",
+        "circle_points",
+        "Arc.points",
+        "Ellipse.points",
+        "newton",
+        "median_time",
+        "frames",
+    ],
 )
 def test_counts_are_integers_at_least_their_minimum(call, name, bad, error):
     if bad == 10**30 and name in ("max_iter", "max_frames"):
-        pytest.skip("no memory behind this count: a huge value only caps a loop that stops earlier")
+        pytest.skip(
+            "no memory behind this count: a huge value only caps a loop that stops earlier"
+        )
     with pytest.raises(error, match=name):
         call(bad)
 
 
 def test_a_grid_beyond_the_memory_budget_is_refused_up_front_naming_points_and_limit():
-    with pytest.raises(ValueError, match=r"would hold .* points, more than MAX_AXIS_POINTS"):
+    with pytest.raises(
+        ValueError, match=r"would hold .* points, more than MAX_AXIS_POINTS"
+    ):
         ik.brute_force(ARM, [3.0, 1.0], step=1e-12)
-    with pytest.raises(ValueError, match=r"grid of \d+ x \d+ = .* points per target, more than MAX_GRID_POINTS"):
+    with pytest.raises(
+        ValueError,
+        match=r"grid of \d+ x \d+ = .* points per target, more than MAX_GRID_POINTS",
+    ):
         ik.brute_force(ARM, [3.0, 1.0], step=1e-4)
 
 
 def test_sample_counts_beyond_the_memory_budget_are_refused():
-    with pytest.raises(ValueError, match=r"n \(samples\) must be an integer <= 10000000"):
+    with pytest.raises(
+        ValueError, match=r"n \(samples\) must be an integer <= 10000000"
+    ):
         workspace.sample_reachable(ARM, n=5 * 10**9)
 
 

@@ -17,8 +17,15 @@ def reference_jacobian(arm, q):
     """``J(q)`` at 50 digits, from the float configuration taken as exact."""
     l1, l2 = mpmath.mpf(float(arm.l1)), mpmath.mpf(float(arm.l2))
     q1, q2 = mpmath.mpf(float(q[0])), mpmath.mpf(float(q[1]))
-    s1, c1, s12, c12 = mpmath.sin(q1), mpmath.cos(q1), mpmath.sin(q1 + q2), mpmath.cos(q1 + q2)
-    return mpmath.matrix([[-l1 * s1 - l2 * s12, -l2 * s12], [l1 * c1 + l2 * c12, l2 * c12]])
+    s1, c1, s12, c12 = (
+        mpmath.sin(q1),
+        mpmath.cos(q1),
+        mpmath.sin(q1 + q2),
+        mpmath.cos(q1 + q2),
+    )
+    return mpmath.matrix(
+        [[-l1 * s1 - l2 * s12, -l2 * s12], [l1 * c1 + l2 * c12, l2 * c12]]
+    )
 
 
 def reference_dls(arm, q, v_tip, damping):
@@ -34,12 +41,16 @@ def reference_dls(arm, q, v_tip, damping):
 @pytest.mark.parametrize("damping", [1e-12, 1e-8, 1e-4, 0.1, 10.0])
 def test_dls_is_exact_at_and_near_singularities_for_any_damping(q2, damping):
     arm = arms.two_metre
-    for q1, v_tip in itertools.product((0.3, np.pi / 4, 1.0), ([0.0, 1.0], [1.0, 0.0], [0.3, -0.7])):
+    for q1, v_tip in itertools.product(
+        (0.3, np.pi / 4, 1.0), ([0.0, 1.0], [1.0, 0.0], [0.3, -0.7])
+    ):
         q = [q1, q2]
         got = arm.joint_rates_dls(q, v_tip, damping)
         exact = reference_dls(arm, q, v_tip, damping)
         assert np.linalg.norm(got - exact) <= 1e-9 * np.linalg.norm(exact) + 1e-300
-        assert np.linalg.norm(got) <= np.linalg.norm(v_tip) / (2 * damping) * (1 + 1e-12)
+        assert np.linalg.norm(got) <= np.linalg.norm(v_tip) / (2 * damping) * (
+            1 + 1e-12
+        )
 
 
 @settings(max_examples=100)
@@ -66,15 +77,29 @@ def test_dls_matches_the_50_digit_normal_equations(q, v_tip, log_damping):
     speed = np.linalg.norm(v_tip)
     J_size = np.linalg.norm(arm.jacobian(q))
     s_small = arm.l1 * arm.l2 * abs(np.sin(q[1])) / max(J_size, 1e-300)
-    rounded_J = min(4 * eps * J_size * speed / damping**2, 2 * speed / damping) if s_small <= 4 * eps * J_size else 0.0
-    bound = 1e-9 * (np.linalg.norm(exact) + speed * 1e-3) + 4 * eps * speed / damping + rounded_J
+    rounded_J = (
+        min(4 * eps * J_size * speed / damping**2, 2 * speed / damping)
+        if s_small <= 4 * eps * J_size
+        else 0.0
+    )
+    bound = (
+        1e-9 * (np.linalg.norm(exact) + speed * 1e-3)
+        + 4 * eps * speed / damping
+        + rounded_J
+    )
     assert np.linalg.norm(got - exact) <= bound
 
 
 def test_dls_with_tiny_damping_at_a_fold_is_not_a_linalg_error():
-    for q in ([np.pi / 4, 0.0], [np.pi / 4, -np.pi], [1.0, -np.pi]):  # the normal equations were singular here
+    for q in (
+        [np.pi / 4, 0.0],
+        [np.pi / 4, -np.pi],
+        [1.0, -np.pi],
+    ):  # the normal equations were singular here
         qd = arms.two_metre.joint_rates_dls(q, [0.0, 1.0], 1e-8)
-        assert np.allclose(qd, reference_dls(arms.two_metre, q, [0.0, 1.0], 1e-8), rtol=1e-9, atol=0.0)
+        assert np.allclose(
+            qd, reference_dls(arms.two_metre, q, [0.0, 1.0], 1e-8), rtol=1e-9, atol=0.0
+        )
 
 
 @pytest.mark.parametrize("size", [5e-324, 1e-310, 1e-200, 1e200])
@@ -85,10 +110,15 @@ def test_tiny_and_huge_velocities_are_solved_to_the_last_bit(size):
     for _ in range(50):
         q = np.array([rng.uniform(-3.0, 3.0), rng.uniform(0.3, 2.8)])
         v_tip = np.array([0.0, size * rng.integers(1, 40)])
-        exact = mpmath.lu_solve(reference_jacobian(arm, q), mpmath.matrix(v_tip.tolist()))
+        exact = mpmath.lu_solve(
+            reference_jacobian(arm, q), mpmath.matrix(v_tip.tolist())
+        )
         exact = np.array([float(exact[0]), float(exact[1])])
         ulp = np.spacing(np.abs(exact))
-        assert np.all(np.abs(arm.joint_rates(q, v_tip) - exact) <= 1e-14 * np.abs(exact).max() + 2 * ulp)
+        assert np.all(
+            np.abs(arm.joint_rates(q, v_tip) - exact)
+            <= 1e-14 * np.abs(exact).max() + 2 * ulp
+        )
         # DLS with negligible damping: the SVD's few roundings, relative to the largest component,
         # and still no subnormal intermediates (at most a couple of units in the last place below 1e-308)
         got = arm.joint_rates_dls(q, v_tip, 1e-12)

@@ -4,10 +4,10 @@ import dataclasses
 
 import numpy as np
 import pytest
-from conftest import acceleration_scale, dynamic_arms
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from conftest import acceleration_scale, dynamic_arms
 from twolink import TwoLinkArm, arms, export
 from twolink.errors import InputTypeError
 from twolink.statics import Wall
@@ -46,7 +46,10 @@ def test_mjcf_accelerations_equal_forward_dynamics(arm, state):
     scale = acceleration_scale(arm, q, qd, tau)
     assert relative_error(mujoco_qacc(model, q, qd, tau), expected, scale) < 1e-9
     # the motors are plain joint torques: ctrl and qfrc_applied act the same
-    assert relative_error(mujoco_qacc(model, q, qd, tau, applied=True), expected, scale) < 1e-9
+    assert (
+        relative_error(mujoco_qacc(model, q, qd, tau, applied=True), expected, scale)
+        < 1e-9
+    )
 
 
 @settings(max_examples=30, deadline=None)
@@ -54,10 +57,17 @@ def test_mjcf_accelerations_equal_forward_dynamics(arm, state):
 def test_urdf_accelerations_equal_forward_dynamics_with_gravity_set(arm, state, z_up):
     q, qd, tau = np.array(state[:2]), np.array(state[2:4]), np.array(state[4:])
     model = mujoco.MjModel.from_xml_string(export.to_urdf(arm, z_up=z_up))
-    assert model.nq == 2 and model.nu == 0  # URDF has no motors: torques go in qfrc_applied
+    assert (
+        model.nq == 2 and model.nu == 0
+    )  # URDF has no motors: torques go in qfrc_applied
     model.opt.gravity[:] = (0.0, 0.0, -arm.g) if z_up else (0.0, -arm.g, 0.0)
     got = mujoco_qacc(model, q, qd, tau, applied=True)
-    assert relative_error(got, arm.forward_dynamics(q, qd, tau), acceleration_scale(arm, q, qd, tau)) < 1e-9
+    assert (
+        relative_error(
+            got, arm.forward_dynamics(q, qd, tau), acceleration_scale(arm, q, qd, tau)
+        )
+        < 1e-9
+    )
 
 
 def test_urdf_keeps_mujoco_default_gravity_perpendicular_unless_upright():
@@ -69,7 +79,13 @@ def test_urdf_keeps_mujoco_default_gravity_perpendicular_unless_upright():
     # MuJoCo's default gravity is -9.81 along z: the flat URDF is a horizontal arm, the upright one vertical
     assert np.allclose(mujoco_qacc(flat, q, qd, tau, applied=True), 0.0, atol=1e-12)
     assert np.allclose(horizontal.forward_dynamics(q, qd, tau), 0.0)
-    assert relative_error(mujoco_qacc(upright, q, qd, tau, applied=True), arm.forward_dynamics(q, qd, tau)) < 1e-9
+    assert (
+        relative_error(
+            mujoco_qacc(upright, q, qd, tau, applied=True),
+            arm.forward_dynamics(q, qd, tau),
+        )
+        < 1e-9
+    )
 
 
 @pytest.mark.parametrize("preset", [arms.two_metre, arms.ten, arms.osake])
@@ -104,8 +120,14 @@ def test_a_limit_acts_in_mujoco():
     arm = arms.ten
     model = mujoco.MjModel.from_xml_string(export.to_mjcf(arm))
     inside = mujoco_qacc(model, [0.5, 0.2], [0.0, 0.0], [0.0, 0.0])
-    assert relative_error(inside, arm.forward_dynamics([0.5, 0.2], [0.0, 0.0], [0.0, 0.0])) < 1e-9
-    q_beyond = [0.5, arm.q_max[1] + 0.05]  # elbow past its upper limit: the limit pushes it back
+    assert (
+        relative_error(inside, arm.forward_dynamics([0.5, 0.2], [0.0, 0.0], [0.0, 0.0]))
+        < 1e-9
+    )
+    q_beyond = [
+        0.5,
+        arm.q_max[1] + 0.05,
+    ]  # elbow past its upper limit: the limit pushes it back
     free = arm.forward_dynamics(q_beyond, [0.0, 0.0], [0.0, 0.0])
     limited = mujoco_qacc(model, q_beyond, [0.0, 0.0], [0.0, 0.0])
     assert limited[1] < free[1] - 1.0
@@ -129,7 +151,9 @@ def test_horizontal_arm_has_no_gravity_in_mjcf():
     arm = TwoLinkArm(1.0, 0.7, g=0.0)
     model = mujoco.MjModel.from_xml_string(export.to_mjcf(arm))
     assert np.array_equal(model.opt.gravity, [0.0, 0.0, 0.0])
-    vertical = mujoco.MjModel.from_xml_string(export.to_mjcf(dataclasses.replace(arm, g=9.81)))
+    vertical = mujoco.MjModel.from_xml_string(
+        export.to_mjcf(dataclasses.replace(arm, g=9.81))
+    )
     assert np.array_equal(vertical.opt.gravity, [0.0, -9.81, 0.0])
 
 
@@ -148,13 +172,20 @@ def test_only_tip_and_wall_can_touch():
 
 def test_wall_plane_sits_tip_radius_behind_the_line():
     wall = Wall.through([4.0, 0.0], [0.0, 4.0])
-    model = mujoco.MjModel.from_xml_string(export.to_mjcf(arms.two_metre, wall=wall, tip_radius=0.01))
+    model = mujoco.MjModel.from_xml_string(
+        export.to_mjcf(arms.two_metre, wall=wall, tip_radius=0.01)
+    )
     wall_id = model.geom("wall").id
     data = mujoco.MjData(model)
     mujoco.mj_kinematics(model, data)
     z_axis = data.geom_xmat[wall_id].reshape(3, 3)[:, 2]
-    assert np.allclose(z_axis[:2], -wall.into_wall()) and abs(z_axis[2]) < 1e-15  # free side faces the base
-    assert np.isclose(wall.signed_distance(data.geom_xpos[wall_id][:2]), 0.01 * wall.normal @ wall.into_wall())
+    assert (
+        np.allclose(z_axis[:2], -wall.into_wall()) and abs(z_axis[2]) < 1e-15
+    )  # free side faces the base
+    assert np.isclose(
+        wall.signed_distance(data.geom_xpos[wall_id][:2]),
+        0.01 * wall.normal @ wall.into_wall(),
+    )
 
 
 @pytest.mark.parametrize(
@@ -184,7 +215,9 @@ def test_massless_links_are_refused_with_a_clear_message():
 
 @pytest.mark.parametrize("to_model", [export.to_mjcf, export.to_urdf])
 def test_anything_but_an_arm_is_refused_naming_arm(to_model):
-    with pytest.raises(InputTypeError, match=r"arm must be a twolink.TwoLinkArm; got 'arm' \(str\)"):
+    with pytest.raises(
+        InputTypeError, match=r"arm must be a twolink.TwoLinkArm; got 'arm' \(str\)"
+    ):
         to_model("arm")
 
 

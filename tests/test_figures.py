@@ -36,7 +36,11 @@ SCALE_STATEMENT = re.compile(r"\d+(\.\d+)? m per \S+|(=|drawn as)\s*\d+(\.\d+)?\
 
 def code_sources(name):
     content = json.loads((NOTEBOOK_DIR / name).read_text(encoding="utf-8"))
-    return ["".join(cell["source"]) for cell in content["cells"] if cell["cell_type"] == "code"]
+    return [
+        "".join(cell["source"])
+        for cell in content["cells"]
+        if cell["cell_type"] == "code"
+    ]
 
 
 def figure_texts(figure):
@@ -49,7 +53,10 @@ def figure_texts(figure):
 def labelled_by_a_sibling(ax, which):
     """True when ``ax`` shares that axis with a neighbour whose label states quantity and unit (subplots(sharey=True))."""
     shared = ax.get_shared_x_axes() if which == "x" else ax.get_shared_y_axes()
-    labels = [sibling.get_xlabel() if which == "x" else sibling.get_ylabel() for sibling in shared.get_siblings(ax)]
+    labels = [
+        sibling.get_xlabel() if which == "x" else sibling.get_ylabel()
+        for sibling in shared.get_siblings(ax)
+    ]
     return any(LABEL_WITH_UNIT.match(label) for label in labels)
 
 
@@ -60,10 +67,16 @@ def problems_in(figure, ellipse_axes):
         if not ax.axison or ax.get_label() == "<colorbar>":
             continue
         for which, label in (("x", ax.get_xlabel()), ("y", ax.get_ylabel())):
-            if not LABEL_WITH_UNIT.match(label) and not labelled_by_a_sibling(ax, which):
-                found.append(f"axes {ax.get_title()!r}: {which} label {label!r} has no quantity [unit]")
+            if not LABEL_WITH_UNIT.match(label) and not labelled_by_a_sibling(
+                ax, which
+            ):
+                found.append(
+                    f"axes {ax.get_title()!r}: {which} label {label!r} has no quantity [unit]"
+                )
         has_arrows = any(isinstance(artist, Quiver) for artist in ax.collections)
-        if (ax in ellipse_axes or has_arrows) and not SCALE_STATEMENT.search(figure_texts(figure)):
+        if (ax in ellipse_axes or has_arrows) and not SCALE_STATEMENT.search(
+            figure_texts(figure)
+        ):
             found.append(
                 f"axes {ax.get_title()!r}: ellipses or arrows on position axes without a scale such as '0.4 m per m/s'"
             )
@@ -84,7 +97,10 @@ def run_chapter(name, monkeypatch):
         for number in plt.get_fignums():
             figure = plt.figure(number)
             checked.append(figure)
-            problems.extend(f"code cell {where['cell']}: {problem}" for problem in problems_in(figure, ellipse_axes))
+            problems.extend(
+                f"code cell {where['cell']}: {problem}"
+                for problem in problems_in(figure, ellipse_axes)
+            )
             plt.close(figure)
 
     def checking_animation_html(anim, *args, **kwargs):
@@ -121,10 +137,16 @@ def test_the_check_catches_an_unlabelled_axis_and_an_unstated_scale():
     ax_plain.set_xlabel("t [s]")
     ax_plain.set_ylabel("angle")
     twolink.plot.setup_axes(arms.osake, ax=ax_arm)
-    twolink.plot.draw_ellipse(velocity.velocity_ellipse(arms.osake, [0.3, 1.0]), ax=ax_arm, scale=0.4)
+    twolink.plot.draw_ellipse(
+        velocity.velocity_ellipse(arms.osake, [0.3, 1.0]), ax=ax_arm, scale=0.4
+    )
     problems = problems_in(figure, {ax_arm})
-    assert any("y label 'angle' has no quantity [unit]" in problem for problem in problems)
-    assert any("without a scale such as '0.4 m per m/s'" in problem for problem in problems)
+    assert any(
+        "y label 'angle' has no quantity [unit]" in problem for problem in problems
+    )
+    assert any(
+        "without a scale such as '0.4 m per m/s'" in problem for problem in problems
+    )
     ax_plain.set_ylabel("angle [deg]")
     ax_arm.text(0.0, 0.0, "ellipse drawn at 0.4 m per m/s")
     assert problems_in(figure, {ax_arm}) == []

@@ -41,13 +41,19 @@ def graded(tmp_path_factory):
     submissions = tmp_path / "submissions"
     submissions.mkdir()
     untouched = _student_chapter(tmp_path)
-    (submissions / "ada_untouched.ipynb").write_text(json.dumps(untouched), encoding="utf-8")
+    (submissions / "ada_untouched.ipynb").write_text(
+        json.dumps(untouched), encoding="utf-8"
+    )
     solved = _student_chapter(tmp_path)
     _replace(solved, "p_tip_ex1 = ...  # your code here", "p_tip_ex1 = osake.fk(q_ex1)")
-    _replace(solved, "q_rel_ex3 = ...  # your code here", "q_rel_ex3 = np.array([1.0, 2.0])")
+    _replace(
+        solved, "q_rel_ex3 = ...  # your code here", "q_rel_ex3 = np.array([1.0, 2.0])"
+    )
     (submissions / "bob_solved.ipynb").write_text(json.dumps(solved), encoding="utf-8")
     broken = _student_chapter(tmp_path)
-    _replace(broken, "p_tip_ex1 = ...  # your code here", "p_tip_ex1 = undefined_name + 1")
+    _replace(
+        broken, "p_tip_ex1 = ...  # your code here", "p_tip_ex1 = undefined_name + 1"
+    )
     (submissions / "cy_broken.ipynb").write_text(json.dumps(broken), encoding="utf-8")
     out = tmp_path / "grades.csv"
     lines = grade.grade_folder(submissions, out, timeout=120)
@@ -57,7 +63,11 @@ def graded(tmp_path_factory):
 
 
 def _results(rows, name):
-    return {(row["exercise"], row["part"]): row["result"] for row in rows if row["student file"] == name}
+    return {
+        (row["exercise"], row["part"]): row["result"]
+        for row in rows
+        if row["student file"] == name
+    }
 
 
 def test_untouched_notebook_is_all_not_solved(graded):
@@ -65,26 +75,50 @@ def test_untouched_notebook_is_all_not_solved(graded):
     results = _results(rows, "ada_untouched.ipynb")
     assert results and set(results.values()) == {"not solved"}
     assert {exercise for exercise, _ in results} == {"1.1", "1.2", "1.3"}
-    assert any(line.startswith("ada_untouched.ipynb: 0 passed,") and "FAILED" not in line for line in lines)
+    assert any(
+        line.startswith("ada_untouched.ipynb: 0 passed,") and "FAILED" not in line
+        for line in lines
+    )
 
 
 def test_solved_and_wrong_parts_are_graded(graded):
     lines, rows = graded
     results = _results(rows, "bob_solved.ipynb")
-    assert [result for (exercise, _), result in results.items() if exercise == "1.1"] == ["passed"]
-    assert "wrong" in [result for (exercise, _), result in results.items() if exercise == "1.3"]
-    assert any(line.startswith("bob_solved.ipynb: 1 passed,") and " 1 wrong" in line for line in lines)
+    assert [
+        result for (exercise, _), result in results.items() if exercise == "1.1"
+    ] == ["passed"]
+    assert "wrong" in [
+        result for (exercise, _), result in results.items() if exercise == "1.3"
+    ]
+    assert any(
+        line.startswith("bob_solved.ipynb: 1 passed,") and " 1 wrong" in line
+        for line in lines
+    )
 
 
 def test_a_notebook_that_fails_to_run_is_reported(graded):
     lines, rows = graded
-    failed = [row for row in rows if row["student file"] == "cy_broken.ipynb" and row["result"].startswith("failed to run")]
+    failed = [
+        row
+        for row in rows
+        if row["student file"] == "cy_broken.ipynb"
+        and row["result"].startswith("failed to run")
+    ]
     assert len(failed) == 1 and "NameError" in failed[0]["result"]
-    assert any(line.startswith("cy_broken.ipynb:") and "FAILED TO RUN: error: NameError" in line for line in lines)
+    assert any(
+        line.startswith("cy_broken.ipynb:")
+        and "FAILED TO RUN: error: NameError" in line
+        for line in lines
+    )
 
 
 def test_make_grade_needs_a_folder():
-    result = subprocess.run(["make", "-s", "grade", "SUBMISSIONS="], cwd=ROOT, capture_output=True, text=True)
+    result = subprocess.run(
+        ["make", "-s", "grade", "SUBMISSIONS="],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
     assert result.returncode != 0 and "usage: make grade SUBMISSIONS=" in result.stdout
     with pytest.raises(SystemExit, match="not a folder"):
         grade.grade_folder(ROOT / "no-such-folder", ROOT / "build" / "unused.csv")

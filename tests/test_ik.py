@@ -5,11 +5,11 @@ import re
 
 import numpy as np
 import pytest
-from conftest import angles, unit
-from conftest import arms as arm_strategy
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from conftest import angles, unit
+from conftest import arms as arm_strategy
 from twolink import TwoLinkArm, UnreachableError, arms, ik, kinematics, wrap_angle
 from twolink.conventions import ELBOW_WORDS
 from twolink.ik.iterative import _lm_step
@@ -54,7 +54,11 @@ def test_full_stretch_cos_q2_rounds_above_one_and_is_clipped():
     assert c2 > 1.0  # the round-off the issue warns about
     q = ik.closed_form(arm, p).q
     assert np.allclose(q, [np.pi / 4, 0.0], atol=1e-7)
-    assert np.allclose(ik.closed_form(arm, p, elbow="up").q, ik.closed_form(arm, p, elbow="down").q, atol=1e-7)
+    assert np.allclose(
+        ik.closed_form(arm, p, elbow="up").q,
+        ik.closed_form(arm, p, elbow="down").q,
+        atol=1e-7,
+    )
 
 
 def test_full_fold_with_equal_links_reaches_the_base():
@@ -63,7 +67,11 @@ def test_full_fold_with_equal_links_reaches_the_base():
     assert np.allclose(arms.ten.fk(q), 0.0, atol=1e-12)
 
 
-@given(arm=arm_strategy(), fraction=st.floats(min_value=0.01, max_value=0.99), heading=angles)
+@given(
+    arm=arm_strategy(),
+    fraction=st.floats(min_value=0.01, max_value=0.99),
+    heading=angles,
+)
 def test_branches_have_the_documented_signs(arm, fraction, heading):
     r_min, r_max = arm.reach
     p = target_at(r_min + fraction * (r_max - r_min), heading)
@@ -78,7 +86,9 @@ def test_branches_have_the_documented_signs(arm, fraction, heading):
 def test_elbow_down_puts_the_elbow_below_the_base_to_tip_line():
     p = np.array([1.5, 0.0])
     for elbow, sign in (("down", -1.0), ("up", 1.0)):
-        elbow_point = arms.two_metre.joint_positions(ik.closed_form(arms.two_metre, p, elbow=elbow).q)[1]
+        elbow_point = arms.two_metre.joint_positions(
+            ik.closed_form(arms.two_metre, p, elbow=elbow).q
+        )[1]
         assert np.sign(elbow_point[1]) == sign
 
 
@@ -89,10 +99,22 @@ def test_closed_form_is_vectorised_over_leading_axes():
     result = ik.closed_form(arms.osake, p)
     q = result.q
     assert q.shape == (4, 5, 2)
-    assert result.success.shape == result.residual.shape == result.within_limits.shape == (4, 5)
+    assert (
+        result.success.shape
+        == result.residual.shape
+        == result.within_limits.shape
+        == (4, 5)
+    )
     both = ik.closed_form(arms.osake, p, elbow="both")
-    assert both.q.shape == (2, 4, 5, 2)  # the branches on a new leading axis, down first
-    assert both.success.shape == both.residual.shape == both.iterations.shape == (2, 4, 5)
+    assert both.q.shape == (
+        2,
+        4,
+        5,
+        2,
+    )  # the branches on a new leading axis, down first
+    assert (
+        both.success.shape == both.residual.shape == both.iterations.shape == (2, 4, 5)
+    )
     assert np.allclose(arms.osake.fk(q), p, atol=1e-12)
     # q_true is recovered on the branch matching the sign of its q2
     q_both = both.q
@@ -101,7 +123,9 @@ def test_closed_form_is_vectorised_over_leading_axes():
 
 
 def test_source_example_double_root():
-    q_both = ik.closed_form(arms.ten, [10 * np.sqrt(2), 10 * np.sqrt(2)], elbow="both").q
+    q_both = ik.closed_form(
+        arms.ten, [10 * np.sqrt(2), 10 * np.sqrt(2)], elbow="both"
+    ).q
     assert np.allclose(q_both, [[np.pi / 4, 0.0], [np.pi / 4, 0.0]], atol=1e-7)
 
 
@@ -117,7 +141,12 @@ def test_unreachable_target_names_distance_and_reach(solver):
 
 def test_unreachable_inside_the_hole():
     arm = TwoLinkArm(2.0, 0.5)
-    with pytest.raises(UnreachableError, match=re.escape("is 1 m from the base; this arm reaches distances in [1.5, 2.5] m")):
+    with pytest.raises(
+        UnreachableError,
+        match=re.escape(
+            "is 1 m from the base; this arm reaches distances in [1.5, 2.5] m"
+        ),
+    ):
         ik.closed_form(arm, [[2.0, 0.0], [0.0, 1.0]])
 
 
@@ -142,7 +171,11 @@ def same_angles(q_a, q_b, atol):
     return np.allclose(wrap_angle(np.asarray(q_a) - np.asarray(q_b)), 0.0, atol=atol)
 
 
-@given(arm=arm_strategy(ratio_max=5.0), fraction=st.floats(min_value=0.05, max_value=0.95), heading=angles)
+@given(
+    arm=arm_strategy(ratio_max=5.0),
+    fraction=st.floats(min_value=0.05, max_value=0.95),
+    heading=angles,
+)
 def test_newton_agrees_with_a_closed_form_branch(arm, fraction, heading):
     r_min, r_max = arm.reach
     p = target_at(r_min + fraction * (r_max - r_min), heading)
@@ -166,7 +199,9 @@ def test_newton_reports_failure_honestly_when_capped():
     result = ik.newton(arms.ten, [-15.0, 5.0], q0=(0.5, 1.0), max_iter=1)
     assert not result.success
     assert "did not converge" in result.message
-    assert result.residual == pytest.approx(np.linalg.norm(arms.ten.fk(result.q) - [-15.0, 5.0]))
+    assert result.residual == pytest.approx(
+        np.linalg.norm(arms.ten.fk(result.q) - [-15.0, 5.0])
+    )
 
 
 @pytest.mark.parametrize("constrained", [False, True])
@@ -195,7 +230,10 @@ def test_constrained_minimize_respects_relative_limits():
 
 # fractions from 0.72: arms.ten reaches within its limits only at |p| >= 10 sqrt 2 = 0.707 * 20 (fewer targets
 # filtered out by assume below; hypothesis refused a run that drew too many from below)
-@given(fraction=st.floats(min_value=0.72, max_value=0.95), heading=st.floats(min_value=0.0, max_value=np.pi / 2))
+@given(
+    fraction=st.floats(min_value=0.72, max_value=0.95),
+    heading=st.floats(min_value=0.0, max_value=np.pi / 2),
+)
 def test_brute_force_agrees_with_closed_form_to_its_grid_step(fraction, heading):
     arm = arms.ten
     p = target_at(fraction * 20.0, heading)
@@ -209,7 +247,9 @@ def test_brute_force_agrees_with_closed_form_to_its_grid_step(fraction, heading)
     assert arm.within_limits(result.q)
     # the grid point is no worse than the grid point nearest the exact solution
     nearest = [np.round(q / step) * step for q in inside]
-    assert result.residual <= min(np.linalg.norm(arm.fk(q) - p) for q in nearest) + 1e-12
+    assert (
+        result.residual <= min(np.linalg.norm(arm.fk(q) - p) for q in nearest) + 1e-12
+    )
 
 
 def test_brute_force_fails_honestly_outside_its_limits():
@@ -267,19 +307,33 @@ SOLVERS = {
 
 
 @pytest.mark.parametrize("name", SOLVERS)
-@pytest.mark.parametrize("p", [[12.0, 9.0], [[12.0, 9.0], [5.0, 12.0], [-10.0, 10.0]]], ids=["one", "batch"])
+@pytest.mark.parametrize(
+    "p", [[12.0, 9.0], [[12.0, 9.0], [5.0, 12.0], [-10.0, 10.0]]], ids=["one", "batch"]
+)
 def test_every_solver_returns_an_ik_result_with_the_documented_fields(name, p):
     result = SOLVERS[name](arms.ten, p)
     assert isinstance(result, ik.IKResult)
     lead = np.shape(p)[:-1]
     if name == "closed_form both":
         lead = (2,) + lead
-    assert isinstance(result.q, np.ndarray) and result.q.dtype == np.float64 and result.q.shape == lead + (2,)
-    for field, kind, plain in (("success", "b", bool), ("within_limits", "b", bool), ("iterations", "i", int),
-                               ("residual", "f", float)):
+    assert (
+        isinstance(result.q, np.ndarray)
+        and result.q.dtype == np.float64
+        and result.q.shape == lead + (2,)
+    )
+    for field, kind, plain in (
+        ("success", "b", bool),
+        ("within_limits", "b", bool),
+        ("iterations", "i", int),
+        ("residual", "f", float),
+    ):
         value = getattr(result, field)
         if lead:  # a batch: arrays of the batch's shape
-            assert isinstance(value, np.ndarray) and value.shape == lead and value.dtype.kind == kind, field
+            assert (
+                isinstance(value, np.ndarray)
+                and value.shape == lead
+                and value.dtype.kind == kind
+            ), field
         else:  # one answer: a plain Python number
             assert type(value) is plain, field
     assert isinstance(result.message, str) and isinstance(result.method, str)
@@ -301,26 +355,51 @@ def test_assemble_result_judges_the_answers_by_forward_kinematics_when_built():
     q = ik.closed_form(arms.ten, p).q.copy()
     q[1, 0] += 0.1  # a wrong answer: the solver's claim does not matter
     result = assemble_result(arms.ten, p, q, 0, 1e-9, "mine", "solved")
-    assert result.residual[1] == pytest.approx(np.linalg.norm(arms.ten.fk(q[1]) - p[1]), abs=1e-15)
+    assert result.residual[1] == pytest.approx(
+        np.linalg.norm(arms.ten.fk(q[1]) - p[1]), abs=1e-15
+    )
     assert result.residual[1] > 1.0 and not result.success[1] and not result.all_success
-    assert result.message.startswith("failed for 1 of 2 targets (first: flat index 1, residual")
-    one = assemble_result(arms.ten, p[1].tolist(), q[1], 7, 1e-9, "mine", "solved", lambda i, r: f"{r:.1f} m off")
+    assert result.message.startswith(
+        "failed for 1 of 2 targets (first: flat index 1, residual"
+    )
+    one = assemble_result(
+        arms.ten,
+        p[1].tolist(),
+        q[1],
+        7,
+        1e-9,
+        "mine",
+        "solved",
+        lambda i, r: f"{r:.1f} m off",
+    )
     assert (one.success, one.iterations, one.residual) == (False, 7, result.residual[1])
-    assert one.message.startswith("failed for 1 of 1 targets (first: flat index 0, ") and "m off" in one.message
+    assert (
+        one.message.startswith("failed for 1 of 1 targets (first: flat index 0, ")
+        and "m off" in one.message
+    )
 
 
 def test_a_result_keeps_its_own_targets():
     p = np.array([[12.0, 9.0], [5.0, 12.0]])
-    for result in (ik.closed_form(arms.ten, p), ik.newton(arms.ten, p), ik.closed_form(arms.ten, p[0])):
+    for result in (
+        ik.closed_form(arms.ten, p),
+        ik.newton(arms.ten, p),
+        ik.closed_form(arms.ten, p[0]),
+    ):
         p[...] = 0.0  # the caller reuses its array before reading the fields
         assert result.all_success, result.message
         p[...] = [[12.0, 9.0], [5.0, 12.0]]
 
 
 def test_an_unreachable_target_has_no_closed_form_result():
-    with pytest.raises(UnreachableError, match=re.escape("target (30, 40) is 50 m from the base")):
+    with pytest.raises(
+        UnreachableError, match=re.escape("target (30, 40) is 50 m from the base")
+    ):
         ik.closed_form(arms.ten, [30.0, 40.0], elbow="auto")
-    with pytest.raises(UnreachableError, match=re.escape("target (0, 25) (index (1,), first of 1) is 25 m")):
+    with pytest.raises(
+        UnreachableError,
+        match=re.escape("target (0, 25) (index (1,), first of 1) is 25 m"),
+    ):
         ik.closed_form(arms.ten, [[10.0, 10.0], [0.0, 25.0]], elbow="both")
 
 
@@ -328,26 +407,52 @@ def test_ik_result_is_a_frozen_dataclass_and_not_an_array():
     result = ik.closed_form(arms.ten, [12.0, 9.0])
     assert dataclasses.is_dataclass(result)
     assert [field.name for field in dataclasses.fields(result)] == [
-        "q", "success", "residual", "within_limits", "iterations", "method", "message"
+        "q",
+        "success",
+        "residual",
+        "within_limits",
+        "iterations",
+        "method",
+        "message",
     ]
-    for field in ("q", "success", "iterations", "residual", "method", "message", "within_limits", "all_success"):
-        with pytest.raises(dataclasses.FrozenInstanceError, match=f"cannot assign to field '{field}'"):
+    for field in (
+        "q",
+        "success",
+        "iterations",
+        "residual",
+        "method",
+        "message",
+        "within_limits",
+        "all_success",
+    ):
+        with pytest.raises(
+            dataclasses.FrozenInstanceError, match=f"cannot assign to field '{field}'"
+        ):
             setattr(result, field, 1.0)
-        with pytest.raises(dataclasses.FrozenInstanceError, match=f"cannot delete field '{field}'"):
+        with pytest.raises(
+            dataclasses.FrozenInstanceError, match=f"cannot delete field '{field}'"
+        ):
             delattr(result, field)
-    with pytest.raises(dataclasses.FrozenInstanceError, match="cannot assign to field 'anything'"):
+    with pytest.raises(
+        dataclasses.FrozenInstanceError, match="cannot assign to field 'anything'"
+    ):
         result.anything = 1.0  # no new attributes either
     # every field was computed when the result was built: a plain dataclass holding values
     assert set(vars(result)) == {field.name for field in dataclasses.fields(result)}
     with pytest.raises(TypeError, match=r"use its \.q"):
         np.asarray(result)
     with pytest.raises(TypeError):
-        down, up = ik.closed_form(arms.ten, [12.0, 9.0], elbow="both")  # the branches are its .q
+        down, up = ik.closed_form(
+            arms.ten, [12.0, 9.0], elbow="both"
+        )  # the branches are its .q
 
 
 def test_ik_result_repr_names_the_method_and_the_outcome():
     one = repr(ik.closed_form(arms.ten, [12.0, 4.0]))
-    assert one.startswith("IKResult(method='closed-form', q=array([") and "success=True" in one
+    assert (
+        one.startswith("IKResult(method='closed-form', q=array([")
+        and "success=True" in one
+    )
     assert "within_limits=False" in one and "violate the joint limits" in one
     batch = repr(ik.newton(arms.ten, [[12.0, 9.0], [5.0, 12.0]]))
     assert "q of shape (2, 2), success 2 of 2" in batch and "max iterations" in batch
@@ -357,23 +462,65 @@ def test_ik_result_survives_pickling_and_copying():
     import copy
     import pickle
 
-    for result in (ik.closed_form(arms.ten, [12.0, 4.0]), ik.newton(arms.ten, [[12.0, 9.0], [5.0, 12.0]])):
-        for twin in (pickle.loads(pickle.dumps(result)), copy.deepcopy(result), copy.copy(result)):
-            assert type(twin) is ik.IKResult and twin.method == result.method and twin.message == result.message
+    for result in (
+        ik.closed_form(arms.ten, [12.0, 4.0]),
+        ik.newton(arms.ten, [[12.0, 9.0], [5.0, 12.0]]),
+    ):
+        for twin in (
+            pickle.loads(pickle.dumps(result)),
+            copy.deepcopy(result),
+            copy.copy(result),
+        ):
+            assert (
+                type(twin) is ik.IKResult
+                and twin.method == result.method
+                and twin.message == result.message
+            )
             for field in ("q", "success", "iterations", "residual", "within_limits"):
-                assert np.array_equal(getattr(twin, field), getattr(result, field)), field
+                assert np.array_equal(getattr(twin, field), getattr(result, field)), (
+                    field
+                )
                 assert type(getattr(twin, field)) is type(getattr(result, field)), field
     # pickled as a dataclass is: its class and its fields, nothing else (no callbacks, no arm)
     assert b"twolink.arm" not in pickle.dumps(ik.newton(arms.ten, [12.0, 9.0]))
 
 
 def test_assemble_result_checks_its_shapes():
-    made = assemble_result(arms.ten, np.array([[20.0, 0.0]]), np.array([[0.0, 0.0]]), [3], 1e-9, "mine", "done")
-    assert made.all_success and made.iterations.tolist() == [3] and made.message == "done"
+    made = assemble_result(
+        arms.ten,
+        np.array([[20.0, 0.0]]),
+        np.array([[0.0, 0.0]]),
+        [3],
+        1e-9,
+        "mine",
+        "done",
+    )
+    assert (
+        made.all_success and made.iterations.tolist() == [3] and made.message == "done"
+    )
     with pytest.raises(ValueError, match="one answer per target"):
-        assemble_result(arms.ten, np.array([[20.0, 0.0]]), np.array([[0.0, 0.0], [1.0, 0.0]]), 0, 1e-9, "mine", "done")
-    with pytest.raises(ValueError, match=re.escape("iterations must be one value or one per answer (1)")):
-        assemble_result(arms.ten, np.array([20.0, 0.0]), np.array([0.0, 0.0]), [1, 2], 1e-9, "mine", "done")
+        assemble_result(
+            arms.ten,
+            np.array([[20.0, 0.0]]),
+            np.array([[0.0, 0.0], [1.0, 0.0]]),
+            0,
+            1e-9,
+            "mine",
+            "done",
+        )
+    with pytest.raises(
+        ValueError,
+        match=re.escape("iterations must be one value or one per answer (1)"),
+    ):
+        assemble_result(
+            arms.ten,
+            np.array([20.0, 0.0]),
+            np.array([0.0, 0.0]),
+            [1, 2],
+            1e-9,
+            "mine",
+            "done",
+        )
 
 
 FIELDS = ("success", "iterations", "residual", "within_limits", "message")
@@ -384,15 +531,21 @@ FIELDS = ("success", "iterations", "residual", "within_limits", "message")
     arm=st.sampled_from([arms.ten, arms.two_metre, arms.two_metre_limited, arms.osake]),
     fractions=st.lists(st.tuples(unit, angles), min_size=1, max_size=4),
     one=st.booleans(),
-    solver=st.sampled_from(["closed_form", "closed_form both", "closed_form auto", "newton"]),
+    solver=st.sampled_from(
+        ["closed_form", "closed_form both", "closed_form auto", "newton"]
+    ),
     order=st.permutations(FIELDS),
 )
 def test_fields_are_judged_by_forward_kinematics(arm, fractions, one, solver, order):
     r_min, r_max = arm.reach
-    p = np.array([target_at(r_min + f * (r_max - r_min), heading) for f, heading in fractions])
+    p = np.array(
+        [target_at(r_min + f * (r_max - r_min), heading) for f, heading in fractions]
+    )
     p = p[0] if one else p
     result = SOLVERS[solver](arm, p.tolist() if one else p)
-    read = {field: getattr(result, field) for field in order}  # in any order: plain values
+    read = {
+        field: getattr(result, field) for field in order
+    }  # in any order: plain values
     for field in FIELDS:
         assert getattr(result, field) is read[field]
     # forward kinematics of q, against the solver's documented threshold
@@ -404,35 +557,55 @@ def test_fields_are_judged_by_forward_kinematics(arm, fractions, one, solver, or
     np.testing.assert_allclose(read["residual"], residual, rtol=0, atol=1e-15 * r_max)
     assert np.array_equal(read["success"], residual <= threshold)
     assert np.array_equal(read["within_limits"], arm.within_limits(result.q))
-    shapes = {np.shape(read[field]) for field in ("residual", "success", "iterations", "within_limits")}
+    shapes = {
+        np.shape(read[field])
+        for field in ("residual", "success", "iterations", "within_limits")
+    }
     assert shapes == {result.q.shape[:-1]}
     # one target on floats gives what the same target in a batch of one gives
     if one:
         batch = SOLVERS[solver](arm, p[None, :])
         for field in ("success", "iterations", "within_limits"):
-            assert np.array_equal(read[field], np.take(getattr(batch, field), 0, axis=-1)), field
+            assert np.array_equal(
+                read[field], np.take(getattr(batch, field), 0, axis=-1)
+            ), field
         assert read["message"] == batch.message
-        np.testing.assert_allclose(read["residual"], np.take(batch.residual, 0, axis=-1), rtol=0, atol=1e-12 * r_max)
+        np.testing.assert_allclose(
+            read["residual"],
+            np.take(batch.residual, 0, axis=-1),
+            rtol=0,
+            atol=1e-12 * r_max,
+        )
 
 
 # ---------------------------------------------------------------- the elbow words
 @pytest.mark.parametrize("elbow", [None, "elbow-up", "Down", 1, ["down"]], ids=repr)
 @pytest.mark.parametrize("p", [[10.0, 10.0], [[10.0, 10.0]]], ids=["one", "batch"])
 def test_closed_form_names_the_elbow_words_it_accepts(elbow, p):
-    with pytest.raises(ValueError, match=re.escape("elbow must be one of ('down', 'up', 'both', 'auto')")):
+    with pytest.raises(
+        ValueError,
+        match=re.escape("elbow must be one of ('down', 'up', 'both', 'auto')"),
+    ):
         ik.closed_form(arms.ten, p, elbow=elbow)
 
 
 def test_auto_is_down_for_an_arm_without_limits():
     rng = np.random.default_rng(2)
     p = arms.two_metre.fk(rng.uniform(-np.pi, np.pi, (50, 2)))
-    assert np.array_equal(ik.closed_form(arms.two_metre, p, elbow="auto").q, ik.closed_form(arms.two_metre, p).q)
+    assert np.array_equal(
+        ik.closed_form(arms.two_metre, p, elbow="auto").q,
+        ik.closed_form(arms.two_metre, p).q,
+    )
     for target in p[:5]:
-        assert np.array_equal(ik.closed_form(arms.two_metre, target.tolist(), elbow="auto").q,
-                              ik.closed_form(arms.two_metre, target.tolist()).q)
+        assert np.array_equal(
+            ik.closed_form(arms.two_metre, target.tolist(), elbow="auto").q,
+            ik.closed_form(arms.two_metre, target.tolist()).q,
+        )
 
 
-@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited], ids=["ten", "two_metre_limited"])
+@pytest.mark.parametrize(
+    "arm", [arms.ten, arms.two_metre_limited], ids=["ten", "two_metre_limited"]
+)
 def test_auto_picks_a_branch_within_the_limits_down_first(arm):
     from twolink import workspace
 
@@ -442,24 +615,35 @@ def test_auto_picks_a_branch_within_the_limits_down_first(arm):
     p = p[np.hypot(*p.T) <= r_max]
     auto = ik.closed_form(arm, p, elbow="auto")
     down, up = ik.closed_form(arm, p, elbow="both").q
-    down_ok, up_ok = arm.within_limits(down, tol=ik.LIMIT_TOL), arm.within_limits(up, tol=ik.LIMIT_TOL)
+    down_ok, up_ok = (
+        arm.within_limits(down, tol=ik.LIMIT_TOL),
+        arm.within_limits(up, tol=ik.LIMIT_TOL),
+    )
     assert down_ok.sum() > 100 and (~down_ok & ~up_ok).sum() > 100
     # equal links with equal absolute limits: a branch and its mirror take the same two link angles
     assert (~down_ok & up_ok).sum() > 100 or arm is arms.two_metre_limited
-    assert np.array_equal(auto.q[down_ok], down[down_ok])  # down preferred (its angles exactly)
+    assert np.array_equal(
+        auto.q[down_ok], down[down_ok]
+    )  # down preferred (its angles exactly)
     assert np.array_equal(auto.q[~down_ok & up_ok], up[~down_ok & up_ok])
-    assert np.array_equal(auto.q[~down_ok & ~up_ok], down[~down_ok & ~up_ok])  # neither: down, and said so
+    assert np.array_equal(
+        auto.q[~down_ok & ~up_ok], down[~down_ok & ~up_ok]
+    )  # neither: down, and said so
     assert np.array_equal(arm.within_limits(auto.q, tol=ik.LIMIT_TOL), down_ok | up_ok)
     assert np.array_equal(down_ok | up_ok, workspace.is_reachable(arm, p))
     assert auto.all_success and np.all(auto.residual < 1e-12 * r_max)
     assert "with neither branch within them" in auto.message
     # one target at a time takes the same branch
     for index in np.flatnonzero(~down_ok & up_ok)[:5]:
-        assert np.array_equal(ik.closed_form(arm, p[index].tolist(), elbow="auto").q, up[index])
+        assert np.array_equal(
+            ik.closed_form(arm, p[index].tolist(), elbow="auto").q, up[index]
+        )
 
 
 def test_auto_moves_angles_by_a_turn_into_limits_beyond_pi():
-    arm = TwoLinkArm(1.0, 1.0, q_min=(np.pi / 2, 0.0), q_max=(1.75 * np.pi, np.pi))  # q1 up to 315 deg
+    arm = TwoLinkArm(
+        1.0, 1.0, q_min=(np.pi / 2, 0.0), q_max=(1.75 * np.pi, np.pi)
+    )  # q1 up to 315 deg
     p = arm.fk([1.5 * np.pi, 0.5])  # q1 = 270 deg: the closed form gives -90 deg
     auto = ik.closed_form(arm, p, elbow="auto")
     assert auto.within_limits and np.allclose(auto.q, [1.5 * np.pi, 0.5])
@@ -484,14 +668,27 @@ def outcome(call):
 
 @pytest.mark.parametrize(
     "bad",
-    [[float("nan"), 1.0], [0.0, float("inf")], ["a", 1.0], [None, 1.0], [1 + 2j, 0.0], [1.0, 2.0, 3.0], [],
-     [True, False], [10**400, 0.0], np.array([np.nan, 1.0])],
+    [
+        [float("nan"), 1.0],
+        [0.0, float("inf")],
+        ["a", 1.0],
+        [None, 1.0],
+        [1 + 2j, 0.0],
+        [1.0, 2.0, 3.0],
+        [],
+        [True, False],
+        [10**400, 0.0],
+        np.array([np.nan, 1.0]),
+    ],
     ids=repr,
 )
 def test_single_bad_target_is_refused_as_the_vectorised_path_refuses_it(bad):
     from twolink._validate import as_pairs
 
-    for solve in (lambda p: ik.closed_form(ONE_ARM, p).q, lambda p: ik.newton(ONE_ARM, p).q):
+    for solve in (
+        lambda p: ik.closed_form(ONE_ARM, p).q,
+        lambda p: ik.newton(ONE_ARM, p).q,
+    ):
         fast = outcome(lambda: solve(bad))
         slow = outcome(lambda: solve(as_pairs(bad, "target p")[None, :])[0])
         assert fast[0] == slow[0] == "error" and fast[1] == slow[1]
@@ -510,10 +707,17 @@ def test_single_bad_start_and_settings_of_newton_are_refused_as_before():
 @pytest.mark.parametrize("p", [[1.0, 0.5], [[1.0, 0.5]]], ids=["one", "batch"])
 def test_newton_refuses_a_tol_that_would_call_a_miss_success(tol, p):
     """tol = 1e308 reported success 2 m from the target: tol is bounded by what a miss can mean."""
-    with pytest.raises(ValueError, match=r"tol = .* would count a tip up to .* m from the target as success") as raised:
+    with pytest.raises(
+        ValueError,
+        match=r"tol = .* would count a tip up to .* m from the target as success",
+    ) as raised:
         ik.newton(ONE_ARM, p, q0=(3.0, -2.0), tol=tol)
-    assert "tol must be in (0, 0.01]" in str(raised.value) and "l1 + l2 = 1.7 m" in str(raised.value)
-    assert ik.newton(ONE_ARM, p, tol=ik.iterative.TOL_MAX).all_success  # the bound itself is allowed
+    assert "tol must be in (0, 0.01]" in str(raised.value) and "l1 + l2 = 1.7 m" in str(
+        raised.value
+    )
+    assert ik.newton(
+        ONE_ARM, p, tol=ik.iterative.TOL_MAX
+    ).all_success  # the bound itself is allowed
 
 
 @pytest.mark.parametrize("distance", [1.7 * (1 + 1e-9), 3.0, 0.3 * (1 - 1e-9), 0.0])
@@ -530,22 +734,41 @@ def test_single_unreachable_target_raises_the_vectorised_message(distance):
 def boundary_targets(l1, l2, angle):
     """Targets at full stretch and full fold, just inside, on, and just outside within REACH_RTOL."""
     r_min, r_max = abs(l1 - l2), l1 + l2
-    radii = [r_max, r_max * (1 - 1e-13), r_max * (1 + 0.5 * kinematics.REACH_RTOL), r_min, r_min * (1 + 1e-13)]
-    radii += [r_min - 0.5 * kinematics.REACH_RTOL * r_max] if r_min > kinematics.REACH_RTOL * r_max else []
+    radii = [
+        r_max,
+        r_max * (1 - 1e-13),
+        r_max * (1 + 0.5 * kinematics.REACH_RTOL),
+        r_min,
+        r_min * (1 + 1e-13),
+    ]
+    radii += (
+        [r_min - 0.5 * kinematics.REACH_RTOL * r_max]
+        if r_min > kinematics.REACH_RTOL * r_max
+        else []
+    )
     return [[radius * np.cos(angle), radius * np.sin(angle)] for radius in radii]
 
 
 @settings(max_examples=200, deadline=None)
-@given(short_lengths, short_lengths, wide_angles, wide_angles, st.sampled_from(ELBOW_WORDS))
-def test_closed_form_paths_agree_inside_and_on_the_reach_boundary(l1, l2, q1, q2, elbow):
+@given(
+    short_lengths, short_lengths, wide_angles, wide_angles, st.sampled_from(ELBOW_WORDS)
+)
+def test_closed_form_paths_agree_inside_and_on_the_reach_boundary(
+    l1, l2, q1, q2, elbow
+):
     arm = TwoLinkArm(l1, l2)
     targets = [arm.fk([q1, q2]).tolist()] + boundary_targets(l1, l2, q1)
     for target in targets:
         fast = ik.closed_form(arm, target, elbow=elbow)
         slow = ik.closed_form(arm, np.array([target]), elbow=elbow)
         assert fast.q.shape == np.take(slow.q, 0, axis=-2).shape
-        np.testing.assert_allclose(fast.q, np.take(slow.q, 0, axis=-2), rtol=0, atol=1e-12)
-        assert np.array_equal(fast.success, np.take(slow.success, 0, axis=-1)) and fast.message == slow.message
+        np.testing.assert_allclose(
+            fast.q, np.take(slow.q, 0, axis=-2), rtol=0, atol=1e-12
+        )
+        assert (
+            np.array_equal(fast.success, np.take(slow.success, 0, axis=-1))
+            and fast.message == slow.message
+        )
 
 
 @settings(max_examples=150, deadline=None)
@@ -555,7 +778,11 @@ def test_newton_paths_agree(l1, l2, q1, q2, start1, start2):
     target = arm.fk([q1, q2]).tolist()
     fast = ik.newton(arm, target, q0=(start1, start2))
     slow = ik.newton(arm, np.array([target]), q0=(start1, start2))
-    assert fast.q.shape == (2,) and type(fast.success) is bool and type(fast.iterations) is int
+    assert (
+        fast.q.shape == (2,)
+        and type(fast.success) is bool
+        and type(fast.iterations) is int
+    )
     assert type(fast.residual) is float and type(fast.within_limits) is bool
     assert fast.method == slow.method == "newton"
     assert fast.success == bool(slow.success[0])
@@ -567,7 +794,9 @@ def test_newton_paths_agree(l1, l2, q1, q2, start1, start2):
         # within 1e-12 (l1 + l2) of the target, so the answers differ by at most that over the
         # smallest singular value of J (to first order): 1e-12 in a well-conditioned pose.
         sigma_min = np.linalg.svd(arm.jacobian(slow.q[0]), compute_uv=False)[-1]
-        bound = 1e-12 + 2e-12 * scale / max(sigma_min, 1e-300)  # no bound at an exactly singular answer
+        bound = 1e-12 + 2e-12 * scale / max(
+            sigma_min, 1e-300
+        )  # no bound at an exactly singular answer
         difference = np.abs(wrap_angle(fast.q - slow.q[0]))
         assert np.all(difference <= bound), (difference, bound)
         if sigma_min > 0.1 * scale:
@@ -579,8 +808,16 @@ def test_newton_paths_agree(l1, l2, q1, q2, start1, start2):
     [
         (arms.two_metre, [4.0, 0.0], (0.3, 0.2)),  # full stretch
         (arms.two_metre, [4.0, 0.0], (0.0, 0.0)),  # starts at the solution
-        (arms.two_metre, [3.0, 0.0], (0.0, 0.0)),  # zero gradient: stalls, success false
-        (TwoLinkArm(1.0, 1.0), [0.0, 0.0], (0.5, 1.0)),  # the base of an equal-link arm (folded)
+        (
+            arms.two_metre,
+            [3.0, 0.0],
+            (0.0, 0.0),
+        ),  # zero gradient: stalls, success false
+        (
+            TwoLinkArm(1.0, 1.0),
+            [0.0, 0.0],
+            (0.5, 1.0),
+        ),  # the base of an equal-link arm (folded)
         (TwoLinkArm(1.0, 0.5), [0.5 * (1 + 1e-13), 0.0], (0.5, 2.0)),  # full fold
         (arms.ten, [10.0, 10.0], (0.5, 1.0)),  # joint limits
         (arms.ten, [-5.0, 12.0], (0.5, 1.0)),  # an answer outside the joint limits
@@ -605,10 +842,16 @@ def test_newton_stalls_honestly_at_a_zero_gradient_on_the_float_path():
 
 @settings(max_examples=200, deadline=None)
 @given(
-    st.floats(1e-3, 10.0), st.floats(1e-3, 10.0), st.floats(-1.0, 1.0), st.floats(-1.0, 1.0),
-    st.floats(1e-12, 10.0), wide_angles,
+    st.floats(1e-3, 10.0),
+    st.floats(1e-3, 10.0),
+    st.floats(-1.0, 1.0),
+    st.floats(-1.0, 1.0),
+    st.floats(1e-12, 10.0),
+    wide_angles,
 )
-def test_lm_step_formula_solves_the_damped_normal_equations(l1, l2, rx, ry, damping, q1):
+def test_lm_step_formula_solves_the_damped_normal_equations(
+    l1, l2, rx, ry, damping, q1
+):
     """The adjugate solve of (J^T J + lam I) dq = -J^T r equals numpy's solve, floats and arrays alike."""
     for q2 in (0.0, 1e-9, 0.7, np.pi):  # singular poses included
         J = TwoLinkArm(l1, l2).jacobian([q1, q2])
@@ -618,10 +861,21 @@ def test_lm_step_formula_solves_the_damped_normal_equations(l1, l2, rx, ry, damp
         step = _lm_step(*J.ravel().tolist(), float(det_j), rx, ry, damping)
         # round-off of the adjugate's products: the size of its terms, |J^T J + lam I| |J^T r| / det(J^T J + lam I)
         # (plus 1e-250: a step below 1e-262 rad, whose products underflow, counts as zero)
-        scale = np.linalg.norm(normal) * np.linalg.norm(J.T @ [rx, ry]) / np.linalg.det(normal) + 1e-250
-        assert np.allclose(step, expected, rtol=1e-8 * np.linalg.cond(normal), atol=1e-12 * scale)
-        arrays = _lm_step(*(np.full(3, value) for value in (*J.ravel(), det_j, rx, ry, damping)))
-        assert np.array_equal(arrays[0], np.full(3, step[0])) and np.array_equal(arrays[1], np.full(3, step[1]))
+        scale = (
+            np.linalg.norm(normal)
+            * np.linalg.norm(J.T @ [rx, ry])
+            / np.linalg.det(normal)
+            + 1e-250
+        )
+        assert np.allclose(
+            step, expected, rtol=1e-8 * np.linalg.cond(normal), atol=1e-12 * scale
+        )
+        arrays = _lm_step(
+            *(np.full(3, value) for value in (*J.ravel(), det_j, rx, ry, damping))
+        )
+        assert np.array_equal(arrays[0], np.full(3, step[0])) and np.array_equal(
+            arrays[1], np.full(3, step[1])
+        )
 
 
 @given(wide_angles, wide_angles)
@@ -633,9 +887,17 @@ def test_a_results_arrays_are_its_own(q1, q2):
 
 
 @pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)
-def test_single_target_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(not_an_arm):
-    for call in (lambda p: ik.closed_form(not_an_arm, p), lambda p: ik.newton(not_an_arm, p)):
-        fast, slow = outcome(lambda: call([0.3, 0.4])), outcome(lambda: call(np.array([[0.3, 0.4]])))
+def test_single_target_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(
+    not_an_arm,
+):
+    for call in (
+        lambda p: ik.closed_form(not_an_arm, p),
+        lambda p: ik.newton(not_an_arm, p),
+    ):
+        fast, slow = (
+            outcome(lambda: call([0.3, 0.4])),
+            outcome(lambda: call(np.array([[0.3, 0.4]]))),
+        )
         assert fast[0] == slow[0] == "error"
         assert fast[1] == slow[1]
         assert "arm" in fast[1][1]

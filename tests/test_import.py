@@ -28,10 +28,20 @@ HEAVY_BY_DESIGN = {"twolink.plot": "matplotlib", "twolink.symbolic": "sympy"}
 
 def run_fresh(code: str) -> str:
     """Run ``code`` in a fresh interpreter and return what it printed (the test fails on any error)."""
-    env = dict(os.environ, PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])))
+    env = dict(
+        os.environ,
+        PYTHONPATH=os.pathsep.join(
+            filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])
+        ),
+    )
     env.setdefault("MPLBACKEND", "Agg")
     done = subprocess.run(
-        [sys.executable, "-c", textwrap.dedent(code)], capture_output=True, text=True, timeout=120, cwd=ROOT, env=env
+        [sys.executable, "-c", textwrap.dedent(code)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+        cwd=ROOT,
+        env=env,
     )
     assert done.returncode == 0, done.stderr[-3000:]
     return done.stdout
@@ -59,13 +69,19 @@ def test_every_public_name_is_there_after_the_light_import():
         print(json.dumps([missing, "scipy" in sys.modules]))
     """)
     missing, scipy_loaded = json.loads(printed.splitlines()[-1])
-    assert missing == [], f"names in twolink.__all__ missing after import twolink: {missing}"
+    assert missing == [], (
+        f"names in twolink.__all__ missing after import twolink: {missing}"
+    )
     assert not scipy_loaded, "looking up the public names loaded scipy"
 
 
 SUBMODULES = sorted(
-    module.name for module in pkgutil.walk_packages(twolink.__path__, "twolink.")
-    if not any(module.name == heavy or module.name.startswith(heavy + ".") for heavy in HEAVY_BY_DESIGN)
+    module.name
+    for module in pkgutil.walk_packages(twolink.__path__, "twolink.")
+    if not any(
+        module.name == heavy or module.name.startswith(heavy + ".")
+        for heavy in HEAVY_BY_DESIGN
+    )
 )
 
 
@@ -146,4 +162,6 @@ def test_a_function_that_needs_scipy_works_after_the_light_import(call):
         + textwrap.dedent(LATE_SCIPY_CALLS[call])
         + "print('scipy' in sys.modules)\n"
     )
-    assert printed.strip() == "True", "the call did not need scipy: it no longer tests a late import"
+    assert printed.strip() == "True", (
+        "the call did not need scipy: it no longer tests a late import"
+    )

@@ -13,11 +13,10 @@ import shutil
 import subprocess
 import sys
 
+import _venvs
 import nbformat
 import pytest
 from nbclient import NotebookClient
-
-import _venvs
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
@@ -32,11 +31,17 @@ def code_sources(notebook):
 
 def test_apply_inserts_the_cell_first_and_is_idempotent():
     original = nbformat.read(CHAPTER_1, as_version=4)
-    original_code = [source for source in code_sources(original) if not source.startswith(install_cell.MARKER)]
+    original_code = [
+        source
+        for source in code_sources(original)
+        if not source.startswith(install_cell.MARKER)
+    ]
     notebook = copy.deepcopy(original)
     install_cell.apply(notebook)
     assert code_sources(notebook)[0] == install_cell.install_cell_source()
-    assert code_sources(notebook)[1:] == original_code, "the chapter's own code cells must follow unchanged"
+    assert code_sources(notebook)[1:] == original_code, (
+        "the chapter's own code cells must follow unchanged"
+    )
     once = nbformat.writes(notebook)
     assert install_cell.apply(notebook) is False
     assert nbformat.writes(notebook) == once
@@ -51,27 +56,39 @@ def test_apply_updates_an_outdated_install_cell_in_place():
     count = len(notebook.cells)
     assert not install_cell.is_up_to_date(notebook)
     assert install_cell.apply(notebook) is True
-    assert len(notebook.cells) == count, "an outdated install cell is replaced, not duplicated"
+    assert len(notebook.cells) == count, (
+        "an outdated install cell is replaced, not duplicated"
+    )
     assert install_cell.is_up_to_date(notebook)
 
 
 def test_check_mode_fails_on_a_stale_notebook_and_passes_once_applied(tmp_path):
     notebook = nbformat.read(CHAPTER_1, as_version=4)
-    notebook.cells = [cell for cell in notebook.cells if not cell.source.startswith(install_cell.MARKER)]
+    notebook.cells = [
+        cell
+        for cell in notebook.cells
+        if not cell.source.startswith(install_cell.MARKER)
+    ]
     path = tmp_path / "chapter.ipynb"
     nbformat.write(notebook, path)
     tool = [sys.executable, str(ROOT / "tools" / "install_cell.py")]
-    stale = subprocess.run([*tool, "--check", str(path)], capture_output=True, text=True)
+    stale = subprocess.run(
+        [*tool, "--check", str(path)], capture_output=True, text=True
+    )
     assert stale.returncode == 1 and "not the install cell" in stale.stderr
     subprocess.run([*tool, str(path)], check=True, capture_output=True)
-    fresh = subprocess.run([*tool, "--check", str(path)], capture_output=True, text=True)
+    fresh = subprocess.run(
+        [*tool, "--check", str(path)], capture_output=True, text=True
+    )
     assert fresh.returncode == 0, fresh.stderr
 
 
 def test_every_chapter_starts_with_the_install_cell():
     """Fails until `python tools/install_cell.py` has been run on the notebooks (and they re-executed)."""
     result = subprocess.run(
-        [sys.executable, str(ROOT / "tools" / "install_cell.py"), "--check"], capture_output=True, text=True
+        [sys.executable, str(ROOT / "tools" / "install_cell.py"), "--check"],
+        capture_output=True,
+        text=True,
     )
     assert result.returncode == 0, result.stderr
 
@@ -82,17 +99,31 @@ def test_the_cell_names_the_source_variable_and_the_course_extra():
     assert source.count("%pip install") == 1
 
 
-def run_cells(sources, kernel_name="python3", kernel_spec_manager=None, cwd=None, timeout=240):
+def run_cells(
+    sources, kernel_name="python3", kernel_spec_manager=None, cwd=None, timeout=240
+):
     notebook = nbformat.v4.new_notebook()
     notebook.cells = [nbformat.v4.new_code_cell(source) for source in sources]
-    options = {"timeout": timeout, "kernel_name": kernel_name, "resources": {"metadata": {"path": str(cwd)}}}
+    options = {
+        "timeout": timeout,
+        "kernel_name": kernel_name,
+        "resources": {"metadata": {"path": str(cwd)}},
+    }
     if kernel_spec_manager is not None:
         from jupyter_client import KernelManager
 
-        options["km"] = KernelManager(kernel_name=kernel_name, kernel_spec_manager=kernel_spec_manager)
+        options["km"] = KernelManager(
+            kernel_name=kernel_name, kernel_spec_manager=kernel_spec_manager
+        )
     NotebookClient(notebook, **options).execute()
-    return ["".join(output.get("text", "") for output in cell.outputs if output.output_type == "stream")
-            for cell in notebook.cells]
+    return [
+        "".join(
+            output.get("text", "")
+            for output in cell.outputs
+            if output.output_type == "stream"
+        )
+        for cell in notebook.cells
+    ]
 
 
 SPY_ON_PIP = """\
@@ -111,33 +142,78 @@ def test_in_a_clone_the_cell_installs_nothing(tmp_path, monkeypatch):
     """In the project's environment twolink imports, so the cell must not reach %pip."""
     monkeypatch.setenv("TWOLINK_SOURCE", str(tmp_path / "does-not-exist"))
     outputs = run_cells(
-        [SPY_ON_PIP, "%pwd", install_cell.install_cell_source(), "print(calls, twolink.__name__)"], cwd=tmp_path
+        [
+            SPY_ON_PIP,
+            "%pwd",
+            install_cell.install_cell_source(),
+            "print(calls, twolink.__name__)",
+        ],
+        cwd=tmp_path,
     )
-    assert outputs[-1].strip() == "[('pwd', '')] twolink", "the spy must see line magics, and no %pip"
+    assert outputs[-1].strip() == "[('pwd', '')] twolink", (
+        "the spy must see line magics, and no %pip"
+    )
     assert "installing" not in outputs[2]
 
 
-def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(tmp_path, monkeypatch):
+def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(
+    tmp_path, monkeypatch
+):
     """A kernel in a venv with every course package except twolink: the cell installs twolink from a copy of
     this checkout (TWOLINK_SOURCE), then `import twolink` works there and finds the installed copy."""
     source = tmp_path / "twolink-source"
-    shutil.copytree(ROOT, source, ignore=shutil.ignore_patterns(
-        ".*", "build", "notebooks", "tests", "benchmarks", "tools", "*.egg-info", "__pycache__"))
+    shutil.copytree(
+        ROOT,
+        source,
+        ignore=shutil.ignore_patterns(
+            ".*",
+            "build",
+            "notebooks",
+            "tests",
+            "benchmarks",
+            "tools",
+            "*.egg-info",
+            "__pycache__",
+        ),
+    )
     try:
-        python = _venvs.bare_venv(tmp_path, _venvs.installed_except(["twolink"]), with_dependencies=False)
-    except (OSError, subprocess.CalledProcessError) as error:  # pragma: no cover - depends on the machine
+        python = _venvs.bare_venv(
+            tmp_path, _venvs.installed_except(["twolink"]), with_dependencies=False
+        )
+    except (
+        OSError,
+        subprocess.CalledProcessError,
+    ) as error:  # pragma: no cover - depends on the machine
         pytest.skip(f"cannot create a virtual environment here: {error}")
-    probe = subprocess.run([str(python), "-c", "import twolink"], capture_output=True, text=True, cwd=tmp_path)
-    assert probe.returncode != 0 and "No module named 'twolink'" in probe.stderr, "the venv must lack twolink"
+    probe = subprocess.run(
+        [str(python), "-c", "import twolink"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
+    assert probe.returncode != 0 and "No module named 'twolink'" in probe.stderr, (
+        "the venv must lack twolink"
+    )
 
     from jupyter_client.kernelspec import KernelSpecManager
 
     kernel_dir = tmp_path / "kernels" / "without-twolink"
     kernel_dir.mkdir(parents=True)
-    (kernel_dir / "kernel.json").write_text(json.dumps({
-        "argv": [str(python), "-m", "ipykernel_launcher", "-f", "{connection_file}"],
-        "display_name": "without twolink", "language": "python",
-    }))
+    (kernel_dir / "kernel.json").write_text(
+        json.dumps(
+            {
+                "argv": [
+                    str(python),
+                    "-m",
+                    "ipykernel_launcher",
+                    "-f",
+                    "{connection_file}",
+                ],
+                "display_name": "without twolink",
+                "language": "python",
+            }
+        )
+    )
     monkeypatch.delenv("PYTHONPATH", raising=False)
     monkeypatch.setenv("TWOLINK_SOURCE", f"{source}[course]")
     outputs = run_cells(
@@ -153,5 +229,7 @@ def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(tmp_path, monk
     assert outputs[0].split() == ["True", str(tmp_path / "venv")], outputs[0]
     assert f"installing {source}[course]" in outputs[1], outputs[1]
     location, fk = outputs[2].strip().splitlines()
-    assert location.startswith(str(tmp_path / "venv")), f"twolink imported from {location}, not the venv"
+    assert location.startswith(str(tmp_path / "venv")), (
+        f"twolink imported from {location}, not the venv"
+    )
     assert fk == "[4. 0.]"

@@ -2,12 +2,20 @@
 
 import numpy as np
 import pytest
-from conftest import arms as arm_strategy
-from conftest import configurations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from twolink import TwoLinkArm, UnreachableError, arms, kinematics, to_absolute, to_relative, wrap_angle
+from conftest import arms as arm_strategy
+from conftest import configurations
+from twolink import (
+    TwoLinkArm,
+    UnreachableError,
+    arms,
+    kinematics,
+    to_absolute,
+    to_relative,
+    wrap_angle,
+)
 from twolink._validate import as_pairs, pair_floats
 
 
@@ -28,7 +36,9 @@ def test_dh_product_equals_closed_form_fk(arm, q):
     assert np.allclose(T_01[:2, 3], arm.joint_positions(q)[1], atol=1e-12 * arm.l1)
     # rotation part is a planar rotation by q1 + q2
     angle = q[0] + q[1]
-    assert np.allclose(T_02[:2, :2], [[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]])
+    assert np.allclose(
+        T_02[:2, :2], [[np.cos(angle), -np.sin(angle)], [np.sin(angle), np.cos(angle)]]
+    )
     assert np.allclose(T_02[3], [0, 0, 0, 1])
 
 
@@ -81,7 +91,9 @@ def test_vectorised_shapes_agree_with_single_calls():
     assert np.allclose(arm.joint_positions(q)[..., 2, :], arm.fk(q))
 
 
-@given(arm=arm_strategy(), q=configurations(), qd=configurations(), force=configurations())
+@given(
+    arm=arm_strategy(), q=configurations(), qd=configurations(), force=configurations()
+)
 def test_joint_torques_power_balance(arm, q, qd, force):
     """Virtual work: tau . qd equals F . v for the tip velocity v = J qd."""
     tau = arm.joint_torques(q, force)
@@ -100,7 +112,10 @@ def test_absolute_relative_round_trip(q):
 def test_fk_is_the_same_in_both_conventions(q):
     arm = arms.two_metre
     q1, q2_abs = to_absolute(q)
-    expected = [2 * np.cos(q1) + 2 * np.cos(q2_abs), 2 * np.sin(q1) + 2 * np.sin(q2_abs)]
+    expected = [
+        2 * np.cos(q1) + 2 * np.cos(q2_abs),
+        2 * np.sin(q1) + 2 * np.sin(q2_abs),
+    ]
     assert np.allclose(arm.fk(q), expected)
 
 
@@ -108,13 +123,23 @@ def test_wrap_angle_range():
     angles = np.linspace(-20, 20, 1001)
     wrapped = wrap_angle(angles)
     assert np.all(wrapped >= -np.pi) and np.all(wrapped < np.pi)
-    assert np.allclose(np.cos(wrapped), np.cos(angles)) and np.allclose(np.sin(wrapped), np.sin(angles))
+    assert np.allclose(np.cos(wrapped), np.cos(angles)) and np.allclose(
+        np.sin(wrapped), np.sin(angles)
+    )
 
 
-@pytest.mark.parametrize("bad", [[1.0, 2.0, 3.0], [[1.0], [2.0]], 1.0, [np.nan, 0.0], [0.0, np.inf], "ab"])
+@pytest.mark.parametrize(
+    "bad", [[1.0, 2.0, 3.0], [[1.0], [2.0]], 1.0, [np.nan, 0.0], [0.0, np.inf], "ab"]
+)
 def test_bad_configurations_raise(bad):
     arm = TwoLinkArm(1.0, 1.0)
-    for method in (arm.fk, arm.jacobian, arm.joint_positions, arm.transforms, arm.geometric_jacobian):
+    for method in (
+        arm.fk,
+        arm.jacobian,
+        arm.joint_positions,
+        arm.transforms,
+        arm.geometric_jacobian,
+    ):
         with pytest.raises(ValueError, match="q must"):
             method(bad)
 
@@ -141,7 +166,9 @@ def _symbolic_jacobian_derivative():
     s = planar_symbols()
     q = [s["q1"], s["q2"]]
     J = planar_fk()[3].jacobian(q)
-    dJ = [[[sp.diff(J[i, j], q[k]) for k in range(2)] for j in range(2)] for i in range(2)]
+    dJ = [
+        [[sp.diff(J[i, j], q[k]) for k in range(2)] for j in range(2)] for i in range(2)
+    ]
     return sp.lambdify((s["q1"], s["q2"], s["l1"], s["l2"]), dJ, "numpy")
 
 
@@ -151,14 +178,24 @@ SYMBOLIC_DJ = _symbolic_jacobian_derivative()
 @given(arm=arm_strategy(), q=configurations())
 def test_jacobian_derivative_is_sympys_derivative_of_the_jacobian(arm, q):
     expected = np.array(SYMBOLIC_DJ(q[0], q[1], arm.l1, arm.l2), dtype=float)
-    assert np.allclose(kinematics.jacobian_derivative(arm, q), expected, rtol=0.0, atol=1e-12 * (arm.l1 + arm.l2))
+    assert np.allclose(
+        kinematics.jacobian_derivative(arm, q),
+        expected,
+        rtol=0.0,
+        atol=1e-12 * (arm.l1 + arm.l2),
+    )
 
 
 @given(arm=arm_strategy(), q=configurations())
 def test_jacobian_derivative_matches_finite_differences_of_the_jacobian(arm, q):
     step = 1e-6
-    columns = [(arm.jacobian(q + step * e) - arm.jacobian(q - step * e)) / (2 * step) for e in np.eye(2)]
-    by_differences = np.stack(columns, axis=-1)  # index k (the joint differentiated by) last
+    columns = [
+        (arm.jacobian(q + step * e) - arm.jacobian(q - step * e)) / (2 * step)
+        for e in np.eye(2)
+    ]
+    by_differences = np.stack(
+        columns, axis=-1
+    )  # index k (the joint differentiated by) last
     dJ = kinematics.jacobian_derivative(arm, q)
     assert np.allclose(dJ, by_differences, rtol=0.0, atol=1e-8 * (arm.l1 + arm.l2))
     assert np.array_equal(dJ, np.swapaxes(dJ, -1, -2))  # d^2 p / dq_j dq_k is symmetric
@@ -167,11 +204,15 @@ def test_jacobian_derivative_matches_finite_differences_of_the_jacobian(arm, q):
 @given(arm=arm_strategy(), q=configurations(), qd=configurations())
 def test_jacobian_rate_is_the_derivative_along_the_motion(arm, q, qd):
     Jdot = kinematics.jacobian_rate(arm, q, qd)
-    expected = np.einsum("ijk,k->ij", np.array(SYMBOLIC_DJ(q[0], q[1], arm.l1, arm.l2), dtype=float), qd)
+    expected = np.einsum(
+        "ijk,k->ij", np.array(SYMBOLIC_DJ(q[0], q[1], arm.l1, arm.l2), dtype=float), qd
+    )
     scale = (arm.l1 + arm.l2) * (1 + np.abs(qd).sum())
     assert np.allclose(Jdot, expected, rtol=0.0, atol=1e-12 * scale)
     step = 1e-6
-    by_differences = (arm.jacobian(q + step * qd) - arm.jacobian(q - step * qd)) / (2 * step)
+    by_differences = (arm.jacobian(q + step * qd) - arm.jacobian(q - step * qd)) / (
+        2 * step
+    )
     assert np.allclose(Jdot, by_differences, rtol=0.0, atol=1e-7 * scale)
 
 
@@ -184,19 +225,31 @@ def test_derivatives_of_the_jacobian_are_vectorised():
     assert dJ.shape == (3, 4, 2, 2, 2) and Jdot.shape == (3, 4, 2, 2)
     for index in np.ndindex(3, 4):
         assert np.array_equal(dJ[index], kinematics.jacobian_derivative(arm, q[index]))
-        assert np.allclose(Jdot[index], kinematics.jacobian_rate(arm, q[index], qd[index[1]]), rtol=0.0, atol=1e-15)
-    with pytest.raises(ValueError, match=r"q of shape \(3, 4, 2\) and qd of shape \(3, 2\) do not broadcast"):
+        assert np.allclose(
+            Jdot[index],
+            kinematics.jacobian_rate(arm, q[index], qd[index[1]]),
+            rtol=0.0,
+            atol=1e-15,
+        )
+    with pytest.raises(
+        ValueError,
+        match=r"q of shape \(3, 4, 2\) and qd of shape \(3, 2\) do not broadcast",
+    ):
         kinematics.jacobian_rate(arm, q, qd[:3])
 
 
 @given(arm=arm_strategy(), q=configurations(), force=configurations())
-def test_joint_torques_one_input_path_equals_the_vectorised_path_and_J_transpose_F(arm, q, force):
+def test_joint_torques_one_input_path_equals_the_vectorised_path_and_J_transpose_F(
+    arm, q, force
+):
     one = kinematics.joint_torques(arm, q, force)
     batch = kinematics.joint_torques(arm, q[None], force[None])[0]
     scale = (arm.l1 + arm.l2) * (1 + np.abs(force).sum())
     assert np.allclose(one, batch, rtol=0.0, atol=1e-12 * scale)
     assert np.allclose(one, arm.jacobian(q).T @ force, rtol=0.0, atol=1e-12 * scale)
-    assert np.allclose(kinematics.joint_torques(arm, q, -force), -one, rtol=0.0, atol=1e-12 * scale)
+    assert np.allclose(
+        kinematics.joint_torques(arm, q, -force), -one, rtol=0.0, atol=1e-12 * scale
+    )
 
 
 def test_pushing_down_on_a_table_takes_clockwise_torques():
@@ -296,7 +349,10 @@ def refused_in_a_batch_of_one(function, bad, name):
 @pytest.mark.parametrize("bad", BAD_PAIRS, ids=repr)
 def test_single_bad_configuration_is_refused_as_the_vectorised_path_refuses_it(bad):
     for function in (ONE_ARM.fk, ONE_ARM.jacobian):
-        assert_same_outcome(outcome(lambda: function(bad)), outcome(refused_in_a_batch_of_one(function, bad, "q")))
+        assert_same_outcome(
+            outcome(lambda: function(bad)),
+            outcome(refused_in_a_batch_of_one(function, bad, "q")),
+        )
 
 
 @settings(max_examples=200, deadline=None)
@@ -304,30 +360,56 @@ def test_single_bad_configuration_is_refused_as_the_vectorised_path_refuses_it(b
 def test_fk_jacobian_and_joint_torques_paths_agree(l1, l2, q1, q2, fx, fy):
     arm = TwoLinkArm(l1, l2)
     for q in ([q1, q2], (q1, q2), np.array([q1, q2])):
-        np.testing.assert_allclose(arm.fk(q), arm.fk(np.array([[q1, q2]]))[0], rtol=0, atol=1e-12)
-        np.testing.assert_allclose(arm.jacobian(q), arm.jacobian(np.array([[q1, q2]]))[0], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(
+            arm.fk(q), arm.fk(np.array([[q1, q2]]))[0], rtol=0, atol=1e-12
+        )
+        np.testing.assert_allclose(
+            arm.jacobian(q), arm.jacobian(np.array([[q1, q2]]))[0], rtol=0, atol=1e-12
+        )
         one = arm.joint_torques(q, [fx, fy])
-        np.testing.assert_allclose(one, arm.joint_torques(np.array([[q1, q2]]), [fx, fy])[0], rtol=0, atol=1e-12)
+        np.testing.assert_allclose(
+            one,
+            arm.joint_torques(np.array([[q1, q2]]), [fx, fy])[0],
+            rtol=0,
+            atol=1e-12,
+        )
     assert arm.fk([q1, q2]).shape == (2,) and arm.jacobian([q1, q2]).shape == (2, 2)
     # the batch path, block by block, gives row for row what one call gives
     q_many = np.array([[q1, q2], [q2, q1]] * 5000)  # more than one block
     np.testing.assert_allclose(arm.fk(q_many)[-1], arm.fk([q2, q1]), rtol=0, atol=1e-12)
-    np.testing.assert_allclose(arm.jacobian(q_many)[-2], arm.jacobian([q1, q2]), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(
+        arm.jacobian(q_many)[-2], arm.jacobian([q1, q2]), rtol=0, atol=1e-12
+    )
 
 
 def test_the_formulas_read_as_the_textbook():
     c1, s1, c12, s12 = np.cos(0.3), np.sin(0.3), np.cos(1.0), np.sin(1.0)
-    assert kinematics.tip_from_trig(2.0, 1.0, c1, s1, c12, s12) == (2 * c1 + c12, 2 * s1 + s12)
-    assert kinematics.jacobian_from_trig(2.0, 1.0, c1, s1, c12, s12) == (-2 * s1 - s12, -s12, 2 * c1 + c12, c12)
-    assert kinematics.torques_from_jacobian(1.0, 2.0, 3.0, 4.0, 10.0, 100.0) == (310.0, 420.0)
+    assert kinematics.tip_from_trig(2.0, 1.0, c1, s1, c12, s12) == (
+        2 * c1 + c12,
+        2 * s1 + s12,
+    )
+    assert kinematics.jacobian_from_trig(2.0, 1.0, c1, s1, c12, s12) == (
+        -2 * s1 - s12,
+        -s12,
+        2 * c1 + c12,
+        c12,
+    )
+    assert kinematics.torques_from_jacobian(1.0, 2.0, 3.0, 4.0, 10.0, 100.0) == (
+        310.0,
+        420.0,
+    )
 
 
 def test_duck_typed_arm_still_works_on_the_float_path():
     class Bare:
         l1, l2 = 2.0, 1.0
 
-    np.testing.assert_allclose(kinematics.fk(Bare(), [0.0, np.pi / 2]), [2.0, 1.0], atol=1e-12)
-    np.testing.assert_allclose(kinematics.jacobian(Bare(), [0.0, 0.0]), [[0.0, 0.0], [3.0, 1.0]], atol=1e-12)
+    np.testing.assert_allclose(
+        kinematics.fk(Bare(), [0.0, np.pi / 2]), [2.0, 1.0], atol=1e-12
+    )
+    np.testing.assert_allclose(
+        kinematics.jacobian(Bare(), [0.0, 0.0]), [[0.0, 0.0], [3.0, 1.0]], atol=1e-12
+    )
 
 
 @given(wide_angles, wide_angles)
@@ -342,9 +424,17 @@ def test_float_path_results_are_fresh_writable_arrays(q1, q2):
 
 
 @pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)
-def test_single_configuration_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(not_an_arm):
-    for call in (lambda q: kinematics.fk(not_an_arm, q), lambda q: kinematics.jacobian(not_an_arm, q)):
-        fast, slow = outcome(lambda: call([0.3, 0.4])), outcome(lambda: call(np.array([[0.3, 0.4]])))
+def test_single_configuration_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(
+    not_an_arm,
+):
+    for call in (
+        lambda q: kinematics.fk(not_an_arm, q),
+        lambda q: kinematics.jacobian(not_an_arm, q),
+    ):
+        fast, slow = (
+            outcome(lambda: call([0.3, 0.4])),
+            outcome(lambda: call(np.array([[0.3, 0.4]]))),
+        )
         assert fast[0] == slow[0] == "error"
         assert fast[1] == slow[1]
         assert "arm" in fast[1][1]
@@ -364,12 +454,21 @@ HUGE = [1e308, 1e308]
         lambda q: kinematics.jacobian_derivative(ONE_ARM, q),
         lambda q: kinematics.jacobian_rate(ONE_ARM, q, [0.0, 0.0]),
     ],
-    ids=["fk", "jacobian", "joint_positions", "joint_torques", "jacobian_derivative", "jacobian_rate"],
+    ids=[
+        "fk",
+        "jacobian",
+        "joint_positions",
+        "joint_torques",
+        "jacobian_derivative",
+        "jacobian_rate",
+    ],
 )
 @pytest.mark.parametrize("batch", [False, True], ids=["one", "batch"])
 def test_angles_whose_sum_overflows_are_refused_naming_q(call, batch):
     q = [[0.1, 0.2], HUGE] if batch else HUGE
-    with pytest.raises(ValueError, match=r"q = \(1e\+308, 1e\+308\) rad.*q1 \+ q2 overflows float64") as raised:
+    with pytest.raises(
+        ValueError, match=r"q = \(1e\+308, 1e\+308\) rad.*q1 \+ q2 overflows float64"
+    ) as raised:
         call(q)
     assert "math domain error" not in str(raised.value)
     assert ("index (1,), first of 1" in str(raised.value)) == batch
@@ -387,12 +486,19 @@ def test_unreachable_just_outside_the_reach_does_not_print_as_the_reach(outside)
     message = str(raised.value)
     distance = message.split(" is ")[1].split(" m from the base")[0]
     assert float(distance) > 4.0 and distance != "4"
-    assert "beyond the outer reach circle" in message and "round-off tolerance" in message
+    assert (
+        "beyond the outer reach circle" in message and "round-off tolerance" in message
+    )
     assert message.endswith("this arm reaches distances in [0, 4] m (l1=2, l2=2)")
 
 
 def test_unreachable_inside_the_hole_just_short_of_the_reach_says_so():
-    with pytest.raises(UnreachableError, match=r"is 0\.99999999\d* m from the base, [0-9.e-]+ m inside the inner"):
+    with pytest.raises(
+        UnreachableError,
+        match=r"is 0\.99999999\d* m from the base, [0-9.e-]+ m inside the inner",
+    ):
         kinematics.require_within_reach(TwoLinkArm(2.0, 1.0), [1.0 - 3e-9, 0.0])
-    with pytest.raises(UnreachableError, match=r"is 5 m from the base; this arm reaches"):
+    with pytest.raises(
+        UnreachableError, match=r"is 5 m from the base; this arm reaches"
+    ):
         kinematics.require_within_reach(TwoLinkArm(2.0, 2.0), [3.0, 4.0])

@@ -64,13 +64,23 @@ def _imports(module: str) -> tuple[set[str], list[tuple[int, str]]]:
                         late.append((child.lineno, target))
                     else:
                         top.add(target)
-            visit(child, in_function or isinstance(child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)))
+            visit(
+                child,
+                in_function
+                or isinstance(
+                    child, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)
+                ),
+            )
 
     visit(tree, False)
     # importing a submodule runs its package's __init__ first
     for target in list(top):
         parts = target.split(".")
-        top.update(".".join(parts[:i]) for i in range(1, len(parts)) if ".".join(parts[:i]) in MODULES)
+        top.update(
+            ".".join(parts[:i])
+            for i in range(1, len(parts))
+            if ".".join(parts[:i]) in MODULES
+        )
     top.discard(module)
     return top, late
 
@@ -84,7 +94,7 @@ def _find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
         stack.append(node)
         for nxt in sorted(graph[node]):
             if state.get(nxt) == 1:
-                return stack[stack.index(nxt):] + [nxt]
+                return stack[stack.index(nxt) :] + [nxt]
             if nxt not in state:
                 found = visit(nxt)
                 if found:
@@ -106,13 +116,18 @@ def _graph() -> dict[str, set[str]]:
     graph = {}
     for module in MODULES:
         top, _ = _imports(module)
-        graph[module] = {target for target in top if not module.startswith(target + ".")}
+        graph[module] = {
+            target for target in top if not module.startswith(target + ".")
+        }
     return graph
 
 
 def test_the_walk_sees_the_package():
     graph = _graph()
-    assert "twolink.ik.grid_search" in graph and "twolink.ik.result" in graph["twolink.ik.analytic"]
+    assert (
+        "twolink.ik.grid_search" in graph
+        and "twolink.ik.result" in graph["twolink.ik.analytic"]
+    )
     assert "twolink.kinematics" in graph["twolink.arm"]
 
 
@@ -129,4 +144,6 @@ def test_the_cycle_check_can_fail():
 @pytest.mark.parametrize("module", sorted(MODULES))
 def test_no_function_level_import_of_a_twolink_module(module):
     _, late = _imports(module)
-    assert late == [], f"{module} imports twolink modules inside functions (line, module): {late}"
+    assert late == [], (
+        f"{module} imports twolink modules inside functions (line, module): {late}"
+    )

@@ -42,35 +42,61 @@ def test_no_error_or_warning_outputs(notebook):
     path, content = notebook
     for index, cell in enumerate(content["cells"]):
         for output in cell.get("outputs", []):
-            assert output["output_type"] != "error", f"{path.name} cell {index}: stored error {output.get('ename')}"
+            assert output["output_type"] != "error", (
+                f"{path.name} cell {index}: stored error {output.get('ename')}"
+            )
             if output["output_type"] == "stream":
-                assert output["name"] != "stderr", f"{path.name} cell {index}: stderr output: {''.join(output['text'])[:200]}"
+                assert output["name"] != "stderr", (
+                    f"{path.name} cell {index}: stderr output: {''.join(output['text'])[:200]}"
+                )
 
 
 def test_no_widget_state_or_timing_metadata(notebook):
     path, content = notebook
-    assert "widgets" not in content["metadata"], f"{path.name}: widget state in metadata (GitHub will not render it)"
+    assert "widgets" not in content["metadata"], (
+        f"{path.name}: widget state in metadata (GitHub will not render it)"
+    )
     for index, cell in enumerate(content["cells"]):
-        assert "execution" not in cell.get("metadata", {}), f"{path.name} cell {index}: timing metadata"
+        assert "execution" not in cell.get("metadata", {}), (
+            f"{path.name} cell {index}: timing metadata"
+        )
 
 
 def test_normalised_by_nbstripout(notebook):
     path, _ = notebook
     stripped = subprocess.run(
-        [sys.executable, "-m", "nbstripout", "--keep-output", "--keep-count", "-t", str(path)],
+        [
+            sys.executable,
+            "-m",
+            "nbstripout",
+            "--keep-output",
+            "--keep-count",
+            "-t",
+            str(path),
+        ],
         capture_output=True,
         text=True,
         check=True,
     ).stdout
-    assert stripped == path.read_text(encoding="utf-8"), f"{path.name} is not normalised: run `make notebooks`"
+    assert stripped == path.read_text(encoding="utf-8"), (
+        f"{path.name} is not normalised: run `make notebooks`"
+    )
 
 
 def test_learning_goals_pitfalls_and_exercises(notebook):
     path, content = notebook
-    markdown = "\n".join("".join(cell["source"]) for cell in content["cells"] if cell["cell_type"] == "markdown")
+    markdown = "\n".join(
+        "".join(cell["source"])
+        for cell in content["cells"]
+        if cell["cell_type"] == "markdown"
+    )
     code = "\n".join("".join(cell["source"]) for cell in code_cells(content))
     assert "Learning goals" in markdown, f"{path.name}: no 'Learning goals' section"
     assert "Pitfall" in markdown, f"{path.name}: no Pitfall box"
-    assert "### BEGIN SOLUTION" in code and "### END SOLUTION" in code, f"{path.name}: no exercise solution markers"
+    assert "### BEGIN SOLUTION" in code and "### END SOLUTION" in code, (
+        f"{path.name}: no exercise solution markers"
+    )
     assert code.count("### BEGIN SOLUTION") == code.count("### END SOLUTION")
-    assert "../shared" not in code, f"{path.name}: reads ../shared, which users and CI do not have"
+    assert "../shared" not in code, (
+        f"{path.name}: reads ../shared, which users and CI do not have"
+    )

@@ -27,9 +27,13 @@ SCIENTIFIC_FORMATS = [
     re.compile(r"format\([^()]*,\s*[\"'][^\"']*[eE][\"']\s*\)"),
     re.compile(r"format_float_scientific"),
 ]
-TIMING_CALLS = re.compile(r"perf_counter|process_time|\btimeit\b|time\.time\(|\btiming\.\w+\(")
+TIMING_CALLS = re.compile(
+    r"perf_counter|process_time|\btimeit\b|time\.time\(|\btiming\.\w+\("
+)
 MACHINE_SPECIFIC = {
-    "an absolute path": re.compile(r"(?<![\w.])(?:/home/|/root/|/tmp/|/work/|/Users/|/usr/|[A-Z]:\\\\)"),
+    "an absolute path": re.compile(
+        r"(?<![\w.])(?:/home/|/root/|/tmp/|/work/|/Users/|/usr/|[A-Z]:\\\\)"
+    ),
     "an object address": re.compile(r"\b0x[0-9a-fA-F]{6,}\b| object at "),
     "a python-control system counter": re.compile(r"\bsys\[\d+\]"),
     "a date": re.compile(r"\b20\d\d-[01]\d-[0-3]\d\b"),
@@ -42,9 +46,13 @@ VIDEO_PAYLOAD = re.compile(r"data:video/mp4;base64,[A-Za-z0-9+/=\n]+")
 TINY_NUMBER = re.compile(r"(?<![\w.])\d(?:\.\d+)?[eE]-(?:0?[7-9]|[1-9]\d)\b")
 # "below 1e-12", "tolerance 1e-8", or a bound word and then the bound's formula: "no more than `RTOL` x (a1 + a2) = 2e-9".
 BOUND_WORDS = re.compile(
-    r"(?:below|at most|less than|no more than|tolerance|tol|bound|under|within)(?:\W*|\b[^;|\n]{0,80}=\s*)$", re.IGNORECASE
+    r"(?:below|at most|less than|no more than|tolerance|tol|bound|under|within)(?:\W*|\b[^;|\n]{0,80}=\s*)$",
+    re.IGNORECASE,
 )
-REFUSAL = re.compile(r"^.*\b(?:UnreachableError|SingularityError|ValueError|TypeError): .*$", re.MULTILINE)
+REFUSAL = re.compile(
+    r"^.*\b(?:UnreachableError|SingularityError|ValueError|TypeError): .*$",
+    re.MULTILINE,
+)
 # A number typed in the code (an input such as q2 = 1e-7, a tolerance) is exact, not a measurement.
 LITERAL = re.compile(r"(?<![\w.])\d+(?:\.\d+)?[eE]-?\d+")
 
@@ -55,7 +63,11 @@ def notebook(request):
 
 
 def code_cells(content):
-    return [(index, cell) for index, cell in enumerate(content["cells"]) if cell["cell_type"] == "code"]
+    return [
+        (index, cell)
+        for index, cell in enumerate(content["cells"])
+        if cell["cell_type"] == "code"
+    ]
 
 
 def compared_texts(cell):
@@ -69,7 +81,11 @@ def compared_texts(cell):
             texts.append("".join(output["text"]))
         for mime, value in output.get("data", {}).items():
             if mime in COMPARED:
-                texts.append(VIDEO_PAYLOAD.sub("", "".join(value) if isinstance(value, list) else str(value)))
+                texts.append(
+                    VIDEO_PAYLOAD.sub(
+                        "", "".join(value) if isinstance(value, list) else str(value)
+                    )
+                )
     return texts
 
 
@@ -119,13 +135,20 @@ def test_round_off_sized_numbers_are_shown_as_bounds(notebook):
     inputs = {float(literal) for literal in LITERAL.findall(code)}
     found = []
     for index, cell in enumerate(content["cells"]):
-        texts = compared_texts(cell) if cell["cell_type"] == "code" else ["".join(cell["source"])]
+        texts = (
+            compared_texts(cell)
+            if cell["cell_type"] == "code"
+            else ["".join(cell["source"])]
+        )
         for text in texts:
             # A refusal printed by display.print_error quotes the package's message about the input it refused.
             text = REFUSAL.sub("", text)
             for match in TINY_NUMBER.finditer(text):
                 before = text[max(0, match.start() - 100) : match.start()]
-                if not BOUND_WORDS.search(before) and float(match.group(0)) not in inputs:
+                if (
+                    not BOUND_WORDS.search(before)
+                    and float(match.group(0)) not in inputs
+                ):
                     found.append(f"cell {index}: ...{before[-40:]}{match.group(0)}")
     assert not found, (
         f"{path.name}: numbers at round-off size shown as measurements ({'; '.join(found)}): another machine prints "
@@ -138,10 +161,20 @@ def test_the_sanitize_file_masks_only_what_is_random_and_says_why():
     pairs = [index for index, line in enumerate(lines) if line.startswith("regex: ")]
     assert pairs, "sanitize.cfg has no patterns"
     for index in pairs:
-        assert index + 1 < len(lines) and lines[index + 1].startswith("replace: "), f"line {index + 1}: a regex without its replace"
-        assert index > 0 and lines[index - 1].startswith("#") and len(lines[index - 1]) > 20, (
+        assert index + 1 < len(lines) and lines[index + 1].startswith("replace: "), (
+            f"line {index + 1}: a regex without its replace"
+        )
+        assert (
+            index > 0
+            and lines[index - 1].startswith("#")
+            and len(lines[index - 1]) > 20
+        ), (
             f"sanitize.cfg line {index + 1}: say in a comment line above it why this output is truly random"
         )
     for line in lines:
-        assert line == line.rstrip(), f"trailing space in sanitize.cfg (nbval would keep it): {line!r}"
-        assert line.startswith(("regex: ", "replace: ", "#")) or not line.strip(), f"stray line in sanitize.cfg: {line!r}"
+        assert line == line.rstrip(), (
+            f"trailing space in sanitize.cfg (nbval would keep it): {line!r}"
+        )
+        assert line.startswith(("regex: ", "replace: ", "#")) or not line.strip(), (
+            f"stray line in sanitize.cfg: {line!r}"
+        )

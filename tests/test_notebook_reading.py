@@ -17,7 +17,9 @@ MAX_CODE_LINES = 40
 
 # `obj._name` (a private attribute or method), but not `__dunder__`, numbers like `1._5` or `_` alone.
 PRIVATE_ACCESS = re.compile(r"[A-Za-z0-9_\)\]]\._[A-Za-z][A-Za-z0-9_]*")
-PRIVATE_IMPORT = re.compile(r"^\s*from\s+twolink\S*\s+import\s+.*\b_[A-Za-z]", re.MULTILINE)
+PRIVATE_IMPORT = re.compile(
+    r"^\s*from\s+twolink\S*\s+import\s+.*\b_[A-Za-z]", re.MULTILINE
+)
 
 
 @pytest.fixture(params=NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
@@ -26,7 +28,11 @@ def notebook(request):
 
 
 def code_cells(content):
-    return [(index, cell) for index, cell in enumerate(content["cells"]) if cell["cell_type"] == "code"]
+    return [
+        (index, cell)
+        for index, cell in enumerate(content["cells"])
+        if cell["cell_type"] == "code"
+    ]
 
 
 def source(cell):
@@ -57,7 +63,9 @@ def test_no_private_attributes_or_names(notebook):
             found.append(f"cell {index}: {match.group(0)}")
         for match in PRIVATE_IMPORT.finditer(text):
             found.append(f"cell {index}: {match.group(0).strip()}")
-    assert not found, f"{path.name}: uses private names ({'; '.join(found)}): make what the chapter needs public"
+    assert not found, (
+        f"{path.name}: uses private names ({'; '.join(found)}): make what the chapter needs public"
+    )
 
 
 def test_self_checks_print_only_their_message(notebook):
@@ -68,5 +76,9 @@ def test_self_checks_print_only_their_message(notebook):
             continue
         for output in cell.get("outputs", []):
             if output["output_type"] == "execute_result":
-                stray.append(f"cell {index}: {''.join(output['data'].get('text/plain', ''))[:40]!r}")
-    assert not stray, f"{path.name}: self-check cells with a stray result output ({'; '.join(stray)}): end with `;`"
+                stray.append(
+                    f"cell {index}: {''.join(output['data'].get('text/plain', ''))[:40]!r}"
+                )
+    assert not stray, (
+        f"{path.name}: self-check cells with a stray result output ({'; '.join(stray)}): end with `;`"
+    )

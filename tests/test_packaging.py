@@ -13,17 +13,23 @@ import sys
 import textwrap
 import tomllib
 
+import _venvs
 import pytest
 from packaging.specifiers import SpecifierSet
 from packaging.utils import canonicalize_name
-
-import _venvs
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 #: Import names of the course-only dependencies (the ``course`` extra).
-COURSE_ONLY = {"control", "imageio_ffmpeg", "ipywidgets", "IPython", "mujoco", "jupyterlab"}
+COURSE_ONLY = {
+    "control",
+    "imageio_ffmpeg",
+    "ipywidgets",
+    "IPython",
+    "mujoco",
+    "jupyterlab",
+}
 CORE = ["numpy", "scipy", "sympy", "matplotlib"]
 
 
@@ -43,10 +49,15 @@ def pins(path):
 def test_licence_covers_the_code_and_the_text():
     licence = (ROOT / "LICENSE").read_text(encoding="utf-8")
     assert "MIT License" in licence and "Permission is hereby granted" in licence
-    assert "Creative Commons Attribution 4.0 International" in licence and "CC BY 4.0" in licence
+    assert (
+        "Creative Commons Attribution 4.0 International" in licence
+        and "CC BY 4.0" in licence
+    )
     assert "the twolink authors" in licence
     assert PYPROJECT["project"]["license"] == "MIT"
-    assert PYPROJECT["project"]["license-files"] == ["LICENSE"], "the wheel must carry LICENSE"
+    assert PYPROJECT["project"]["license-files"] == ["LICENSE"], (
+        "the wheel must carry LICENSE"
+    )
     assert "MIT" in README and "CC BY 4.0" in README and "## How to cite" in README
 
 
@@ -56,20 +67,31 @@ def test_licence_covers_the_code_and_the_text():
 def binder_python():
     text = (ROOT / ".binder" / "runtime.txt").read_text(encoding="utf-8").strip()
     match = re.fullmatch(r"python-(3\.\d+)", text)
-    assert match, f".binder/runtime.txt should read python-3.X (repo2docker's form), not {text!r}"
+    assert match, (
+        f".binder/runtime.txt should read python-3.X (repo2docker's form), not {text!r}"
+    )
     return match[1]
 
 
 def conda_python():
-    match = re.search(r"^\s*-\s*python\s*=\s*(3\.\d+)\s*$", (ROOT / "environment.yml").read_text(), re.M)
+    match = re.search(
+        r"^\s*-\s*python\s*=\s*(3\.\d+)\s*$",
+        (ROOT / "environment.yml").read_text(),
+        re.M,
+    )
     assert match, "environment.yml should pin python=3.X"
     return match[1]
 
 
 def lock_python():
     """The Python ``make lock`` ran with, from constraints.txt's header."""
-    match = re.search(r"\(Python (3\.\d+\.\d+)\)", (ROOT / "constraints.txt").read_text(encoding="utf-8"))
-    assert match, "constraints.txt's first line should name the Python it was generated with"
+    match = re.search(
+        r"\(Python (3\.\d+\.\d+)\)",
+        (ROOT / "constraints.txt").read_text(encoding="utf-8"),
+    )
+    assert match, (
+        "constraints.txt's first line should name the Python it was generated with"
+    )
     return match[1]
 
 
@@ -79,13 +101,19 @@ def pinned_requires_python():
     found = {}
     for name, version in pinned.items():
         dist = importlib.metadata.distribution(name)
-        assert dist.version == version, f"{name} {dist.version} is installed, {version} is pinned: run `make install`"
+        assert dist.version == version, (
+            f"{name} {dist.version} is installed, {version} is pinned: run `make install`"
+        )
         found[name] = dist.metadata.get("Requires-Python") or ""
     return found
 
 
 def unsupported(python, requires):
-    return {name: spec for name, spec in requires.items() if spec and not SpecifierSet(spec).contains(python)}
+    return {
+        name: spec
+        for name, spec in requires.items()
+        if spec and not SpecifierSet(spec).contains(python)
+    }
 
 
 def test_binder_and_conda_python_satisfy_every_pinned_requirement():
@@ -94,8 +122,13 @@ def test_binder_and_conda_python_satisfy_every_pinned_requirement():
     requires = pinned_requires_python()
     assert len(requires) >= 100, "constraints.txt should pin the whole environment"
     locked = lock_python()
-    for where, python in [(".binder/runtime.txt", binder_python()), ("environment.yml", conda_python())]:
-        assert locked.startswith(python + "."), f"{where} says Python {python}, the lock was made with {locked}"
+    for where, python in [
+        (".binder/runtime.txt", binder_python()),
+        ("environment.yml", conda_python()),
+    ]:
+        assert locked.startswith(python + "."), (
+            f"{where} says Python {python}, the lock was made with {locked}"
+        )
         for version in (locked, f"{python}.99"):
             refused = unsupported(version, requires)
             assert not refused, f"{where}: Python {version} is refused by {refused}"
@@ -108,29 +141,64 @@ def test_binder_and_conda_install_the_requirements_with_the_lock():
     binder = (ROOT / ".binder" / "requirements.txt").read_text(encoding="utf-8").split()
     assert "../requirements.txt" in binder and "../constraints.txt" in binder
     conda = (ROOT / "environment.yml").read_text(encoding="utf-8")
-    assert re.search(r"-\s+-r requirements\.txt", conda) and re.search(r"-\s+-c constraints\.txt", conda)
+    assert re.search(r"-\s+-r requirements\.txt", conda) and re.search(
+        r"-\s+-c constraints\.txt", conda
+    )
     # At the root, an environment.yml would switch Binder to conda; .binder/ keeps it on runtime.txt + pip.
     assert (ROOT / ".binder").is_dir()
 
 
 def test_readme_online_links_are_generated_from_project_urls(tmp_path):
-    result = subprocess.run([sys.executable, str(ROOT / "tools" / "links.py"), "--check"], capture_output=True, text=True)
+    result = subprocess.run(
+        [sys.executable, str(ROOT / "tools" / "links.py"), "--check"],
+        capture_output=True,
+        text=True,
+    )
     assert result.returncode == 0, result.stderr
     assert "## Run it online" in README
     # A fork changes the URL in one place and every link follows.
     fork_pyproject = tmp_path / "pyproject.toml"
-    fork_pyproject.write_text(re.sub(r'Repository = "[^"]*"', 'Repository = "https://github.com/someone/fork"',
-                                     (ROOT / "pyproject.toml").read_text(encoding="utf-8")))
+    fork_pyproject.write_text(
+        re.sub(
+            r'Repository = "[^"]*"',
+            'Repository = "https://github.com/someone/fork"',
+            (ROOT / "pyproject.toml").read_text(encoding="utf-8"),
+        )
+    )
     fork_readme = tmp_path / "README.md"
     fork_readme.write_text(README)
-    subprocess.run([sys.executable, str(ROOT / "tools" / "links.py"), "--write", "--pyproject", str(fork_pyproject),
-                    "--readme", str(fork_readme)], check=True)
+    subprocess.run(
+        [
+            sys.executable,
+            str(ROOT / "tools" / "links.py"),
+            "--write",
+            "--pyproject",
+            str(fork_pyproject),
+            "--readme",
+            str(fork_readme),
+        ],
+        check=True,
+    )
     text = fork_readme.read_text()
     assert "https://mybinder.org/v2/gh/someone/fork/main" in text
-    assert "https://colab.research.google.com/github/someone/fork/blob/main/notebooks/" in text
+    assert (
+        "https://colab.research.google.com/github/someone/fork/blob/main/notebooks/"
+        in text
+    )
     assert "twolink[course] @ git+https://github.com/someone/fork" in text
-    stale = subprocess.run([sys.executable, str(ROOT / "tools" / "links.py"), "--check", "--readme", str(ROOT / "README.md"),
-                            "--pyproject", str(fork_pyproject)], capture_output=True, text=True)
+    stale = subprocess.run(
+        [
+            sys.executable,
+            str(ROOT / "tools" / "links.py"),
+            "--check",
+            "--readme",
+            str(ROOT / "README.md"),
+            "--pyproject",
+            str(fork_pyproject),
+        ],
+        capture_output=True,
+        text=True,
+    )
     assert stale.returncode == 1, "README links not matching the URL must be caught"
 
 
@@ -140,32 +208,57 @@ def test_readme_online_links_are_generated_from_project_urls(tmp_path):
 def test_constraints_pin_every_package_a_clean_install_brings():
     constraints = pins(ROOT / "constraints.txt")
     for name, version in pins(ROOT / "requirements.txt").items():
-        assert constraints.get(name) == version, f"requirements.txt pins {name}=={version}, constraints.txt {constraints.get(name)}"
+        assert constraints.get(name) == version, (
+            f"requirements.txt pins {name}=={version}, constraints.txt {constraints.get(name)}"
+        )
     direct = [name for name in pins(ROOT / "requirements.txt")]
     needed = _venvs.closure([*direct, *CORE])
-    unpinned = {dist.metadata["Name"] for dist in needed if canonicalize_name(dist.metadata["Name"]) not in constraints}
-    assert not unpinned, f"not pinned in constraints.txt (run `make lock`): {sorted(unpinned)}"
+    unpinned = {
+        dist.metadata["Name"]
+        for dist in needed
+        if canonicalize_name(dist.metadata["Name"]) not in constraints
+    }
+    assert not unpinned, (
+        f"not pinned in constraints.txt (run `make lock`): {sorted(unpinned)}"
+    )
     for dist in needed:
         assert constraints[canonicalize_name(dist.metadata["Name"])] == dist.version
 
 
 def make_dry_run(*args):
-    return subprocess.run(["make", "-n", "-B", "--no-print-directory", *args], cwd=ROOT, capture_output=True, text=True,
-                          check=True).stdout
+    return subprocess.run(
+        ["make", "-n", "-B", "--no-print-directory", *args],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
 
 
 def test_make_install_uses_the_lock_and_make_lock_regenerates_it():
     install = make_dry_run("install")
-    assert re.search(r"pip install .*-r requirements\.txt -c constraints\.txt", install), install
+    assert re.search(
+        r"pip install .*-r requirements\.txt -c constraints\.txt", install
+    ), install
     lock = make_dry_run("lock")
-    assert "-m venv build/lock-venv" in lock and "pip freeze --exclude-editable" in lock and "> constraints.txt.new" in lock
+    assert (
+        "-m venv build/lock-venv" in lock
+        and "pip freeze --exclude-editable" in lock
+        and "> constraints.txt.new" in lock
+    )
 
 
 # --- 7. make lab LAB_ARGS ----------------------------------------------------------------------------------------
 
 
 def test_make_lab_passes_extra_jupyterlab_arguments():
-    lab = [line for line in make_dry_run("lab", 'LAB_ARGS=--no-browser --port 8890').splitlines() if "jupyter lab" in line]
+    lab = [
+        line
+        for line in make_dry_run(
+            "lab", "LAB_ARGS=--no-browser --port 8890"
+        ).splitlines()
+        if "jupyter lab" in line
+    ]
     assert lab and lab[-1].rstrip().endswith("--no-browser --port 8890"), lab
 
 
@@ -175,8 +268,13 @@ def test_make_lab_passes_extra_jupyterlab_arguments():
 def test_the_version_is_written_once():
     import twolink
 
-    assert "version" not in PYPROJECT["project"] and "version" in PYPROJECT["project"]["dynamic"]
-    assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {"attr": "twolink.__version__"}
+    assert (
+        "version" not in PYPROJECT["project"]
+        and "version" in PYPROJECT["project"]["dynamic"]
+    )
+    assert PYPROJECT["tool"]["setuptools"]["dynamic"]["version"] == {
+        "attr": "twolink.__version__"
+    }
     assert importlib.metadata.version("twolink") == twolink.__version__
 
 
@@ -192,7 +290,11 @@ def course_only_imports():
                 names = [alias.name for alias in node.names]
             elif isinstance(node, ast.ImportFrom) and node.level == 0:
                 names = [node.module or ""]
-            found += [(path.relative_to(ROOT), node.lineno, name) for name in names if name.split(".")[0] in COURSE_ONLY]
+            found += [
+                (path.relative_to(ROOT), node.lineno, name)
+                for name in names
+                if name.split(".")[0] in COURSE_ONLY
+            ]
     return found
 
 
@@ -204,29 +306,42 @@ def test_course_only_modules_are_imported_only_through_require():
 
 
 @pytest.mark.parametrize("function", ["linearize", "closed_loop_system"])
-def test_a_function_without_its_course_dependency_names_itself_and_the_extra(monkeypatch, function):
+def test_a_function_without_its_course_dependency_names_itself_and_the_extra(
+    monkeypatch, function
+):
     from twolink import arms, controllers, ik, linearization
 
-    monkeypatch.setitem(sys.modules, "control", None)  # as if python-control were not installed
+    monkeypatch.setitem(
+        sys.modules, "control", None
+    )  # as if python-control were not installed
     arm = arms.two_metre
     q_rest = ik.closed_form(arm, [3.0, 1.0]).q
     impedance = controllers.Impedance(arm, 600.0, 50.0, [3.0, 1.0])
     args = (arm, impedance, q_rest) if function == "linearize" else (arm, impedance)
-    with pytest.raises(ImportError, match=rf'twolink\.linearization\.{function} needs control.*pip install "twolink\[course\]"'):
+    with pytest.raises(
+        ImportError,
+        match=rf'twolink\.linearization\.{function} needs control.*pip install "twolink\[course\]"',
+    ):
         getattr(linearization, function)(*args)
 
 
 def small_animation():
     from twolink import arms, plot
 
-    return plot.animate_arm(arms.two_metre, [[0.0, 0.0], [0.2, 0.3], [0.4, 0.6]], interval=50)
+    return plot.animate_arm(
+        arms.two_metre, [[0.0, 0.0], [0.2, 0.3], [0.4, 0.6]], interval=50
+    )
 
 
 def test_animation_html_is_a_video_with_ffmpeg():
     from twolink import plot
 
     html = plot.animation_html(small_animation())._repr_html_()
-    assert "<video" in html and "data:video/mp4;base64," in html and "imageio-ffmpeg" not in html
+    assert (
+        "<video" in html
+        and "data:video/mp4;base64," in html
+        and "imageio-ffmpeg" not in html
+    )
 
 
 def test_animation_html_falls_back_to_javascript_without_ffmpeg(monkeypatch):
@@ -235,7 +350,10 @@ def test_animation_html_falls_back_to_javascript_without_ffmpeg(monkeypatch):
     monkeypatch.setitem(sys.modules, "imageio_ffmpeg", None)
     html = plot.animation_html(small_animation())._repr_html_()
     assert "<video" not in html and "<script" in html and "animation" in html.lower()
-    assert 'imageio-ffmpeg) is not installed' in html and 'pip install "twolink[course]"' in html
+    assert (
+        "imageio-ffmpeg) is not installed" in html
+        and 'pip install "twolink[course]"' in html
+    )
 
 
 BARE_SCRIPT = textwrap.dedent("""
@@ -277,18 +395,43 @@ BARE_SCRIPT = textwrap.dedent("""
 def test_the_wheel_works_with_only_its_four_core_dependencies(tmp_path):
     """pip wheel, then install it (dependencies checked, nothing downloaded) in a venv with numpy, scipy,
     sympy and matplotlib only; every module imports and the course-only functions explain themselves."""
-    built = subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "--quiet", "-w", str(tmp_path / "dist"),
-                            str(ROOT)], capture_output=True, text=True, cwd=tmp_path)
+    built = subprocess.run(
+        [
+            sys.executable,
+            "-m",
+            "pip",
+            "wheel",
+            "--no-deps",
+            "--quiet",
+            "-w",
+            str(tmp_path / "dist"),
+            str(ROOT),
+        ],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
     assert built.returncode == 0, built.stderr[-3000:]
     (wheel,) = (tmp_path / "dist").glob("twolink-*.whl")
     try:
         python = _venvs.bare_venv(tmp_path, CORE)
-    except (OSError, subprocess.CalledProcessError) as error:  # pragma: no cover - depends on the machine
+    except (
+        OSError,
+        subprocess.CalledProcessError,
+    ) as error:  # pragma: no cover - depends on the machine
         pytest.skip(f"cannot create a virtual environment here: {error}")
-    installed = _venvs.pip(python, "install", "--no-index", "--quiet", str(wheel), cwd=tmp_path)
+    installed = _venvs.pip(
+        python, "install", "--no-index", "--quiet", str(wheel), cwd=tmp_path
+    )
     assert installed.returncode == 0, installed.stderr[-3000:]
     env = {"PATH": "/usr/bin:/bin", "HOME": str(tmp_path)}
-    run = subprocess.run([str(python), "-c", BARE_SCRIPT.format(course_only=sorted(COURSE_ONLY))],
-                         capture_output=True, text=True, cwd=tmp_path, env=env, timeout=120)
+    run = subprocess.run(
+        [str(python), "-c", BARE_SCRIPT.format(course_only=sorted(COURSE_ONLY))],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+        env=env,
+        timeout=120,
+    )
     assert run.returncode == 0, run.stderr[-3000:]
     assert run.stdout.startswith("ok "), run.stdout

@@ -15,7 +15,9 @@ from matplotlib.patches import Circle, FancyArrowPatch
 from twolink import TwoLinkArm, arms, plot, simulate, statics, velocity
 from twolink.errors import InputTypeError
 
-LABEL_WITH_UNIT = re.compile(r"\S.*\[[^\]]+\]")  # the rule of tests/test_figures.py: "x [m]", "joint rate [rad/s]"
+LABEL_WITH_UNIT = re.compile(
+    r"\S.*\[[^\]]+\]"
+)  # the rule of tests/test_figures.py: "x [m]", "joint rate [rad/s]"
 
 ARM = arms.two_metre
 Q_PATH = np.linspace([0.0, 0.3], [1.0, 1.5], 12)
@@ -37,11 +39,19 @@ DRAWERS = {
     "draw_reach": lambda **options: plot.draw_reach(ARM, **options),
     "draw_arm": lambda **options: plot.draw_arm(ARM, [0.3, 1.0], **options),
     "draw_strobe": lambda **options: plot.draw_strobe(ARM, Q_PATH, frames=4, **options),
-    "draw_ellipse": lambda **options: plot.draw_ellipse(velocity.velocity_ellipse(ARM, [0.3, 1.0]), scale=0.5, **options),
-    "draw_force": lambda **options: plot.draw_force([1.0, 1.0], [100.0, 0.0], 0.01, **options),
+    "draw_ellipse": lambda **options: plot.draw_ellipse(
+        velocity.velocity_ellipse(ARM, [0.3, 1.0]), scale=0.5, **options
+    ),
+    "draw_force": lambda **options: plot.draw_force(
+        [1.0, 1.0], [100.0, 0.0], 0.01, **options
+    ),
     "draw_torque": lambda **options: plot.draw_torque([0.0, 0.0], 5.0, 0.5, **options),
-    "draw_wall": lambda **options: plot.draw_wall(statics.Wall.through([4.0, 0.0], [0.0, 4.0]), 3.0, **options),
-    "plot_time_series": lambda **options: plot.plot_time_series(T_PATH, Q_PATH, "joint angle", "rad", ["q1", "q2"], **options),
+    "draw_wall": lambda **options: plot.draw_wall(
+        statics.Wall.through([4.0, 0.0], [0.0, 4.0]), 3.0, **options
+    ),
+    "plot_time_series": lambda **options: plot.plot_time_series(
+        T_PATH, Q_PATH, "joint angle", "rad", ["q1", "q2"], **options
+    ),
     "draw_note": lambda **options: plot.draw_note("1 N drawn as 2 m", **options),
 }
 # Functions that make axes of their own when ax is None (a new figure).
@@ -49,7 +59,9 @@ SETTERS = {
     "setup_axes": lambda **options: plot.setup_axes(ARM, **options),
     "animate_arm": lambda **options: plot.animate_arm(ARM, Q_PATH, T_PATH, **options),
     "animate_simulation": lambda **options: plot.animate_simulation(
-        simulate(ARM, [0.3, 0.0], [0.0, 0.0], 0.5, t_eval=np.linspace(0.0, 0.5, 11)), max_frames=5, **options
+        simulate(ARM, [0.3, 0.0], [0.0, 0.0], 0.5, t_eval=np.linspace(0.0, 0.5, 11)),
+        max_frames=5,
+        **options,
     ),
 }
 NOT_DRAWING = {"animation_html"}  # shows an animation; takes no axes
@@ -70,7 +82,11 @@ def test_every_public_function_is_covered_here():
 @pytest.mark.parametrize("name", sorted(set(plot.__all__) - NOT_DRAWING))
 def test_ax_is_keyword_only_first_after_the_star_and_defaults_to_none(name):
     parameters = inspect.signature(getattr(plot, name)).parameters.values()
-    keyword_only = [parameter for parameter in parameters if parameter.kind is inspect.Parameter.KEYWORD_ONLY]
+    keyword_only = [
+        parameter
+        for parameter in parameters
+        if parameter.kind is inspect.Parameter.KEYWORD_ONLY
+    ]
     assert keyword_only, f"{name} has no keyword-only parameters"
     first = keyword_only[0]
     assert (first.name, first.default, first.annotation) == ("ax", None, "Axes | None")
@@ -79,8 +95,15 @@ def test_ax_is_keyword_only_first_after_the_star_and_defaults_to_none(name):
 @pytest.mark.parametrize("name", sorted(plot.__all__))
 def test_every_public_function_is_fully_annotated(name):
     signature = inspect.signature(getattr(plot, name))
-    missing = [p.name for p in signature.parameters.values() if p.annotation is inspect.Parameter.empty]
-    assert not missing and signature.return_annotation is not inspect.Signature.empty, (name, missing)
+    missing = [
+        p.name
+        for p in signature.parameters.values()
+        if p.annotation is inspect.Parameter.empty
+    ]
+    assert not missing and signature.return_annotation is not inspect.Signature.empty, (
+        name,
+        missing,
+    )
 
 
 @pytest.mark.parametrize("name", sorted(DRAWERS))
@@ -138,8 +161,12 @@ def test_refuses_an_ax_that_is_not_axes(name):
         lambda ax: plot.draw_reach(ARM, ax),
         lambda ax: plot.draw_force(ax, [1.0, 1.0], [100.0, 0.0], scale=0.01),
         lambda ax: plot.draw_torque(ax, [0.0, 0.0], 5.0, radius=0.5),
-        lambda ax: plot.draw_wall(statics.Wall.through([4.0, 0.0], [0.0, 4.0]), ax, half_length=3.0),
-        lambda ax: plot.draw_ellipse(velocity.velocity_ellipse(ARM, [0.3, 1.0]), ax, scale=0.5),
+        lambda ax: plot.draw_wall(
+            statics.Wall.through([4.0, 0.0], [0.0, 4.0]), ax, half_length=3.0
+        ),
+        lambda ax: plot.draw_ellipse(
+            velocity.velocity_ellipse(ARM, [0.3, 1.0]), ax, scale=0.5
+        ),
         lambda ax: plot.setup_axes(ARM, ax),
     ],
 )
@@ -162,19 +189,25 @@ def test_axis_labels_state_quantity_and_unit(name):
 
 def test_setup_axes_fits_the_reach_with_its_margin():
     ax = plot.setup_axes(TwoLinkArm(2.0, 1.0), margin=0.5, title="t")
-    assert ax.get_xlim() == pytest.approx((-4.5, 4.5)) and ax.get_ylim() == pytest.approx((-4.5, 4.5))
+    assert ax.get_xlim() == pytest.approx(
+        (-4.5, 4.5)
+    ) and ax.get_ylim() == pytest.approx((-4.5, 4.5))
     assert ax.get_title() == "t"
 
 
 def test_draw_reach_skips_a_zero_inner_radius():
     assert [circle.radius for circle in plot.draw_reach(TwoLinkArm(1.0, 1.0))] == [2.0]
-    assert [circle.radius for circle in plot.draw_reach(TwoLinkArm(3.0, 1.0), color="k")] == [2.0, 4.0]
+    assert [
+        circle.radius for circle in plot.draw_reach(TwoLinkArm(3.0, 1.0), color="k")
+    ] == [2.0, 4.0]
 
 
 def test_draw_arm_goes_through_base_elbow_and_tip():
     line = plot.draw_arm(ARM, [0.3, 1.0])
     assert np.allclose(line.get_xydata(), ARM.joint_positions([0.3, 1.0]))
-    with pytest.raises(ValueError, match=r"q must be one configuration of shape \(2,\)"):
+    with pytest.raises(
+        ValueError, match=r"q must be one configuration of shape \(2,\)"
+    ):
         plot.draw_arm(ARM, Q_PATH)
 
 
@@ -215,12 +248,18 @@ def test_ellipse_centre_is_the_tip_and_draw_ellipse_draws_one():
     force=st.tuples(st.floats(-500, 500), st.floats(-500, 500)),
     scale=st.floats(1e-4, 1e-1),
 )
-def test_draw_force_arrow_is_scale_times_the_force_at_its_tail_or_head(point, force, scale):
+def test_draw_force_arrow_is_scale_times_the_force_at_its_tail_or_head(
+    point, force, scale
+):
     _, ax = plt.subplots()
     tail, head = plot.draw_force(point, force, scale, ax=ax)._posA_posB
-    assert np.allclose(tail, point) and np.allclose(np.subtract(head, tail), scale * np.array(force), atol=1e-12)
+    assert np.allclose(tail, point) and np.allclose(
+        np.subtract(head, tail), scale * np.array(force), atol=1e-12
+    )
     tail, head = plot.draw_force(point, force, scale, ax=ax, at="head")._posA_posB
-    assert np.allclose(head, point) and np.allclose(np.subtract(head, tail), scale * np.array(force), atol=1e-12)
+    assert np.allclose(head, point) and np.allclose(
+        np.subtract(head, tail), scale * np.array(force), atol=1e-12
+    )
     plt.close(ax.figure)
 
 
@@ -229,24 +268,38 @@ def test_draw_force_refuses_bad_input():
         plot.draw_force([0.0, 0.0], [1.0, 0.0], 0.1, at="middle")
     with pytest.raises(ValueError, match="scale"):
         plot.draw_force([0.0, 0.0], [1.0, 0.0], 0.0)
-    with pytest.raises(ValueError, match=r"vector must be one force \(Fx, Fy\) of shape \(2,\) \(newtons\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"vector must be one force \(Fx, Fy\) of shape \(2,\) \(newtons\)",
+    ):
         plot.draw_force([0.0, 0.0], [[1.0, 0.0]], 0.1)
 
 
 @pytest.mark.parametrize("tau, turning", [(5.0, 1.0), (-5.0, -1.0)])
 def test_draw_torque_turns_with_the_sign_of_tau_around_the_centre(tau, turning):
     arrow = plot.draw_torque([1.0, 2.0], tau, 0.5, start=0.3)
-    vertices = arrow._path_original.vertices - [1.0, 2.0]  # the arc given, before the head is added
+    vertices = arrow._path_original.vertices - [
+        1.0,
+        2.0,
+    ]  # the arc given, before the head is added
     assert np.allclose(np.hypot(vertices[:, 0], vertices[:, 1]), 0.5)
     angles = np.unwrap(np.arctan2(vertices[:, 1], vertices[:, 0]))
     assert angles[0] == pytest.approx(0.3)
-    assert np.sign(angles[-1] - angles[0]) == turning and abs(angles[-1] - angles[0]) == pytest.approx(1.5 * np.pi)
+    assert np.sign(angles[-1] - angles[0]) == turning and abs(
+        angles[-1] - angles[0]
+    ) == pytest.approx(1.5 * np.pi)
 
 
 def test_draw_torque_without_torque_is_a_dotted_circle():
     circle = plot.draw_torque([1.0, 2.0], 1e-12, 0.5)
-    assert isinstance(circle, Circle) and circle.center == (1.0, 2.0) and circle.radius == 0.25
-    assert isinstance(plot.draw_torque([1.0, 2.0], 1e-6, 0.5, zero_tol=1e-9), FancyArrowPatch)
+    assert (
+        isinstance(circle, Circle)
+        and circle.center == (1.0, 2.0)
+        and circle.radius == 0.25
+    )
+    assert isinstance(
+        plot.draw_torque([1.0, 2.0], 1e-6, 0.5, zero_tol=1e-9), FancyArrowPatch
+    )
     with pytest.raises(ValueError, match="radius"):
         plot.draw_torque([1.0, 2.0], 1.0, -0.5)
 
@@ -264,11 +317,15 @@ def test_draw_wall_hatches_the_side_away_from_the_base():
 def test_plot_time_series_one_line_per_column_with_labels_legend_and_grid():
     _, ax = plt.subplots()
     values = np.column_stack([np.sin(T_PATH), np.cos(T_PATH)])
-    lines = plot.plot_time_series(T_PATH, values, "joint angle", "rad", ["q1", "q2"], ax=ax, colors=["C3", "k"])
+    lines = plot.plot_time_series(
+        T_PATH, values, "joint angle", "rad", ["q1", "q2"], ax=ax, colors=["C3", "k"]
+    )
     assert [line.get_label() for line in lines] == ["q1", "q2"]
     assert [line.get_color() for line in lines] == ["C3", "k"]
     for column, line in enumerate(lines):
-        assert np.array_equal(line.get_xdata(), T_PATH) and np.array_equal(line.get_ydata(), values[:, column])
+        assert np.array_equal(line.get_xdata(), T_PATH) and np.array_equal(
+            line.get_ydata(), values[:, column]
+        )
     assert (ax.get_xlabel(), ax.get_ylabel()) == ("t [s]", "joint angle [rad]")
     assert [text.get_text() for text in ax.get_legend().get_texts()] == ["q1", "q2"]
     assert ax.xaxis.get_gridlines()[0].get_visible()
@@ -276,29 +333,54 @@ def test_plot_time_series_one_line_per_column_with_labels_legend_and_grid():
 
 def test_plot_time_series_adds_a_second_run_to_the_same_legend():
     _, ax = plt.subplots()
-    plot.plot_time_series(T_PATH, Q_PATH, "angle", "rad", ["q1, exact", "q2, exact"], ax=ax)
-    dashed = plot.plot_time_series(T_PATH, 2 * Q_PATH, "angle", "rad", ["q1, DLS", "q2, DLS"], ax=ax, fmt="--")
+    plot.plot_time_series(
+        T_PATH, Q_PATH, "angle", "rad", ["q1, exact", "q2, exact"], ax=ax
+    )
+    dashed = plot.plot_time_series(
+        T_PATH, 2 * Q_PATH, "angle", "rad", ["q1, DLS", "q2, DLS"], ax=ax, fmt="--"
+    )
     assert all(line.get_linestyle() == "--" for line in dashed)
     assert len([text.get_text() for text in ax.get_legend().get_texts()]) == 4
 
 
 def test_plot_time_series_one_column_no_labels_log_axis_and_line_options():
     _, ax = plt.subplots()
-    (line,) = plot.plot_time_series(T_PATH, T_PATH + 1.0, "energy drift", "-", ax=ax, log=True, linewidth=0.5)
-    assert ax.get_legend() is None and ax.get_yscale() == "log" and line.get_linewidth() == 0.5
+    (line,) = plot.plot_time_series(
+        T_PATH, T_PATH + 1.0, "energy drift", "-", ax=ax, log=True, linewidth=0.5
+    )
+    assert (
+        ax.get_legend() is None
+        and ax.get_yscale() == "log"
+        and line.get_linewidth() == 0.5
+    )
     assert ax.get_ylabel() == "energy drift [-]"
 
 
 @pytest.mark.parametrize(
     "arguments, message",
     [
-        ((T_PATH, Q_PATH[:-1], "angle", "rad"), r"values must have shape \(12,\) or \(12, k\)"),
-        ((T_PATH, Q_PATH, "angle", "rad", ["q1"]), "labels must be a sequence of 2 strings"),
-        ((T_PATH, Q_PATH, "angle", "rad", "q1"), "labels must be a sequence of 2 strings"),
+        (
+            (T_PATH, Q_PATH[:-1], "angle", "rad"),
+            r"values must have shape \(12,\) or \(12, k\)",
+        ),
+        (
+            (T_PATH, Q_PATH, "angle", "rad", ["q1"]),
+            "labels must be a sequence of 2 strings",
+        ),
+        (
+            (T_PATH, Q_PATH, "angle", "rad", "q1"),
+            "labels must be a sequence of 2 strings",
+        ),
         ((T_PATH, Q_PATH, "", "rad"), r"quantity must be a non-empty string"),
         ((T_PATH, Q_PATH, "angle", None), r"unit must be a non-empty string"),
-        ((Q_PATH, Q_PATH, "angle", "rad"), r"t must be finite times in seconds of shape \(n,\)"),
-        ((np.where(T_PATH > 0.5, np.inf, T_PATH), Q_PATH, "angle", "rad"), r"t must be finite times"),
+        (
+            (Q_PATH, Q_PATH, "angle", "rad"),
+            r"t must be finite times in seconds of shape \(n,\)",
+        ),
+        (
+            (np.where(T_PATH > 0.5, np.inf, T_PATH), Q_PATH, "angle", "rad"),
+            r"t must be finite times",
+        ),
     ],
 )
 def test_plot_time_series_refuses_what_it_cannot_label(arguments, message):
@@ -326,7 +408,9 @@ def test_plot_time_series_refuses_a_colour_per_line_mismatch():
 def test_draw_note_sits_in_its_corner_in_axes_coordinates(corner, position, alignment):
     _, ax = plt.subplots()
     ax.set_xlim(-100, 100)
-    note = plot.draw_note("w = 0.5 m²\nellipse drawn at 0.4 m per m/s", ax=ax, corner=corner)
+    note = plot.draw_note(
+        "w = 0.5 m²\nellipse drawn at 0.4 m per m/s", ax=ax, corner=corner
+    )
     assert note.get_position() == position and note.get_transform() == ax.transAxes
     assert (note.get_horizontalalignment(), note.get_verticalalignment()) == alignment
     assert note.get_bbox_patch() is not None and note in ax.texts
@@ -342,10 +426,15 @@ def test_draw_note_refuses_unknown_corners_and_non_text():
 def test_returned_types_are_the_documented_matplotlib_artists():
     assert isinstance(plot.setup_axes(ARM), Axes)
     assert isinstance(plot.draw_arm(ARM, [0.3, 1.0]), Line2D)
-    assert all(isinstance(line, Line2D) for line in plot.draw_wall(statics.Wall([3.0, 0.0], [1.0, 0.0]), 1.0))
+    assert all(
+        isinstance(line, Line2D)
+        for line in plot.draw_wall(statics.Wall([3.0, 0.0], [1.0, 0.0]), 1.0)
+    )
 
 
 @pytest.mark.parametrize("name", sorted(plot.__all__))
 def test_parameters_use_the_package_vocabulary(name):
     parameters = inspect.signature(getattr(plot, name)).parameters
-    assert not [p for p in parameters if "center" in p or p == "force"], list(parameters)
+    assert not [p for p in parameters if "center" in p or p == "force"], list(
+        parameters
+    )

@@ -16,17 +16,23 @@ NATIVE = set(portable.probe(VARIANTS["as-installed"])["simd"])
 def test_there_are_at_least_three_variants_and_the_first_is_as_installed():
     assert len(portable.VARIANTS) >= 3
     assert portable.VARIANTS[0].env == {}
-    assert len({variant.name for variant in portable.VARIANTS}) == len(portable.VARIANTS)
+    assert len({variant.name for variant in portable.VARIANTS}) == len(
+        portable.VARIANTS
+    )
 
 
-@pytest.mark.parametrize("variant", portable.VARIANTS[1:], ids=lambda variant: variant.name)
+@pytest.mark.parametrize(
+    "variant", portable.VARIANTS[1:], ids=lambda variant: variant.name
+)
 def test_each_variant_changes_what_numpy_or_openblas_run(variant):
     lacking = [group for group in variant.requires if group not in NATIVE]
     if lacking:
         pytest.skip(f"this CPU lacks {lacking}, which {variant.name} needs")
     seen = portable.probe(variant)
     disabled = variant.env.get("NPY_DISABLE_CPU_FEATURES", "").split()
-    assert not set(disabled) & set(seen["simd"]), f"numpy still runs {set(disabled) & set(seen['simd'])}"
+    assert not set(disabled) & set(seen["simd"]), (
+        f"numpy still runs {set(disabled) & set(seen['simd'])}"
+    )
     if "OPENBLAS_CORETYPE" in variant.env:
         assert seen["blas_core"] is not None, "OpenBLAS's kernel could not be read back"
         assert seen["blas_core"].lower() == variant.env["OPENBLAS_CORETYPE"].lower()
@@ -52,7 +58,13 @@ def _notebook(path, stored_text):
     }
     content = {
         "cells": [cell],
-        "metadata": {"kernelspec": {"display_name": "Python 3", "language": "python", "name": "python3"}},
+        "metadata": {
+            "kernelspec": {
+                "display_name": "Python 3",
+                "language": "python",
+                "name": "python3",
+            }
+        },
         "nbformat": 4,
         "nbformat_minor": 5,
     }
@@ -90,14 +102,21 @@ def _scripted_runs(monkeypatch, outcomes):
 
 def test_a_kernel_that_did_not_start_is_run_again_once(monkeypatch, tmp_path, capsys):
     good = _notebook(tmp_path / "good.ipynb", "0.3\n")
-    calls = _scripted_runs(monkeypatch, [(1, "ERROR nbval:kernel.py:59 Failure starting kernel"), (0, "")])
+    calls = _scripted_runs(
+        monkeypatch, [(1, "ERROR nbval:kernel.py:59 Failure starting kernel"), (0, "")]
+    )
     assert portable.main([good, "--variant", "as-installed"]) == 0
     assert calls == ["as-installed", "as-installed"]
-    assert "a kernel failed to start (not a mismatch of outputs)" in capsys.readouterr().out
+    assert (
+        "a kernel failed to start (not a mismatch of outputs)"
+        in capsys.readouterr().out
+    )
 
 
 def test_a_mismatch_is_never_run_again(monkeypatch, tmp_path):
     good = _notebook(tmp_path / "good.ipynb", "0.3\n")
-    calls = _scripted_runs(monkeypatch, [(1, "assert reference_output == test_output failed"), (0, "")])
+    calls = _scripted_runs(
+        monkeypatch, [(1, "assert reference_output == test_output failed"), (0, "")]
+    )
     assert portable.main([good, "--variant", "as-installed"]) == 1
     assert calls == ["as-installed"]

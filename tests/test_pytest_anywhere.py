@@ -26,25 +26,41 @@ def repository(tmp_path):
     shutil.copy(ROOT / "conftest.py", tmp_path)
     (tmp_path / "notebooks").mkdir()
     shutil.copy(ROOT / "notebooks" / "sanitize.cfg", tmp_path / "notebooks")
-    cell = nbformat.v4.new_code_cell("import base64, os\nprint('data:video/mp4;base64,' + base64.b64encode(os.urandom(24)).decode())")
+    cell = nbformat.v4.new_code_cell(
+        "import base64, os\nprint('data:video/mp4;base64,' + base64.b64encode(os.urandom(24)).decode())"
+    )
     cell.execution_count = 1
-    cell.outputs = [nbformat.v4.new_output("stream", name="stdout", text="data:video/mp4;base64,AAAAIGZ0eXBNNFYgAAACAE00ViBp\n")]
+    cell.outputs = [
+        nbformat.v4.new_output(
+            "stream",
+            name="stdout",
+            text="data:video/mp4;base64,AAAAIGZ0eXBNNFYgAAACAE00ViBp\n",
+        )
+    ]
     notebook = nbformat.v4.new_notebook(cells=[cell])
     nbformat.write(notebook, tmp_path / "notebooks" / "00_random_id.ipynb")
     return tmp_path
 
 
 def pytest_in(folder, *args):
-    return subprocess.run([sys.executable, "-m", "pytest", "-n", "0", "-p", "no:cacheprovider", *args],
-                          cwd=folder, capture_output=True, text=True, timeout=120)
+    return subprocess.run(
+        [sys.executable, "-m", "pytest", "-n", "0", "-p", "no:cacheprovider", *args],
+        cwd=folder,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
 
 
-@pytest.mark.parametrize("where, args", [
-    ("notebooks", ["--nbval", "00_random_id.ipynb"]),
-    (".", ["--nbval", "notebooks/"]),
-    (".", ["--nbval-lax", "notebooks/"]),
-    (".", ["--nbval", "notebooks/00_random_id.ipynb"]),
-])
+@pytest.mark.parametrize(
+    "where, args",
+    [
+        ("notebooks", ["--nbval", "00_random_id.ipynb"]),
+        (".", ["--nbval", "notebooks/"]),
+        (".", ["--nbval-lax", "notebooks/"]),
+        (".", ["--nbval", "notebooks/00_random_id.ipynb"]),
+    ],
+)
 def test_pytest_nbval_runs_from(repository, where, args):
     result = pytest_in(repository / where, *args)
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]

@@ -28,32 +28,66 @@ def text(cell):
 
 def test_chapter_2_defines_the_branch_names_before_using_them():
     content = cells(CHAPTER_2)
-    definition = next(index for index, cell in enumerate(content)
-                      if cell["cell_type"] == "markdown" and "**down** is the" in text(cell))
-    first_use = next(index for index, cell in enumerate(content)
-                     if cell["cell_type"] == "code" and re.search(r"\bdown\b|\bup\b", text(cell)))
-    assert definition < first_use, f"'down'/'up' used in cell {first_use}, defined in cell {definition}"
+    definition = next(
+        index
+        for index, cell in enumerate(content)
+        if cell["cell_type"] == "markdown" and "**down** is the" in text(cell)
+    )
+    first_use = next(
+        index
+        for index, cell in enumerate(content)
+        if cell["cell_type"] == "code" and re.search(r"\bdown\b|\bup\b", text(cell))
+    )
+    assert definition < first_use, (
+        f"'down'/'up' used in cell {first_use}, defined in cell {definition}"
+    )
 
 
 def test_chapter_2_explains_each_solver_name_before_the_chapter_relies_on_it():
-    content = [text(cell) for cell in cells(CHAPTER_2) if cell["cell_type"] == "markdown"]
-    glossary = next((index for index, cell in enumerate(content) if all(f"**{name}" in cell for name in SOLVER_NAMES[2:])), None)
-    assert glossary is not None, f"no markdown cell explains {', '.join(SOLVER_NAMES[2:])} (each in bold)"
+    content = [
+        text(cell) for cell in cells(CHAPTER_2) if cell["cell_type"] == "markdown"
+    ]
+    glossary = next(
+        (
+            index
+            for index, cell in enumerate(content)
+            if all(f"**{name}" in cell for name in SOLVER_NAMES[2:])
+        ),
+        None,
+    )
+    assert glossary is not None, (
+        f"no markdown cell explains {', '.join(SOLVER_NAMES[2:])} (each in bold)"
+    )
     for name in SOLVER_NAMES:
         first = next(index for index, cell in enumerate(content) if name in cell)
-        explained_there = first == glossary or (name == "fminunc" and "MATLAB's minimiser `fminunc`" in content[first])
-        assert explained_there, f"{name} first appears in markdown cell {first}, explained only in cell {glossary}"
+        explained_there = first == glossary or (
+            name == "fminunc" and "MATLAB's minimiser `fminunc`" in content[first]
+        )
+        assert explained_there, (
+            f"{name} first appears in markdown cell {first}, explained only in cell {glossary}"
+        )
 
 
 def test_chapter_7_has_no_set_unpacking_and_names_the_circle_it_draws():
     code = [text(cell) for cell in cells(CHAPTER_7) if cell["cell_type"] == "code"]
-    assert not [line for source in code for line in source.splitlines() if re.match(r"\s*\(\w+,\)\s*=", line)]
-    assert not [source.splitlines()[0] for source in code if re.search(r"""["'][^"']*source circle""", source)]
+    assert not [
+        line
+        for source in code
+        for line in source.splitlines()
+        if re.match(r"\s*\(\w+,\)\s*=", line)
+    ]
+    assert not [
+        source.splitlines()[0]
+        for source in code
+        if re.search(r"""["'][^"']*source circle""", source)
+    ]
 
 
 @pytest.mark.parametrize("name", CHAPTERS)
 def test_the_introduction_says_where_real_robots_use_the_idea(name):
-    assert "On real robots" in text(cells(name)[0]), f"{name}: the introduction says nowhere where the idea is used"
+    assert "On real robots" in text(cells(name)[0]), (
+        f"{name}: the introduction says nowhere where the idea is used"
+    )
 
 
 @pytest.mark.parametrize("name", CHAPTERS)
@@ -62,6 +96,10 @@ def test_no_markdown_cell_repeats_its_own_lines(name):
     for index, cell in enumerate(content):
         if cell["cell_type"] != "markdown":
             continue
-        lines = [line.strip() for line in text(cell).splitlines() if len(line.strip()) > 30]
+        lines = [
+            line.strip() for line in text(cell).splitlines() if len(line.strip()) > 30
+        ]
         repeated = {line for line in lines if lines.count(line) > 1}
-        assert not repeated, f"{name} markdown cell {index} repeats itself: {sorted(repeated)[:2]}"
+        assert not repeated, (
+            f"{name} markdown cell {index} repeats itself: {sorted(repeated)[:2]}"
+        )

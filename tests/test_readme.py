@@ -5,7 +5,9 @@ import re
 
 import pytest
 
-README = (pathlib.Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+README = (pathlib.Path(__file__).resolve().parents[1] / "README.md").read_text(
+    encoding="utf-8"
+)
 EXAMPLES = re.findall(r"```python\n(.*?)```", README, flags=re.S)
 
 

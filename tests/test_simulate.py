@@ -8,12 +8,22 @@ import time
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
-from conftest import dynamic_arms
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from scipy.integrate import solve_ivp
 
-from twolink import SimulationError, SimulationResult, TwoLinkArm, arms, controllers, ik, plot, simulate, trajectory
+from conftest import dynamic_arms
+from twolink import (
+    SimulationError,
+    SimulationResult,
+    TwoLinkArm,
+    arms,
+    controllers,
+    ik,
+    plot,
+    simulate,
+    trajectory,
+)
 from twolink.errors import InputTypeError
 
 TIGHT = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
@@ -29,9 +39,17 @@ def relative_energy_drift(result):
 @pytest.mark.parametrize(
     "arm, q0, qd0",
     [
-        (arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0]),  # the benchmark's start: a chaotic swing
+        (
+            arms.two_metre,
+            [np.pi / 4, 0.0],
+            [0.0, 0.0],
+        ),  # the benchmark's start: a chaotic swing
         (TwoLinkArm(1.0, 0.5, m1=3.0, m2=0.5), [-0.3, 2.0], [1.0, -2.0]),
-        (TwoLinkArm(2.0, 2.0, g=0.0), [0.0, 1.0], [1.5, -3.0]),  # horizontal arm, spinning
+        (
+            TwoLinkArm(2.0, 2.0, g=0.0),
+            [0.0, 1.0],
+            [1.5, -3.0],
+        ),  # horizontal arm, spinning
     ],
 )
 def test_energy_is_conserved_in_free_motion(arm, q0, qd0):
@@ -45,7 +63,15 @@ def test_energy_is_conserved_in_free_motion(arm, q0, qd0):
 
 def test_loose_tolerances_do_drift():
     """The drift test can fail: a loose RK45 run loses energy visibly."""
-    loose = simulate(arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0], 10.0, method="RK45", rtol=1e-3, atol=1e-6)
+    loose = simulate(
+        arms.two_metre,
+        [np.pi / 4, 0.0],
+        [0.0, 0.0],
+        10.0,
+        method="RK45",
+        rtol=1e-3,
+        atol=1e-6,
+    )
     assert relative_energy_drift(loose) > 1e-6
 
 
@@ -67,22 +93,38 @@ def test_matches_an_independent_right_hand_side():
 
     def reference_rhs(t, state):
         q, qd = state[:2], state[2:]
-        qdd = np.linalg.solve(arm.mass_matrix(q), torque(t, q, qd) - arm.coriolis(q, qd) @ qd - arm.gravity(q))
+        qdd = np.linalg.solve(
+            arm.mass_matrix(q),
+            torque(t, q, qd) - arm.coriolis(q, qd) @ qd - arm.gravity(q),
+        )
         return np.concatenate([qd, qdd])
 
     t_eval = np.linspace(0.0, 3.0, 61)
-    result = simulate(arm, [0.5, -0.5], [0.0, 1.0], 3.0, torque=torque, t_eval=t_eval, **TIGHT)
-    reference = solve_ivp(reference_rhs, (0.0, 3.0), [0.5, -0.5, 0.0, 1.0], t_eval=t_eval, **TIGHT)
+    result = simulate(
+        arm, [0.5, -0.5], [0.0, 1.0], 3.0, torque=torque, t_eval=t_eval, **TIGHT
+    )
+    reference = solve_ivp(
+        reference_rhs, (0.0, 3.0), [0.5, -0.5, 0.0, 1.0], t_eval=t_eval, **TIGHT
+    )
     assert np.allclose(result.q, reference.y[:2].T, atol=1e-8)
     assert np.allclose(result.qd, reference.y[2:].T, atol=1e-8)
-    expected_tau = np.array([torque(t, q, qd) for t, q, qd in zip(result.t, result.q, result.qd)])
+    expected_tau = np.array(
+        [torque(t, q, qd) for t, q, qd in zip(result.t, result.q, result.qd)]
+    )
     assert np.array_equal(result.tau, expected_tau)
 
 
 def test_torques_equal_to_gravity_hold_the_arm():
     arm = arms.two_metre
     q0 = np.array([0.7, -1.2])
-    result = simulate(arm, q0, [0.0, 0.0], 3.0, torque=lambda t, q, qd: arm.gravity(q), t_eval=[0.0, 1.5, 3.0])
+    result = simulate(
+        arm,
+        q0,
+        [0.0, 0.0],
+        3.0,
+        torque=lambda t, q, qd: arm.gravity(q),
+        t_eval=[0.0, 1.5, 3.0],
+    )
     assert np.allclose(result.q, q0, atol=1e-9)
     assert np.allclose(result.qd, 0.0, atol=1e-9)
     assert np.allclose(result.tau, arm.gravity(q0), atol=1e-9)
@@ -101,7 +143,13 @@ def test_feedforward_of_inverse_dynamics_reproduces_the_trajectory():
         delta = q_goal - q_start
         return q_start + blend * delta, rate * delta, accel * delta
 
-    result = simulate(arm, q_start, [0.0, 0.0], duration, torque=lambda t, q, qd: arm.inverse_dynamics(*planned(t)))
+    result = simulate(
+        arm,
+        q_start,
+        [0.0, 0.0],
+        duration,
+        torque=lambda t, q, qd: arm.inverse_dynamics(*planned(t)),
+    )
     assert np.allclose(result.q[-1], q_goal, atol=1e-6)
     assert np.allclose(result.qd[-1], 0.0, atol=1e-5)
 
@@ -121,7 +169,9 @@ def test_result_shapes_t_eval_and_read_only():
     assert isinstance(result, SimulationResult)
     assert np.array_equal(result.t, t_eval)
     assert result.q.shape == result.qd.shape == result.tau.shape == (41, 2)
-    assert np.array_equal(result.q[0], [0.1, 0.2]) and np.array_equal(result.qd[0], [0.0, 0.0])
+    assert np.array_equal(result.q[0], [0.1, 0.2]) and np.array_equal(
+        result.qd[0], [0.0, 0.0]
+    )
     assert np.all(result.tau == 0.0)
     assert result.status == 0 and "reached the end" in result.message
     assert result.nfev > 0
@@ -136,7 +186,9 @@ def test_default_solver_is_tight_and_options_pass_through():
     default = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0)
     tight = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0, **TIGHT)
     assert np.array_equal(default.q, tight.q)
-    radau = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0, method="Radau", rtol=1e-6, atol=1e-8)
+    radau = simulate(
+        arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0, method="Radau", rtol=1e-6, atol=1e-8
+    )
     assert radau.nfev != tight.nfev
     assert np.allclose(radau.q[-1], tight.q[-1], atol=1e-3)
     capped = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 2.0, max_step=0.01)
@@ -151,7 +203,9 @@ def test_terminal_event_is_reported_not_hidden():
 
     elbow_straight.terminal = True
     elbow_straight.direction = 1
-    result = simulate(arms.two_metre, [np.pi / 4, -0.5], [0.0, 0.0], 10.0, events=elbow_straight)
+    result = simulate(
+        arms.two_metre, [np.pi / 4, -0.5], [0.0, 0.0], 10.0, events=elbow_straight
+    )
     assert result.status == 1
     assert result.t[-1] < 10.0
     assert len(result.t_events[0]) == 1
@@ -159,7 +213,9 @@ def test_terminal_event_is_reported_not_hidden():
 
 
 def test_frames_pick_evenly_with_first_and_last():
-    result = simulate(arms.two_metre, [0.3, 0.3], [0.0, 0.0], 5.0, t_eval=np.linspace(0.0, 5.0, 501))
+    result = simulate(
+        arms.two_metre, [0.3, 0.3], [0.0, 0.0], 5.0, t_eval=np.linspace(0.0, 5.0, 501)
+    )
     frames = result.frames(50)
     assert len(frames) == 50 and frames[0] == 0 and frames[-1] == 500
     assert np.all(np.diff(frames) > 0)
@@ -169,7 +225,9 @@ def test_frames_pick_evenly_with_first_and_last():
 
 
 def test_animate_simulation_has_at_most_50_frames_and_a_clock():
-    result = simulate(arms.two_metre, [0.3, 0.3], [0.0, 0.0], 5.0, t_eval=np.linspace(0.0, 5.0, 501))
+    result = simulate(
+        arms.two_metre, [0.3, 0.3], [0.0, 0.0], 5.0, t_eval=np.linspace(0.0, 5.0, 501)
+    )
     anim = plot.animate_simulation(result)
     frames = list(anim.new_frame_seq())
     assert len(frames) == 50
@@ -185,29 +243,54 @@ def test_animate_simulation_has_at_most_50_frames_and_a_clock():
 # ----------------------------------------------------------------- failures and bad input
 def test_solver_failure_raises_instead_of_returning_a_partial_result():
     """A torque that grows like qd^3 makes the speed blow up in finite time: the solver gives up."""
-    with pytest.raises(SimulationError, match="integration failed at t = .* Required step size"):
-        simulate(arms.two_metre, [0.0, 0.0], [1.0, 0.0], 5.0, torque=lambda t, q, qd: [50.0 * qd[0] ** 3, 0.0])
+    with pytest.raises(
+        SimulationError, match="integration failed at t = .* Required step size"
+    ):
+        simulate(
+            arms.two_metre,
+            [0.0, 0.0],
+            [1.0, 0.0],
+            5.0,
+            torque=lambda t, q, qd: [50.0 * qd[0] ** 3, 0.0],
+        )
 
 
 @pytest.mark.parametrize(
     "kwargs, error, fragment",
     [
         ({"q0": [0.0, 0.0, 0.0]}, ValueError, r"q0 must have shape \(\.\.\., 2\)"),
-        ({"q0": [[0.0, 0.0], [1.0, 1.0]]}, ValueError, r"q0 must be one configuration of shape \(2,\) \(radians\); got shape \(2, 2\)"),
+        (
+            {"q0": [[0.0, 0.0], [1.0, 1.0]]},
+            ValueError,
+            r"q0 must be one configuration of shape \(2,\) \(radians\); got shape \(2, 2\)",
+        ),
         ({"qd0": [0.0]}, ValueError, r"qd0 must have shape \(\.\.\., 2\)"),
-        ({"qd0": [[0.0, 0.0]]}, ValueError, r"qd0 must be one pair of joint rates of shape \(2,\) \(rad/s\); got shape \(1, 2\)"),
+        (
+            {"qd0": [[0.0, 0.0]]},
+            ValueError,
+            r"qd0 must be one pair of joint rates of shape \(2,\) \(rad/s\); got shape \(1, 2\)",
+        ),
         ({"qd0": [np.nan, 0.0]}, ValueError, "qd0 must be finite"),
         ({"t_end": 0.0}, ValueError, r"t_end \(s\) must be > 0"),
         ({"t_end": np.inf}, ValueError, r"t_end \(s\) must be finite"),
         ({"torque": [1.0, 2.0]}, ValueError, "torque must be None or a callable"),
         ({"torque": lambda t, q, qd: [np.nan, 0.0]}, ValueError, "non-finite torques"),
-        ({"torque": lambda t, q, qd: [1.0, 2.0, 3.0]}, ValueError, r"must return shape \(2,\)"),
+        (
+            {"torque": lambda t, q, qd: [1.0, 2.0, 3.0]},
+            ValueError,
+            r"must return shape \(2,\)",
+        ),
         ({"torque": lambda t, q, qd: "strong"}, ValueError, "must return two numbers"),
         ({"method": "Euler"}, ValueError, "`method` must be one of"),
     ],
 )
 def test_bad_input_raises(kwargs, error, fragment):
-    arguments = {"arm": arms.two_metre, "q0": [0.0, 0.0], "qd0": [0.0, 0.0], "t_end": 1.0}
+    arguments = {
+        "arm": arms.two_metre,
+        "q0": [0.0, 0.0],
+        "qd0": [0.0, 0.0],
+        "t_end": 1.0,
+    }
     arguments.update(kwargs)
     with pytest.raises(error, match=fragment):
         simulate(**arguments)
@@ -225,27 +308,49 @@ def test_a_spring_controlled_undamped_arm_conserves_arm_plus_spring_energy(g):
     arm = dataclasses.replace(arms.two_metre, g=g)
     spring = controllers.CartesianSpring(arm, stiffness=600.0, rest_point=[3.0, 1.0])
     q0 = ik.closed_form(arm, [3.0, 2.0]).q
-    result = simulate(arm, q0, [0.0, 0.0], 1.0, torque=spring, t_eval=np.linspace(0.0, 1.0, 401), **TIGHT)
+    result = simulate(
+        arm,
+        q0,
+        [0.0, 0.0],
+        1.0,
+        torque=spring,
+        t_eval=np.linspace(0.0, 1.0, 401),
+        **TIGHT,
+    )
     kinetic, potential = result.energy(extra_potential=spring.potential_energy)
     kinetic_arm, potential_arm = result.energy()
     assert np.array_equal(kinetic, kinetic_arm)
-    assert np.allclose(potential, potential_arm + spring.potential_energy(result.q), rtol=0, atol=1e-12 * 600.0)
+    assert np.allclose(
+        potential,
+        potential_arm + spring.potential_energy(result.q),
+        rtol=0,
+        atol=1e-12 * 600.0,
+    )
     total = kinetic + potential
     by_hand = np.max(np.abs(total - total[0])) / np.max(kinetic)
     drift = result.energy_drift(extra_potential=spring.potential_energy)
     assert drift == pytest.approx(by_hand, rel=1e-12)
     assert drift < 1e-8
-    assert result.energy_drift() > 0.1  # the spring's energy is most of what changes form
+    assert (
+        result.energy_drift() > 0.1
+    )  # the spring's energy is most of what changes form
 
 
 def test_extra_potential_must_be_a_vectorised_callable_of_finite_energies():
-    result = simulate(arms.two_metre, [0.3, 0.4], [0.0, 0.0], 0.5, t_eval=[0.0, 0.25, 0.5])
+    result = simulate(
+        arms.two_metre, [0.3, 0.4], [0.0, 0.0], 0.5, t_eval=[0.0, 0.25, 0.5]
+    )
     with pytest.raises(TypeError, match="extra_potential must be None or a callable V"):
         result.energy(extra_potential=3.0)
-    with pytest.raises(ValueError, match=r"must be vectorised: q of shape \(3, 2\) in, energies of shape \(3,\) .* got shape \(\)"):
+    with pytest.raises(
+        ValueError,
+        match=r"must be vectorised: q of shape \(3, 2\) in, energies of shape \(3,\) .* got shape \(\)",
+    ):
         result.energy_drift(extra_potential=lambda q: 1.0)
     with pytest.raises(ValueError, match=r"returned nan J at t = 0.25 s \(sample 1\)"):
-        result.energy(extra_potential=lambda q: np.where(q[:, 0] == result.q[1, 0], np.nan, 0.0))
+        result.energy(
+            extra_potential=lambda q: np.where(q[:, 0] == result.q[1, 0], np.nan, 0.0)
+        )
     with pytest.raises(ValueError, match="must return energies in joules"):
         result.energy(extra_potential=lambda q: ["a", "b", "c"])
 
@@ -255,23 +360,41 @@ def test_p_tip_and_tracking_error_read_like_a_joint_trajectorys():
     arm = arms.two_metre
     line = trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=2.0, law="quintic")
     motion = trajectory.ik_trajectory(arm, line, n=41)
-    control = controllers.JointPD(arm, kp=400.0, kd=40.0, reference=motion.joint_reference())
-    run = simulate(arm, motion.q[0] + [0.02, 0.0], [0.0, 0.0], 2.0, torque=control, t_eval=motion.t)
+    control = controllers.JointPD(
+        arm, kp=400.0, kd=40.0, reference=motion.joint_reference()
+    )
+    run = simulate(
+        arm, motion.q[0] + [0.02, 0.0], [0.0, 0.0], 2.0, torque=control, t_eval=motion.t
+    )
     assert np.array_equal(run.p_tip, arm.fk(run.q))
     by_hand = np.linalg.norm(arm.fk(run.q) - line.at(run.t)[0], axis=-1)
     assert by_hand[0] > 0.01
     for path in (line, motion, motion.p_ref):
         assert np.allclose(run.tracking_error(path), by_hand, rtol=0, atol=1e-12)
-    assert np.allclose(run.tracking_error(line.p_end), np.linalg.norm(run.p_tip - line.p_end, axis=-1))
-    assert inspect.signature(SimulationResult.tracking_error) == inspect.signature(trajectory.JointTrajectory.tracking_error)
+    assert np.allclose(
+        run.tracking_error(line.p_end), np.linalg.norm(run.p_tip - line.p_end, axis=-1)
+    )
+    assert inspect.signature(SimulationResult.tracking_error) == inspect.signature(
+        trajectory.JointTrajectory.tracking_error
+    )
 
 
 def test_a_simulation_has_no_path_of_its_own():
-    run = simulate(arms.two_metre, [0.3, 0.4], [0.0, 0.0], 1.0, t_eval=np.linspace(0.0, 1.0, 11))
-    with pytest.raises(ValueError, match="a simulation has no path of its own: pass what the tip should follow"):
+    run = simulate(
+        arms.two_metre, [0.3, 0.4], [0.0, 0.0], 1.0, t_eval=np.linspace(0.0, 1.0, 11)
+    )
+    with pytest.raises(
+        ValueError,
+        match="a simulation has no path of its own: pass what the tip should follow",
+    ):
         run.tracking_error()
-    motion = trajectory.ik_trajectory(arms.two_metre, trajectory.LinePath([3.0, 0.5], [3.0, 1.0], 1.0), n=12)
-    with pytest.raises(ValueError, match=r"sampled at 12 times .* simulate with t_eval=trajectory.t, or pass the path"):
+    motion = trajectory.ik_trajectory(
+        arms.two_metre, trajectory.LinePath([3.0, 0.5], [3.0, 1.0], 1.0), n=12
+    )
+    with pytest.raises(
+        ValueError,
+        match=r"sampled at 12 times .* simulate with t_eval=trajectory.t, or pass the path",
+    ):
         run.tracking_error(motion)
 
 
@@ -286,9 +409,21 @@ def sleepy(seconds):
 
 def test_a_slow_torque_function_stops_at_the_wall_time_budget_and_is_named_as_the_cause():
     started = time.monotonic()
-    with pytest.raises(SimulationError, match=r"max_wall_time = 0.5 s .*the torque function is the likely cause: .*evaluated only \d+ times"):
-        simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, torque=sleepy(0.2), max_wall_time=0.5)
-    assert time.monotonic() - started < 0.5 + 3 * 0.2  # the clock is read at every call, not every 64th
+    with pytest.raises(
+        SimulationError,
+        match=r"max_wall_time = 0.5 s .*the torque function is the likely cause: .*evaluated only \d+ times",
+    ):
+        simulate(
+            arms.two_metre,
+            [0.3, 0.2],
+            [0.0, 0.0],
+            1.0,
+            torque=sleepy(0.2),
+            max_wall_time=0.5,
+        )
+    assert (
+        time.monotonic() - started < 0.5 + 3 * 0.2
+    )  # the clock is read at every call, not every 64th
 
 
 def test_events_are_timed_too():
@@ -297,7 +432,14 @@ def test_events_are_timed_too():
         return state[1] - 10.0
 
     with pytest.raises(SimulationError, match=r"max_wall_time = 0.3 s"):
-        simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 10.0, max_wall_time=0.3, events=slow_event)
+        simulate(
+            arms.two_metre,
+            [0.3, 0.2],
+            [0.0, 0.0],
+            10.0,
+            max_wall_time=0.3,
+            events=slow_event,
+        )
 
 
 def test_the_torques_at_the_output_times_are_within_the_budget_too():
@@ -305,18 +447,37 @@ def test_the_torques_at_the_output_times_are_within_the_budget_too():
 
     def slow_after_the_integration(t, q, qd):
         calls.append(t)
-        if len(calls) > 200:  # the integration takes a few dozen calls; the output times 2001
+        if (
+            len(calls) > 200
+        ):  # the integration takes a few dozen calls; the output times 2001
             time.sleep(0.01)
         return [0.0, 0.0]
 
-    with pytest.raises(SimulationError, match=r"recomputing the torques at the 2001 output times used up the budget"):
-        simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 0.01, torque=slow_after_the_integration, max_wall_time=1.0,
-                 t_eval=np.linspace(0.0, 0.01, 2001), method="RK45", rtol=1e-3, atol=1e-3)
+    with pytest.raises(
+        SimulationError,
+        match=r"recomputing the torques at the 2001 output times used up the budget",
+    ):
+        simulate(
+            arms.two_metre,
+            [0.3, 0.2],
+            [0.0, 0.0],
+            0.01,
+            torque=slow_after_the_integration,
+            max_wall_time=1.0,
+            t_eval=np.linspace(0.0, 0.01, 2001),
+            method="RK45",
+            rtol=1e-3,
+            atol=1e-3,
+        )
 
 
-@pytest.mark.parametrize("bad", [[0.0, True], np.ma.masked_array([0.0, 0.5], mask=[False, True]), ["0", "1"]])
+@pytest.mark.parametrize(
+    "bad", [[0.0, True], np.ma.masked_array([0.0, 0.5], mask=[False, True]), ["0", "1"]]
+)
 def test_t_eval_refuses_bools_masked_arrays_and_strings(bad):
-    with pytest.raises(InputTypeError, match=r"t_eval must be times in seconds \(real numbers\)"):
+    with pytest.raises(
+        InputTypeError, match=r"t_eval must be times in seconds \(real numbers\)"
+    ):
         simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, t_eval=bad)
 
 
@@ -324,20 +485,32 @@ def _nan_from(t_start):
     return lambda t, q, qd: [np.nan, 0.0] if t >= t_start else [0.0, 0.0]
 
 
-@pytest.mark.parametrize("t_start", [0.0, 0.5, 1.0], ids=["at the start", "mid-motion", "at the end"])
+@pytest.mark.parametrize(
+    "t_start", [0.0, 0.5, 1.0], ids=["at the start", "mid-motion", "at the end"]
+)
 def test_a_non_finite_torque_gives_a_public_error(t_start):
     """The private NonFiniteTorque never reaches users: a ValueError or a SimulationError, named as such."""
     from twolink import dynamics
 
     calls = [
-        lambda: simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, _nan_from(t_start)),
-        lambda: dynamics.state_derivative(arms.two_metre, _nan_from(t_start))(t_start, np.zeros(4)),
+        lambda: simulate(
+            arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, _nan_from(t_start)
+        ),
+        lambda: dynamics.state_derivative(arms.two_metre, _nan_from(t_start))(
+            t_start, np.zeros(4)
+        ),
     ]
     if importlib.util.find_spec("mujoco") is not None:
         from twolink import engine
 
-        calls.append(lambda: engine.simulate(arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, _nan_from(t_start)))
+        calls.append(
+            lambda: engine.simulate(
+                arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, _nan_from(t_start)
+            )
+        )
     for call in calls:
-        with pytest.raises((ValueError, SimulationError), match="non-finite torques") as error:
+        with pytest.raises(
+            (ValueError, SimulationError), match="non-finite torques"
+        ) as error:
             call()
         assert type(error.value) in (ValueError, SimulationError), type(error.value)

@@ -7,10 +7,10 @@ computed by the package.
 
 import numpy as np
 import pytest
-from conftest import angles
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from conftest import angles
 from twolink import arms, ik, wrap_angle
 from twolink.sources import mae6245
 
@@ -29,17 +29,25 @@ def test_the_minus_root_is_spurious_and_the_package_gives_only_the_plus_root():
     plus, minus = mae6245.x_equation_roots(mae6245.TARGET, theta2=0.0)
     target = np.array(mae6245.TARGET)
     assert np.allclose(ARM.fk([plus, 0.0]), target, atol=1e-12)
-    assert np.allclose(ARM.fk([minus, 0.0]), [target[0], -target[1]], atol=1e-12)  # (14.14, -14.14)
+    assert np.allclose(
+        ARM.fk([minus, 0.0]), [target[0], -target[1]], atol=1e-12
+    )  # (14.14, -14.14)
     assert round(float(np.hypot(*(ARM.fk([minus, 0.0]) - target))), 2) == 28.28
     q_both = ik.closed_form(ARM, target, elbow="both").q
     assert np.allclose(q_both, [[np.pi / 4, 0.0], [np.pi / 4, 0.0]], atol=1e-12)
 
 
 @given(q1=angles, q2=angles)
-def test_both_x_equation_roots_solve_the_x_equation_and_the_other_lands_on_the_mirror_point(q1, q2):
+def test_both_x_equation_roots_solve_the_x_equation_and_the_other_lands_on_the_mirror_point(
+    q1, q2
+):
     target = ARM.fk([q1, q2])
-    assume(np.hypot(*target) > 0.5)  # not folded: the x-equation still fixes q1 up to the two roots
-    assume(abs(target[0]) < 0.999 * np.hypot(10 + 10 * np.cos(q2), 10 * np.sin(q2)))  # two distinct roots
+    assume(
+        np.hypot(*target) > 0.5
+    )  # not folded: the x-equation still fixes q1 up to the two roots
+    assume(
+        abs(target[0]) < 0.999 * np.hypot(10 + 10 * np.cos(q2), 10 * np.sin(q2))
+    )  # two distinct roots
     roots = mae6245.x_equation_roots(target, theta2=q2)
     tips = np.array([ARM.fk([root, q2]) for root in roots])
     assert np.allclose(tips[:, 0], target[0], atol=1e-9)
@@ -109,7 +117,9 @@ def test_fk_check_reproduces_the_printed_14_1548_14_1294():
 def test_fk_check_with_the_intended_angle_lands_on_the_target():
     error_typo = np.hypot(*(mae6245.fk_check(0.7845) - np.array(mae6245.TARGET)))
     error_intended = np.hypot(*(mae6245.fk_check(0.7854) - np.array(mae6245.TARGET)))
-    assert round(float(error_typo), 4) == 0.0180  # 20 x 0.0009 rad (minus the rounding of 0.7854)
+    assert (
+        round(float(error_typo), 4) == 0.0180
+    )  # 20 x 0.0009 rad (minus the rounding of 0.7854)
     assert error_intended < 1e-3 and error_intended < error_typo / 20
 
 

@@ -20,13 +20,16 @@ elbow_values = st.floats(min_value=0.05, max_value=np.pi - 0.05, allow_nan=False
 
 # --- H4.1: the IK line in both readings ---------------------------------------------------------------------------
 
+
 @given(q1=q1_values, q2=elbow_values)
 def test_cos_reading_inverts_forward_kinematics_on_the_elbow_down_branch(q1, q2):
     p_tip = arm.fk([q1, q2])
     q_abs = me639.source_ik(p_tip, reading="cos")
     q_dh = to_relative(q_abs)
     assert np.allclose(arm.fk(q_dh), p_tip, atol=1e-9)
-    assert np.isclose(q_dh[1], q2, atol=1e-6)  # acos gives the elbow angle in [0, pi]: the "down" branch
+    assert np.isclose(
+        q_dh[1], q2, atol=1e-6
+    )  # acos gives the elbow angle in [0, pi]: the "down" branch
     assert np.allclose(me639.source_fk(q_abs), p_tip, atol=1e-9)
 
 
@@ -38,7 +41,9 @@ def test_sin_reading_keeps_the_elbow_angle_and_moves_link_1(q1, q2):
     assert np.isclose(q_sin[1], q_cos[1], atol=1e-9)
     # the two readings agree only where sin(theta) = cos(theta)
     same_line = np.isclose(np.sin(q_cos[1]), np.cos(q_cos[1]), atol=1e-6)
-    missed = np.linalg.norm(me639.source_fk(me639.source_ik(p_tip, reading="sin")) - p_tip)
+    missed = np.linalg.norm(
+        me639.source_fk(me639.source_ik(p_tip, reading="sin")) - p_tip
+    )
     assert same_line or missed > 1e-9
 
 
@@ -54,6 +59,7 @@ def test_source_ik_rejects_bad_input_by_name():
 
 
 # --- H4.2: the wall search ------------------------------------------------------------------------------------------
+
 
 def test_wall_search_with_the_correct_ik_reproduces_the_printed_contact_and_torques():
     hit = me639.source_wall_search(reading="cos")
@@ -81,7 +87,9 @@ def test_wall_search_with_the_sin_typo_reproduces_its_contact_and_misses_the_wal
 def test_wall_search_t2_is_the_rounding_tolerance_times_l2_n():
     hit = me639.source_wall_search(reading="cos")
     # T2 = l2 |N| sin(pi/4 - q2_abs): the force is along link 2 up to the search's tolerance
-    assert np.isclose(hit.torques[1], 2.0 * 500.0 * np.sin(np.pi / 4 - hit.q_abs[1]), rtol=1e-9)
+    assert np.isclose(
+        hit.torques[1], 2.0 * 500.0 * np.sin(np.pi / 4 - hit.q_abs[1]), rtol=1e-9
+    )
     assert abs(hit.q_abs[1] - np.pi / 4) < 5e-5
 
 
@@ -94,6 +102,7 @@ def test_wall_search_rejects_bad_arguments():
 
 # --- H4.2/H4.3: torque conventions -----------------------------------------------------------------------------------
 
+
 @given(q1=q1_values, q2=elbow_values, fx=st.floats(-1e3, 1e3), fy=st.floats(-1e3, 1e3))
 def test_source_torques_are_the_motor_torques_of_the_dh_torques(q1, q2, fx, fy):
     q_dh = np.array([q1, q2])
@@ -105,6 +114,7 @@ def test_source_torques_are_the_motor_torques_of_the_dh_torques(q1, q2, fx, fy):
 
 
 # --- H4.3: the spring -----------------------------------------------------------------------------------------------
+
 
 def test_spring_reproduces_the_motor_1_torques():
     p_line = [[3.0, 0.0], [3.0, 1.0], [3.0, 2.0]]
@@ -121,7 +131,11 @@ def test_spring_reproduces_the_motor_1_torques():
 def test_correct_spring_in_both_conventions():
     q_dh = to_relative(me639.source_ik([[3.0, 0.0], [3.0, 1.0], [3.0, 2.0]]))
     tau_dh = me639.correct_spring_torques_dh(q_dh, [3.0, 1.0])
-    assert np.allclose(tau_dh[:, 0], [1800.0, 0.0, -1800.0], atol=1e-9)  # tau1 = x F_y, F_y = k (1 - y)
+    assert np.allclose(
+        tau_dh[:, 0], [1800.0, 0.0, -1800.0], atol=1e-9
+    )  # tau1 = x F_y, F_y = k (1 - y)
     u = me639.dh_to_motor_torques(tau_dh)
-    assert np.allclose(u[:, 1], tau_dh[:, 1]) and np.allclose(u[:, 0], tau_dh[:, 0] - tau_dh[:, 1])
+    assert np.allclose(u[:, 1], tau_dh[:, 1]) and np.allclose(
+        u[:, 0], tau_dh[:, 0] - tau_dh[:, 1]
+    )
     assert np.allclose(u[0], [900.0, 900.0], atol=1e-9)

@@ -6,10 +6,10 @@ Lengths in the source module are in its unit, centimetres; the package's arm
 
 import numpy as np
 import pytest
-from conftest import angles, configurations
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from conftest import angles, configurations
 from twolink import arms
 from twolink.sources import osake
 
@@ -24,8 +24,9 @@ def right_h02_cm(q):
 
 
 def test_the_module_uses_the_osake_arm():
-    assert (osake.L1_CM, osake.L2_CM, osake.D_CM) == pytest.approx((CM * arms.osake.l1, CM * arms.osake.l2,
-                                                                    CM * arms.osake.d))
+    assert (osake.L1_CM, osake.L2_CM, osake.D_CM) == pytest.approx(
+        (CM * arms.osake.l1, CM * arms.osake.l2, CM * arms.osake.d)
+    )
 
 
 # --- H3.1: the hand-expanded H_0^2
@@ -38,7 +39,9 @@ def test_expanded_h02_rotation_block_has_determinant_cos_squared_q2(q):
 
 @given(q1=angles)
 def test_expanded_h02_is_right_when_the_arm_is_stretched(q1):
-    assert np.allclose(osake.h02_as_expanded([q1, 0.0]), right_h02_cm([q1, 0.0]), atol=1e-12)
+    assert np.allclose(
+        osake.h02_as_expanded([q1, 0.0]), right_h02_cm([q1, 0.0]), atol=1e-12
+    )
 
 
 @given(q=configurations())
@@ -56,37 +59,57 @@ def test_expanded_h02_at_30_45_degrees():
     assert np.allclose(H_wrong[:2, :2], c2 * np.array([[c1, -s1], [s1, c1]]))
     assert np.isclose(np.linalg.det(H_wrong[:2, :2]), 0.5)
     error_cm = np.linalg.norm(H_wrong[:2, 3] - H_right[:2, 3])
-    assert 6.0 < error_cm < 9.0  # the tip is off by several centimetres on a 21.5 cm arm
-    assert np.allclose(H_wrong[2:, :], H_right[2:, :])  # the height row and the last row are right
+    assert (
+        6.0 < error_cm < 9.0
+    )  # the tip is off by several centimetres on a 21.5 cm arm
+    assert np.allclose(
+        H_wrong[2:, :], H_right[2:, :]
+    )  # the height row and the last row are right
 
 
 # --- H3.2: the Jacobian printed under the derivation carries the expanded H_0^2's product error
 def right_jacobian_cm(q):
-    return arms.osake.geometric_jacobian(q) * np.array([[CM], [CM], [CM], [1.0], [1.0], [1.0]])
+    return arms.osake.geometric_jacobian(q) * np.array(
+        [[CM], [CM], [CM], [1.0], [1.0], [1.0]]
+    )
 
 
 @given(q=configurations())
 def test_printed_jacobian_misses_l2_sin_q2_along_link_1_in_both_columns(q):
     J_printed, J_right = osake.jacobian_as_printed(q), right_jacobian_cm(q)
     # -l2 s12 -> -l2 s1 c2 drops -l2 c1 s2; l2 c12 -> l2 c1 c2 drops -l2 s1 s2: printed - right = l2 s2 (c1, s1)
-    error_along_link_1 = osake.L2_CM * np.sin(q[1]) * np.array([np.cos(q[0]), np.sin(q[0])])
+    error_along_link_1 = (
+        osake.L2_CM * np.sin(q[1]) * np.array([np.cos(q[0]), np.sin(q[0])])
+    )
     for column in range(2):
-        assert np.allclose(J_printed[:2, column] - J_right[:2, column], error_along_link_1, atol=1e-12)
-        assert np.isclose(np.linalg.norm(J_printed[:2, column] - J_right[:2, column]),
-                          osake.L2_CM * abs(np.sin(q[1])), atol=1e-12)
-    assert np.allclose(J_printed[2:], J_right[2:], atol=0.0)  # v_z = 0, omega = (0, 0, 1): as in the right Jacobian
+        assert np.allclose(
+            J_printed[:2, column] - J_right[:2, column], error_along_link_1, atol=1e-12
+        )
+        assert np.isclose(
+            np.linalg.norm(J_printed[:2, column] - J_right[:2, column]),
+            osake.L2_CM * abs(np.sin(q[1])),
+            atol=1e-12,
+        )
+    assert np.allclose(
+        J_printed[2:], J_right[2:], atol=0.0
+    )  # v_z = 0, omega = (0, 0, 1): as in the right Jacobian
 
 
 @given(q1=angles, stretched=st.booleans())
 def test_printed_jacobian_is_right_where_the_product_error_vanishes(q1, stretched):
-    q = [q1, 0.0 if stretched else np.pi]  # sin q2 = 0: cos q1 cos q2 = cos(q1 + q2), sin q1 cos q2 = sin(q1 + q2)
+    q = [
+        q1,
+        0.0 if stretched else np.pi,
+    ]  # sin q2 = 0: cos q1 cos q2 = cos(q1 + q2), sin q1 cos q2 = sin(q1 + q2)
     assert np.allclose(osake.jacobian_as_printed(q), right_jacobian_cm(q), atol=1e-12)
 
 
 @given(q=configurations())
 def test_printed_jacobian_is_wrong_wherever_the_elbow_is_bent(q):
     assume(0.05 < abs(q[1]) < np.pi - 0.05)
-    errors_cm = np.linalg.norm(osake.jacobian_as_printed(q)[:2] - right_jacobian_cm(q)[:2], axis=0)
+    errors_cm = np.linalg.norm(
+        osake.jacobian_as_printed(q)[:2] - right_jacobian_cm(q)[:2], axis=0
+    )
     assert np.all(errors_cm > osake.L2_CM * np.sin(0.05) * 0.99)
 
 
@@ -96,12 +119,17 @@ def test_printed_jacobian_columns_differ_by_the_l1_lever(q):
     J_printed = osake.jacobian_as_printed(q)
     lever_l1 = osake.L1_CM * np.array([-np.sin(q[0]), np.cos(q[0])])
     assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], lever_l1, atol=1e-12)
-    assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], right_jacobian_cm(q)[:2, 0] - right_jacobian_cm(q)[:2, 1],
-                       atol=1e-12)
+    assert np.allclose(
+        J_printed[:2, 0] - J_printed[:2, 1],
+        right_jacobian_cm(q)[:2, 0] - right_jacobian_cm(q)[:2, 1],
+        atol=1e-12,
+    )
 
 
 def test_printed_jacobian_at_30_45_degrees():
-    printed_cm = np.array([[-9.07, -4.07], [15.70, 7.04]])  # the source's numbers, cm per rad
+    printed_cm = np.array(
+        [[-9.07, -4.07], [15.70, 7.04]]
+    )  # the source's numbers, cm per rad
     right_cm = np.array([[-16.11, -11.11], [11.64, 2.98]])
     J_printed = osake.jacobian_as_printed(q_example)
     assert J_printed.shape == (6, 2)
@@ -124,7 +152,10 @@ def test_printed_jacobian_broadcasts_over_configurations():
 
 
 # --- H3.3: the C++ forward-kinematics program
-@given(value=st.floats(min_value=0.0, max_value=1e6, allow_nan=False), decimals=st.integers(0, 4))
+@given(
+    value=st.floats(min_value=0.0, max_value=1e6, allow_nan=False),
+    decimals=st.integers(0, 4),
+)
 def test_cpp_read_int_truncates_a_typed_decimal(value, decimals):
     typed = f"{value:.{decimals}f}"
     assert osake.cpp_read_int(typed) == int(typed.split(".")[0])
@@ -137,7 +168,11 @@ def test_cpp_read_int_rejects_text():
 
 @given(q=configurations())
 def test_cpp_fk_without_its_mistakes_is_the_package_fk(q):
-    assert np.allclose(osake.cpp_fk_tip(q, int_lengths=False, drop_offset=False), right_h02_cm(q)[:3, 3], atol=1e-12)
+    assert np.allclose(
+        osake.cpp_fk_tip(q, int_lengths=False, drop_offset=False),
+        right_h02_cm(q)[:3, 3],
+        atol=1e-12,
+    )
 
 
 @given(q=configurations())
@@ -146,15 +181,31 @@ def test_cpp_fk_int_lengths_cost_5_mm_and_the_dropped_offset_6_5_cm(q):
     p_int = osake.cpp_fk_tip(q, drop_offset=False)
     p_no_offset = osake.cpp_fk_tip(q, int_lengths=False)
     p_source = osake.cpp_fk_tip(q)
-    assert np.isclose(np.linalg.norm(p_int - p_right), osake.L2_CM - 11.0)  # 0.5 cm, along link 2
-    assert np.allclose(p_no_offset[:2], p_right[:2]) and np.isclose(p_right[2] - p_no_offset[2], osake.D_CM)
-    assert np.isclose(np.linalg.norm(p_source - p_right), np.hypot(osake.L2_CM - 11.0, osake.D_CM))
+    assert np.isclose(
+        np.linalg.norm(p_int - p_right), osake.L2_CM - 11.0
+    )  # 0.5 cm, along link 2
+    assert np.allclose(p_no_offset[:2], p_right[:2]) and np.isclose(
+        p_right[2] - p_no_offset[2], osake.D_CM
+    )
+    assert np.isclose(
+        np.linalg.norm(p_source - p_right), np.hypot(osake.L2_CM - 11.0, osake.D_CM)
+    )
 
 
-@given(left=st.lists(st.lists(st.floats(-10, 10), min_size=4, max_size=4), min_size=4, max_size=4),
-       right=st.lists(st.lists(st.floats(-10, 10), min_size=4, max_size=4), min_size=4, max_size=4))
+@given(
+    left=st.lists(
+        st.lists(st.floats(-10, 10), min_size=4, max_size=4), min_size=4, max_size=4
+    ),
+    right=st.lists(
+        st.lists(st.floats(-10, 10), min_size=4, max_size=4), min_size=4, max_size=4
+    ),
+)
 def test_triple_loop_is_the_matrix_product(left, right):
-    assert np.allclose(osake.matmul_triple_loop(left, right), np.array(left) @ np.array(right), atol=1e-9)
+    assert np.allclose(
+        osake.matmul_triple_loop(left, right),
+        np.array(left) @ np.array(right),
+        atol=1e-9,
+    )
 
 
 # --- H3.4: the C++ velocity program (l1 = 10.0, l2 = 11.5, t = 2, forward difference, delta_t = 1e-6)
@@ -177,14 +228,21 @@ def forward_difference_bound(t, step):
     """
     eps = np.finfo(float).eps
     radius_cm = exact_program_speed() / 3.0
-    angle_term = (osake.L1_CM * 3.0 * abs(t) + osake.L2_CM * (3.0 * abs(t) + 60.0)) / radius_cm
+    angle_term = (
+        osake.L1_CM * 3.0 * abs(t) + osake.L2_CM * (3.0 * abs(t) + 60.0)
+    ) / radius_cm
     return eps * (2.0 * (abs(t) + step) / step + angle_term + 32.0)
 
 
 def test_velocity_program_reproduces_the_printed_number():
     assert osake.PRINTED_SPEED_CM_S == 10.8975
-    assert round(osake.velocity_program_speed(), 4) == osake.PRINTED_SPEED_CM_S  # the defaults: t = 2, 1e-6 s
-    assert round(osake.velocity_program_speed(t=2.0, step=1e-6), 4) == osake.PRINTED_SPEED_CM_S
+    assert (
+        round(osake.velocity_program_speed(), 4) == osake.PRINTED_SPEED_CM_S
+    )  # the defaults: t = 2, 1e-6 s
+    assert (
+        round(osake.velocity_program_speed(t=2.0, step=1e-6), 4)
+        == osake.PRINTED_SPEED_CM_S
+    )
 
 
 def test_velocity_program_forward_difference_costs_only_round_off_at_t_2():
@@ -195,26 +253,42 @@ def test_velocity_program_forward_difference_costs_only_round_off_at_t_2():
     assert abs(printed - exact) <= bound * exact
 
 
-@given(t=st.floats(min_value=-120.0, max_value=120.0), step=st.sampled_from([1e-6, 1e-4, 1e-2, 1.0]))
-def test_velocity_program_is_three_rad_per_s_times_the_radius_at_60_rad_for_any_t(t, step):
+@given(
+    t=st.floats(min_value=-120.0, max_value=120.0),
+    step=st.sampled_from([1e-6, 1e-4, 1e-2, 1.0]),
+)
+def test_velocity_program_is_three_rad_per_s_times_the_radius_at_60_rad_for_any_t(
+    t, step
+):
     printed = osake.velocity_program_speed(t, step=step)
-    assert abs(printed - exact_program_speed()) <= forward_difference_bound(t, step) * exact_program_speed()
+    assert (
+        abs(printed - exact_program_speed())
+        <= forward_difference_bound(t, step) * exact_program_speed()
+    )
 
 
 def test_velocity_program_number_against_the_jacobian():
     printed = osake.velocity_program_speed()
     q = np.radians([3.0 * 2.0, 60.0])  # t = 2 s: theta1 = 6 deg, theta2 = 60 deg
     right_cm_s = CM * np.linalg.norm(arms.osake.tip_velocity(q, np.radians([3.0, 0.0])))
-    assert np.isclose(right_cm_s, np.radians(3.0) * CM * np.linalg.norm(arms.osake.fk(q)))
+    assert np.isclose(
+        right_cm_s, np.radians(3.0) * CM * np.linalg.norm(arms.osake.fk(q))
+    )
     assert round(right_cm_s, 4) == 0.9757
     assert 11.1 < printed / right_cm_s < 11.2
     # each mistake alone: 3 used as rad/s multiplies by 180/pi; 60 rad for 60 deg shrinks the radius
     rate_only = CM * np.linalg.norm(arms.osake.tip_velocity(q, [3.0, 0.0]))
     assert np.isclose(rate_only / right_cm_s, 180.0 / np.pi)
-    angle_only = CM * np.linalg.norm(arms.osake.tip_velocity([6.0, 60.0], np.radians([3.0, 0.0])))
+    angle_only = CM * np.linalg.norm(
+        arms.osake.tip_velocity([6.0, 60.0], np.radians([3.0, 0.0]))
+    )
     assert np.isclose(printed / angle_only, 180.0 / np.pi)
     # the program is the package's tip velocity at its radian-read angles and rates
-    assert np.isclose(printed, CM * np.linalg.norm(arms.osake.tip_velocity([6.0, 60.0], [3.0, 0.0])), rtol=1e-9)
+    assert np.isclose(
+        printed,
+        CM * np.linalg.norm(arms.osake.tip_velocity([6.0, 60.0], [3.0, 0.0])),
+        rtol=1e-9,
+    )
 
 
 def test_velocity_program_checks_its_inputs():

@@ -4,11 +4,11 @@ import dataclasses
 
 import numpy as np
 import pytest
-from conftest import angles, unit
-from conftest import arms as arm_strategy
 from hypothesis import given
 from hypothesis import strategies as st
 
+from conftest import angles, unit
+from conftest import arms as arm_strategy
 from twolink import TwoLinkArm, UnreachableError, Wall, arms, wall_contact
 
 forces = st.floats(min_value=0.0, max_value=1e4, allow_nan=False, allow_infinity=False)
@@ -45,17 +45,25 @@ def test_the_contact_lies_on_the_wall_with_link_2_perpendicular(data, arm, force
     scale = arm.l1 + arm.l2
     normal_in = expected_push_direction(contact, normal, distance, scale)
     assert len(contact.elbow) == len(contact.q) in (1, 2)
-    assert np.allclose(contact.force_by_tip, force * normal_in, atol=1e-12 * (1 + force))
+    assert np.allclose(
+        contact.force_by_tip, force * normal_in, atol=1e-12 * (1 + force)
+    )
     points = arm.joint_positions(contact.q)
     for elbow_point, tip in zip(points[:, 1], points[:, 2]):
-        assert abs(wall.signed_distance(tip)) <= 1e-9 * scale  # the tip touches the wall
+        assert (
+            abs(wall.signed_distance(tip)) <= 1e-9 * scale
+        )  # the tip touches the wall
         link_2 = (tip - elbow_point) / arm.l2
-        assert np.allclose(link_2, normal_in, atol=1e-9 * scale / min(arm.l1, arm.l2))  # and pushes straight into it
+        assert np.allclose(
+            link_2, normal_in, atol=1e-9 * scale / min(arm.l1, arm.l2)
+        )  # and pushes straight into it
     assert np.allclose(contact.p_contact, points[:, 2])
 
 
 @given(data=st.data(), arm=arm_strategy(), force=forces)
-def test_both_branches_mirror_each_other_about_the_normal_through_the_base(data, arm, force):
+def test_both_branches_mirror_each_other_about_the_normal_through_the_base(
+    data, arm, force
+):
     wall, normal, distance = data.draw(reachable_walls(arm))
     contact = wall_contact(arm, wall, force)
     normal_in = expected_push_direction(contact, normal, distance, arm.l1 + arm.l2)
@@ -63,7 +71,9 @@ def test_both_branches_mirror_each_other_about_the_normal_through_the_base(data,
         assert contact.elbow == ("down", "up")
         assert contact.q[0, 1] > 0 > contact.q[1, 1]
         assert contact.q[0, 1] == pytest.approx(-contact.q[1, 1])
-        offsets = cross(normal_in, contact.p_contact)  # signed position along the wall, from the foot of the normal
+        offsets = cross(
+            normal_in, contact.p_contact
+        )  # signed position along the wall, from the foot of the normal
         assert offsets[0] == pytest.approx(-offsets[1], abs=1e-9 * (arm.l1 + arm.l2))
 
 
@@ -79,17 +89,28 @@ def test_torques_are_the_free_body_moments(data, arm, force):
     assert np.allclose(contact.tau_wall[:, 0], tau1, atol=tolerance)
     assert np.allclose(contact.tau_wall[:, 1], tau2, atol=tolerance)
     assert np.allclose(contact.tau_wall[:, 1], 0.0, atol=tolerance)
-    assert np.allclose(contact.tau_wall, arm.joint_torques(contact.q, np.broadcast_to(contact.force_by_tip, contact.q.shape)))
-    assert np.array_equal(contact.tau, contact.tau_wall) and not contact.tau_gravity.any()
+    assert np.allclose(
+        contact.tau_wall,
+        arm.joint_torques(
+            contact.q, np.broadcast_to(contact.force_by_tip, contact.q.shape)
+        ),
+    )
+    assert (
+        np.array_equal(contact.tau, contact.tau_wall) and not contact.tau_gravity.any()
+    )
 
 
 def test_the_course_wall_by_hand():
     """x + y = 4, l1 = l2 = 2 m, 500 N: cos(q1 - 45 deg) = (2 sqrt2 - 2) / 2 = sqrt2 - 1."""
     contact = wall_contact(arms.two_metre, Wall.through([4.0, 0.0], [0.0, 4.0]), 500.0)
     angle = np.arccos(np.sqrt(2.0) - 1.0)
-    assert np.allclose(contact.q, [[np.pi / 4 - angle, angle], [np.pi / 4 + angle, -angle]])
+    assert np.allclose(
+        contact.q, [[np.pi / 4 - angle, angle], [np.pi / 4 + angle, -angle]]
+    )
     assert np.allclose(contact.p_contact.sum(axis=1), 4.0)
-    assert np.allclose(contact.force_by_tip, 500.0 / np.sqrt(2.0) * np.ones(2))  # into the wall, away from the base
+    assert np.allclose(
+        contact.force_by_tip, 500.0 / np.sqrt(2.0) * np.ones(2)
+    )  # into the wall, away from the base
     tau1 = 500.0 * 2.0 * np.sin(angle)  # F times the lever arm l1 sin(angle) of link 1
     assert np.allclose(contact.tau, [[tau1, 0.0], [-tau1, 0.0]], atol=1e-9)
     assert contact.within_limits.tolist() == [True, True]
@@ -99,20 +120,36 @@ def test_the_course_wall_by_hand():
 
 
 def test_wall_given_by_point_and_normal_or_two_points_or_either_normal_sign():
-    reference = wall_contact(arms.two_metre, Wall.through([4.0, 0.0], [0.0, 4.0]), 500.0)
-    for wall in (Wall([2.0, 2.0], [1.0, 1.0]), Wall([0.0, 4.0], [-3.0, -3.0]), Wall.through([0.0, 4.0], [4.0, 0.0])):
+    reference = wall_contact(
+        arms.two_metre, Wall.through([4.0, 0.0], [0.0, 4.0]), 500.0
+    )
+    for wall in (
+        Wall([2.0, 2.0], [1.0, 1.0]),
+        Wall([0.0, 4.0], [-3.0, -3.0]),
+        Wall.through([0.0, 4.0], [4.0, 0.0]),
+    ):
         contact = wall_contact(arms.two_metre, wall, 500.0)
-        assert np.allclose(contact.q, reference.q) and np.allclose(contact.tau, reference.tau)
+        assert np.allclose(contact.q, reference.q) and np.allclose(
+            contact.tau, reference.tau
+        )
 
 
 def test_the_wall_at_full_reach_gives_one_stretched_configuration_without_torque():
     contact = wall_contact(arms.two_metre, Wall([0.0, 4.0], [0.0, 1.0]), 100.0)
     assert contact.elbow == ("stretched",)
     assert np.allclose(contact.q, [[np.pi / 2, 0.0]])
-    assert np.allclose(contact.tau, 0.0, atol=1e-9)  # the straight arm carries the force in compression
-    round_off = wall_contact(arms.two_metre, Wall([4.0 / np.sqrt(2.0)] * 2, [1.0, 1.0]), 100.0)
-    assert Wall([4.0 / np.sqrt(2.0)] * 2, [1.0, 1.0]).distance_from_base() != 4.0  # 1 ulp short of the reach
-    assert round_off.elbow == ("stretched",) and np.allclose(round_off.q, [[np.pi / 4, 0.0]])
+    assert np.allclose(
+        contact.tau, 0.0, atol=1e-9
+    )  # the straight arm carries the force in compression
+    round_off = wall_contact(
+        arms.two_metre, Wall([4.0 / np.sqrt(2.0)] * 2, [1.0, 1.0]), 100.0
+    )
+    assert (
+        Wall([4.0 / np.sqrt(2.0)] * 2, [1.0, 1.0]).distance_from_base() != 4.0
+    )  # 1 ulp short of the reach
+    assert round_off.elbow == ("stretched",) and np.allclose(
+        round_off.q, [[np.pi / 4, 0.0]]
+    )
     folded = wall_contact(TwoLinkArm(1.0, 3.0), Wall([2.0, 0.0], [1.0, 0.0]), 100.0)
     assert folded.elbow == ("folded",) and np.allclose(folded.p_contact, [[2.0, 0.0]])
 
@@ -124,7 +161,9 @@ def test_a_wall_through_the_base_uses_the_given_normal():
 
 
 def test_joint_limits_are_reported_per_branch():
-    limited = dataclasses.replace(arms.two_metre, q_min=(-np.pi, 0.0), q_max=(np.pi, np.pi))
+    limited = dataclasses.replace(
+        arms.two_metre, q_min=(-np.pi, 0.0), q_max=(np.pi, np.pi)
+    )
     contact = wall_contact(limited, Wall.through([4.0, 0.0], [0.0, 4.0]), 500.0)
     assert contact.within_limits.tolist() == [True, False]
 
@@ -147,7 +186,10 @@ def test_gravity_torques_are_added_when_asked():
 @pytest.mark.parametrize(
     ("wall", "message"),
     [
-        (Wall([5.0, 0.0], [1.0, 0.0]), r"the wall is 5 m from the base; .* distances in \[0, 4\] m"),
+        (
+            Wall([5.0, 0.0], [1.0, 0.0]),
+            r"the wall is 5 m from the base; .* distances in \[0, 4\] m",
+        ),
         (Wall([0.0, -4.5], [0.0, 1.0]), r"4.5 m from the base"),
     ],
 )

@@ -8,10 +8,9 @@ committed notebook's stored self-check output says "correct." (nbval, in the
 same test run, re-executes the committed notebooks and compares those outputs).
 """
 
-import re
-
 import json
 import pathlib
+import re
 import sys
 
 import nbformat
@@ -40,7 +39,11 @@ class HeadlessClient(NotebookClient):
 
 
 def selfcheck_cells(notebook):
-    return [cell for cell in notebook["cells"] if cell["cell_type"] == "code" and "selfcheck.check" in "".join(cell["source"])]
+    return [
+        cell
+        for cell in notebook["cells"]
+        if cell["cell_type"] == "code" and "selfcheck.check" in "".join(cell["source"])
+    ]
 
 
 def output_text(cell):
@@ -56,37 +59,66 @@ def output_text(cell):
 def test_stub_replaces_each_block_with_the_names_it_assigns():
     source = "# Exercise 9.1\nx0 = 1\n### BEGIN SOLUTION\nq_up, q_down = 1, 2\np_tip = q_up + q_down\n### END SOLUTION\nprint(x0)\n"
     stubbed = editions.stub_source(source)
-    assert "q_up = ...  # your code here\nq_down = ...  # your code here\np_tip = ...  # your code here\n" in stubbed
+    assert (
+        "q_up = ...  # your code here\nq_down = ...  # your code here\np_tip = ...  # your code here\n"
+        in stubbed
+    )
     assert "BEGIN SOLUTION" not in stubbed and "q_up + q_down" not in stubbed
-    assert stubbed.startswith("# Exercise 9.1\nx0 = 1\n") and stubbed.endswith("print(x0)\n")
+    assert stubbed.startswith("# Exercise 9.1\nx0 = 1\n") and stubbed.endswith(
+        "print(x0)\n"
+    )
 
 
 def test_stubs_ask_for_the_checked_answers_only():
     notebook = {
         "cells": [
-            {"cell_type": "code", "source": "### BEGIN SOLUTION\nrho = 2.0\nradius_ex = rho * 3\n### END SOLUTION\n", "outputs": [], "execution_count": 1},
+            {
+                "cell_type": "code",
+                "source": "### BEGIN SOLUTION\nrho = 2.0\nradius_ex = rho * 3\n### END SOLUTION\n",
+                "outputs": [],
+                "execution_count": 1,
+            },
             {"cell_type": "markdown", "source": "check it"},
-            {"cell_type": "code", "source": "selfcheck.check('9.1', radius_ex)", "outputs": [], "execution_count": 2},
+            {
+                "cell_type": "code",
+                "source": "selfcheck.check('9.1', radius_ex)",
+                "outputs": [],
+                "execution_count": 2,
+            },
         ]
     }
     student = editions.student_notebook(notebook)
     assert student["cells"][0]["source"] == "radius_ex = ...  # your code here\n"
     assert student["cells"][0]["execution_count"] is None
-    assert notebook["cells"][0]["source"].startswith("### BEGIN SOLUTION")  # the original is untouched
+    assert notebook["cells"][0]["source"].startswith(
+        "### BEGIN SOLUTION"
+    )  # the original is untouched
 
 
 def test_student_markdown_is_edition_aware():
-    source = ("## Exercises\n\nEach exercise cell holds a worked solution between the markers; the cell after\n"
-              "it checks the answer.\n\n<!-- BEGIN INSTRUCTOR -->For the teacher.<!-- END INSTRUCTOR -->"
-              "<!-- STUDENT: For you. -->**Exercise 9.1.** Do it.")
+    source = (
+        "## Exercises\n\nEach exercise cell holds a worked solution between the markers; the cell after\n"
+        "it checks the answer.\n\n<!-- BEGIN INSTRUCTOR -->For the teacher.<!-- END INSTRUCTOR -->"
+        "<!-- STUDENT: For you. -->**Exercise 9.1.** Do it."
+    )
     student = editions.student_markdown(source)
-    assert "worked solution" not in student and "For the teacher" not in student and "<!--" not in student
-    assert "For you." in student and "**Exercise 9.1.** Do it." in student and "not solved yet" in student
+    assert (
+        "worked solution" not in student
+        and "For the teacher" not in student
+        and "<!--" not in student
+    )
+    assert (
+        "For you." in student
+        and "**Exercise 9.1.** Do it." in student
+        and "not solved yet" in student
+    )
     assert editions.student_markdown("No markers here.") == "No markers here."
 
 
 def test_indented_blocks_and_errors():
-    stubbed = editions.stub_source("if True:\n    ### BEGIN SOLUTION\n    angle = 3\n    ### END SOLUTION\n")
+    stubbed = editions.stub_source(
+        "if True:\n    ### BEGIN SOLUTION\n    angle = 3\n    ### END SOLUTION\n"
+    )
     assert stubbed == "if True:\n    angle = ...  # your code here\n"
     with pytest.raises(ValueError, match="unbalanced"):
         editions.stub_source("### BEGIN SOLUTION\nx = 1\n")
@@ -101,10 +133,16 @@ def test_committed_solutions_pass_their_self_checks(path):
     assert cells, f"{path.name} has no self-check cells"
     for cell in cells:
         text = output_text(cell)
-        assert "correct." in text and "not right yet" not in text and "not solved yet" not in text, text
+        assert (
+            "correct." in text
+            and "not right yet" not in text
+            and "not solved yet" not in text
+        ), text
 
 
-SELFCHECK_VERDICT = re.compile(r"Exercise \d+\.\d+[^\n]*: (correct|wrong|not right yet)")
+SELFCHECK_VERDICT = re.compile(
+    r"Exercise \d+\.\d+[^\n]*: (correct|wrong|not right yet)"
+)
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
@@ -113,13 +151,19 @@ def test_student_edition_shows_nothing_in_advance(path, tmp_path):
     student = json.loads((tmp_path / path.name).read_text(encoding="utf-8"))
     assert selfcheck_cells(student), f"{path.name} has no self-check cells"
     for cell in selfcheck_cells(student):
-        assert cell["outputs"] == [] and cell["execution_count"] is None, "".join(cell["source"])
+        assert cell["outputs"] == [] and cell["execution_count"] is None, "".join(
+            cell["source"]
+        )
     for cell in student["cells"]:
         text = output_text(cell) if cell["cell_type"] == "code" else ""
-        assert not SELFCHECK_VERDICT.search(text), f"{path.name} stores a self-check verdict: {text[:200]}"
+        assert not SELFCHECK_VERDICT.search(text), (
+            f"{path.name} stores a self-check verdict: {text[:200]}"
+        )
         if cell["cell_type"] == "markdown":
             markdown = "".join(cell["source"])
-            assert "worked solution" not in markdown.lower(), f"{path.name}: {markdown[:200]}"
+            assert "worked solution" not in markdown.lower(), (
+                f"{path.name}: {markdown[:200]}"
+            )
             assert "INSTRUCTOR -->" not in markdown and "<!-- STUDENT:" not in markdown
 
 
@@ -128,9 +172,23 @@ def test_student_edition_runs_and_reports_not_solved(path, tmp_path):
     editions.build_student(path.parent, tmp_path)
     student = nbformat.read(tmp_path / path.name, as_version=4)
     assert "### BEGIN SOLUTION" not in json.dumps(student)
-    HeadlessClient(student, timeout=180, kernel_name="python3", resources={"metadata": {"path": str(path.parent)}}).execute()
-    errors = [output for cell in student.cells for output in cell.get("outputs", []) if output.output_type == "error"]
-    assert not errors, f"{path.name} student edition raised: {errors[0].ename}: {errors[0].evalue}"
+    HeadlessClient(
+        student,
+        timeout=180,
+        kernel_name="python3",
+        resources={"metadata": {"path": str(path.parent)}},
+    ).execute()
+    errors = [
+        output
+        for cell in student.cells
+        for output in cell.get("outputs", [])
+        if output.output_type == "error"
+    ]
+    assert not errors, (
+        f"{path.name} student edition raised: {errors[0].ename}: {errors[0].evalue}"
+    )
     for cell in selfcheck_cells(student):
         text = output_text(cell)
-        assert "not solved yet" in text and "correct." not in text, f"{path.name}: self-check passed on a stub: {text}"
+        assert "not solved yet" in text and "correct." not in text, (
+            f"{path.name}: self-check passed on a stub: {text}"
+        )

@@ -1,6 +1,7 @@
 """The sympy DH transform: symbols, numbers and names in; never a string evaluated as code."""
 
 import builtins
+
 import numpy as np
 import pytest
 import sympy as sp
@@ -20,14 +21,22 @@ def test_an_identifier_becomes_a_plain_symbol():
 
 def test_a_string_of_code_is_refused_and_never_run():
     code = "__import__('builtins').setattr(__import__('builtins'), 'twolink_code_ran', 1) or 0"
-    with pytest.raises(InputTypeError, match=r"theta must be a sympy expression, a real number or a symbol name .*never evaluated"):
+    with pytest.raises(
+        InputTypeError,
+        match=r"theta must be a sympy expression, a real number or a symbol name .*never evaluated",
+    ):
         dh_matrix(code, 0, 1, 0)
     assert not hasattr(builtins, "twolink_code_ran")
 
 
-@pytest.mark.parametrize("bad", [True, None, 1 + 2j, [1.0, 2.0], np.array([0.5]), "q 1", sp.true])
+@pytest.mark.parametrize(
+    "bad", [True, None, 1 + 2j, [1.0, 2.0], np.array([0.5]), "q 1", sp.true]
+)
 def test_other_values_are_refused_naming_the_parameter(bad):
-    with pytest.raises(InputTypeError, match=r"^alpha must be a sympy expression, a real number or a symbol name"):
+    with pytest.raises(
+        InputTypeError,
+        match=r"^alpha must be a sympy expression, a real number or a symbol name",
+    ):
         dh_matrix(0.0, 0, 1, bad)
 
 

@@ -21,7 +21,9 @@ def test_every_method_reports_accuracy_from_fk(per_call):
     by_name = {row["method"]: row for row in rows}
     assert by_name["closed form"]["max_residual"] < 1e-12
     # brute force error is set by the grid: about the grid bound, far above the others
-    assert 1e-4 < by_name["brute force"]["max_residual"] <= (10 + 20) * np.radians(1.0) / 2
+    assert (
+        1e-4 < by_name["brute force"]["max_residual"] <= (10 + 20) * np.radians(1.0) / 2
+    )
 
 
 def test_unknown_method_and_bad_targets():

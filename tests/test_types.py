@@ -53,7 +53,9 @@ def _is_private(name: str) -> bool:
 FunctionNode = ast.FunctionDef | ast.AsyncFunctionDef
 
 
-def _definitions(body: list[ast.stmt], prefix: str = "") -> Iterator[tuple[str, FunctionNode, bool]]:
+def _definitions(
+    body: list[ast.stmt], prefix: str = ""
+) -> Iterator[tuple[str, FunctionNode, bool]]:
     """``(qualified name, node, is_method)`` of the public functions and methods in ``body``.
 
     Looks through ``if``/``try``/``with`` blocks, into public classes (nested
@@ -62,14 +64,19 @@ def _definitions(body: list[ast.stmt], prefix: str = "") -> Iterator[tuple[str, 
     for node in body:
         if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
             method = bool(prefix)
-            if not _is_private(node.name) and not (node.name.startswith("__") and node.name not in PUBLIC_DUNDERS):
+            if not _is_private(node.name) and not (
+                node.name.startswith("__") and node.name not in PUBLIC_DUNDERS
+            ):
                 yield prefix + node.name, node, method
         elif isinstance(node, ast.ClassDef):
             if not node.name.startswith("_"):
                 yield from _definitions(node.body, f"{prefix}{node.name}.")
         elif isinstance(node, (ast.If, ast.Try)):
-            blocks = [node.body, node.orelse] + ([node.finalbody] + [h.body for h in node.handlers]
-                                                 if isinstance(node, ast.Try) else [])
+            blocks = [node.body, node.orelse] + (
+                [node.finalbody] + [h.body for h in node.handlers]
+                if isinstance(node, ast.Try)
+                else []
+            )
             for block in blocks:
                 yield from _definitions(block, prefix)
         elif isinstance(node, ast.With):
@@ -80,8 +87,14 @@ def _missing_annotations(node: FunctionNode, method: bool) -> list[str]:
     """What ``node`` leaves unannotated: parameter names, and ``return``."""
     arguments = node.args
     parameters = [*arguments.posonlyargs, *arguments.args, *arguments.kwonlyargs]
-    parameters += [argument for argument in (arguments.vararg, arguments.kwarg) if argument is not None]
-    is_static = any(isinstance(d, ast.Name) and d.id == "staticmethod" for d in node.decorator_list)
+    parameters += [
+        argument
+        for argument in (arguments.vararg, arguments.kwarg)
+        if argument is not None
+    ]
+    is_static = any(
+        isinstance(d, ast.Name) and d.id == "staticmethod" for d in node.decorator_list
+    )
     missing = []
     for index, parameter in enumerate(parameters):
         if method and not is_static and index == 0 and parameter.arg in ("self", "cls"):
@@ -107,20 +120,36 @@ def public_functions() -> dict[str, list[str]]:
 
 def test_mypy_passes_on_the_package():
     """mypy with the configuration of pyproject.toml ([tool.mypy]: the whole of twolink/) finds no error."""
-    result = subprocess.run([sys.executable, "-m", "mypy"], cwd=ROOT, capture_output=True, text=True, timeout=600)
-    assert result.returncode == 0, f"mypy failed (exit {result.returncode}):\n{result.stdout}{result.stderr}"
+    result = subprocess.run(
+        [sys.executable, "-m", "mypy"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, (
+        f"mypy failed (exit {result.returncode}):\n{result.stdout}{result.stderr}"
+    )
 
 
 def test_the_walk_finds_the_public_functions():
     found = public_functions()
     assert "twolink.arm:TwoLinkArm.fk" in found
-    assert "twolink.arm:TwoLinkArm.__init__" not in found  # a dataclass: no __init__ in the source
+    assert (
+        "twolink.arm:TwoLinkArm.__init__" not in found
+    )  # a dataclass: no __init__ in the source
     assert "twolink.kinematics:fk" in found
     assert "twolink.exercises.registry:numbers" in found
-    assert not any(name.startswith("twolink._validate:") for name in found)  # private module
+    assert not any(
+        name.startswith("twolink._validate:") for name in found
+    )  # private module
     assert "twolink.controllers:JointPD.__call__" in found
     qualified_parts = [part for name in found for part in name.split(":")[1].split(".")]
-    assert not [part for part in qualified_parts if part.startswith("_") and part not in PUBLIC_DUNDERS]
+    assert not [
+        part
+        for part in qualified_parts
+        if part.startswith("_") and part not in PUBLIC_DUNDERS
+    ]
 
 
 def test_every_public_function_is_fully_annotated():
@@ -129,7 +158,8 @@ def test_every_public_function_is_fully_annotated():
     missing = {name: gaps for name, gaps in found.items() if gaps}
     lines = [f"{name}: {', '.join(gaps)}" for name, gaps in sorted(missing.items())]
     assert not missing, (
-        f"{len(missing)} of {len(found)} public functions lack annotations:\n" + "\n".join(lines)
+        f"{len(missing)} of {len(found)} public functions lack annotations:\n"
+        + "\n".join(lines)
     )
 
 
@@ -139,7 +169,10 @@ def test_the_typed_marker_ships_in_the_wheel():
     pyproject = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
     setuptools = pyproject["tool"]["setuptools"]
     assert "py.typed" in setuptools["package-data"]["twolink"]
-    assert any(pattern in ("twolink", "twolink*") for pattern in setuptools["packages"]["find"]["include"])
+    assert any(
+        pattern in ("twolink", "twolink*")
+        for pattern in setuptools["packages"]["find"]["include"]
+    )
 
 
 # ----------------------------------------------------------------------------- private names
@@ -158,7 +191,8 @@ def _resolve(module: str, is_package: bool, level: int, target: str | None) -> s
 def _is_twolink_module(name: str) -> bool:
     relative = pathlib.Path(*name.split("."))
     return name.split(".")[0] == "twolink" and (
-        (ROOT / relative).with_suffix(".py").is_file() or (ROOT / relative / "__init__.py").is_file()
+        (ROOT / relative).with_suffix(".py").is_file()
+        or (ROOT / relative / "__init__.py").is_file()
     )
 
 
@@ -186,7 +220,9 @@ def private_name_uses() -> list[str]:
                         if alias.asname:
                             modules_bound[alias.asname] = alias.name
                         else:
-                            modules_bound[alias.name.split(".")[0]] = alias.name.split(".")[0]
+                            modules_bound[alias.name.split(".")[0]] = alias.name.split(
+                                "."
+                            )[0]
             elif isinstance(node, ast.ImportFrom):
                 source = _resolve(module, is_package, node.level, node.module)
                 if not source.startswith("twolink"):
@@ -195,9 +231,15 @@ def private_name_uses() -> list[str]:
                     full = f"{source}.{alias.name}"
                     if _is_twolink_module(full):
                         modules_bound[alias.asname or alias.name] = full
-                    if not _is_private(alias.name) or source == module or full in INTERNAL_API_MODULES:
+                    if (
+                        not _is_private(alias.name)
+                        or source == module
+                        or full in INTERNAL_API_MODULES
+                    ):
                         continue
-                    offences.append(f"{module} (line {node.lineno}): from {source} import {alias.name}")
+                    offences.append(
+                        f"{module} (line {node.lineno}): from {source} import {alias.name}"
+                    )
         for node in ast.walk(tree):
             if isinstance(node, ast.Attribute) and _is_private(node.attr):
                 owner = _dotted(node.value)
@@ -205,8 +247,14 @@ def private_name_uses() -> list[str]:
                     continue
                 head, _, rest = owner.partition(".")
                 target = modules_bound[head] + (f".{rest}" if rest else "")
-                if _is_twolink_module(target) and target != module and f"{target}.{node.attr}" not in INTERNAL_API_MODULES:
-                    offences.append(f"{module} (line {node.lineno}): {owner}.{node.attr} ({target})")
+                if (
+                    _is_twolink_module(target)
+                    and target != module
+                    and f"{target}.{node.attr}" not in INTERNAL_API_MODULES
+                ):
+                    offences.append(
+                        f"{module} (line {node.lineno}): {owner}.{node.attr} ({target})"
+                    )
     return offences
 
 
@@ -216,7 +264,9 @@ def test_the_private_name_walk_sees_both_forms(tmp_path, monkeypatch):
     package.mkdir()
     (package / "__init__.py").write_text("")
     (package / "_validate.py").write_text("def as_pairs(x):\n    return x\n")
-    (package / "kinematics.py").write_text("def _lengths(arm):\n    return arm\n\ndef fk(arm):\n    return _lengths(arm)\n")
+    (package / "kinematics.py").write_text(
+        "def _lengths(arm):\n    return arm\n\ndef fk(arm):\n    return _lengths(arm)\n"
+    )
     (package / "user.py").write_text(
         "from . import kinematics\n"
         "from ._validate import as_pairs\n"
@@ -235,6 +285,7 @@ def test_the_private_name_walk_sees_both_forms(tmp_path, monkeypatch):
 
 def test_no_module_uses_another_modules_private_names():
     offences = private_name_uses()
-    assert not offences, "private names used across modules (make them public, or move the code):\n" + "\n".join(
-        offences
+    assert not offences, (
+        "private names used across modules (make them public, or move the code):\n"
+        + "\n".join(offences)
     )

@@ -4,15 +4,16 @@ import inspect
 
 import numpy as np
 import pytest
-from conftest import angles
-from conftest import arms as arm_strategy
-from conftest import configurations
 from hypothesis import assume, example, given
 from hypothesis import strategies as st
 
+from conftest import angles, configurations
+from conftest import arms as arm_strategy
 from twolink import SingularityError, TwoLinkArm, arms, kinematics, stiffness, velocity
 
-rates = st.floats(min_value=-10.0, max_value=10.0, allow_nan=False, allow_infinity=False)
+rates = st.floats(
+    min_value=-10.0, max_value=10.0, allow_nan=False, allow_infinity=False
+)
 
 
 @st.composite
@@ -28,7 +29,11 @@ def away_from_singularity(q, margin=0.05):
 def test_tip_velocity_is_the_derivative_of_fk(arm, q, qd):
     h = 1e-6
     v_fd = (arm.fk(q + h * qd) - arm.fk(q - h * qd)) / (2 * h)
-    assert np.allclose(arm.tip_velocity(q, qd), v_fd, atol=1e-7 * (arm.l1 + arm.l2) * (1 + np.abs(qd).max()))
+    assert np.allclose(
+        arm.tip_velocity(q, qd),
+        v_fd,
+        atol=1e-7 * (arm.l1 + arm.l2) * (1 + np.abs(qd).max()),
+    )
 
 
 @given(arm=arm_strategy(), q=configurations(), qd=pairs())
@@ -45,10 +50,17 @@ def test_joint_rates_invert_tip_velocity_away_from_singularities(arm, q, qd):
 def test_tip_velocity_of_joint_rates_gives_back_the_wanted_velocity(arm, q, v_tip):
     assume(away_from_singularity(q))
     qd = arm.joint_rates(q, v_tip)
-    assert np.allclose(arm.tip_velocity(q, qd), v_tip, atol=1e-9 * (1 + np.abs(v_tip).max()))
+    assert np.allclose(
+        arm.tip_velocity(q, qd), v_tip, atol=1e-9 * (1 + np.abs(v_tip).max())
+    )
 
 
-@given(arm=arm_strategy(), q=configurations(), qd=pairs(), force=pairs(st.floats(-1e3, 1e3)))
+@given(
+    arm=arm_strategy(),
+    q=configurations(),
+    qd=pairs(),
+    force=pairs(st.floats(-1e3, 1e3)),
+)
 def test_power_balance_tau_dot_qd_equals_force_dot_v(arm, q, qd, force):
     """Virtual work: the joints deliver tau . qd, the tip delivers F . v_tip."""
     tau = arm.joint_torques(q, force)
@@ -60,7 +72,9 @@ def test_power_balance_tau_dot_qd_equals_force_dot_v(arm, q, qd, force):
 @given(arm=arm_strategy(), q1=angles)
 def test_manipulability_is_exactly_zero_at_sin_q2_zero(arm, q1):
     assert arm.manipulability([q1, 0.0]) == 0.0
-    assert arm.manipulability([q1, np.pi]) <= 1e-15 * arm.l1 * arm.l2  # sin(pi) is 1.2e-16 in floats
+    assert (
+        arm.manipulability([q1, np.pi]) <= 1e-15 * arm.l1 * arm.l2
+    )  # sin(pi) is 1.2e-16 in floats
 
 
 @given(arm=arm_strategy(), q=configurations())
@@ -69,7 +83,9 @@ def test_manipulability_is_yoshikawas_sqrt_det_j_jt(arm, q):
     gram = J @ J.T
     det_gram = gram[0, 0] * gram[1, 1] - gram[0, 1] * gram[1, 0]
     # compare squares: sqrt of a determinant that rounds to 1e-16 at a singularity would be 1e-8
-    assert arm.manipulability(q) ** 2 == pytest.approx(det_gram, abs=1e-12 * (arm.l1 + arm.l2) ** 4)
+    assert arm.manipulability(q) ** 2 == pytest.approx(
+        det_gram, abs=1e-12 * (arm.l1 + arm.l2) ** 4
+    )
     assert arm.manipulability(q) <= arm.l1 * arm.l2 * (1 + 1e-12)
 
 
@@ -84,7 +100,9 @@ def test_manipulability_is_largest_with_the_links_at_right_angles():
 
 @pytest.mark.parametrize("q2", [0.0, np.pi, -np.pi, 1e-8, np.pi - 1e-9])
 def test_joint_rates_refuse_singular_configurations_with_the_distance(q2):
-    with pytest.raises(SingularityError, match=r"\|sin q2\| = .* <= tol = 1e-06 \(\|det J\| = .* m\^2"):
+    with pytest.raises(
+        SingularityError, match=r"\|sin q2\| = .* <= tol = 1e-06 \(\|det J\| = .* m\^2"
+    ):
         arms.two_metre.joint_rates([0.4, q2], [0.1, 0.0])
 
 
@@ -103,7 +121,9 @@ def test_joint_rates_tolerance_is_adjustable():
         arms.two_metre.joint_rates(q, [0.0, 1.0], tol=-1.0)
 
 
-@given(arm=arm_strategy(), q=configurations(), v_tip=pairs(), damping=st.floats(1e-3, 10.0))
+@given(
+    arm=arm_strategy(), q=configurations(), v_tip=pairs(), damping=st.floats(1e-3, 10.0)
+)
 def test_dls_solves_its_normal_equations_and_stays_bounded(arm, q, v_tip, damping):
     """DLS minimises |J qd - v|^2 + lambda^2 |qd|^2: (J^T J + lambda^2 I) qd = J^T v."""
     qd = arm.joint_rates_dls(q, v_tip, damping)
@@ -111,12 +131,18 @@ def test_dls_solves_its_normal_equations_and_stays_bounded(arm, q, v_tip, dampin
     lhs = (J.T @ J + damping**2 * np.eye(2)) @ qd
     scale = (np.abs(J).max() + damping) ** 2 * (1 + np.abs(qd).max())
     assert np.allclose(lhs, J.T @ v_tip, atol=1e-10 * scale)
-    assert np.linalg.norm(qd) <= np.linalg.norm(v_tip) / (2 * damping) * (1 + 1e-9) + 1e-12
+    assert (
+        np.linalg.norm(qd) <= np.linalg.norm(v_tip) / (2 * damping) * (1 + 1e-9) + 1e-12
+    )
 
 
 @given(arm=arm_strategy(), q=configurations(), v_tip=pairs())
-@example(arm=TwoLinkArm(1.0, 1.0), q=np.array([0.3, 1.0]), v_tip=np.array([0.0, 5e-324]))
-@example(arm=TwoLinkArm(1.0, 1.0), q=np.array([-2.0, 0.5]), v_tip=np.array([0.0, 5e-324]))
+@example(
+    arm=TwoLinkArm(1.0, 1.0), q=np.array([0.3, 1.0]), v_tip=np.array([0.0, 5e-324])
+)
+@example(
+    arm=TwoLinkArm(1.0, 1.0), q=np.array([-2.0, 0.5]), v_tip=np.array([0.0, 5e-324])
+)
 def test_dls_tends_to_the_exact_inverse_away_from_singularities(arm, q, v_tip):
     assume(away_from_singularity(q, margin=0.2))
     sigma_min = np.linalg.svd(arm.jacobian(q), compute_uv=False)[-1]
@@ -127,18 +153,28 @@ def test_dls_tends_to_the_exact_inverse_away_from_singularities(arm, q, v_tip):
     # absolute (results are multiples of 5e-324): the two may round to neighbouring values.
     representation = np.abs(np.spacing(np.abs(exact))).max()
     assert np.allclose(
-        arm.joint_rates_dls(q, v_tip, damping), exact, rtol=1e-6, atol=1e-6 * np.abs(exact).max() + representation
+        arm.joint_rates_dls(q, v_tip, damping),
+        exact,
+        rtol=1e-6,
+        atol=1e-6 * np.abs(exact).max() + representation,
     )
 
 
 def test_dls_at_a_singularity_is_finite_and_zero_damping_is_the_exact_inverse():
     q_stretched = [0.3, 0.0]
-    qd = arms.two_metre.joint_rates_dls(q_stretched, [np.cos(0.3), np.sin(0.3)], damping=0.1)
-    assert np.allclose(qd, 0.0)  # along the stretched arm the tip cannot move: DLS does nothing
+    qd = arms.two_metre.joint_rates_dls(
+        q_stretched, [np.cos(0.3), np.sin(0.3)], damping=0.1
+    )
+    assert np.allclose(
+        qd, 0.0
+    )  # along the stretched arm the tip cannot move: DLS does nothing
     with pytest.raises(SingularityError):
         arms.two_metre.joint_rates_dls(q_stretched, [0.0, 1.0], damping=0.0)
     q = [0.3, 1.1]
-    assert np.array_equal(arms.two_metre.joint_rates_dls(q, [0.0, 1.0], 0.0), arms.two_metre.joint_rates(q, [0.0, 1.0]))
+    assert np.array_equal(
+        arms.two_metre.joint_rates_dls(q, [0.0, 1.0], 0.0),
+        arms.two_metre.joint_rates(q, [0.0, 1.0]),
+    )
     with pytest.raises(ValueError, match="damping"):
         arms.two_metre.joint_rates_dls(q, [0.0, 1.0], damping=-0.1)
 
@@ -156,7 +192,12 @@ def test_vectorised_and_broadcast():
     assert arm.joint_rates_dls(q, v_tip, 0.01).shape == (4, 3, 2)
     assert arm.manipulability(q).shape == (4, 3)
     ellipse = velocity.velocity_ellipse(arm, q)
-    assert ellipse.semi_axes.shape == (4, 3, 2) and ellipse.directions.shape == (4, 3, 2, 2)
+    assert ellipse.semi_axes.shape == (4, 3, 2) and ellipse.directions.shape == (
+        4,
+        3,
+        2,
+        2,
+    )
     assert ellipse.points(n=10).shape == (4, 3, 10, 2)
 
 
@@ -188,7 +229,12 @@ def test_velocity_ellipse_is_the_image_of_the_unit_circle(arm, q, qd):
     J = arm.jacobian(q)
     ellipse = velocity.velocity_ellipse(arm, q)
     eigenvalues = np.linalg.eigvalsh(J @ J.T)[::-1]
-    assert np.allclose(ellipse.semi_axes**2, eigenvalues, rtol=1e-9, atol=1e-12 * (arm.l1 + arm.l2) ** 2)
+    assert np.allclose(
+        ellipse.semi_axes**2,
+        eigenvalues,
+        rtol=1e-9,
+        atol=1e-12 * (arm.l1 + arm.l2) ** 2,
+    )
     assert np.prod(ellipse.semi_axes) == pytest.approx(arm.manipulability(q), rel=1e-9)
     assert np.allclose(ellipse.centre, arm.fk(q))
     # boundary points are on the ellipse x^T (J J^T)^-1 x = 1; J of a unit joint rate lies on it too
@@ -196,7 +242,9 @@ def test_velocity_ellipse_is_the_image_of_the_unit_circle(arm, q, qd):
     assert np.allclose(_inside(boundary, J @ J.T, ellipse.centre), 1.0, rtol=1e-6)
     assume(np.linalg.norm(qd) > 1e-3)
     v_unit = J @ (qd / np.linalg.norm(qd))
-    assert _inside(ellipse.centre + v_unit, J @ J.T, ellipse.centre) == pytest.approx(1.0, rel=1e-6)
+    assert _inside(ellipse.centre + v_unit, J @ J.T, ellipse.centre) == pytest.approx(
+        1.0, rel=1e-6
+    )
 
 
 @given(arm=arm_strategy(), q=configurations())
@@ -218,7 +266,10 @@ def test_force_ellipse_is_unbounded_at_a_singularity_and_drawing_needs_a_clip():
     major = ellipse.directions[:, 0]
     assert abs(major[0]) == pytest.approx(1.0)  # along the stretched arm
     points = ellipse.points(n=8, scale=0.01, clip=2.0)
-    assert np.all(np.isfinite(points)) and np.abs(points - ellipse.centre).max() <= 2.0 + 1e-12
+    assert (
+        np.all(np.isfinite(points))
+        and np.abs(points - ellipse.centre).max() <= 2.0 + 1e-12
+    )
     exact = velocity.Ellipse(np.zeros(2), np.array([np.inf, 1.0]), np.eye(2))
     with pytest.raises(ValueError, match="clip"):
         exact.points()
@@ -228,7 +279,9 @@ def test_ellipse_angle_is_the_major_axis_direction():
     ellipse = velocity.velocity_ellipse(TwoLinkArm(1.0, 1.0), [0.0, np.pi / 2])
     major = ellipse.directions[:, 0]
     assert -np.pi / 2 < ellipse.angle <= np.pi / 2
-    assert abs(np.cos(ellipse.angle) * major[1] - np.sin(ellipse.angle) * major[0]) < 1e-12
+    assert (
+        abs(np.cos(ellipse.angle) * major[1] - np.sin(ellipse.angle) * major[0]) < 1e-12
+    )
 
 
 # ---------------------------------------------------------------- one singularity test, one tolerance
@@ -244,38 +297,64 @@ def test_joint_rates_refuse_with_the_kinematics_message_and_advise_dls(q):
         kinematics.require_nonsingular(arms.two_metre, q, "solving for the joint rates")
     with pytest.raises(SingularityError) as refused:
         arms.two_metre.joint_rates(q, [0.0, 1.0])
-    assert str(refused.value) == f"{shared.value}; the joint rates are unbounded there: use joint_rates_dls"
+    assert (
+        str(refused.value)
+        == f"{shared.value}; the joint rates are unbounded there: use joint_rates_dls"
+    )
     assert refused.value.__cause__ is None and refused.value.__suppress_context__
 
 
 def test_tip_stiffness_refuses_with_the_kinematics_message_and_says_why():
     with pytest.raises(SingularityError) as shared:
-        kinematics.require_nonsingular(arms.two_metre, [0.5, np.pi], "the tip stiffness")
+        kinematics.require_nonsingular(
+            arms.two_metre, [0.5, np.pi], "the tip stiffness"
+        )
     with pytest.raises(SingularityError) as refused:
         stiffness.tip_stiffness(arms.two_metre, [0.5, np.pi], 100.0)
-    assert str(refused.value) == f"{shared.value}; along the arm the tip stiffness is unbounded"
+    assert (
+        str(refused.value)
+        == f"{shared.value}; along the arm the tip stiffness is unbounded"
+    )
 
 
-@pytest.mark.parametrize("function", [stiffness.joint_stiffness, stiffness.tip_stiffness, stiffness.stiffness_ellipse])
+@pytest.mark.parametrize(
+    "function",
+    [stiffness.joint_stiffness, stiffness.tip_stiffness, stiffness.stiffness_ellipse],
+)
 def test_stiffness_takes_one_configuration_with_the_shared_message(function):
-    with pytest.raises(ValueError, match=r"^q must be one configuration of shape \(2,\) \(radians\); got shape \(1, 2\)$"):
+    with pytest.raises(
+        ValueError,
+        match=r"^q must be one configuration of shape \(2,\) \(radians\); got shape \(1, 2\)$",
+    ):
         function(arms.two_metre, [[0.5, 1.0]], 100.0)
 
 
 @pytest.mark.parametrize(
     "function",
-    [getattr(velocity, name) for name in velocity.__all__ if callable(getattr(velocity, name))]
+    [
+        getattr(velocity, name)
+        for name in velocity.__all__
+        if callable(getattr(velocity, name))
+    ]
     + [velocity.Ellipse.points, velocity.Ellipse.angle.fget]
     + [getattr(stiffness, name) for name in stiffness.__all__],
 )
 def test_public_functions_are_fully_annotated(function):
     signature = inspect.signature(function)
-    assert all(p.annotation is not inspect.Parameter.empty for p in signature.parameters.values() if p.name != "self")
+    assert all(
+        p.annotation is not inspect.Parameter.empty
+        for p in signature.parameters.values()
+        if p.name != "self"
+    )
     assert signature.return_annotation is not inspect.Signature.empty
 
 
 def test_ellipse_spells_centre():
-    ellipse = velocity.Ellipse(centre=np.array([1.0, 2.0]), semi_axes=np.ones(2), directions=np.eye(2))
-    assert np.allclose(ellipse.points(n=5).mean(axis=0), [1.0 + 0.2, 2.0])  # the repeated first point (1, 0) shifts the mean
+    ellipse = velocity.Ellipse(
+        centre=np.array([1.0, 2.0]), semi_axes=np.ones(2), directions=np.eye(2)
+    )
+    assert np.allclose(
+        ellipse.points(n=5).mean(axis=0), [1.0 + 0.2, 2.0]
+    )  # the repeated first point (1, 0) shifts the mean
     with pytest.raises(TypeError):
         velocity.Ellipse(center=np.zeros(2), semi_axes=np.ones(2), directions=np.eye(2))

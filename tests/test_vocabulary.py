@@ -37,7 +37,11 @@ def _public_callables():
     """``{qualified name: callable}`` for every public function, class and method."""
     found = {}
     for module in _public_modules():
-        names = getattr(module, "__all__", [name for name in vars(module) if not name.startswith("_")])
+        names = getattr(
+            module,
+            "__all__",
+            [name for name in vars(module) if not name.startswith("_")],
+        )
         for name in names:
             value = getattr(module, name, None)
             if inspect.isfunction(value) and value.__module__.startswith("twolink"):
@@ -45,11 +49,20 @@ def _public_callables():
             elif inspect.isclass(value) and value.__module__.startswith("twolink"):
                 found[f"{value.__module__}.{value.__qualname__}"] = value
                 for attribute, member in vars(value).items():
-                    if attribute.startswith("_") and attribute not in ("__init__", "__call__"):
+                    if attribute.startswith("_") and attribute not in (
+                        "__init__",
+                        "__call__",
+                    ):
                         continue
-                    function = member.__func__ if isinstance(member, (classmethod, staticmethod)) else member
+                    function = (
+                        member.__func__
+                        if isinstance(member, (classmethod, staticmethod))
+                        else member
+                    )
                     if inspect.isfunction(function):
-                        found[f"{value.__module__}.{value.__qualname__}.{attribute}"] = function
+                        found[
+                            f"{value.__module__}.{value.__qualname__}.{attribute}"
+                        ] = function
     return found
 
 
@@ -73,21 +86,41 @@ def test_the_walk_finds_the_api():
 
 #: Every public callable with an ``elbow`` parameter, with a call that supplies the rest.
 ELBOW_CALLS = {
-    "twolink.ik.analytic.closed_form": lambda elbow: twolink.ik.closed_form(arms.ten, [10.0, 10.0], elbow=elbow),
-    "twolink.trajectory.ik_trajectory": lambda elbow: twolink.trajectory.ik_trajectory(
-        arms.ten, twolink.trajectory.LinePath([12.0, 12.0], [13.0, 14.0], duration=1.0), n=5, elbow=elbow
+    "twolink.ik.analytic.closed_form": lambda elbow: twolink.ik.closed_form(
+        arms.ten, [10.0, 10.0], elbow=elbow
     ),
-    "twolink.trajectory.resolved_rate_trajectory": lambda elbow: twolink.trajectory.resolved_rate_trajectory(
-        arms.ten, twolink.trajectory.LinePath([12.0, 12.0], [13.0, 14.0], duration=1.0), n=5, elbow=elbow
+    "twolink.trajectory.ik_trajectory": lambda elbow: twolink.trajectory.ik_trajectory(
+        arms.ten,
+        twolink.trajectory.LinePath([12.0, 12.0], [13.0, 14.0], duration=1.0),
+        n=5,
+        elbow=elbow,
+    ),
+    "twolink.trajectory.resolved_rate_trajectory": lambda elbow: (
+        twolink.trajectory.resolved_rate_trajectory(
+            arms.ten,
+            twolink.trajectory.LinePath([12.0, 12.0], [13.0, 14.0], duration=1.0),
+            n=5,
+            elbow=elbow,
+        )
     ),
     "twolink.engine.wall_push": lambda elbow: twolink.engine.wall_push(
-        arms.two_metre, twolink.statics.Wall([1.5, 0.0], [1.0, 0.0]), 10.0, duration=0.05, elbow=elbow
+        arms.two_metre,
+        twolink.statics.Wall([1.5, 0.0], [1.0, 0.0]),
+        10.0,
+        duration=0.05,
+        elbow=elbow,
     ),
-    "twolink.workspace.is_reachable": lambda elbow: twolink.workspace.is_reachable(arms.ten, [10.0, 10.0], elbow=elbow),
-    "twolink.workspace.boundary_arcs": lambda elbow: twolink.workspace.boundary_arcs(arms.ten, elbow=elbow),
-    "twolink.workspace.clearance": lambda elbow: twolink.workspace.clearance(arms.ten, [10.0, 10.0], elbow=elbow),
-    "twolink.workspace.largest_inscribed_circle": lambda elbow: twolink.workspace.largest_inscribed_circle(
-        arms.ten, starts=1, elbow=elbow
+    "twolink.workspace.is_reachable": lambda elbow: twolink.workspace.is_reachable(
+        arms.ten, [10.0, 10.0], elbow=elbow
+    ),
+    "twolink.workspace.boundary_arcs": lambda elbow: twolink.workspace.boundary_arcs(
+        arms.ten, elbow=elbow
+    ),
+    "twolink.workspace.clearance": lambda elbow: twolink.workspace.clearance(
+        arms.ten, [10.0, 10.0], elbow=elbow
+    ),
+    "twolink.workspace.largest_inscribed_circle": lambda elbow: (
+        twolink.workspace.largest_inscribed_circle(arms.ten, starts=1, elbow=elbow)
     ),
 }
 
@@ -104,7 +137,9 @@ ELBOW_LABELS = {
 
 
 def _with_elbow():
-    return sorted(name for name, function in CALLABLES.items() if "elbow" in _parameters(function))
+    return sorted(
+        name for name, function in CALLABLES.items() if "elbow" in _parameters(function)
+    )
 
 
 def test_every_elbow_parameter_is_known_here():
@@ -131,7 +166,10 @@ def test_both_is_given_a_meaning_or_refused_with_a_reason(name):
         ELBOW_CALLS[name]("both")
     except ValueError as error:
         message = str(error)
-        assert message.startswith("elbow must be one of") and "here; got 'both' (" in message, message
+        assert (
+            message.startswith("elbow must be one of")
+            and "here; got 'both' (" in message
+        ), message
 
 
 @pytest.mark.parametrize("name", sorted(ELBOW_CALLS))
@@ -178,12 +216,28 @@ def test_no_public_parameter_uses_a_retired_name():
 def test_no_public_attribute_or_name_is_spelled_center():
     offenders = []
     for module in _public_modules():
-        offenders += [f"{module.__name__}.{name}" for name in vars(module) if "center" in name.lower()]
+        offenders += [
+            f"{module.__name__}.{name}"
+            for name in vars(module)
+            if "center" in name.lower()
+        ]
     for name, value in CALLABLES.items():
         if inspect.isclass(value):
-            fields = [field.name for field in dataclasses.fields(value)] if dataclasses.is_dataclass(value) else []
-            offenders += [f"{name}.{attribute}" for attribute in list(vars(value)) + fields if "center" in attribute.lower()]
-        offenders += [f"{name}({parameter})" for parameter in _parameters(value) if "center" in parameter.lower()]
+            fields = (
+                [field.name for field in dataclasses.fields(value)]
+                if dataclasses.is_dataclass(value)
+                else []
+            )
+            offenders += [
+                f"{name}.{attribute}"
+                for attribute in list(vars(value)) + fields
+                if "center" in attribute.lower()
+            ]
+        offenders += [
+            f"{name}({parameter})"
+            for parameter in _parameters(value)
+            if "center" in parameter.lower()
+        ]
     assert not offenders, offenders
 
 
@@ -193,7 +247,8 @@ def test_force_names_say_which_force():
         f"{name}({parameter})"
         for name, function in CALLABLES.items()
         for parameter in _parameters(function)
-        if "force" in parameter and parameter not in ("force_by_tip", "force_on_tip", "force_magnitude")
+        if "force" in parameter
+        and parameter not in ("force_by_tip", "force_on_tip", "force_magnitude")
     ]
     assert not offenders, offenders
 
@@ -202,7 +257,8 @@ def test_ax_is_keyword_only_wherever_it_appears():
     offenders = [
         name
         for name, function in CALLABLES.items()
-        if "ax" in _parameters(function) and _parameters(function)["ax"].kind is not inspect.Parameter.KEYWORD_ONLY
+        if "ax" in _parameters(function)
+        and _parameters(function)["ax"].kind is not inspect.Parameter.KEYWORD_ONLY
     ]
     assert not offenders, offenders
 
@@ -210,7 +266,11 @@ def test_ax_is_keyword_only_wherever_it_appears():
 def test_ax_comes_first_among_the_keyword_only_parameters():
     offenders = []
     for name, function in CALLABLES.items():
-        keyword_only = [p for p, v in _parameters(function).items() if v.kind is inspect.Parameter.KEYWORD_ONLY]
+        keyword_only = [
+            p
+            for p, v in _parameters(function).items()
+            if v.kind is inspect.Parameter.KEYWORD_ONLY
+        ]
         if "ax" in keyword_only and keyword_only[0] != "ax":
             offenders.append(f"{name}: {keyword_only}")
     assert not offenders, offenders
@@ -223,6 +283,7 @@ def test_the_limit_convention_is_named_as_such():
 
 
 # ----------------------------------------------------------------------------- IK results
+
 
 @pytest.mark.parametrize(
     "solve",
@@ -238,4 +299,6 @@ def test_every_ik_solver_returns_an_ikresult(solve):
     result = solve([10.0, 10.0])
     assert isinstance(result, twolink.ik.IKResult)
     assert result.q.shape == (2,) and bool(result.success)
-    assert float(result.residual) == pytest.approx(float(np.hypot(*(arms.ten.fk(result.q) - [10.0, 10.0]))), abs=1e-15)
+    assert float(result.residual) == pytest.approx(
+        float(np.hypot(*(arms.ten.fk(result.q) - [10.0, 10.0]))), abs=1e-15
+    )

@@ -4,11 +4,19 @@ import re
 
 import numpy as np
 import pytest
-from conftest import angles, lengths, unit
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
-from twolink import TwoLinkArm, UnreachableError, arms, ik, kinematics, to_absolute, workspace
+from conftest import angles, lengths, unit
+from twolink import (
+    TwoLinkArm,
+    UnreachableError,
+    arms,
+    ik,
+    kinematics,
+    to_absolute,
+    workspace,
+)
 from twolink.arcs import Arc, circle_intersections
 from twolink.errors import InputTypeError
 
@@ -19,13 +27,23 @@ def limited_arms(draw):
     l1 = draw(lengths)
     l2 = draw(st.floats(min_value=max(0.05, l1 / 20), max_value=min(20.0, l1 * 20)))
     low = np.array([draw(angles), draw(angles)])
-    width = np.array([draw(st.floats(0.05, 2 * np.pi)), draw(st.floats(0.05, 2 * np.pi))])
-    return TwoLinkArm(l1, l2, q_min=tuple(low), q_max=tuple(low + width), limit_convention=draw(st.sampled_from(["relative", "absolute"])))
+    width = np.array(
+        [draw(st.floats(0.05, 2 * np.pi)), draw(st.floats(0.05, 2 * np.pi))]
+    )
+    return TwoLinkArm(
+        l1,
+        l2,
+        q_min=tuple(low),
+        q_max=tuple(low + width),
+        limit_convention=draw(st.sampled_from(["relative", "absolute"])),
+    )
 
 
 def configuration_within(arm, fractions):
     """The configuration at ``fractions`` (each in [0, 1]) across the limit box, in relative angles."""
-    angles_in_box = np.asarray(arm.q_min) + np.asarray(fractions) * (np.asarray(arm.q_max) - np.asarray(arm.q_min))
+    angles_in_box = np.asarray(arm.q_min) + np.asarray(fractions) * (
+        np.asarray(arm.q_max) - np.asarray(arm.q_min)
+    )
     if arm.limit_convention == "absolute":
         return np.array([angles_in_box[0], angles_in_box[1] - angles_in_box[0]])
     return angles_in_box
@@ -43,7 +61,9 @@ def ten_region(p, elbow="auto"):
     in_band = (r >= 10 * np.sqrt(2)) & (r <= 20.0)
     down = (direction - half_bend >= 0.0) & (direction - half_bend <= np.pi / 2)
     up = (direction + half_bend >= 0.0) & (direction + half_bend <= np.pi / 2)
-    return in_band & {"auto": down | up, "down": down, "up": up, "both": down & up}[elbow]
+    return (
+        in_band & {"auto": down | up, "down": down, "up": up, "both": down & up}[elbow]
+    )
 
 
 def two_metre_limited_region(p):
@@ -65,7 +85,13 @@ def two_metre_limited_region(p):
         (arms.ten, ten_region, (0.0, 20.0), "both"),  # a smaller region: a smaller box
         (arms.two_metre_limited, two_metre_limited_region, (-5.0, 5.0), "auto"),
     ],
-    ids=["ten (relative limits)", "ten, elbow down", "ten, elbow up", "ten, both elbows", "two_metre_limited (absolute limits)"],
+    ids=[
+        "ten (relative limits)",
+        "ten, elbow down",
+        "ten, elbow up",
+        "ten, both elbows",
+        "two_metre_limited (absolute limits)",
+    ],
 )
 def test_is_reachable_matches_the_geometric_description(arm, region, box, elbow):
     rng = np.random.default_rng(7)
@@ -83,9 +109,17 @@ def test_the_two_branch_workspaces_of_the_ten_arm_are_mirror_images():
     # q -> (90 deg - q1 - q2, q2 -> -q2) mirrors the tip in the 45 deg line and swaps the branches
     rng = np.random.default_rng(5)
     p = rng.uniform(-25, 25, size=(5000, 2))
-    assert np.array_equal(workspace.is_reachable(arms.ten, p, elbow="down"), workspace.is_reachable(arms.ten, p[:, ::-1], elbow="up"))
-    both = workspace.is_reachable(arms.ten, p, elbow="both")  # the region of both is its own mirror image
-    assert np.array_equal(both, workspace.is_reachable(arms.ten, p[:, ::-1], elbow="both")) and both.sum() > 50
+    assert np.array_equal(
+        workspace.is_reachable(arms.ten, p, elbow="down"),
+        workspace.is_reachable(arms.ten, p[:, ::-1], elbow="up"),
+    )
+    both = workspace.is_reachable(
+        arms.ten, p, elbow="both"
+    )  # the region of both is its own mirror image
+    assert (
+        np.array_equal(both, workspace.is_reachable(arms.ten, p[:, ::-1], elbow="both"))
+        and both.sum() > 50
+    )
 
 
 @pytest.mark.parametrize("elbow", [None, "either", "elbow down", 0], ids=repr)
@@ -102,24 +136,47 @@ def test_workspace_functions_name_the_elbow_words(elbow):
 
 
 def test_the_elbow_words_of_is_reachable():
-    p = np.array([[15.0, 1.0], [1.0, 15.0], [12.5, 12.5], [5.0, -15.0]])  # up only, down only, both, neither
+    p = np.array(
+        [[15.0, 1.0], [1.0, 15.0], [12.5, 12.5], [5.0, -15.0]]
+    )  # up only, down only, both, neither
     valid = ik.solutions_within_limits(arms.ten, p)[1]
-    assert valid.tolist() == [[False, True], [True, False], [True, True], [False, False]]
-    expected = {"auto": [1, 1, 1, 0], "down": [0, 1, 1, 0], "up": [1, 0, 1, 0], "both": [0, 0, 1, 0]}
+    assert valid.tolist() == [
+        [False, True],
+        [True, False],
+        [True, True],
+        [False, False],
+    ]
+    expected = {
+        "auto": [1, 1, 1, 0],
+        "down": [0, 1, 1, 0],
+        "up": [1, 0, 1, 0],
+        "both": [0, 0, 1, 0],
+    }
     for elbow, reached in expected.items():
-        assert workspace.is_reachable(arms.ten, p, elbow=elbow).tolist() == [bool(r) for r in reached], elbow
+        assert workspace.is_reachable(arms.ten, p, elbow=elbow).tolist() == [
+            bool(r) for r in reached
+        ], elbow
     assert workspace.is_reachable(arms.ten, [12.5, 12.5]).ndim == 0
 
 
 def test_solutions_within_limits_lives_in_ik_and_workspace_builds_on_it():
-    assert "solutions_within_limits" not in workspace.__all__ and "solutions_within_limits" in ik.__all__
+    assert (
+        "solutions_within_limits" not in workspace.__all__
+        and "solutions_within_limits" in ik.__all__
+    )
     assert workspace.LIMIT_TOL is ik.LIMIT_TOL
     import twolink.workspace as module
 
-    assert module.solutions_within_limits is ik.solutions_within_limits  # imported, not a copy
+    assert (
+        module.solutions_within_limits is ik.solutions_within_limits
+    )  # imported, not a copy
 
 
-@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited, arms.two_metre], ids=lambda arm: str(arm.limit_convention))
+@pytest.mark.parametrize(
+    "arm",
+    [arms.ten, arms.two_metre_limited, arms.two_metre],
+    ids=lambda arm: str(arm.limit_convention),
+)
 def test_every_point_returned_as_reachable_is_reached_by_ik_within_limits(arm):
     rng = np.random.default_rng(3)
     scale = arm.reach[1] * 1.2
@@ -131,7 +188,10 @@ def test_every_point_returned_as_reachable_is_reached_by_ik_within_limits(arm):
         chosen = valid[:, branch]
         q = q_both[chosen, branch]
         assert np.all(arm.within_limits(q, tol=workspace.LIMIT_TOL))
-        assert np.max(np.hypot(*(arm.fk(q) - p[chosen]).T), initial=0.0) <= 1e-12 * arm.reach[1]
+        assert (
+            np.max(np.hypot(*(arm.fk(q) - p[chosen]).T), initial=0.0)
+            <= 1e-12 * arm.reach[1]
+        )
 
 
 def test_sampled_points_are_reachable_and_their_configurations_within_limits():
@@ -143,8 +203,20 @@ def test_sampled_points_are_reachable_and_their_configurations_within_limits():
 
 
 # the folded equal-link arm: fk lands a round-off from the base, in a direction that says nothing about q1
-@example(arm=TwoLinkArm(1.0, 1.0, q_min=(1.0, np.pi), q_max=(2.0, np.pi + 1.0)), u=0.0, v=0.0)
-@example(arm=TwoLinkArm(1.0, 1.0, q_min=(1.0, np.pi + 1.0), q_max=(2.0, np.pi + 2.0), limit_convention="absolute"), u=0.0, v=0.0)
+@example(
+    arm=TwoLinkArm(1.0, 1.0, q_min=(1.0, np.pi), q_max=(2.0, np.pi + 1.0)), u=0.0, v=0.0
+)
+@example(
+    arm=TwoLinkArm(
+        1.0,
+        1.0,
+        q_min=(1.0, np.pi + 1.0),
+        q_max=(2.0, np.pi + 2.0),
+        limit_convention="absolute",
+    ),
+    u=0.0,
+    v=0.0,
+)
 @given(arm=limited_arms(), u=unit, v=unit)
 def test_every_configuration_within_limits_reaches_a_reachable_point(arm, u, v):
     """Completeness: with the soundness test above, is_reachable(p) <=> some configuration within limits reaches p."""
@@ -154,7 +226,9 @@ def test_every_configuration_within_limits_reaches_a_reachable_point(arm, u, v):
 
 
 @given(arm=limited_arms(), fraction=unit, heading=angles)
-def test_reachable_points_of_random_limited_arms_have_a_valid_configuration(arm, fraction, heading):
+def test_reachable_points_of_random_limited_arms_have_a_valid_configuration(
+    arm, fraction, heading
+):
     r_min, r_max = arm.reach
     radius = r_min + fraction * (r_max - r_min)
     p = radius * np.array([np.cos(heading), np.sin(heading)])
@@ -172,12 +246,21 @@ def test_points_outside_are_rejected():
     assert workspace.is_reachable(arms.two_metre, [0.0, 0.0])
     # inside the annulus but only by configurations that break the limits
     assert not workspace.is_reachable(arms.ten, [0.0, 0.0])  # needs q2 = 180 deg
-    assert workspace.is_reachable(arms.ten, [-10.0, 10.0])  # the corner q = (90, 90) deg
+    assert workspace.is_reachable(
+        arms.ten, [-10.0, 10.0]
+    )  # the corner q = (90, 90) deg
     assert not workspace.is_reachable(arms.ten, [-12.0, 12.0])  # needs q1 > 90 deg
     assert not workspace.is_reachable(arms.ten, [5.0, -15.0])  # needs q1 < 0
-    assert not workspace.is_reachable(arms.two_metre_limited, [-3.5, 1.0])  # link 2 at 188.5 deg
-    assert not workspace.is_reachable(arms.two_metre_limited, [0.0, 2.0])  # links 120 deg apart > 110
-    for q_outside in ([np.radians(-50.0), np.radians(30.0)], [np.radians(40.0), np.radians(120.0)]):
+    assert not workspace.is_reachable(
+        arms.two_metre_limited, [-3.5, 1.0]
+    )  # link 2 at 188.5 deg
+    assert not workspace.is_reachable(
+        arms.two_metre_limited, [0.0, 2.0]
+    )  # links 120 deg apart > 110
+    for q_outside in (
+        [np.radians(-50.0), np.radians(30.0)],
+        [np.radians(40.0), np.radians(120.0)],
+    ):
         # for arms.ten, the other branch of these is outside the limits too
         p = arms.ten.fk(q_outside)
         _, valid = ik.solutions_within_limits(arms.ten, p)
@@ -197,7 +280,9 @@ def test_bad_input_is_refused():
 
 
 def test_require_reachable_names_the_first_point_outside_the_reach():
-    path = np.array([[12.0, 12.0], [13.0, 13.0], [14.5, 14.5], [15.0, 15.0]])  # |p| = 20.5 at index 2
+    path = np.array(
+        [[12.0, 12.0], [13.0, 13.0], [14.5, 14.5], [15.0, 15.0]]
+    )  # |p| = 20.5 at index 2
     with pytest.raises(UnreachableError) as caught:
         workspace.require_reachable(arms.ten, path, what="path point")
     message = str(caught.value)
@@ -211,14 +296,21 @@ def test_require_reachable_names_the_first_point_outside_the_reach():
 
 
 def test_require_reachable_names_the_limits_when_inside_the_reach():
-    path = np.array([[12.5, 12.5], [0.0, 16.0], [-12.0, 12.0]])  # (0, 16): direction 90 deg, fine; (-12, 12) is not
+    path = np.array(
+        [[12.5, 12.5], [0.0, 16.0], [-12.0, 12.0]]
+    )  # (0, 16): direction 90 deg, fine; (-12, 12) is not
     with pytest.raises(UnreachableError) as caught:
         workspace.require_reachable(arms.ten, path, what="path point")
     message = str(caught.value)
-    assert message.startswith(f"path point (-12, 12) (index (2,), first of 1) is {np.hypot(12, 12):.6g} m from the base")
+    assert message.startswith(
+        f"path point (-12, 12) (index (2,), first of 1) is {np.hypot(12, 12):.6g} m from the base"
+    )
     assert "inside the reach [0, 20] m but outside the joint limits" in message
     assert workspace.describe_limits(arms.ten) in message
-    numbers = [float(value) for value in re.findall(r"q = \(([-\d.e+]+), ([-\d.e+]+)\) deg", message)[0]]
+    numbers = [
+        float(value)
+        for value in re.findall(r"q = \(([-\d.e+]+), ([-\d.e+]+)\) deg", message)[0]
+    ]
     assert numbers[0] > 90.0  # the elbow-down q1 breaks q1 <= 90 deg
 
 
@@ -230,14 +322,20 @@ def test_require_reachable_returns_the_points_when_all_are_inside():
 # ---------------------------------------------------------------- boundary arcs
 
 
-@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited], ids=["ten", "two_metre_limited"])
+@pytest.mark.parametrize(
+    "arm", [arms.ten, arms.two_metre_limited], ids=["ten", "two_metre_limited"]
+)
 def test_candidate_arcs_are_traced_by_configurations_within_limits(arm):
     for arc in workspace.candidate_arcs(arm):
         points = arc.points(50)
         assert np.all(workspace.is_reachable(arm, points)), arc.label
 
 
-@pytest.mark.parametrize("arm", [arms.ten, arms.two_metre_limited, arms.two_metre], ids=["ten", "two_metre_limited", "two_metre"])
+@pytest.mark.parametrize(
+    "arm",
+    [arms.ten, arms.two_metre_limited, arms.two_metre],
+    ids=["ten", "two_metre_limited", "two_metre"],
+)
 def test_boundary_arcs_separate_reachable_from_unreachable(arm):
     arcs = workspace.boundary_arcs(arm)
     assert arcs
@@ -258,13 +356,20 @@ def test_boundary_arcs_separate_reachable_from_unreachable(arm):
 def test_boundary_arcs_and_clearance_of_random_limited_arms(arm, elbow):
     """No boundary arc runs through the inside, and the sign of clearance is reachability."""
     arcs = workspace.boundary_arcs(arm, elbow=elbow)
-    if not arcs:  # one branch may reach nothing within the limits: then no configuration is on it
+    if (
+        not arcs
+    ):  # one branch may reach nothing within the limits: then no configuration is on it
         p, q = workspace.sample_reachable(arm, 500)
         if elbow == "both":  # and then no point is reached on both branches
             assert not np.any(workspace.is_reachable(arm, p, elbow="both"))
         else:
-            assert elbow != "auto" and np.all(np.sin(q[:, 1]) * (1 if elbow == "down" else -1) <= 1e-6)
-        assert np.all(workspace.clearance(arm, [[0.0, 0.0], [1.0, 1.0]], arcs, elbow=elbow) == -np.inf)
+            assert elbow != "auto" and np.all(
+                np.sin(q[:, 1]) * (1 if elbow == "down" else -1) <= 1e-6
+            )
+        assert np.all(
+            workspace.clearance(arm, [[0.0, 0.0], [1.0, 1.0]], arcs, elbow=elbow)
+            == -np.inf
+        )
         return
     assert arcs
     probe = 1e-4 * arm.reach[1]
@@ -273,7 +378,11 @@ def test_boundary_arcs_and_clearance_of_random_limited_arms(arm, elbow):
     for arc in arcs:
         on_arc = arc.point_at(np.linspace(0.1, 0.9, 9))
         assert np.all(workspace.is_reachable(arm, on_arc, elbow=elbow)), arc
-        assert not np.any(workspace.is_reachable(arm, on_arc[:, None, :] + ring, elbow=elbow).all(axis=1)), arc
+        assert not np.any(
+            workspace.is_reachable(arm, on_arc[:, None, :] + ring, elbow=elbow).all(
+                axis=1
+            )
+        ), arc
     rng = np.random.default_rng(0)
     p = rng.uniform(-1.1, 1.1, (2000, 2)) * arm.reach[1]
     room = workspace.clearance(arm, p, arcs, elbow=elbow)
@@ -283,7 +392,13 @@ def test_boundary_arcs_and_clearance_of_random_limited_arms(arm, elbow):
 
 def test_boundary_of_the_ten_arm_is_the_expected_five_arcs():
     arcs = {arc.label: arc for arc in workspace.boundary_arcs(arms.ten)}
-    assert set(arcs) == {"q1 = 0 deg", "q1 = 90 deg", "q2 = -90 deg", "q2 = 90 deg", "q2 = 0 deg (full stretch)"}
+    assert set(arcs) == {
+        "q1 = 0 deg",
+        "q1 = 90 deg",
+        "q2 = -90 deg",
+        "q2 = 90 deg",
+        "q2 = 0 deg (full stretch)",
+    }
     assert arcs["q2 = 0 deg (full stretch)"].radius == pytest.approx(20.0)
     assert arcs["q2 = 90 deg"].radius == pytest.approx(10 * np.sqrt(2))
     # q1 = 0: only the half with q2 <= 0 (elbow up, tip below the x-axis) is on the boundary
@@ -338,16 +453,24 @@ def test_largest_circle_of_the_limited_two_metre_arm_matches_its_closed_form():
 
 def test_largest_circle_of_an_arm_without_limits_is_the_reach_disc_or_band():
     centre, radius = workspace.largest_inscribed_circle(arms.two_metre)
-    assert radius == pytest.approx(4.0, abs=1e-8) and np.allclose(centre, 0.0, atol=1e-6)
+    assert radius == pytest.approx(4.0, abs=1e-8) and np.allclose(
+        centre, 0.0, atol=1e-6
+    )
     centre, radius = workspace.largest_inscribed_circle(TwoLinkArm(3.0, 1.0))
-    assert radius == pytest.approx(1.0, abs=1e-8) and np.hypot(*centre) == pytest.approx(3.0, abs=1e-6)
+    assert radius == pytest.approx(1.0, abs=1e-8) and np.hypot(
+        *centre
+    ) == pytest.approx(3.0, abs=1e-6)
 
 
 # ---------------------------------------------------------------- circle points and arcs
 
 
 @given(
-    x=st.floats(-10, 10), y=st.floats(-10, 10), radius=st.floats(0.01, 10), n=st.integers(1, 40), start=angles
+    x=st.floats(-10, 10),
+    y=st.floats(-10, 10),
+    radius=st.floats(0.01, 10),
+    n=st.integers(1, 40),
+    start=angles,
 )
 def test_circle_points_are_equally_spaced_on_the_circle(x, y, radius, n, start):
     points = workspace.circle_points([x, y], radius, n, start_angle=start)
@@ -359,26 +482,44 @@ def test_circle_points_are_equally_spaced_on_the_circle(x, y, radius, n, start):
 
 
 def test_circle_points_refuses_bad_input():
-    for bad in (dict(radius=0.0, n=5), dict(radius=1.0, n=0), dict(radius=1.0, n=2.5), dict(radius=np.inf, n=3)):
+    for bad in (
+        dict(radius=0.0, n=5),
+        dict(radius=1.0, n=0),
+        dict(radius=1.0, n=2.5),
+        dict(radius=np.inf, n=3),
+    ):
         with pytest.raises(ValueError):
             workspace.circle_points([0.0, 0.0], **bad)
 
 
 @given(
-    radius=st.floats(0.1, 5), start=angles, sweep=st.floats(-2 * np.pi, 2 * np.pi), px=st.floats(-8, 8), py=st.floats(-8, 8)
+    radius=st.floats(0.1, 5),
+    start=angles,
+    sweep=st.floats(-2 * np.pi, 2 * np.pi),
+    px=st.floats(-8, 8),
+    py=st.floats(-8, 8),
 )
-def test_arc_distance_is_the_distance_to_its_nearest_point(radius, start, sweep, px, py):
+def test_arc_distance_is_the_distance_to_its_nearest_point(
+    radius, start, sweep, px, py
+):
     assume(abs(sweep) > 1e-3)
     arc = Arc((0.5, -0.3), radius, start, sweep)
     dense = arc.points(20001)
     brute = np.min(np.hypot(*(dense - [px, py]).T))
     exact = float(arc.distance([px, py]))
     assert exact <= brute + 1e-12
-    assert brute - exact <= radius * abs(sweep) / 20000  # the dense points are this far apart at most
+    assert (
+        brute - exact <= radius * abs(sweep) / 20000
+    )  # the dense points are this far apart at most
 
 
 @given(
-    ax=st.floats(-3, 3), ay=st.floats(-3, 3), ra=st.floats(0.1, 3), bx=st.floats(-3, 3), by=st.floats(-3, 3), rb=st.floats(0.1, 3)
+    ax=st.floats(-3, 3),
+    ay=st.floats(-3, 3),
+    ra=st.floats(0.1, 3),
+    bx=st.floats(-3, 3),
+    by=st.floats(-3, 3),
+    rb=st.floats(0.1, 3),
 )
 def test_circle_intersections_lie_on_both_circles(ax, ay, ra, bx, by, rb):
     points = circle_intersections((ax, ay), ra, (bx, by), rb)
@@ -395,24 +536,41 @@ def test_arc_split_and_fraction_round_trip():
     pieces = arc.split([0.25, 0.5])
     assert sum(piece.sweep for piece in pieces) == pytest.approx(arc.sweep)
     assert np.allclose(pieces[1].end_points, arc.point_at(np.array([0.25, 0.5])))
-    assert np.allclose(arc.fraction_of(arc.point_at(np.array([0.0, 0.3, 1.0]))), [0.0, 0.3, 1.0])
-    assert arc.fraction_of(arc.point_at(np.array(1.5)) * 0 + [1.0 + 3.0 * np.cos(1.0), 2.0 + 3.0 * np.sin(1.0)]) == -1.0
+    assert np.allclose(
+        arc.fraction_of(arc.point_at(np.array([0.0, 0.3, 1.0]))), [0.0, 0.3, 1.0]
+    )
+    assert (
+        arc.fraction_of(
+            arc.point_at(np.array(1.5)) * 0
+            + [1.0 + 3.0 * np.cos(1.0), 2.0 + 3.0 * np.sin(1.0)]
+        )
+        == -1.0
+    )
 
 
 def test_limit_description_is_in_degrees_and_names_the_convention():
     assert "relative" in workspace.describe_limits(arms.ten)
     assert "absolute" in workspace.describe_limits(arms.two_metre_limited)
     assert workspace.describe_limits(arms.two_metre) == "no joint limits"
-    assert np.allclose(np.degrees(to_absolute(configuration_within(arms.two_metre_limited, [0.0, 1.0]))), [35.0, 145.0])
+    assert np.allclose(
+        np.degrees(
+            to_absolute(configuration_within(arms.two_metre_limited, [0.0, 1.0]))
+        ),
+        [35.0, 145.0],
+    )
 
 
 @given(arm=limited_arms(), q1=st.floats(-10.0, 10.0), q2=st.floats(-10.0, 10.0))
-def test_move_into_limits_turns_angles_by_whole_turns_only_where_that_helps(arm, q1, q2):
+def test_move_into_limits_turns_angles_by_whole_turns_only_where_that_helps(
+    arm, q1, q2
+):
     from twolink.ik.limits import move_into_limits
 
     q = np.array([q1, q2])
     moved, inside = move_into_limits(arm, q)
-    assert np.allclose(arm.fk(moved), arm.fk(q), atol=1e-12 * arm.reach[1] + 1e-12)  # the same pose
+    assert np.allclose(
+        arm.fk(moved), arm.fk(q), atol=1e-12 * arm.reach[1] + 1e-12
+    )  # the same pose
     turns = (moved - q) / (2 * np.pi)
     assert np.allclose(turns, np.round(turns), atol=1e-9)
     assert bool(inside) == bool(arm.within_limits(moved, tol=ik.LIMIT_TOL))
@@ -421,23 +579,35 @@ def test_move_into_limits_turns_angles_by_whole_turns_only_where_that_helps(arm,
 
 
 @given(arm=limited_arms(), fraction=unit, heading=angles)
-def test_closed_form_auto_is_within_the_limits_exactly_where_the_point_is_reachable(arm, fraction, heading):
+def test_closed_form_auto_is_within_the_limits_exactly_where_the_point_is_reachable(
+    arm, fraction, heading
+):
     r_min, r_max = arm.reach
-    p = (r_min + fraction * (r_max - r_min)) * np.array([np.cos(heading), np.sin(heading)])
+    p = (r_min + fraction * (r_max - r_min)) * np.array(
+        [np.cos(heading), np.sin(heading)]
+    )
     auto = ik.closed_form(arm, p, elbow="auto")
-    assert bool(arm.within_limits(auto.q, tol=ik.LIMIT_TOL)) == bool(workspace.is_reachable(arm, p))
+    assert bool(arm.within_limits(auto.q, tol=ik.LIMIT_TOL)) == bool(
+        workspace.is_reachable(arm, p)
+    )
     assert auto.success and auto.residual <= 1e-9 * r_max
 
 
 # ----------------------------------------------------------------- edges: arguments refused with their names
 @pytest.mark.parametrize("probe", [0, -1, 1e-9, 0.5])
 def test_boundary_arcs_refuses_a_probe_ring_outside_its_range(probe):
-    with pytest.raises(ValueError, match=r"probe \(ring radius / reach\) must be in \[1e-06, 0.01\]; got "):
+    with pytest.raises(
+        ValueError,
+        match=r"probe \(ring radius / reach\) must be in \[1e-06, 0.01\]; got ",
+    ):
         workspace.boundary_arcs(arms.ten, probe)
 
 
 def test_boundary_arcs_refuses_a_string_probe():
-    with pytest.raises(InputTypeError, match=r"probe \(ring radius / reach\) must be a real number; got 'x'"):
+    with pytest.raises(
+        InputTypeError,
+        match=r"probe \(ring radius / reach\) must be a real number; got 'x'",
+    ):
         workspace.boundary_arcs(arms.ten, "x")
 
 
@@ -448,27 +618,42 @@ def test_boundary_arcs_at_either_end_of_the_probe_range_finds_the_same_edges(pro
     ]
 
 
-@pytest.mark.parametrize("call", [workspace.describe_limits, workspace.candidate_arcs, workspace.sample_reachable])
+@pytest.mark.parametrize(
+    "call",
+    [workspace.describe_limits, workspace.candidate_arcs, workspace.sample_reachable],
+)
 def test_none_for_the_arm_is_refused_naming_arm(call):
-    with pytest.raises(InputTypeError, match=r"arm must be a twolink.TwoLinkArm; got None"):
+    with pytest.raises(
+        InputTypeError, match=r"arm must be a twolink.TwoLinkArm; got None"
+    ):
         call(None)
 
 
 def test_largest_inscribed_circle_refuses_more_starts_than_it_has_candidates_at_once():
-    with pytest.raises(ValueError, match=r"starts must be an integer <= 4000; got 1000000000000"):
+    with pytest.raises(
+        ValueError, match=r"starts must be an integer <= 4000; got 1000000000000"
+    ):
         workspace.largest_inscribed_circle(arms.ten, starts=10**12)
 
 
 def test_largest_inscribed_circle_stops_at_its_wall_time_budget_saying_what_to_change():
-    with pytest.raises(RuntimeError, match=r"used up its budget of max_wall_time = 0.3 s after \d+ of \d+ starts .*fewer starts"):
+    with pytest.raises(
+        RuntimeError,
+        match=r"used up its budget of max_wall_time = 0.3 s after \d+ of \d+ starts .*fewer starts",
+    ):
         workspace.largest_inscribed_circle(arms.ten, starts=200, max_wall_time=0.3)
 
 
-
 @pytest.mark.parametrize("convention", ["relative", "absolute"])
-def test_the_base_is_reachable_when_a_folded_configuration_is_within_the_limits(convention):
+def test_the_base_is_reachable_when_a_folded_configuration_is_within_the_limits(
+    convention,
+):
     """At the base of an equal-link arm every q1 reaches: both branches take one within the limits."""
-    q_min, q_max = ((1.0, np.pi), (2.0, np.pi + 1.0)) if convention == "relative" else ((1.0, np.pi + 1.0), (2.0, np.pi + 2.0))
+    q_min, q_max = (
+        ((1.0, np.pi), (2.0, np.pi + 1.0))
+        if convention == "relative"
+        else ((1.0, np.pi + 1.0), (2.0, np.pi + 2.0))
+    )
     arm = TwoLinkArm(1.0, 1.0, q_min=q_min, q_max=q_max, limit_convention=convention)
     q_folded = [1.5, np.pi]  # relative angles
     assert arm.within_limits(q_folded)
@@ -481,8 +666,14 @@ def test_the_base_is_reachable_when_a_folded_configuration_is_within_the_limits(
     assert auto.within_limits.all() and auto.all_success
     for target in p:
         assert ik.closed_form(arm, target.tolist(), elbow="auto").within_limits
-    narrow = TwoLinkArm(1.0, 1.0, q_min=(0.0, 0.0), q_max=(0.5, 3.0), limit_convention=convention)
-    assert not workspace.is_reachable(narrow, [0.0, 0.0])  # no folded configuration within these limits
+    narrow = TwoLinkArm(
+        1.0, 1.0, q_min=(0.0, 0.0), q_max=(0.5, 3.0), limit_convention=convention
+    )
+    assert not workspace.is_reachable(
+        narrow, [0.0, 0.0]
+    )  # no folded configuration within these limits
     assert not ik.closed_form(narrow, [0.0, 0.0], elbow="auto").within_limits
-    unequal = TwoLinkArm(1.0, 1.0 + 1e-6, q_min=q_min, q_max=q_max, limit_convention=convention)
+    unequal = TwoLinkArm(
+        1.0, 1.0 + 1e-6, q_min=q_min, q_max=q_max, limit_convention=convention
+    )
     assert not workspace.is_reachable(unequal, [0.0, 0.0])  # the base is out of reach

@@ -40,7 +40,11 @@ STUB_COMMENT = "# your code here"
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 SOLUTION_BLOCK = re.compile(
-    r"^(?P<indent>[ \t]*)" + re.escape(BEGIN) + r"[^\n]*\n(?P<body>.*?)^[ \t]*" + re.escape(END) + r"[^\n]*(\n|$)",
+    r"^(?P<indent>[ \t]*)"
+    + re.escape(BEGIN)
+    + r"[^\n]*\n(?P<body>.*?)^[ \t]*"
+    + re.escape(END)
+    + r"[^\n]*(\n|$)",
     re.MULTILINE | re.DOTALL,
 )
 
@@ -64,7 +68,9 @@ def assigned_names(code: str) -> list[str]:
             if isinstance(node.ctx, ast.Store) and node.id not in names:
                 names.append(node.id)
 
-        def visit_FunctionDef(self, node: ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef) -> None:
+        def visit_FunctionDef(
+            self, node: ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef
+        ) -> None:
             if node.name not in names:
                 names.append(node.name)
 
@@ -73,7 +79,9 @@ def assigned_names(code: str) -> list[str]:
         def visit_Lambda(self, node: ast.AST) -> None:
             pass
 
-        visit_ListComp = visit_SetComp = visit_DictComp = visit_GeneratorExp = visit_Lambda
+        visit_ListComp = visit_SetComp = visit_DictComp = visit_GeneratorExp = (
+            visit_Lambda
+        )
 
     Collector().visit(ast.parse(code))
     return names
@@ -90,13 +98,18 @@ def stub_source(source: str, checked_names: set[str] | None = None) -> str:
 
     def replace(match: re.Match[str]) -> str:
         indent = match.group("indent")
-        body = "\n".join(line[len(indent):] if line.startswith(indent) else line for line in match.group("body").splitlines())
+        body = "\n".join(
+            line[len(indent) :] if line.startswith(indent) else line
+            for line in match.group("body").splitlines()
+        )
         names = assigned_names(body)
         if checked_names is not None:
             # stub only the answers the self-check reads, not the solution's helper variables
             names = [name for name in names if name in checked_names] or names
         if not names:
-            raise ValueError(f"a solution block assigns no name, so it cannot be stubbed:\n{match.group('body')}")
+            raise ValueError(
+                f"a solution block assigns no name, so it cannot be stubbed:\n{match.group('body')}"
+            )
         return "".join(f"{indent}{name} = ...  {STUB_COMMENT}\n" for name in names)
 
     if source.count(BEGIN) != source.count(END):
@@ -110,12 +123,18 @@ def loaded_names(code: str) -> set[str]:
     >>> sorted(loaded_names("check(p_tip, arm.fk(q))"))
     ['arm', 'check', 'p_tip', 'q']
     """
-    return {node.id for node in ast.walk(ast.parse(code)) if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)}
+    return {
+        node.id
+        for node in ast.walk(ast.parse(code))
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load)
+    }
 
 
-def next_selfcheck_names(cells: Sequence[dict[str, Any]], start: int) -> set[str] | None:
+def next_selfcheck_names(
+    cells: Sequence[dict[str, Any]], start: int
+) -> set[str] | None:
     """Names read by the first self-check cell after ``cells[start]``, before the next solution."""
-    for cell in cells[start + 1:]:
+    for cell in cells[start + 1 :]:
         if cell["cell_type"] != "code":
             continue
         source = "".join(cell["source"])
@@ -126,13 +145,17 @@ def next_selfcheck_names(cells: Sequence[dict[str, Any]], start: int) -> set[str
     return None
 
 
-INSTRUCTOR_PASSAGE = re.compile(r"<!-- BEGIN INSTRUCTOR -->.*?<!-- END INSTRUCTOR -->\n?", re.DOTALL)
+INSTRUCTOR_PASSAGE = re.compile(
+    r"<!-- BEGIN INSTRUCTOR -->.*?<!-- END INSTRUCTOR -->\n?", re.DOTALL
+)
 STUDENT_PASSAGE = re.compile(r"<!-- STUDENT: (?P<text>.*?) -->", re.DOTALL)
-WORKED_SOLUTIONS_PARAGRAPH = re.compile(r"Each exercise cell holds a worked solution.*?(?=\n\n|\Z)", re.DOTALL)
+WORKED_SOLUTIONS_PARAGRAPH = re.compile(
+    r"Each exercise cell holds a worked solution.*?(?=\n\n|\Z)", re.DOTALL
+)
 STUDENT_INSTRUCTIONS = (
     "Each exercise cell ends with one `name = ...` line per answer: replace each `...` with your\n"
     "answer (code that computes it) and run the cell after it, which checks your answers and says\n"
-    "\"not solved yet\" for any `...` left."
+    '"not solved yet" for any `...` left.'
 )
 
 
@@ -180,7 +203,9 @@ def student_notebook(notebook: dict[str, Any]) -> dict[str, Any]:
     return student
 
 
-def build_student(source_dir: str | pathlib.Path, out_dir: str | pathlib.Path) -> list[pathlib.Path]:
+def build_student(
+    source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
+) -> list[pathlib.Path]:
     """Write the student edition of every notebook in ``source_dir`` to ``out_dir``."""
     source_dir, out_dir = pathlib.Path(source_dir), pathlib.Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -188,7 +213,10 @@ def build_student(source_dir: str | pathlib.Path, out_dir: str | pathlib.Path) -
     for path in sorted(source_dir.glob("*.ipynb")):
         notebook = json.loads(path.read_text(encoding="utf-8"))
         target = out_dir / path.name
-        target.write_text(json.dumps(student_notebook(notebook), indent=1, ensure_ascii=False) + "\n", encoding="utf-8")
+        target.write_text(
+            json.dumps(student_notebook(notebook), indent=1, ensure_ascii=False) + "\n",
+            encoding="utf-8",
+        )
         written.append(target)
     return written
 
@@ -220,7 +248,9 @@ def mathjax_source() -> pathlib.Path:
     return pathlib.Path(jupyter_server_mathjax.__file__).parent / "static"
 
 
-def build_site(source_dir: str | pathlib.Path, out_dir: str | pathlib.Path) -> list[pathlib.Path]:
+def build_site(
+    source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
+) -> list[pathlib.Path]:
     """Render every notebook to HTML (nbconvert) and write an index page linking them in order."""
     source_dir, out_dir = pathlib.Path(source_dir), pathlib.Path(out_dir)
     out_dir.mkdir(parents=True, exist_ok=True)
@@ -233,11 +263,18 @@ def build_site(source_dir: str | pathlib.Path, out_dir: str | pathlib.Path) -> l
     notebooks = sorted(source_dir.glob("*.ipynb"))
     subprocess.run(
         [
-            sys.executable, "-m", "nbconvert", "--to", "html",
-            "--TemplateExporter.extra_template_basedirs=" + str(ROOT / "tools" / "site_template"),
-            "--template", "course",
+            sys.executable,
+            "-m",
+            "nbconvert",
+            "--to",
+            "html",
+            "--TemplateExporter.extra_template_basedirs="
+            + str(ROOT / "tools" / "site_template"),
+            "--template",
+            "course",
             "--HTMLExporter.mathjax_url=mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe,local/twolink",
-            "--output-dir", str(out_dir),
+            "--output-dir",
+            str(out_dir),
             *map(str, notebooks),
         ],
         check=True,
@@ -246,7 +283,9 @@ def build_site(source_dir: str | pathlib.Path, out_dir: str | pathlib.Path) -> l
     for path in notebooks:
         notebook = json.loads(path.read_text(encoding="utf-8"))
         page = path.with_suffix(".html").name
-        entries.append(f'    <li><a href="{html.escape(page)}">{html.escape(chapter_title(notebook, path.stem))}</a></li>')
+        entries.append(
+            f'    <li><a href="{html.escape(page)}">{html.escape(chapter_title(notebook, path.stem))}</a></li>'
+        )
     index = "\n".join(
         [
             "<!DOCTYPE html>",
@@ -265,7 +304,9 @@ def build_site(source_dir: str | pathlib.Path, out_dir: str | pathlib.Path) -> l
         ]
     )
     (out_dir / "index.html").write_text(index, encoding="utf-8")
-    return [out_dir / "index.html"] + [out_dir / path.with_suffix(".html").name for path in notebooks]
+    return [out_dir / "index.html"] + [
+        out_dir / path.with_suffix(".html").name for path in notebooks
+    ]
 
 
 def main(argv: Sequence[str] | None = None) -> None:

@@ -55,10 +55,17 @@ def grade_notebook(
     try:
         notebook = nbformat.read(path, as_version=4)
     except Exception as error:  # invalid JSON, not a notebook
-        return [], f"unreadable ({type(error).__name__}: {str(error).splitlines()[0] if str(error) else ''})"
+        return (
+            [],
+            f"unreadable ({type(error).__name__}: {str(error).splitlines()[0] if str(error) else ''})",
+        )
     failure: str | None = None
-    client = HeadlessClient(notebook, timeout=timeout, kernel_name=kernel_name,
-                            resources={"metadata": {"path": str(ROOT / "notebooks")}})
+    client = HeadlessClient(
+        notebook,
+        timeout=timeout,
+        kernel_name=kernel_name,
+        resources={"metadata": {"path": str(ROOT / "notebooks")}},
+    )
     try:
         client.execute()
     except CellTimeoutError:
@@ -78,19 +85,32 @@ def grade_notebook(
     return rows, failure
 
 
-def summary_line(name: str, rows: Sequence[tuple[str, str, str]], failure: str | None) -> str:
+def summary_line(
+    name: str, rows: Sequence[tuple[str, str, str]], failure: str | None
+) -> str:
     """One line: the file, how many parts passed / not solved / wrong, and any failure."""
-    counts = {result: sum(1 for row in rows if row[2] == result) for result in RESULTS.values()}
+    counts = {
+        result: sum(1 for row in rows if row[2] == result)
+        for result in RESULTS.values()
+    }
     text = f"{name}: {counts['passed']} passed, {counts['not solved']} not solved, {counts['wrong']} wrong"
     return text + (f"; FAILED TO RUN: {failure}" if failure else "")
 
 
-def grade_folder(folder: str | pathlib.Path, out: str | pathlib.Path, timeout: float = 300) -> list[str]:
+def grade_folder(
+    folder: str | pathlib.Path, out: str | pathlib.Path, timeout: float = 300
+) -> list[str]:
     """Grade every notebook under ``folder``; write the CSV ``out``; return the summary lines."""
     folder = pathlib.Path(folder)
     if not folder.is_dir():
-        raise SystemExit(f"SUBMISSIONS={folder}: not a folder (give the folder of returned notebooks)")
-    paths = sorted(path for path in folder.rglob("*.ipynb") if ".ipynb_checkpoints" not in path.parts)
+        raise SystemExit(
+            f"SUBMISSIONS={folder}: not a folder (give the folder of returned notebooks)"
+        )
+    paths = sorted(
+        path
+        for path in folder.rglob("*.ipynb")
+        if ".ipynb_checkpoints" not in path.parts
+    )
     if not paths:
         raise SystemExit(f"SUBMISSIONS={folder}: no .ipynb files in it")
     lines: list[str] = []
@@ -117,10 +137,16 @@ def main(argv: Sequence[str] | None = None) -> None:
     """Grade the folder named on the command line."""
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("submissions", help="folder of returned notebooks")
-    parser.add_argument("--out", default=None, help="CSV to write (default: SUBMISSIONS/grades.csv)")
+    parser.add_argument(
+        "--out", default=None, help="CSV to write (default: SUBMISSIONS/grades.csv)"
+    )
     parser.add_argument("--timeout", type=float, default=300.0, help="seconds per cell")
     args = parser.parse_args(argv)
-    grade_folder(args.submissions, args.out or str(pathlib.Path(args.submissions) / "grades.csv"), args.timeout)
+    grade_folder(
+        args.submissions,
+        args.out or str(pathlib.Path(args.submissions) / "grades.csv"),
+        args.timeout,
+    )
 
 
 if __name__ == "__main__":

@@ -42,27 +42,31 @@ def install_cell_source(default_requirement: str | None = None) -> str:
     >>> print(install_cell_source("twolink[course]"))  # doctest: +ELLIPSIS
     # Setup: installs twolink only where `import twolink` fails (Colab, a bare Jupyter); in a clone it does nothing.
     try:
-        import twolink
+        import twolink  # noqa: F401
     except ImportError:
         import os
         source = os.environ.get("TWOLINK_SOURCE", "twolink[course]")
         print(f"twolink is not installed here: installing {source} (set TWOLINK_SOURCE to install from elsewhere)")
         %pip install --quiet "{source}"
-        import twolink
+        import twolink  # noqa: F401
     """
     if default_requirement is None:
         default_requirement = links.install_requirement(links.repository_url())
-    return "\n".join([
-        MARKER,
-        "try:",
-        "    import twolink",
-        "except ImportError:",
-        "    import os",
-        f"    source = os.environ.get({SOURCE_VARIABLE!r}, {default_requirement!r})".replace("'", '"'),
-        f'    print(f"twolink is not installed here: installing {{source}} (set {SOURCE_VARIABLE} to install from elsewhere)")',
-        '    %pip install --quiet "{source}"',
-        "    import twolink",
-    ])
+    return "\n".join(
+        [
+            MARKER,
+            "try:",
+            "    import twolink  # noqa: F401",
+            "except ImportError:",
+            "    import os",
+            f"    source = os.environ.get({SOURCE_VARIABLE!r}, {default_requirement!r})".replace(
+                "'", '"'
+            ),
+            f'    print(f"twolink is not installed here: installing {{source}} (set {SOURCE_VARIABLE} to install from elsewhere)")',
+            '    %pip install --quiet "{source}"',
+            "    import twolink  # noqa: F401",
+        ]
+    )
 
 
 def _first_code_index(notebook: Any) -> int | None:
@@ -94,7 +98,9 @@ def apply(notebook: Any, source: str | None = None) -> bool:
         notebook.cells[index].execution_count = None
         return True
     cell = nbformat.v4.new_code_cell(source)
-    if "id" not in next((c for c in notebook.cells), {}):  # notebooks stored without cell ids stay so
+    if "id" not in next(
+        (c for c in notebook.cells), {}
+    ):  # notebooks stored without cell ids stay so
         cell.pop("id", None)
     notebook.cells.insert(len(notebook.cells) if index is None else index, cell)
     return True
@@ -103,7 +109,11 @@ def apply(notebook: Any, source: str | None = None) -> bool:
 def main(argv: Sequence[str] | None = None) -> int:
     """Write (or with ``--check``, check) the install cell of the notebooks named; 1 if any is stale."""
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    parser.add_argument("--check", action="store_true", help="fail if a notebook's first code cell is not the install cell")
+    parser.add_argument(
+        "--check",
+        action="store_true",
+        help="fail if a notebook's first code cell is not the install cell",
+    )
     parser.add_argument("notebooks", nargs="*", type=pathlib.Path)
     args = parser.parse_args(argv)
     paths = args.notebooks or sorted((ROOT / "notebooks").glob("*.ipynb"))
@@ -116,11 +126,15 @@ def main(argv: Sequence[str] | None = None) -> int:
                 stale.append(path)
         elif apply(notebook, source):
             nbformat.write(notebook, path)
-            print(f"{path}: install cell written (re-execute it: make notebooks NOTEBOOKS={path})")
+            print(
+                f"{path}: install cell written (re-execute it: make notebooks NOTEBOOKS={path})"
+            )
     if stale:
         for path in stale:
-            print(f"{path}: the first code cell is not the install cell; run `python tools/install_cell.py {path}`",
-                  file=sys.stderr)
+            print(
+                f"{path}: the first code cell is not the install cell; run `python tools/install_cell.py {path}`",
+                file=sys.stderr,
+            )
         return 1
     return 0
 

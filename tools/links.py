@@ -38,9 +38,13 @@ def repository_url(pyproject: str | pathlib.Path = ROOT / "pyproject.toml") -> s
     >>> repository_url().startswith("https://")
     True
     """
-    urls = tomllib.loads(pathlib.Path(pyproject).read_text(encoding="utf-8"))["project"].get("urls", {})
+    urls = tomllib.loads(pathlib.Path(pyproject).read_text(encoding="utf-8"))[
+        "project"
+    ].get("urls", {})
     if "Repository" not in urls:
-        raise KeyError(f"{pyproject}: [project.urls] has no 'Repository' entry (the repository's public URL)")
+        raise KeyError(
+            f"{pyproject}: [project.urls] has no 'Repository' entry (the repository's public URL)"
+        )
     return re.sub(r"(\.git)?/*$", "", urls["Repository"].strip())
 
 
@@ -56,7 +60,9 @@ def github_owner_name(url: str) -> tuple[str, str] | None:
     """
     match = re.fullmatch(r"https://github\.com/([^/]+)/([^/]+)", url)
     if not match:
-        raise ValueError(f"Repository URL {url!r} is not of the form https://github.com/OWNER/NAME")
+        raise ValueError(
+            f"Repository URL {url!r} is not of the form https://github.com/OWNER/NAME"
+        )
     owner, name = match.groups()
     return None if owner == PLACEHOLDER_OWNER else (owner, name)
 
@@ -82,7 +88,9 @@ def colab_url(url: str, branch: str = "main", path: str = FIRST_CHAPTER) -> str:
     'https://colab.research.google.com/github/someone/twolink/blob/main/notebooks/01_dh_forward_kinematics.ipynb'
     """
     owner, name = github_owner_name(url) or (PLACEHOLDER_OWNER, url.rsplit("/", 1)[-1])
-    return f"https://colab.research.google.com/github/{owner}/{name}/blob/{branch}/{path}"
+    return (
+        f"https://colab.research.google.com/github/{owner}/{name}/blob/{branch}/{path}"
+    )
 
 
 def install_requirement(url: str) -> str:
@@ -95,7 +103,11 @@ def install_requirement(url: str) -> str:
     >>> install_requirement("https://github.com/OWNER/twolink")
     'twolink[course]'
     """
-    return "twolink[course]" if github_owner_name(url) is None else f"twolink[course] @ git+{url}"
+    return (
+        "twolink[course]"
+        if github_owner_name(url) is None
+        else f"twolink[course] @ git+{url}"
+    )
 
 
 def run_online_section(url: str) -> str:
@@ -115,30 +127,36 @@ def run_online_section(url: str) -> str:
             "Until then the links have this form (with `OWNER/NAME` the GitHub repository):\n"
             f"`{binder}` and `{colab}`."
         )
-    return "\n".join([
-        BEGIN,
-        badges,
-        "",
-        "- **Binder** (nothing to install, a few minutes to start the first time): open the Binder link. "
-        "Binder builds the repository from `.binder/`: `runtime.txt` (the Python version) and "
-        "`requirements.txt` (the course's `requirements.txt` with the exact versions of `constraints.txt`), "
-        "then opens chapter 1 in JupyterLab; the other chapters are in "
-        "the file browser on the left, under `notebooks/`. Your changes are lost when the session ends: "
-        "download a notebook (File > Download) to keep it.",
-        "- **Colab** (a Google account): open the Colab link, or in Colab choose File > Open notebook > "
-        "GitHub and paste the repository URL. Run the first code cell: it installs `twolink` "
-        f"with the course's packages (`{install_requirement(url)}`) because Colab does not have it, "
-        "then the chapter runs as usual. Each chapter opens the same way."
-        + ("" if known else " (twolink is not on PyPI: until the repository URL is set above, set "
-           "`TWOLINK_SOURCE` as below, or the install fails with \"No matching distribution found\".)"),
-        "- **Any other Jupyter** (JupyterHub, VS Code, a notebook downloaded alone): the same first "
-        "cell installs what is missing. To install from a fork or a local copy instead, set one "
-        "environment variable before starting Jupyter, a pip requirement: "
-        "`TWOLINK_SOURCE=\"twolink[course] @ git+https://github.com/YOU/twolink\"` or "
-        "`TWOLINK_SOURCE=\"/path/to/twolink[course]\"`. In a clone with `make lab` the cell installs "
-        "nothing.",
-        END,
-    ])
+    return "\n".join(
+        [
+            BEGIN,
+            badges,
+            "",
+            "- **Binder** (nothing to install, a few minutes to start the first time): open the Binder link. "
+            "Binder builds the repository from `.binder/`: `runtime.txt` (the Python version) and "
+            "`requirements.txt` (the course's `requirements.txt` with the exact versions of `constraints.txt`), "
+            "then opens chapter 1 in JupyterLab; the other chapters are in "
+            "the file browser on the left, under `notebooks/`. Your changes are lost when the session ends: "
+            "download a notebook (File > Download) to keep it.",
+            "- **Colab** (a Google account): open the Colab link, or in Colab choose File > Open notebook > "
+            "GitHub and paste the repository URL. Run the first code cell: it installs `twolink` "
+            f"with the course's packages (`{install_requirement(url)}`) because Colab does not have it, "
+            "then the chapter runs as usual. Each chapter opens the same way."
+            + (
+                ""
+                if known
+                else " (twolink is not on PyPI: until the repository URL is set above, set "
+                '`TWOLINK_SOURCE` as below, or the install fails with "No matching distribution found".)'
+            ),
+            "- **Any other Jupyter** (JupyterHub, VS Code, a notebook downloaded alone): the same first "
+            "cell installs what is missing. To install from a fork or a local copy instead, set one "
+            "environment variable before starting Jupyter, a pip requirement: "
+            '`TWOLINK_SOURCE="twolink[course] @ git+https://github.com/YOU/twolink"` or '
+            '`TWOLINK_SOURCE="/path/to/twolink[course]"`. In a clone with `make lab` the cell installs '
+            "nothing.",
+            END,
+        ]
+    )
 
 
 def replace_section(readme_text: str, section: str) -> str:
@@ -153,10 +171,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Print, write (``--write``) or check (``--check``) README's "Run it online" section; 1 if stale."""
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     mode = parser.add_mutually_exclusive_group()
-    mode.add_argument("--write", action="store_true", help="rewrite README.md's section")
-    mode.add_argument("--check", action="store_true", help="fail if README.md's section is out of date")
+    mode.add_argument(
+        "--write", action="store_true", help="rewrite README.md's section"
+    )
+    mode.add_argument(
+        "--check",
+        action="store_true",
+        help="fail if README.md's section is out of date",
+    )
     parser.add_argument("--readme", type=pathlib.Path, default=ROOT / "README.md")
-    parser.add_argument("--pyproject", type=pathlib.Path, default=ROOT / "pyproject.toml")
+    parser.add_argument(
+        "--pyproject", type=pathlib.Path, default=ROOT / "pyproject.toml"
+    )
     args = parser.parse_args(argv)
     section = run_online_section(repository_url(args.pyproject))
     if not (args.write or args.check):
@@ -166,8 +192,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     updated = replace_section(text, section)
     if args.check:
         if updated != text:
-            print(f"{args.readme}: the 'Run it online' section does not match [project.urls]; "
-                  "run `python tools/links.py --write`", file=sys.stderr)
+            print(
+                f"{args.readme}: the 'Run it online' section does not match [project.urls]; "
+                "run `python tools/links.py --write`",
+                file=sys.stderr,
+            )
             return 1
         return 0
     args.readme.write_text(updated, encoding="utf-8")

@@ -53,7 +53,10 @@ class Variant:
 
 
 VARIANTS = (
-    Variant("as-installed", "numpy and OpenBLAS pick the best paths for this CPU (what `make test` runs)"),
+    Variant(
+        "as-installed",
+        "numpy and OpenBLAS pick the best paths for this CPU (what `make test` runs)",
+    ),
     Variant(
         "avx2-haswell",
         "an AVX2 machine without AVX-512 (most laptops and CI runners)",
@@ -63,13 +66,20 @@ VARIANTS = (
     Variant(
         "v2-sandybridge",
         "numpy limited to the x86-64-v2 baseline (no AVX2/FMA, no AVX-512) with OpenBLAS's older AVX kernels",
-        {"NPY_DISABLE_CPU_FEATURES": AVX2_AND_UP_GROUPS, "OPENBLAS_CORETYPE": "Sandybridge"},
+        {
+            "NPY_DISABLE_CPU_FEATURES": AVX2_AND_UP_GROUPS,
+            "OPENBLAS_CORETYPE": "Sandybridge",
+        },
         ("X86_V3",),
     ),
     Variant(
         "sse-1-thread",
         "OpenBLAS's SSE kernels on one thread (another summation order), numpy as installed",
-        {"OPENBLAS_CORETYPE": "Nehalem", "OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1"},
+        {
+            "OPENBLAS_CORETYPE": "Nehalem",
+            "OPENBLAS_NUM_THREADS": "1",
+            "OMP_NUM_THREADS": "1",
+        },
         ("X86_V2",),
     ),
 )
@@ -96,60 +106,133 @@ print(json.dumps({"simd": groups, "blas_core": core, "blas_threads": threads}))
 
 def variant_env(variant: Variant) -> dict[str, str]:
     """The process environment for a variant: ours minus any inherited emulation, plus the variant's."""
-    env = {key: value for key, value in os.environ.items() if key not in _EMULATION_KEYS}
+    env = {
+        key: value for key, value in os.environ.items() if key not in _EMULATION_KEYS
+    }
     env.pop("MPLBACKEND", None)  # kernels must store their figures (inline backend)
     env.update(variant.env)
     return env
 
 
-_EMULATION_KEYS = {"NPY_DISABLE_CPU_FEATURES", "NPY_ENABLE_CPU_FEATURES", "OPENBLAS_CORETYPE", "OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS"}
+_EMULATION_KEYS = {
+    "NPY_DISABLE_CPU_FEATURES",
+    "NPY_ENABLE_CPU_FEATURES",
+    "OPENBLAS_CORETYPE",
+    "OPENBLAS_NUM_THREADS",
+    "OMP_NUM_THREADS",
+}
 
 
 def probe(variant: Variant) -> dict[str, Any]:
     """numpy's enabled SIMD groups and OpenBLAS's kernel and threads under a variant (read from the libraries)."""
     result = subprocess.run(
-        [sys.executable, "-c", PROBE], env=variant_env(variant), capture_output=True, text=True, timeout=120, check=False
+        [sys.executable, "-c", PROBE],
+        env=variant_env(variant),
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=False,
     )
     if result.returncode != 0:
-        raise RuntimeError(f"variant {variant.name}: the probe failed:\n{result.stderr.strip()}")
+        raise RuntimeError(
+            f"variant {variant.name}: the probe failed:\n{result.stderr.strip()}"
+        )
     return json.loads(result.stdout.strip().splitlines()[-1])
 
 
 KERNEL_START_FAILED = "Failure starting kernel"
 
 
-def run_nbval(variant: Variant, notebooks: list[str], workers: str) -> tuple[int, str, float, str]:
+def run_nbval(
+    variant: Variant, notebooks: list[str], workers: str
+) -> tuple[int, str, float, str]:
     """Strict nbval (the options in pyproject.toml) of ``notebooks`` under a variant: exit code, summary, seconds, output."""
     start = time.monotonic()
     # The options of pyproject.toml (strict nbval, the sanitize file), wherever the notebooks are.
-    command = [sys.executable, "-m", "pytest", "-c", str(ROOT / "pyproject.toml"), "--rootdir", str(ROOT), *notebooks, "-q", "-n", workers]
-    result = subprocess.run(command, cwd=ROOT, env=variant_env(variant), capture_output=True, text=True, timeout=1800, check=False)
+    command = [
+        sys.executable,
+        "-m",
+        "pytest",
+        "-c",
+        str(ROOT / "pyproject.toml"),
+        "--rootdir",
+        str(ROOT),
+        *notebooks,
+        "-q",
+        "-n",
+        workers,
+    ]
+    result = subprocess.run(
+        command,
+        cwd=ROOT,
+        env=variant_env(variant),
+        capture_output=True,
+        text=True,
+        timeout=1800,
+        check=False,
+    )
     seconds = time.monotonic() - start
     lines = [line for line in result.stdout.splitlines() if line.strip()]
-    summary = next((line for line in reversed(lines) if re.search(r"\b(passed|failed|error|no tests ran)\b", line)), "")
+    summary = next(
+        (
+            line
+            for line in reversed(lines)
+            if re.search(r"\b(passed|failed|error|no tests ran)\b", line)
+        ),
+        "",
+    )
     if result.returncode != 0:
         failed = [line for line in lines if line.startswith(("FAILED", "ERROR"))]
         print("\n".join(failed) or result.stdout[-4000:], file=sys.stderr)
-    return result.returncode, re.sub(r"\x1b\[[0-9;]*m", "", summary).strip("= "), seconds, result.stdout + result.stderr
+    return (
+        result.returncode,
+        re.sub(r"\x1b\[[0-9;]*m", "", summary).strip("= "),
+        seconds,
+        result.stdout + result.stderr,
+    )
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("notebooks", nargs="*", help="notebooks to check (default: every chapter in notebooks/ and the doctests of twolink/)")
-    parser.add_argument("--variant", action="append", choices=[v.name for v in VARIANTS], help="run only these (repeatable)")
-    parser.add_argument("--workers", default="2", help="pytest-xdist workers (default 2)")
-    parser.add_argument("--list", action="store_true", help="print the variants and exit")
+    parser.add_argument(
+        "notebooks",
+        nargs="*",
+        help="notebooks to check (default: every chapter in notebooks/ and the doctests of twolink/)",
+    )
+    parser.add_argument(
+        "--variant",
+        action="append",
+        choices=[v.name for v in VARIANTS],
+        help="run only these (repeatable)",
+    )
+    parser.add_argument(
+        "--workers", default="2", help="pytest-xdist workers (default 2)"
+    )
+    parser.add_argument(
+        "--list", action="store_true", help="print the variants and exit"
+    )
     args = parser.parse_args(argv)
 
     chosen = [v for v in VARIANTS if not args.variant or v.name in args.variant]
     if args.list:
         for variant in chosen:
-            settings = " ".join(f'{key}="{value}"' for key, value in variant.env.items()) or "(no variables)"
+            settings = (
+                " ".join(f'{key}="{value}"' for key, value in variant.env.items())
+                or "(no variables)"
+            )
             print(f"{variant.name}: {variant.why}\n    {settings}")
         return 0
     # By default every chapter, and the docstrings' examples (stored outputs too, run as doctests).
-    notebooks = args.notebooks or [*sorted(str(path.relative_to(ROOT)) for path in (ROOT / "notebooks").glob("*.ipynb")), "twolink"]
-    notebooks = [str(Path(name).resolve()) if Path(name).is_file() else name for name in notebooks]
+    notebooks = args.notebooks or [
+        *sorted(
+            str(path.relative_to(ROOT)) for path in (ROOT / "notebooks").glob("*.ipynb")
+        ),
+        "twolink",
+    ]
+    notebooks = [
+        str(Path(name).resolve()) if Path(name).is_file() else name
+        for name in notebooks
+    ]
     missing = [name for name in notebooks if not (ROOT / name).exists()]
     if missing:
         parser.error(f"no such notebook: {', '.join(missing)}")
@@ -159,23 +242,42 @@ def main(argv: list[str] | None = None) -> int:
     for variant in chosen:
         lacking = [group for group in variant.requires if group not in native]
         if lacking:
-            print(f"[{variant.name}] skipped: this CPU lacks {', '.join(lacking)}, which the emulation needs", flush=True)
-            rows.append((variant.name, "skipped", f"this CPU lacks {', '.join(lacking)}", 0.0))
+            print(
+                f"[{variant.name}] skipped: this CPU lacks {', '.join(lacking)}, which the emulation needs",
+                flush=True,
+            )
+            rows.append(
+                (variant.name, "skipped", f"this CPU lacks {', '.join(lacking)}", 0.0)
+            )
             continue
         seen = probe(variant)
         above = [group for group in seen["simd"] if group != "X86_V2"]
-        print(f"[{variant.name}] {variant.why}; numpy SIMD above the x86-64-v2 baseline: {', '.join(above) or 'none'}; "
-              f"OpenBLAS kernel {seen['blas_core']}, {seen['blas_threads']} thread(s)", flush=True)
+        print(
+            f"[{variant.name}] {variant.why}; numpy SIMD above the x86-64-v2 baseline: {', '.join(above) or 'none'}; "
+            f"OpenBLAS kernel {seen['blas_core']}, {seen['blas_threads']} thread(s)",
+            flush=True,
+        )
         code, summary, seconds, output = run_nbval(variant, notebooks, args.workers)
         if code != 0 and KERNEL_START_FAILED in output:
             # Not a number that differs: a kernel that did not start (jupyter_client picks free TCP
             # ports by probing, and two kernels started at once on a loaded machine can collide).
-            print(f"[{variant.name}] a kernel failed to start (not a mismatch of outputs); running this variant again",
-                  flush=True)
+            print(
+                f"[{variant.name}] a kernel failed to start (not a mismatch of outputs); running this variant again",
+                flush=True,
+            )
             code, summary, seconds, output = run_nbval(variant, notebooks, args.workers)
         # pytest's exit 5 (nothing collected) is a failure too.
-        rows.append((variant.name, "pass" if code == 0 else f"FAIL (exit {code})", summary, seconds))
-        print(f"[{variant.name}] {rows[-1][1]}: {summary} ({seconds:.0f} s)", flush=True)
+        rows.append(
+            (
+                variant.name,
+                "pass" if code == 0 else f"FAIL (exit {code})",
+                summary,
+                seconds,
+            )
+        )
+        print(
+            f"[{variant.name}] {rows[-1][1]}: {summary} ({seconds:.0f} s)", flush=True
+        )
 
     print("\n| variant | result | strict nbval | seconds |\n|---|---|---|---|")
     for name, verdict, summary, seconds in rows:

@@ -18,18 +18,33 @@ Examples
 array([3., 1.])
 """
 
-from . import arms, ik
+from . import (
+    arcs,
+    arms,
+    contact,
+    controllers,
+    dynamics,
+    ik,
+    linearization,
+    statics,
+    stiffness,
+    trajectory,
+    velocity,
+    workspace,
+)
 from .arm import TwoLinkArm
+from .controllers import (
+    CartesianSpring,
+    ComputedTorque,
+    Impedance,
+    JointPD,
+    JointReference,
+)
 from .conventions import to_absolute, to_relative, wrap_angle
 from .errors import SingularityError, UnreachableError
-from . import statics, velocity
-from .statics import Wall, WallContact, wall_contact
-from . import dynamics
-from .simulate import SimulationError, SimulationResult, simulate
-from . import arcs, trajectory, workspace
-from . import contact, controllers, linearization, stiffness
-from .controllers import CartesianSpring, ComputedTorque, Impedance, JointPD, JointReference
 from .linearization import linearize
+from .simulate import SimulationError, SimulationResult, simulate
+from .statics import Wall, WallContact, wall_contact
 
 __version__ = "0.1.0"
 

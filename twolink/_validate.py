@@ -26,8 +26,19 @@ _Arm = TypeVar("_Arm")
 _REAL_TYPES = (int, float, np.integer, np.floating)
 
 __all__ = [
-    "finite_result", "InputTypeError", "real_array", "require_arm", "as_pairs", "pair_floats", "as_finite_scalar",
-    "as_count", "as_flag", "broadcast_start", "broadcast_shape", "frozen_array", "public_torque_floats",
+    "finite_result",
+    "InputTypeError",
+    "real_array",
+    "require_arm",
+    "as_pairs",
+    "pair_floats",
+    "as_finite_scalar",
+    "as_count",
+    "as_flag",
+    "broadcast_start",
+    "broadcast_shape",
+    "frozen_array",
+    "public_torque_floats",
 ]
 
 #: Scalar types the one-input fast path converts itself (``float`` is tested
@@ -134,7 +145,9 @@ def pair_floats(values: object) -> tuple[float, float] | None:
     return None
 
 
-def as_finite_scalar(value: object, name: str, *, minimum: float | None = None, strictly: bool = False) -> float:
+def as_finite_scalar(
+    value: object, name: str, *, minimum: float | None = None, strictly: bool = False
+) -> float:
     """Return ``value`` as a finite float, optionally bounded below.
 
     Parameters
@@ -162,7 +175,9 @@ def as_finite_scalar(value: object, name: str, *, minimum: float | None = None, 
     elif type(value) is np.ndarray and value.ndim == 0 and value.dtype.kind in "iuf":
         number = float(value)
     else:
-        raise InputTypeError(f"{name} must be a real number; got {value!r} ({type(value).__name__})")
+        raise InputTypeError(
+            f"{name} must be a real number; got {value!r} ({type(value).__name__})"
+        )
     if not math.isfinite(number):
         raise ValueError(f"{name} must be finite; got {number}")
     if minimum is not None:
@@ -173,7 +188,9 @@ def as_finite_scalar(value: object, name: str, *, minimum: float | None = None, 
     return number
 
 
-def as_count(value: object, name: str, *, minimum: int = 1, maximum: int | None = None) -> int:
+def as_count(
+    value: object, name: str, *, minimum: int = 1, maximum: int | None = None
+) -> int:
     """Return ``value`` as a Python ``int`` at least ``minimum`` (and at most ``maximum``).
 
     Integers (Python or numpy) and floats with an integral value (``50.0``)
@@ -194,8 +211,12 @@ def as_count(value: object, name: str, *, minimum: int = 1, maximum: int | None 
     twolink.errors.InputTypeError: n must be an integer >= 1; got True (bool)
     """
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, _REAL_TYPES):
-        raise InputTypeError(f"{name} must be an integer >= {minimum}; got {value!r} ({type(value).__name__})")
-    if isinstance(value, (float, np.floating)) and not (math.isfinite(value) and float(value).is_integer()):
+        raise InputTypeError(
+            f"{name} must be an integer >= {minimum}; got {value!r} ({type(value).__name__})"
+        )
+    if isinstance(value, (float, np.floating)) and not (
+        math.isfinite(value) and float(value).is_integer()
+    ):
         raise ValueError(f"{name} must be an integer >= {minimum}; got {value!r}")
     count = int(value)
     if count < minimum:
@@ -221,11 +242,15 @@ def as_flag(value: object, name: str) -> bool:
     twolink.errors.InputTypeError: constrained must be True or False; got 'False' (str)
     """
     if not isinstance(value, (bool, np.bool_)):
-        raise InputTypeError(f"{name} must be True or False; got {value!r} ({type(value).__name__})")
+        raise InputTypeError(
+            f"{name} must be True or False; got {value!r} ({type(value).__name__})"
+        )
     return bool(value)
 
 
-def broadcast_start(start: object, shape: tuple[int, ...], name: str, against: str = "target p") -> NDArray[np.float64]:
+def broadcast_start(
+    start: object, shape: tuple[int, ...], name: str, against: str = "target p"
+) -> NDArray[np.float64]:
     """``start`` (pairs) broadcast to ``shape``, or a message naming both shapes.
 
     Examples
@@ -264,7 +289,9 @@ def broadcast_shape(**arrays: NDArray[np.float64]) -> tuple[int, ...]:
     except ValueError:
         names = [f"{name} of shape {array.shape}" for name, array in arrays.items()]
         listed = ", ".join(names[:-1]) + f" and {names[-1]}"
-        raise ValueError(f"{listed} do not broadcast together: leading axes must be equal or 1") from None
+        raise ValueError(
+            f"{listed} do not broadcast together: leading axes must be equal or 1"
+        ) from None
 
 
 _BAD_ELEMENT = (bool, np.bool_, complex, np.complexfloating, str, bytes, type(None))
@@ -280,7 +307,9 @@ def _masked_message(name: str, what: str) -> str:
     )
 
 
-def _refuse_bad_entries(items: Any, values: object, name: str, what: str, where: tuple[int, ...] = ()) -> None:
+def _refuse_bad_entries(
+    items: Any, values: object, name: str, what: str, where: tuple[int, ...] = ()
+) -> None:
     """Raise :class:`InputTypeError` for the first entry of a (nested) list or tuple numpy would coerce silently.
 
     Booleans (read as 0.0 / 1.0), complex numbers, strings, bytes, ``None``,
@@ -296,12 +325,18 @@ def _refuse_bad_entries(items: Any, values: object, name: str, what: str, where:
             _refuse_bad_entries(element, values, name, what, (*where, index))
         elif isinstance(element, np.ma.MaskedArray):
             raise InputTypeError(_masked_message(name, what))
-        elif isinstance(element, _BAD_ELEMENT) or (element_type is np.ndarray and element.dtype.kind == "b"):
+        elif isinstance(element, _BAD_ELEMENT) or (
+            element_type is np.ndarray and element.dtype.kind == "b"
+        ):
             kind = "bool array" if element_type is np.ndarray else element_type.__name__
-            raise InputTypeError(f"{name} must be {what}; got {values!r} (entry {(*where, index)} is {kind})")
+            raise InputTypeError(
+                f"{name} must be {what}; got {values!r} (entry {(*where, index)} is {kind})"
+            )
 
 
-def real_array(values: object, name: str, what: str = "real numbers") -> NDArray[np.float64]:
+def real_array(
+    values: object, name: str, what: str = "real numbers"
+) -> NDArray[np.float64]:
     """``values`` as a float64 array, refusing anything that is not real numbers.
 
     Booleans, complex numbers (whose imaginary part would be dropped),
@@ -340,13 +375,16 @@ def real_array(values: object, name: str, what: str = "real numbers") -> NDArray
             # one or two levels of plain floats and ints (the usual lists) are seen at C speed
             types = set(map(type, items))
             if not types <= _PLAIN_NUMBERS and not (
-                types <= _SEQUENCES and set(map(type, chain.from_iterable(items))) <= _PLAIN_NUMBERS
+                types <= _SEQUENCES
+                and set(map(type, chain.from_iterable(items))) <= _PLAIN_NUMBERS
             ):
                 _refuse_bad_entries(items, values, name, what)
         elif isinstance(values, np.ma.MaskedArray):
             raise InputTypeError(_masked_message(name, what))
         elif isinstance(values, _BAD_ELEMENT):
-            raise InputTypeError(f"{name} must be {what}; got {values!r} ({type(values).__name__})")
+            raise InputTypeError(
+                f"{name} must be {what}; got {values!r} ({type(values).__name__})"
+            )
         try:
             array = np.asarray(values)
         except (TypeError, ValueError) as exc:
@@ -370,7 +408,9 @@ def require_arm(arm: _Arm, who: str = "arm") -> _Arm:
     twolink.errors.InputTypeError: arm must be a twolink.TwoLinkArm; got None (NoneType)
     """
     if not (hasattr(arm, "l1") and hasattr(arm, "l2") and hasattr(arm, "inertias")):
-        raise InputTypeError(f"{who} must be a twolink.TwoLinkArm; got {arm!r} ({type(arm).__name__})")
+        raise InputTypeError(
+            f"{who} must be a twolink.TwoLinkArm; got {arm!r} ({type(arm).__name__})"
+        )
     return arm
 
 
@@ -390,7 +430,9 @@ def arm_lengths(arm: TwoLinkArm) -> tuple[float, float]:
         raise
 
 
-def finite_result(array: NDArray[np.float64], what: str, cause: str) -> NDArray[np.float64]:
+def finite_result(
+    array: NDArray[np.float64], what: str, cause: str
+) -> NDArray[np.float64]:
     """``array`` if every entry is finite, else an error saying the result overflows float64.
 
     Examples
@@ -403,10 +445,14 @@ def finite_result(array: NDArray[np.float64], what: str, cause: str) -> NDArray[
     if np.all(np.isfinite(array)):
         return array
     index = tuple(int(i) for i in np.argwhere(~np.isfinite(array))[0])
-    raise OverflowError(f"the {what} overflow float64 (|value| > 1.8e308) at index {index}: {cause}")
+    raise OverflowError(
+        f"the {what} overflow float64 (|value| > 1.8e308) at index {index}: {cause}"
+    )
 
 
-def as_configuration(q: object, name: str = "q", what: str = "one configuration", unit: str = "radians") -> NDArray[np.float64]:
+def as_configuration(
+    q: object, name: str = "q", what: str = "one configuration", unit: str = "radians"
+) -> NDArray[np.float64]:
     """``q`` as a float array of shape ``(2,)``, or a ``ValueError`` naming its shape.
 
     The one check for functions that work on a single configuration (or a
@@ -423,7 +469,9 @@ def as_configuration(q: object, name: str = "q", what: str = "one configuration"
     """
     values = as_pairs(q, name)
     if values.shape != (2,):
-        raise ValueError(f"{name} must be {what} of shape (2,) ({unit}); got shape {values.shape}")
+        raise ValueError(
+            f"{name} must be {what} of shape (2,) ({unit}); got shape {values.shape}"
+        )
     return values
 
 
@@ -454,16 +502,24 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
     twolink._validate.NonFiniteTorque: torque(t, q, qd) returned non-finite torques [ 1. nan] at t = 0.25
     """
     if type(value) is not np.ndarray and isinstance(value, np.ma.MaskedArray):
-        raise ValueError(f"torque(t, q, qd) must return two numbers (N m), not a masked array; got {value!r} at t = {t}")
+        raise ValueError(
+            f"torque(t, q, qd) must return two numbers (N m), not a masked array; got {value!r} at t = {t}"
+        )
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"torque(t, q, qd) must return two numbers (N m); got {value!r} at t = {t}") from exc
+        raise ValueError(
+            f"torque(t, q, qd) must return two numbers (N m); got {value!r} at t = {t}"
+        ) from exc
     if array.shape != (2,):
-        raise ValueError(f"torque(t, q, qd) must return shape (2,) (N m); got shape {array.shape} at t = {t}")
+        raise ValueError(
+            f"torque(t, q, qd) must return shape (2,) (N m); got shape {array.shape} at t = {t}"
+        )
     tau1, tau2 = array.tolist()
     if not (math.isfinite(tau1) and math.isfinite(tau2)):
-        raise NonFiniteTorque(f"torque(t, q, qd) returned non-finite torques {array} at t = {t}")
+        raise NonFiniteTorque(
+            f"torque(t, q, qd) returned non-finite torques {array} at t = {t}"
+        )
     return tau1, tau2
 
 

@@ -13,8 +13,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .errors import InputTypeError
 from ._validate import as_count, as_finite_scalar, as_pairs, real_array
+from .errors import InputTypeError
 
 #: Most points :meth:`Arc.points` makes (memory budget: 1e7 x 2 floats, 160 MB).
 MAX_POINTS = 10_000_000
@@ -65,9 +65,13 @@ class Arc:
     def __post_init__(self) -> None:
         centre = as_pairs(self.centre, "centre")
         if centre.shape != (2,):
-            raise ValueError(f"centre must be one (x, y) pair; got shape {centre.shape}")
+            raise ValueError(
+                f"centre must be one (x, y) pair; got shape {centre.shape}"
+            )
         object.__setattr__(self, "centre", (float(centre[0]), float(centre[1])))
-        object.__setattr__(self, "radius", as_finite_scalar(self.radius, "radius (m)", minimum=0.0))
+        object.__setattr__(
+            self, "radius", as_finite_scalar(self.radius, "radius (m)", minimum=0.0)
+        )
         object.__setattr__(self, "start", as_finite_scalar(self.start, "start (rad)"))
         sweep = as_finite_scalar(self.sweep, "sweep (rad)")
         if abs(sweep) > _TWO_PI * (1.0 + 1e-12):
@@ -75,7 +79,9 @@ class Arc:
         object.__setattr__(self, "sweep", sweep)
         for name in ("label", "kind"):
             if not isinstance(getattr(self, name), str):
-                raise InputTypeError(f"{name} must be a string; got {getattr(self, name)!r}")
+                raise InputTypeError(
+                    f"{name} must be a string; got {getattr(self, name)!r}"
+                )
 
     def point_at(self, fraction: ArrayLike) -> NDArray[np.float64]:
         """Points at ``fraction`` (0 = start, 1 = end) along the arc, shape ``(..., 2)``.
@@ -128,7 +134,9 @@ class Arc:
         along = np.mod((angle - self.start) * np.sign(self.sweep), _TWO_PI)
         # within round-off of the start, seen from below (2 pi - tiny): that is the start
         along = np.where(along > _TWO_PI - 1e-12, 0.0, along)
-        return np.where(along <= span * (1.0 + 1e-12), np.minimum(along / span, 1.0), -1.0)
+        return np.where(
+            along <= span * (1.0 + 1e-12), np.minimum(along / span, 1.0), -1.0
+        )
 
     def distance(self, p: ArrayLike) -> NDArray[np.float64]:
         """Euclidean distance from points ``p`` (..., 2) to the arc, exactly.
@@ -173,12 +181,21 @@ class Arc:
         cuts = _finite_fractions(fractions, "fractions").ravel()
         if np.any((cuts < 0.0) | (cuts > 1.0)):
             outside = cuts[(cuts < 0.0) | (cuts > 1.0)][0]
-            raise ValueError(f"fractions must lie in [0, 1] (0 = start, 1 = end of the arc); got {outside}")
+            raise ValueError(
+                f"fractions must lie in [0, 1] (0 = start, 1 = end of the arc); got {outside}"
+            )
         cuts = np.unique(cuts)
         cuts = cuts[(cuts > 1e-9) & (cuts < 1.0 - 1e-9)]
         edges = np.concatenate([[0.0], cuts, [1.0]])
         return [
-            Arc(self.centre, self.radius, self.start + self.sweep * low, self.sweep * (high - low), self.label, self.kind)
+            Arc(
+                self.centre,
+                self.radius,
+                self.start + self.sweep * low,
+                self.sweep * (high - low),
+                self.label,
+                self.kind,
+            )
             for low, high in zip(edges[:-1], edges[1:])
         ]
 
@@ -194,7 +211,9 @@ def _finite_fractions(values: ArrayLike, name: str) -> NDArray[np.float64]:
     return fractions
 
 
-def circle_intersections(centre_a: ArrayLike, radius_a: float, centre_b: ArrayLike, radius_b: float) -> NDArray[np.float64]:
+def circle_intersections(
+    centre_a: ArrayLike, radius_a: float, centre_b: ArrayLike, radius_b: float
+) -> NDArray[np.float64]:
     """Intersection points of two circles, shape ``(k, 2)`` with k = 0, 1 or 2.
 
     Concentric circles give no points (identical circles included: the
@@ -217,7 +236,10 @@ def circle_intersections(centre_a: ArrayLike, radius_a: float, centre_b: ArrayLi
     scale = max(radius_a, radius_b, distance, 1e-300)
     if distance <= 1e-14 * scale:
         return np.empty((0, 2))
-    if distance > radius_a + radius_b + 1e-12 * scale or distance < abs(radius_a - radius_b) - 1e-12 * scale:
+    if (
+        distance > radius_a + radius_b + 1e-12 * scale
+        or distance < abs(radius_a - radius_b) - 1e-12 * scale
+    ):
         return np.empty((0, 2))
     along = (radius_a**2 - radius_b**2 + distance**2) / (2.0 * distance)
     height = np.sqrt(max(radius_a**2 - along**2, 0.0))

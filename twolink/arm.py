@@ -12,9 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from . import dh, kinematics
-from . import velocity
-from . import dynamics
+from . import dh, dynamics, kinematics, velocity
 from ._validate import as_finite_scalar, as_pairs, pair_floats, real_array
 
 __all__ = ["TwoLinkArm"]
@@ -33,7 +31,11 @@ OFFSET_MAX = 1e150
 
 def _within(value: float, name: str, low: float, high: float) -> float:
     if value != 0.0 and not low <= abs(value) <= high:
-        allowed = f"[{low:.0e}, {high:.0e}]" if low > 0.0 else f"0 or up to {high:.0e} in size"
+        allowed = (
+            f"[{low:.0e}, {high:.0e}]"
+            if low > 0.0
+            else f"0 or up to {high:.0e} in size"
+        )
         raise ValueError(
             f"{name} = {value:.6g} is outside the representable range {allowed} "
             "(its squares and products in the dynamics would overflow or underflow); rescale the units"
@@ -122,8 +124,12 @@ class TwoLinkArm:
 
     def __post_init__(self) -> None:
         scalars = {
-            "l1": as_finite_scalar(self.l1, "l1 (link 1 length, m)", minimum=0.0, strictly=True),
-            "l2": as_finite_scalar(self.l2, "l2 (link 2 length, m)", minimum=0.0, strictly=True),
+            "l1": as_finite_scalar(
+                self.l1, "l1 (link 1 length, m)", minimum=0.0, strictly=True
+            ),
+            "l2": as_finite_scalar(
+                self.l2, "l2 (link 2 length, m)", minimum=0.0, strictly=True
+            ),
             "m1": as_finite_scalar(self.m1, "m1 (link 1 mass, kg)", minimum=0.0),
             "m2": as_finite_scalar(self.m2, "m2 (link 2 mass, kg)", minimum=0.0),
             "g": as_finite_scalar(self.g, "g (m/s^2)"),
@@ -134,7 +140,9 @@ class TwoLinkArm:
         for name in ("I1", "I2"):
             value = getattr(self, name)
             if value is not None:
-                scalars[name] = as_finite_scalar(value, f"{name} (inertia, kg m^2)", minimum=0.0)
+                scalars[name] = as_finite_scalar(
+                    value, f"{name} (inertia, kg m^2)", minimum=0.0
+                )
                 _within(scalars[name], f"{name} (inertia, kg m^2)", 0.0, INERTIA_MAX)
         _within(scalars["l1"], "l1 (link 1 length, m)", *LENGTH_RANGE)
         _within(scalars["l2"], "l2 (link 2 length, m)", *LENGTH_RANGE)
@@ -144,11 +152,20 @@ class TwoLinkArm:
         _within(scalars["d"], "d (base offset, m)", 0.0, OFFSET_MAX)
         if q_min is None or q_max is None:
             if q_min is not None or q_max is not None:
-                raise ValueError("q_min and q_max must be given together (or both None)")
+                raise ValueError(
+                    "q_min and q_max must be given together (or both None)"
+                )
         elif np.any(np.array(q_min) > np.array(q_max)):
-            raise ValueError(f"q_min must be <= q_max component-wise; got q_min={q_min}, q_max={q_max} (radians)")
-        if not isinstance(self.limit_convention, str) or self.limit_convention not in _LIMIT_CONVENTIONS:
-            raise ValueError(f"limit_convention must be one of {_LIMIT_CONVENTIONS}; got {self.limit_convention!r}")
+            raise ValueError(
+                f"q_min must be <= q_max component-wise; got q_min={q_min}, q_max={q_max} (radians)"
+            )
+        if (
+            not isinstance(self.limit_convention, str)
+            or self.limit_convention not in _LIMIT_CONVENTIONS
+        ):
+            raise ValueError(
+                f"limit_convention must be one of {_LIMIT_CONVENTIONS}; got {self.limit_convention!r}"
+            )
         for name, value in scalars.items():
             object.__setattr__(self, name, value)
         object.__setattr__(self, "q_min", q_min)
@@ -183,7 +200,9 @@ class TwoLinkArm:
         """True when the arm has joint limits."""
         return self.q_min is not None
 
-    def within_limits(self, q: ArrayLike, tol: float = 1e-12) -> bool | NDArray[np.bool_]:
+    def within_limits(
+        self, q: ArrayLike, tol: float = 1e-12
+    ) -> bool | NDArray[np.bool_]:
         """Whether configurations respect the joint limits.
 
         Parameters
@@ -223,9 +242,16 @@ class TwoLinkArm:
         one = leading == ()
         if self.q_min is None or self.q_max is None:
             return True if one else np.ones(leading, dtype=bool)
-        angle_2 = q1 + q2 if self.limit_convention == "absolute" else q2  # q2 itself or link 2 from the x-axis
+        angle_2 = (
+            q1 + q2 if self.limit_convention == "absolute" else q2
+        )  # q2 itself or link 2 from the x-axis
         (low_1, low_2), (high_1, high_2) = self.q_min, self.q_max
-        inside = (low_1 - tol <= q1) & (q1 <= high_1 + tol) & (low_2 - tol <= angle_2) & (angle_2 <= high_2 + tol)
+        inside = (
+            (low_1 - tol <= q1)
+            & (q1 <= high_1 + tol)
+            & (low_2 - tol <= angle_2)
+            & (angle_2 <= high_2 + tol)
+        )
         return bool(inside) if one else inside
 
     # ------------------------------------------------------------------ kinematics
@@ -241,7 +267,9 @@ class TwoLinkArm:
         """Analytic Jacobian ``(..., 2, 2)``; see :func:`twolink.kinematics.jacobian`."""
         return kinematics.jacobian(self, q)
 
-    def joint_torques(self, q: ArrayLike, force_by_tip: ArrayLike) -> NDArray[np.float64]:
+    def joint_torques(
+        self, q: ArrayLike, force_by_tip: ArrayLike
+    ) -> NDArray[np.float64]:
         """Static torques ``tau = J^T force_by_tip`` ``(..., 2)`` that hold the force the tip exerts.
 
         ``force_by_tip`` (N, shape ``(..., 2)``) is the force the tip exerts
@@ -260,7 +288,9 @@ class TwoLinkArm:
         """The DH table as two rows; see :func:`twolink.dh.dh_table`."""
         return dh.dh_table(self)
 
-    def transforms(self, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def transforms(
+        self, q: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(T_01, T_02)`` homogeneous transforms; see :func:`twolink.dh.transforms`."""
         return dh.transforms(self, q)
 
@@ -273,11 +303,15 @@ class TwoLinkArm:
         """Tip velocity ``J(q) qd`` ``(..., 2)`` in m/s; see :func:`twolink.velocity.tip_velocity`."""
         return velocity.tip_velocity(self, q, qd)
 
-    def joint_rates(self, q: ArrayLike, v_tip: ArrayLike, tol: float = velocity.SINGULARITY_TOL) -> NDArray[np.float64]:
+    def joint_rates(
+        self, q: ArrayLike, v_tip: ArrayLike, tol: float = velocity.SINGULARITY_TOL
+    ) -> NDArray[np.float64]:
         """Joint rates ``J^-1 v_tip``, raising ``SingularityError`` when ``|sin q2| <= tol``; see :func:`twolink.velocity.joint_rates`."""
         return velocity.joint_rates(self, q, v_tip, tol=tol)
 
-    def joint_rates_dls(self, q: ArrayLike, v_tip: ArrayLike, damping: float) -> NDArray[np.float64]:
+    def joint_rates_dls(
+        self, q: ArrayLike, v_tip: ArrayLike, damping: float
+    ) -> NDArray[np.float64]:
         """Damped-least-squares joint rates (bounded at singularities); see :func:`twolink.velocity.joint_rates_dls`."""
         return velocity.joint_rates_dls(self, q, v_tip, damping)
 
@@ -299,7 +333,11 @@ class TwoLinkArm:
         return dynamics.gravity(self, q)
 
     def inverse_dynamics(
-        self, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, force_by_tip: ArrayLike | None = None
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        qdd: ArrayLike,
+        force_by_tip: ArrayLike | None = None,
     ) -> NDArray[np.float64]:
         """Torques ``tau = M qdd + C qd + g [+ J^T force_by_tip]`` ``(..., 2)``.
 
@@ -311,7 +349,11 @@ class TwoLinkArm:
         return dynamics.inverse_dynamics(self, q, qd, qdd, force_by_tip)
 
     def forward_dynamics(
-        self, q: ArrayLike, qd: ArrayLike, tau: ArrayLike, force_by_tip: ArrayLike | None = None
+        self,
+        q: ArrayLike,
+        qd: ArrayLike,
+        tau: ArrayLike,
+        force_by_tip: ArrayLike | None = None,
     ) -> NDArray[np.float64]:
         """Accelerations ``qdd = M^-1 (tau - C qd - g [- J^T force_by_tip])`` ``(..., 2)``.
 
@@ -322,6 +364,8 @@ class TwoLinkArm:
         """
         return dynamics.forward_dynamics(self, q, qd, tau, force_by_tip)
 
-    def energy(self, q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def energy(
+        self, q: ArrayLike, qd: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """Kinetic and potential energy ``(T, V)``, each ``(...)``; see :func:`twolink.dynamics.energy`."""
         return dynamics.energy(self, q, qd)

@@ -25,7 +25,12 @@ from typing import Literal
 
 from ._validate import as_count, as_finite_scalar
 
-__all__ = ["DEFAULT_MAX_EVALUATIONS", "DEFAULT_MAX_WALL_TIME", "MAX_SAMPLES", "EvaluationBudget"]
+__all__ = [
+    "DEFAULT_MAX_EVALUATIONS",
+    "DEFAULT_MAX_WALL_TIME",
+    "MAX_SAMPLES",
+    "EvaluationBudget",
+]
 
 #: Most samples a path is cut into or a workspace helper makes (memory budget:
 #: 1e7 x 2 floats, 160 MB per array).
@@ -73,7 +78,9 @@ class EvaluationBudget:
 
     def __init__(self, max_evaluations: object, max_wall_time: object) -> None:
         self.max_evaluations = as_count(max_evaluations, "max_evaluations", minimum=1)
-        self.max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
+        self.max_wall_time = as_finite_scalar(
+            max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True
+        )
         self.started = time.monotonic()
         self.deadline = self.started + self.max_wall_time
         self.evaluations = 0
@@ -87,7 +94,9 @@ class EvaluationBudget:
         self.evaluations += 1
         if self.evaluations > self.max_evaluations:
             return "max_evaluations"
-        if time.monotonic() > self.deadline:  # one call of a slow torque function may take seconds
+        if (
+            time.monotonic() > self.deadline
+        ):  # one call of a slow torque function may take seconds
             return "max_wall_time"
         return None
 

@@ -27,8 +27,9 @@ array([-5000., -5000.])
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Callable, Union
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -43,7 +44,9 @@ if TYPE_CHECKING:
 __all__ = ["SpringWall", "TipForce"]
 
 #: ``force_on_tip(t, p_tip, v_tip) -> (Fx, Fy)``: a force on the tip that depends on time, tip position and velocity.
-TipForceFunction = Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
+TipForceFunction = Callable[
+    [float, NDArray[np.float64], NDArray[np.float64]], ArrayLike
+]
 #: ``controller(t, q, qd) -> tau``.
 TorqueFunction = Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
 
@@ -80,10 +83,22 @@ class SpringWall:
     stiffness: float
     damping: float = 0.0
 
-    def __init__(self, wall: Wall | ArrayLike, stiffness: float, damping: float = 0.0) -> None:
+    def __init__(
+        self, wall: Wall | ArrayLike, stiffness: float, damping: float = 0.0
+    ) -> None:
         object.__setattr__(self, "wall", as_wall(wall))
-        object.__setattr__(self, "stiffness", as_finite_scalar(stiffness, "wall stiffness (N/m)", minimum=0.0, strictly=True))
-        object.__setattr__(self, "damping", as_finite_scalar(damping, "wall damping (N s/m)", minimum=0.0))
+        object.__setattr__(
+            self,
+            "stiffness",
+            as_finite_scalar(
+                stiffness, "wall stiffness (N/m)", minimum=0.0, strictly=True
+            ),
+        )
+        object.__setattr__(
+            self,
+            "damping",
+            as_finite_scalar(damping, "wall damping (N s/m)", minimum=0.0),
+        )
 
     @property
     def normal(self) -> NDArray[np.float64]:
@@ -141,7 +156,7 @@ class TipForce:
 
     arm: TwoLinkArm
     controller: TorqueFunction | None
-    force_on_tip: Union[TipForceFunction, NDArray[np.float64]]
+    force_on_tip: TipForceFunction | NDArray[np.float64]
 
     def __init__(
         self,
@@ -151,37 +166,49 @@ class TipForce:
     ) -> None:
         object.__setattr__(self, "arm", require_arm(arm, "TipForce's arm"))
         if controller is not None and not callable(controller):
-            raise ValueError(f"controller must be None or a callable (t, q, qd) -> tau; got {controller!r}")
+            raise ValueError(
+                f"controller must be None or a callable (t, q, qd) -> tau; got {controller!r}"
+            )
         object.__setattr__(self, "controller", controller)
         if callable(force_on_tip):
             object.__setattr__(self, "force_on_tip", force_on_tip)
         else:
-            constant = as_configuration(force_on_tip, "force_on_tip", what="one force (Fx, Fy)", unit="N").copy()
+            constant = as_configuration(
+                force_on_tip, "force_on_tip", what="one force (Fx, Fy)", unit="N"
+            ).copy()
             constant.setflags(write=False)
             object.__setattr__(self, "force_on_tip", constant)
 
-    def force_on_tip_at(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+    def force_on_tip_at(
+        self, t: float, q: ArrayLike, qd: ArrayLike
+    ) -> NDArray[np.float64]:
         """The force acting on the tip, N, at one state (``q``, ``qd`` of shape ``(2,)``)."""
         q, qd = _one_state(q, qd)
         force_on_tip = self.force_on_tip
         if not callable(force_on_tip):
             return force_on_tip
         v_tip = self.arm.jacobian(q) @ qd
-        value = as_pairs(force_on_tip(t, self.arm.fk(q), v_tip), "force_on_tip(t, p_tip, v_tip)")
+        value = as_pairs(
+            force_on_tip(t, self.arm.fk(q), v_tip), "force_on_tip(t, p_tip, v_tip)"
+        )
         if value.shape != (2,):
             raise ValueError(
                 f"force_on_tip(t, p_tip, v_tip) must return shape (2,) (Fx, Fy in N); got shape {value.shape}"
             )
         return value
 
-    def motor_torque(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+    def motor_torque(
+        self, t: float, q: ArrayLike, qd: ArrayLike
+    ) -> NDArray[np.float64]:
         """The controller's torques alone, N m (zeros without a controller)."""
         if self.controller is None:
             return np.zeros(2)
         q, qd = _one_state(q, qd)
         tau = as_pairs(self.controller(t, q, qd), "controller(t, q, qd)")
         if tau.shape != (2,):
-            raise ValueError(f"controller(t, q, qd) must return shape (2,) (N m); got shape {tau.shape}")
+            raise ValueError(
+                f"controller(t, q, qd) must return shape (2,) (N m); got shape {tau.shape}"
+            )
         return tau
 
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
@@ -190,8 +217,14 @@ class TipForce:
         # the joint torque of a force acting on the tip, J^T force_on_tip: minus the torque that holds
         # the force the tip exerts back, force_by_tip = -force_on_tip (kinematics.joint_torques)
         force_on_tip = self.force_on_tip_at(t, q, qd)
-        return self.motor_torque(t, q, qd) - joint_torques(self.arm, q, force_by_tip=-force_on_tip)
+        return self.motor_torque(t, q, qd) - joint_torques(
+            self.arm, q, force_by_tip=-force_on_tip
+        )
 
 
-def _one_state(q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    return as_configuration(q), as_configuration(qd, "qd", what="one pair of joint rates", unit="rad/s")
+def _one_state(
+    q: ArrayLike, qd: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    return as_configuration(q), as_configuration(
+        qd, "qd", what="one pair of joint rates", unit="rad/s"
+    )

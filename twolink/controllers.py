@@ -42,13 +42,22 @@ array([1800.,  900.])
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import as_configuration, as_finite_scalar, as_flag, as_pairs, broadcast_shape, real_array, require_arm
+from ._validate import (
+    as_configuration,
+    as_finite_scalar,
+    as_flag,
+    as_pairs,
+    broadcast_shape,
+    real_array,
+    require_arm,
+)
 from .dynamics import gravity_jacobian, mass_matrix_derivative
 from .kinematics import jacobian_derivative, joint_torques
 
@@ -113,14 +122,21 @@ def gain_matrix(value: ArrayLike, name: str) -> NDArray[np.float64]:
         scalar = as_finite_scalar(value, name, minimum=0.0)
         matrix = scalar * np.eye(2)
     else:
-        matrix = np.array(real_array(value, name, "a number >= 0 or a 2x2 matrix of real numbers"), dtype=float)
+        matrix = np.array(
+            real_array(value, name, "a number >= 0 or a 2x2 matrix of real numbers"),
+            dtype=float,
+        )
         if matrix.shape != (2, 2):
-            raise ValueError(f"{name} must be a number >= 0 or a 2x2 matrix; got shape {matrix.shape}")
+            raise ValueError(
+                f"{name} must be a number >= 0 or a 2x2 matrix; got shape {matrix.shape}"
+            )
         if not np.all(np.isfinite(matrix)):
             raise ValueError(f"{name} must have finite entries; got {matrix.tolist()}")
         scale = float(np.max(np.abs(matrix)))
         if abs(matrix[0, 1] - matrix[1, 0]) > GAIN_RTOL * scale:
-            raise ValueError(f"{name} must be symmetric (K = K^T); got {matrix.tolist()}")
+            raise ValueError(
+                f"{name} must be symmetric (K = K^T); got {matrix.tolist()}"
+            )
         matrix = (matrix + matrix.T) / 2.0
         smallest = float(np.linalg.eigvalsh(matrix)[0])
         if smallest < -GAIN_RTOL * scale:
@@ -138,7 +154,9 @@ def _point(value: ArrayLike, name: str) -> NDArray[np.float64]:
     return point
 
 
-def _state(q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _state(
+    q: ArrayLike, qd: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """``(q, qd)`` as float arrays of shape ``(..., 2)`` whose leading axes broadcast, or a message naming both."""
     q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
     if q.shape != qd.shape:
@@ -185,9 +203,13 @@ class CartesianSpring:
     stiffness: NDArray[np.float64]
     rest_point: NDArray[np.float64]
 
-    def __init__(self, arm: TwoLinkArm, stiffness: ArrayLike, rest_point: ArrayLike) -> None:
+    def __init__(
+        self, arm: TwoLinkArm, stiffness: ArrayLike, rest_point: ArrayLike
+    ) -> None:
         object.__setattr__(self, "arm", require_arm(arm, "CartesianSpring's arm"))
-        object.__setattr__(self, "stiffness", gain_matrix(stiffness, "stiffness K (N/m)"))
+        object.__setattr__(
+            self, "stiffness", gain_matrix(stiffness, "stiffness K (N/m)")
+        )
         object.__setattr__(self, "rest_point", _point(rest_point, "rest_point x0"))
 
     def force_on_tip(self, q: ArrayLike) -> NDArray[np.float64]:
@@ -196,7 +218,9 @@ class CartesianSpring:
 
     def torque(self, q: ArrayLike) -> NDArray[np.float64]:
         """The joint torques ``J(q)^T force_on_tip``, N m; vectorised over ``q`` ``(..., 2)``."""
-        return -joint_torques(self.arm, q, force_by_tip=-self.force_on_tip(q))  # J^T force_on_tip
+        return -joint_torques(
+            self.arm, q, force_by_tip=-self.force_on_tip(q)
+        )  # J^T force_on_tip
 
     def potential_energy(self, q: ArrayLike) -> NDArray[np.float64]:
         """Energy stored in the spring, ``(x0 - x)^T K (x0 - x) / 2``, joules; shape ``(...)``."""
@@ -207,7 +231,9 @@ class CartesianSpring:
         """The motor torques at time ``t`` (unused) and state ``(q, qd)``, N m."""
         return self.torque(q)
 
-    def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def torque_derivatives(
+        self, t: float, q: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``, each 2x2 (N m/rad, N m s/rad).
 
         ``dtau/dq = sum_k dJ_ki/dq_j F_k - J^T K J`` (the spring's geometric
@@ -228,11 +254,16 @@ class CartesianSpring:
         (True, True)
         """
         q = as_configuration(q)
-        return _spring_stiffness(self.arm, q, self.force_on_tip(q), self.stiffness), np.zeros((2, 2))
+        return _spring_stiffness(
+            self.arm, q, self.force_on_tip(q), self.stiffness
+        ), np.zeros((2, 2))
 
 
 def _spring_stiffness(
-    arm: TwoLinkArm, q: NDArray[np.float64], force_on_tip: NDArray[np.float64], stiffness: NDArray[np.float64]
+    arm: TwoLinkArm,
+    q: NDArray[np.float64],
+    force_on_tip: NDArray[np.float64],
+    stiffness: NDArray[np.float64],
 ) -> NDArray[np.float64]:
     """``d(J^T F)/dq`` for ``F = K (x0 - x(q))`` at one ``q``: ``sum_k dJ_ki/dq_j F_k - J^T K J``."""
     J = arm.jacobian(q)
@@ -293,10 +324,16 @@ class Impedance:
         gravity_compensation: bool = True,
     ) -> None:
         object.__setattr__(self, "arm", require_arm(arm, "Impedance's arm"))
-        object.__setattr__(self, "stiffness", gain_matrix(stiffness, "stiffness K (N/m)"))
+        object.__setattr__(
+            self, "stiffness", gain_matrix(stiffness, "stiffness K (N/m)")
+        )
         object.__setattr__(self, "damping", gain_matrix(damping, "damping D (N s/m)"))
         object.__setattr__(self, "rest_point", _point(rest_point, "rest_point x0"))
-        object.__setattr__(self, "gravity_compensation", as_flag(gravity_compensation, "gravity_compensation"))
+        object.__setattr__(
+            self,
+            "gravity_compensation",
+            as_flag(gravity_compensation, "gravity_compensation"),
+        )
 
     @property
     def spring(self) -> CartesianSpring:
@@ -307,11 +344,15 @@ class Impedance:
         """The force the controller makes act on the tip, ``K (x0 - x) - D xdot``, N; shape ``(..., 2)``."""
         q, qd = _state(q, qd)
         tip_velocity = np.einsum("...ij,...j->...i", self.arm.jacobian(q), qd)
-        return (self.rest_point - self.arm.fk(q)) @ self.stiffness.T - tip_velocity @ self.damping.T
+        return (
+            self.rest_point - self.arm.fk(q)
+        ) @ self.stiffness.T - tip_velocity @ self.damping.T
 
     def torque(self, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """The motor torques ``J^T force_on_tip [+ g(q)]``, N m; vectorised over ``q`` and ``qd`` ``(..., 2)``."""
-        tau = -joint_torques(self.arm, q, force_by_tip=-self.force_on_tip(q, qd))  # J^T force_on_tip
+        tau = -joint_torques(
+            self.arm, q, force_by_tip=-self.force_on_tip(q, qd)
+        )  # J^T force_on_tip
         if self.gravity_compensation:
             tau = tau + self.arm.gravity(q)
         return tau
@@ -324,7 +365,9 @@ class Impedance:
         """The motor torques at time ``t`` (unused) and state ``(q, qd)``, N m."""
         return self.torque(q, qd)
 
-    def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def torque_derivatives(
+        self, t: float, q: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``, each 2x2.
 
         The spring's (see :meth:`CartesianSpring.torque_derivatives`) plus
@@ -341,7 +384,9 @@ class Impedance:
         """
         q = as_configuration(q)
         J = self.arm.jacobian(q)
-        by_q = _spring_stiffness(self.arm, q, self.spring.force_on_tip(q), self.stiffness)
+        by_q = _spring_stiffness(
+            self.arm, q, self.spring.force_on_tip(q), self.stiffness
+        )
         if self.gravity_compensation:
             by_q = by_q + gravity_jacobian(self.arm, q)
         return by_q, -J.T @ self.damping @ J
@@ -349,7 +394,9 @@ class Impedance:
 
 def _pair_function(function: object, name: str) -> TimeFunction:
     if not callable(function):
-        raise ValueError(f"{name} must be a callable of time t -> array of shape (2,); got {function!r}")
+        raise ValueError(
+            f"{name} must be a callable of time t -> array of shape (2,); got {function!r}"
+        )
     return function
 
 
@@ -384,7 +431,9 @@ class JointReference:
         for name in ("position", "velocity", "acceleration"):
             _pair_function(getattr(self, name), name)
 
-    def __call__(self, t: float) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    def __call__(
+        self, t: float
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
         """``(q_ref, qd_ref, qdd_ref)`` at time ``t``, each an array of shape (2,).
 
         Raises
@@ -414,7 +463,9 @@ class JointReference:
         return cls(lambda t: held, lambda t: zeros, lambda t: zeros)
 
     @classmethod
-    def from_samples(cls, t: ArrayLike, q: ArrayLike, qd: ArrayLike | None = None) -> JointReference:
+    def from_samples(
+        cls, t: ArrayLike, q: ArrayLike, qd: ArrayLike | None = None
+    ) -> JointReference:
         """A cubic-spline reference through samples ``q`` at times ``t``.
 
         The spline has continuous rate and acceleration (what a controller
@@ -443,24 +494,38 @@ class JointReference:
         (array([ 1., -1.]), array([0., 0.]))
         """
         times = real_array(t, "t (s)")
-        if times.ndim != 1 or len(times) < 2 or not np.all(np.isfinite(times)) or not np.all(np.diff(times) > 0):
-            raise ValueError("t must be a 1-D array of at least 2 finite, strictly increasing times (s)")
+        if (
+            times.ndim != 1
+            or len(times) < 2
+            or not np.all(np.isfinite(times))
+            or not np.all(np.diff(times) > 0)
+        ):
+            raise ValueError(
+                "t must be a 1-D array of at least 2 finite, strictly increasing times (s)"
+            )
         samples = as_pairs(q, "q samples")
         if samples.shape != (len(times), 2):
             raise ValueError(
                 f"q must have shape ({len(times)}, 2), one configuration per time; got {samples.shape}"
             )
-        from scipy.interpolate import CubicSpline  # here, not at the top: import twolink stays light
+        # here, not at the top: import twolink stays light
+        from scipy.interpolate import CubicSpline
 
         if qd is None:
             if len(times) < 4:
-                raise ValueError("a not-a-knot spline needs at least 4 samples; give more, or the end rates qd")
+                raise ValueError(
+                    "a not-a-knot spline needs at least 4 samples; give more, or the end rates qd"
+                )
             spline = CubicSpline(times, samples, axis=0)
         else:
             rates = as_pairs(qd, "qd samples")
             if rates.shape != samples.shape:
-                raise ValueError(f"qd must have the shape of q, {samples.shape}; got {rates.shape}")
-            spline = CubicSpline(times, samples, axis=0, bc_type=((1, rates[0]), (1, rates[-1])))
+                raise ValueError(
+                    f"qd must have the shape of q, {samples.shape}; got {rates.shape}"
+                )
+            spline = CubicSpline(
+                times, samples, axis=0, bc_type=((1, rates[0]), (1, rates[-1]))
+            )
         rate, acceleration = spline.derivative(1), spline.derivative(2)
         start, end = float(times[0]), float(times[-1])
         q_start, q_end = samples[0].copy(), samples[-1].copy()
@@ -481,13 +546,17 @@ class JointReference:
         return cls(position, inside(rate), inside(acceleration))
 
 
-def _reference_pair(value: object, name: str, unit: str, t: float) -> NDArray[np.float64]:
+def _reference_pair(
+    value: object, name: str, unit: str, t: float
+) -> NDArray[np.float64]:
     try:
         array = np.asarray(value, dtype=float)
     except (TypeError, ValueError):
         array = np.empty(0)
     if array.shape != (2,):
-        raise ValueError(f"the reference's {name}(t) must return two numbers ({unit}), shape (2,); got {value!r} at t = {t}")
+        raise ValueError(
+            f"the reference's {name}(t) must return two numbers ({unit}), shape (2,); got {value!r} at t = {t}"
+        )
     return array
 
 
@@ -548,7 +617,11 @@ class JointPD:
         object.__setattr__(self, "kp", gain_matrix(kp, "kp (joint stiffness, N m/rad)"))
         object.__setattr__(self, "kd", gain_matrix(kd, "kd (joint damping, N m s/rad)"))
         object.__setattr__(self, "reference", _as_reference(reference))
-        object.__setattr__(self, "gravity_compensation", as_flag(gravity_compensation, "gravity_compensation"))
+        object.__setattr__(
+            self,
+            "gravity_compensation",
+            as_flag(gravity_compensation, "gravity_compensation"),
+        )
 
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """The motor torques at time ``t`` and state ``(q, qd)``, N m; vectorised over ``q`` and ``qd`` ``(..., 2)``.
@@ -573,7 +646,9 @@ class JointPD:
             tau = tau + self.arm.gravity(q)
         return tau
 
-    def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def torque_derivatives(
+        self, t: float, q: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(dtau/dq, dtau/dqd) = (-Kp [+ dg/dq], -Kd)`` at ``(q, qd = 0)``.
 
         Examples
@@ -586,7 +661,11 @@ class JointPD:
                [ 0., -2.]])]
         """
         q = as_configuration(q)
-        by_q = -self.kp + gravity_jacobian(self.arm, q) if self.gravity_compensation else -self.kp
+        by_q = (
+            -self.kp + gravity_jacobian(self.arm, q)
+            if self.gravity_compensation
+            else -self.kp
+        )
         return by_q, -self.kd
 
 
@@ -643,14 +722,22 @@ class ComputedTorque:
         object.__setattr__(self, "kp", gain_matrix(kp, "kp (1/s^2)"))
         object.__setattr__(self, "kd", gain_matrix(kd, "kd (1/s)"))
         object.__setattr__(self, "reference", _as_reference(reference))
-        object.__setattr__(self, "model", arm if model is None else require_arm(model, "ComputedTorque's model"))
+        object.__setattr__(
+            self,
+            "model",
+            arm if model is None else require_arm(model, "ComputedTorque's model"),
+        )
 
-    def commanded_acceleration(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+    def commanded_acceleration(
+        self, t: float, q: ArrayLike, qd: ArrayLike
+    ) -> NDArray[np.float64]:
         """``v = qdd_ref + Kd (qd_ref - qd) + Kp (q_ref - q)``, rad/s^2; vectorised over ``q`` and ``qd`` ``(..., 2)``."""
         q, qd = _state(q, qd)
         return self._acceleration(t, q, qd)
 
-    def _acceleration(self, t: float, q: NDArray[np.float64], qd: NDArray[np.float64]) -> NDArray[np.float64]:
+    def _acceleration(
+        self, t: float, q: NDArray[np.float64], qd: NDArray[np.float64]
+    ) -> NDArray[np.float64]:
         q_ref, qd_ref, qdd_ref = self.reference(t)
         # K e for each row e: e @ K^T
         return qdd_ref + (qd_ref - qd) @ self.kd.T + (q_ref - q) @ self.kp.T
@@ -660,7 +747,9 @@ class ComputedTorque:
         q, qd = _state(q, qd)
         return self.model.inverse_dynamics(q, qd, self._acceleration(t, q, qd))
 
-    def torque_derivatives(self, t: float, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    def torque_derivatives(
+        self, t: float, q: ArrayLike
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """``(dtau/dq, dtau/dqd)`` at ``(q, qd = 0)``, from the model.
 
         ``dtau/dq = dM/dq v - M Kp + dg/dq`` (``v`` the commanded
@@ -682,5 +771,7 @@ class ComputedTorque:
         acceleration = self._acceleration(t, q, np.zeros(2))
         M = self.model.mass_matrix(q)
         by_q = -M @ self.kp + gravity_jacobian(self.model, q)
-        by_q += np.einsum("ijk,j->ik", mass_matrix_derivative(self.model, q), acceleration)
+        by_q += np.einsum(
+            "ijk,j->ik", mass_matrix_derivative(self.model, q), acceleration
+        )
         return by_q, -M @ self.kd

@@ -32,7 +32,9 @@ __all__ = ["to_absolute", "to_relative", "wrap_angle", "ELBOW_WORDS", "check_elb
 ELBOW_WORDS: tuple[str, ...] = ("down", "up", "both", "auto")
 
 
-def check_elbow(elbow: object, accepted: tuple[str, ...] = ELBOW_WORDS, why: str = "") -> str:
+def check_elbow(
+    elbow: object, accepted: tuple[str, ...] = ELBOW_WORDS, why: str = ""
+) -> str:
     """Return ``elbow`` when it is one of ``accepted`` (a subset of :data:`ELBOW_WORDS`).
 
     Parameters
@@ -145,5 +147,7 @@ def wrap_angle(angle: ArrayLike) -> NDArray[np.float64] | np.float64:
     """
     angles = real_array(angle, "angle (rad)")
     if not np.all(np.isfinite(angles)):
-        raise ValueError("angle must be finite (radians); NaN or infinity has no wrapped value")
+        raise ValueError(
+            "angle must be finite (radians); NaN or infinity has no wrapped value"
+        )
     return (angles + np.pi) % (2.0 * np.pi) - np.pi

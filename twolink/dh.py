@@ -39,7 +39,9 @@ class DHRow(NamedTuple):
     alpha: float
 
 
-def dh_matrix(theta: ArrayLike, d: float, a: float, alpha: float) -> NDArray[np.float64]:
+def dh_matrix(
+    theta: ArrayLike, d: float, a: float, alpha: float
+) -> NDArray[np.float64]:
     """Homogeneous transform of one DH row, vectorised over ``theta``.
 
     Parameters
@@ -103,7 +105,9 @@ def dh_table(arm: TwoLinkArm) -> tuple[DHRow, DHRow]:
     )
 
 
-def transforms(arm: TwoLinkArm, q: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def transforms(
+    arm: TwoLinkArm, q: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Frame 1 and frame 2 (tip) in the base frame: ``(T_01, T_02 = A1 @ A2)``.
 
     Parameters
@@ -168,5 +172,7 @@ def geometric_jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     for T_prev in (identity, T_01):
         z_axis = T_prev[..., :3, 2]
         origin = T_prev[..., :3, 3]
-        columns.append(np.concatenate([np.cross(z_axis, o_tip - origin), z_axis], axis=-1))
+        columns.append(
+            np.concatenate([np.cross(z_axis, o_tip - origin), z_axis], axis=-1)
+        )
     return np.stack(columns, axis=-1)

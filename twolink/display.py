@@ -23,7 +23,13 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import InputTypeError, as_configuration, as_count, as_finite_scalar, real_array
+from ._validate import (
+    InputTypeError,
+    as_configuration,
+    as_count,
+    as_finite_scalar,
+    real_array,
+)
 from .errors import SingularityError, UnreachableError
 
 __all__ = [
@@ -59,13 +65,19 @@ def _number_text(value: float) -> str:
 def _plain_exponent(text: str) -> str:
     """``2.5e+04`` -> ``2.5e4``, ``2.e-05`` -> ``2e-5``."""
     text = text.replace(".e", "e")
-    return re.sub(r"e([+-])0*(\d)", lambda match: "e" + match.group(1).replace("+", "") + match.group(2), text)
+    return re.sub(
+        r"e([+-])0*(\d)",
+        lambda match: "e" + match.group(1).replace("+", "") + match.group(2),
+        text,
+    )
 
 
 def _with_unit(text: str, unit: str) -> str:
     """``"3 m"``: a space before a unit, none before the degree sign (``"45°"``)."""
     if not isinstance(unit, str):
-        raise InputTypeError(f"unit must be a string such as 'm' or '°'; got {unit!r} ({type(unit).__name__})")
+        raise InputTypeError(
+            f"unit must be a string such as 'm' or '°'; got {unit!r} ({type(unit).__name__})"
+        )
     if not unit:
         return text
     return f"{text}{unit}" if unit.startswith("°") else f"{text} {unit}"
@@ -76,7 +88,9 @@ def _largest_magnitude(value: ArrayLike, name: str) -> float:
     if values.size == 0:
         raise ValueError(f"{name} is empty: give at least one number to bound")
     if not np.all(np.isfinite(values)):
-        raise ValueError(f"{name} has a NaN or infinite entry: a bound of it would be meaningless; find where it came from")
+        raise ValueError(
+            f"{name} has a NaN or infinite entry: a bound of it would be meaningless; find where it came from"
+        )
     return float(np.max(np.abs(values)))
 
 
@@ -178,9 +192,13 @@ def _entries_to_show(value: ArrayLike) -> tuple[list[float], bool]:
     """The finite numbers of a scalar or a vector, as floats, and whether it was a scalar."""
     values = real_array(value, "value")
     if values.ndim > 1:
-        raise ValueError(f"value must be one number or a vector; got an array of shape {values.shape}")
+        raise ValueError(
+            f"value must be one number or a vector; got an array of shape {values.shape}"
+        )
     if not np.all(np.isfinite(values)):
-        raise ValueError("value has a NaN or infinite entry: it cannot be shown rounded; find where it came from")
+        raise ValueError(
+            "value has a NaN or infinite entry: it cannot be shown rounded; find where it came from"
+        )
     return [float(entry) for entry in values.reshape(-1)], values.ndim == 0
 
 
@@ -217,7 +235,12 @@ def rounded(value: ArrayLike, decimals: int, unit: str = "") -> str:
     """
     places = as_count(decimals, "decimals (decimals shown)", minimum=0)
     entries, scalar = _entries_to_show(value)
-    return _with_unit(_joined([f"{round(entry, places) + 0.0:.{places}f}" for entry in entries], scalar), unit)
+    return _with_unit(
+        _joined(
+            [f"{round(entry, places) + 0.0:.{places}f}" for entry in entries], scalar
+        ),
+        unit,
+    )
 
 
 def significant(value: ArrayLike, digits: int, unit: str = "") -> str:
@@ -247,10 +270,23 @@ def significant(value: ArrayLike, digits: int, unit: str = "") -> str:
     """
     count = as_count(digits, "digits (significant digits shown)", minimum=1)
     entries, scalar = _entries_to_show(value)
-    return _with_unit(_joined([_plain_exponent(format(entry + 0.0, f"#.{count}g")).rstrip(".") for entry in entries], scalar), unit)
+    return _with_unit(
+        _joined(
+            [
+                _plain_exponent(format(entry + 0.0, f"#.{count}g")).rstrip(".")
+                for entry in entries
+            ],
+            scalar,
+        ),
+        unit,
+    )
 
 
-def markdown_table(headers: Sequence[str], rows: Iterable[Sequence[Any]], formats: Sequence[str] | None = None) -> str:
+def markdown_table(
+    headers: Sequence[str],
+    rows: Iterable[Sequence[Any]],
+    formats: Sequence[str] | None = None,
+) -> str:
     """A Markdown table as a string.
 
     Parameters
@@ -270,12 +306,20 @@ def markdown_table(headers: Sequence[str], rows: Iterable[Sequence[Any]], format
     """
     formats = formats or [""] * len(headers)
     if len(formats) != len(headers):
-        raise ValueError(f"formats has {len(formats)} entries for {len(headers)} columns")
+        raise ValueError(
+            f"formats has {len(formats)} entries for {len(headers)} columns"
+        )
     lines = ["| " + " | ".join(headers) + " |", "|" + "---|" * len(headers)]
     for row in rows:
         if len(row) != len(headers):
-            raise ValueError(f"row {row!r} has {len(row)} cells for {len(headers)} columns")
-        lines.append("| " + " | ".join(format(value, spec) for value, spec in zip(row, formats)) + " |")
+            raise ValueError(
+                f"row {row!r} has {len(row)} cells for {len(headers)} columns"
+            )
+        lines.append(
+            "| "
+            + " | ".join(format(value, spec) for value, spec in zip(row, formats))
+            + " |"
+        )
     return "\n".join(lines)
 
 
@@ -303,7 +347,9 @@ def angles_deg(q: ArrayLike, digits: int = 1) -> str:
     """
     values: NDArray[np.float64] = as_configuration(q)
     decimals = as_count(digits, "digits (decimals shown)", minimum=0)
-    q1_deg, q2_deg = (round(float(value), decimals) + 0.0 for value in np.degrees(values))
+    q1_deg, q2_deg = (
+        round(float(value), decimals) + 0.0 for value in np.degrees(values)
+    )
     return f"({q1_deg:.{decimals}f}°, {q2_deg:.{decimals}f}°)"
 
 
@@ -316,7 +362,8 @@ class CaughtError:
 
 @contextmanager
 def print_error(
-    prefix: str = "", errors: tuple[type[Exception], ...] = (UnreachableError, SingularityError)
+    prefix: str = "",
+    errors: tuple[type[Exception], ...] = (UnreachableError, SingularityError),
 ) -> Iterator[CaughtError]:
     """Run a block; if it raises one of ``errors``, print ``"{prefix}{Name}: {message}"`` instead of a traceback.
 
@@ -353,13 +400,19 @@ def print_error(
     True
     """
     if not isinstance(prefix, str):
-        raise InputTypeError(f"prefix must be a string; got {prefix!r} ({type(prefix).__name__})")
+        raise InputTypeError(
+            f"prefix must be a string; got {prefix!r} ({type(prefix).__name__})"
+        )
     if not (
         isinstance(errors, tuple)
         and errors
-        and all(isinstance(kind, type) and issubclass(kind, Exception) for kind in errors)
+        and all(
+            isinstance(kind, type) and issubclass(kind, Exception) for kind in errors
+        )
     ):
-        raise InputTypeError(f"errors must be a non-empty tuple of exception classes; got {errors!r}")
+        raise InputTypeError(
+            f"errors must be a non-empty tuple of exception classes; got {errors!r}"
+        )
     caught = CaughtError()
     try:
         yield caught

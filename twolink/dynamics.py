@@ -35,7 +35,8 @@ against a 50-digit mpmath reference.
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any, Callable, NamedTuple
+from collections.abc import Callable
+from typing import TYPE_CHECKING, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -84,7 +85,9 @@ class _Constants(NamedTuple):
 def _constants(arm):
     """The arm's :class:`_Constants`, computed once per :class:`twolink.TwoLinkArm` (cached on it)."""
     derived = getattr(arm, "_derived", None)
-    if derived is None:  # not a TwoLinkArm (an object with the same attributes, or not an arm)
+    if (
+        derived is None
+    ):  # not a TwoLinkArm (an object with the same attributes, or not an arm)
         return _compute_constants(arm)
     constants = derived.get("dynamics")
     if constants is None:
@@ -180,7 +183,9 @@ def _inverse(constants, cos, sin, q1, q2, qd1, qd2, qdd1, qdd2):
     m11, m12, m22 = _mass_terms(alpha, beta, delta, cos(q2))
     c11, c12, c21 = _coriolis_terms(beta, sin(q2), qd1, qd2)
     g1, g2 = _gravity_terms(gamma1, gamma2, cos(q1), cos(q1 + q2))
-    return m11 * qdd1 + m12 * qdd2 + (c11 * qd1 + c12 * qd2 + g1), m12 * qdd1 + m22 * qdd2 + (c21 * qd1 + g2)
+    return m11 * qdd1 + m12 * qdd2 + (
+        c11 * qd1 + c12 * qd2 + g1
+    ), m12 * qdd1 + m22 * qdd2 + (c21 * qd1 + g2)
 
 
 def _blockwise(formula, constants, q, qd, last):
@@ -189,13 +194,28 @@ def _blockwise(formula, constants, q, qd, last):
     ``formula`` is :func:`_forward` (``last`` is ``tau``) or :func:`_inverse`
     (``last`` is ``qdd``).
     """
-    shape = broadcast_shape(**{"q": q, "qd": qd, "tau" if formula is _forward else "qdd": last})
+    shape = broadcast_shape(
+        **{"q": q, "qd": qd, "tau" if formula is _forward else "qdd": last}
+    )
     kinematics.require_finite_angle_sum(q)
-    q_flat, qd_flat, last_flat = (np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last))
-    columns = (q_flat[:, 0], q_flat[:, 1], qd_flat[:, 0], qd_flat[:, 1], last_flat[:, 0], last_flat[:, 1])
+    q_flat, qd_flat, last_flat = (
+        np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last)
+    )
+    columns = (
+        q_flat[:, 0],
+        q_flat[:, 1],
+        qd_flat[:, 0],
+        qd_flat[:, 1],
+        last_flat[:, 0],
+        last_flat[:, 1],
+    )
     result = np.empty(shape)
-    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is reported by the caller, not warned
-        kinematics.evaluate_blockwise(formula, (constants, np.cos, np.sin), columns, result.reshape(-1, 2))
+    with np.errstate(
+        over="ignore", invalid="ignore"
+    ):  # an overflow is reported by the caller, not warned
+        kinematics.evaluate_blockwise(
+            formula, (constants, np.cos, np.sin), columns, result.reshape(-1, 2)
+        )
     return result
 
 
@@ -246,7 +266,9 @@ def mass_matrix(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     constants = _constants(arm)
-    m11, m12, m22 = _mass_terms(constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1]))
+    m11, m12, m22 = _mass_terms(
+        constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1])
+    )
     M = np.empty(q.shape[:-1] + (2, 2))
     M[..., 0, 0] = m11
     M[..., 0, 1] = m12
@@ -290,7 +312,9 @@ def coriolis(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)
-    c11, c12, c21 = _coriolis_terms(_constants(arm).beta, np.sin(q[..., 1]), qd[..., 0], qd[..., 1])
+    c11, c12, c21 = _coriolis_terms(
+        _constants(arm).beta, np.sin(q[..., 1]), qd[..., 0], qd[..., 1]
+    )
     C = np.zeros(shape[:-1] + (2, 2))
     C[..., 0, 0] = c11
     C[..., 0, 1] = c12
@@ -417,7 +441,11 @@ def gravity_jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
 
 
 def inverse_dynamics(
-    arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike, force_by_tip: ArrayLike | None = None
+    arm: TwoLinkArm,
+    q: ArrayLike,
+    qd: ArrayLike,
+    qdd: ArrayLike,
+    force_by_tip: ArrayLike | None = None,
 ) -> NDArray[np.float64]:
     """Joint torques for a motion: ``tau = M(q) qdd + C(q, qd) qd + g(q) [+ J^T force_by_tip]``.
 
@@ -456,10 +484,14 @@ def inverse_dynamics(
         if state is not None:
             try:
                 tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
-            except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
+            except (
+                ValueError
+            ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
                 tau1 = tau2 = math.inf
             if math.isfinite(tau1 + tau2):
-                tau = np.empty(2)  # then two item assignments: faster than np.array of a tuple
+                tau = np.empty(
+                    2
+                )  # then two item assignments: faster than np.array of a tuple
                 tau[0], tau[1] = tau1, tau2
                 return tau
     q = as_pairs(q, "q")
@@ -470,12 +502,22 @@ def inverse_dynamics(
     else:
         force_by_tip = as_pairs(force_by_tip, "force_by_tip")
         broadcast_shape(q=q, qd=qd, qdd=qdd, force_by_tip=force_by_tip)
-        tau = _blockwise(_inverse, _constants(arm), q, qd, qdd) + kinematics.joint_torques(arm, q, force_by_tip)
-    return finite_result(tau, "joint torques tau (N m)", "the rates or accelerations are too large for this arm")
+        tau = _blockwise(
+            _inverse, _constants(arm), q, qd, qdd
+        ) + kinematics.joint_torques(arm, q, force_by_tip)
+    return finite_result(
+        tau,
+        "joint torques tau (N m)",
+        "the rates or accelerations are too large for this arm",
+    )
 
 
 def forward_dynamics(
-    arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike, tau: ArrayLike, force_by_tip: ArrayLike | None = None
+    arm: TwoLinkArm,
+    q: ArrayLike,
+    qd: ArrayLike,
+    tau: ArrayLike,
+    force_by_tip: ArrayLike | None = None,
 ) -> NDArray[np.float64]:
     """Joint accelerations ``qdd = M(q)^-1 (tau - C(q, qd) qd - g(q) [- J^T force_by_tip])``.
 
@@ -528,11 +570,17 @@ def forward_dynamics(
         state = _single_state(q, qd, tau)
         if state is not None:
             try:
-                qdd1, qdd2 = _forward(_invertible_constants(arm), math.cos, math.sin, *state)
-            except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
+                qdd1, qdd2 = _forward(
+                    _invertible_constants(arm), math.cos, math.sin, *state
+                )
+            except (
+                ValueError
+            ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
                 qdd1 = qdd2 = math.inf
             if math.isfinite(qdd1 + qdd2):
-                qdd = np.empty(2)  # then two item assignments: faster than np.array of a tuple
+                qdd = np.empty(
+                    2
+                )  # then two item assignments: faster than np.array of a tuple
                 qdd[0], qdd[1] = qdd1, qdd2
                 return qdd
     q = as_pairs(q, "q")
@@ -543,10 +591,16 @@ def forward_dynamics(
         broadcast_shape(q=q, qd=qd, tau=tau, force_by_tip=force_by_tip)
         tau = tau - kinematics.joint_torques(arm, q, force_by_tip)
     qdd = _blockwise(_forward, _invertible_constants(arm), q, qd, tau)
-    return finite_result(qdd, "joint accelerations qdd (rad/s^2)", "the torques or rates are too large for this arm")
+    return finite_result(
+        qdd,
+        "joint accelerations qdd (rad/s^2)",
+        "the torques or rates are too large for this arm",
+    )
 
 
-def energy(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def energy(
+    arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Kinetic and potential energy ``(T, V)`` of the arm.
 
     ``T = qd^T M(q) qd / 2`` and ``V = g (m1 y_c1 + m2 y_c2)``, zero with
@@ -577,16 +631,22 @@ def energy(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> tuple[NDArray[np.flo
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)[:-1]
     constants = _constants(arm)
-    m11, m12, m22 = _mass_terms(constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1]))
+    m11, m12, m22 = _mass_terms(
+        constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1])
+    )
     qd1, qd2 = qd[..., 0], qd[..., 1]
     q1, q12 = kinematics.link_angles(q)
     kinetic = 0.5 * (m11 * qd1 * qd1 + 2.0 * m12 * qd1 * qd2 + m22 * qd2 * qd2)
     potential = constants.gamma1 * np.sin(q1) + constants.gamma2 * np.sin(q12)
-    return np.broadcast_to(kinetic, shape).copy(), np.broadcast_to(potential, shape).copy()
+    return np.broadcast_to(kinetic, shape).copy(), np.broadcast_to(
+        potential, shape
+    ).copy()
 
 
 def state_derivative(
-    arm: TwoLinkArm, torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | None = None
+    arm: TwoLinkArm,
+    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
+    | None = None,
 ) -> Callable[[float, NDArray[np.float64]], list[float]]:
     """The right-hand side ``f(t, x)`` of ``dx/dt = (qd, qdd)`` for an ODE solver.
 
@@ -637,7 +697,8 @@ def state_derivative(
 
 def solver_state_derivative(
     arm: TwoLinkArm,
-    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | None,
+    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
+    | None,
     signal_non_finite: bool,
 ) -> Callable[[float, NDArray[np.float64]], list[float]]:
     """:func:`state_derivative` for :func:`twolink.simulate` (not in ``__all__``): with ``signal_non_finite``
@@ -651,7 +712,11 @@ def solver_state_derivative(
             try:  # a float array of four, as a solver passes: no checks
                 q1, q2, qd1, qd2 = state.tolist()
                 finite = math.isfinite(q1 + q2 + qd1 + qd2)
-            except (AttributeError, TypeError, ValueError):  # a list, or an array of another shape or type
+            except (
+                AttributeError,
+                TypeError,
+                ValueError,
+            ):  # a list, or an array of another shape or type
                 state = state_array(state)
                 q1, q2, qd1, qd2 = state.tolist()
                 finite = True
@@ -662,13 +727,19 @@ def solver_state_derivative(
 
         return free_motion
     if not callable(torque):
-        raise ValueError(f"torque must be None or a callable torque(t, q, qd) -> tau; got {torque!r}")
+        raise ValueError(
+            f"torque must be None or a callable torque(t, q, qd) -> tau; got {torque!r}"
+        )
 
     def driven_motion(t, state):
         try:  # a float array of four, as a solver passes: no checks
             q1, q2, qd1, qd2 = state.tolist()
             finite = math.isfinite(q1 + q2 + qd1 + qd2)
-        except (AttributeError, TypeError, ValueError):  # a list, or an array of another shape or type
+        except (
+            AttributeError,
+            TypeError,
+            ValueError,
+        ):  # a list, or an array of another shape or type
             state = state_array(state)
             q1, q2, qd1, qd2 = state.tolist()
             finite = True
@@ -679,7 +750,9 @@ def solver_state_derivative(
         except NonFiniteTorque as exc:
             if signal_non_finite:
                 raise
-            raise ValueError(str(exc)) from None  # the private class never reaches users
+            raise ValueError(
+                str(exc)
+            ) from None  # the private class never reaches users
         qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2)
         return [qd1, qd2, qdd1, qdd2]
 
@@ -704,4 +777,3 @@ def _raise_blow_up(t, state):
         f"the motion blew up at t = {t:.6g} s: the state is not finite (or overflows), "
         f"q = ({state[0]:.6g}, {state[1]:.6g}) rad, qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
     )
-

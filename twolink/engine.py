@@ -34,15 +34,21 @@ True
 from __future__ import annotations
 
 import math
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Sequence
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import export
 from ._optional import require
-from ._validate import as_configuration, as_finite_scalar, frozen_array, public_torque_floats
+from ._validate import (
+    as_configuration,
+    as_finite_scalar,
+    frozen_array,
+    public_torque_floats,
+)
 from .conventions import check_elbow
 from .kinematics import jacobian
 from .simulate import SimulationError, SimulationResult
@@ -138,11 +144,19 @@ def _one(value: ArrayLike, name: str) -> NDArray[np.float64]:
 
 
 def _check_model(model: Any, who: str) -> None:
-    if not (hasattr(model, "nq") and hasattr(model, "opt")) or model.nq != 2 or model.nu != 2:
-        raise ValueError(f"{who} needs the mujoco.MjModel of a two-link arm (engine.build_model(arm)); got {model!r}")
+    if (
+        not (hasattr(model, "nq") and hasattr(model, "opt"))
+        or model.nq != 2
+        or model.nu != 2
+    ):
+        raise ValueError(
+            f"{who} needs the mujoco.MjModel of a two-link arm (engine.build_model(arm)); got {model!r}"
+        )
 
 
-def joint_accelerations(model: Any, q: ArrayLike, qd: ArrayLike, tau: ArrayLike) -> NDArray[np.float64]:
+def joint_accelerations(
+    model: Any, q: ArrayLike, qd: ArrayLike, tau: ArrayLike
+) -> NDArray[np.float64]:
     """MuJoCo's joint accelerations ``qdd`` for a state and motor torques.
 
     Sets ``qpos = q``, ``qvel = qd``, ``ctrl = tau`` on fresh data and calls
@@ -206,7 +220,9 @@ class EngineResult(SimulationResult):
     timestep: float
 
 
-def _force_by_tip(mujoco: Any, model: Any, data: Any, wall_id: int, buffer: NDArray[np.float64]) -> NDArray[np.float64]:
+def _force_by_tip(
+    mujoco: Any, model: Any, data: Any, wall_id: int, buffer: NDArray[np.float64]
+) -> NDArray[np.float64]:
     """Sum over active contacts of the force the tip exerts on the wall, world (x, y), N."""
     total = np.zeros(3)
     for index in range(data.ncon):
@@ -222,15 +238,30 @@ def _force_by_tip(mujoco: Any, model: Any, data: Any, wall_id: int, buffer: NDAr
 
 
 #: MuJoCo's warnings that mean the simulation went wrong (it then zeroes the bad value and goes on).
-_BAD_STATE_WARNINGS = ("mjWARN_BADQPOS", "mjWARN_BADQVEL", "mjWARN_BADQACC", "mjWARN_BADCTRL")
+_BAD_STATE_WARNINGS = (
+    "mjWARN_BADQPOS",
+    "mjWARN_BADQVEL",
+    "mjWARN_BADQACC",
+    "mjWARN_BADCTRL",
+)
 
 
 def _check_state(data: Any, t: float, who: str) -> None:
     qpos, qvel = data.qpos, data.qvel
     warnings = data.warning
-    bad = [name for name in _BAD_STATE_WARNINGS if warnings[int(getattr(_WARNING_TYPE, name))].number]
-    if bad or not math.isfinite(qpos[0] + qpos[1] + qvel[0] + qvel[1]):  # NaN or inf anywhere makes the sum so
-        reason = f"MuJoCo warned {', '.join(bad)}" if bad else "MuJoCo's state became NaN or infinite"
+    bad = [
+        name
+        for name in _BAD_STATE_WARNINGS
+        if warnings[int(getattr(_WARNING_TYPE, name))].number
+    ]
+    if bad or not math.isfinite(
+        qpos[0] + qpos[1] + qvel[0] + qvel[1]
+    ):  # NaN or inf anywhere makes the sum so
+        reason = (
+            f"MuJoCo warned {', '.join(bad)}"
+            if bad
+            else "MuJoCo's state became NaN or infinite"
+        )
         raise SimulationError(
             f"{who}: {reason} at or before t = {t:.6g} s "
             "(a state or torque that is NaN, infinite or larger than 1e10: try a smaller timestep, "
@@ -243,7 +274,9 @@ def simulate(
     q0: ArrayLike,
     qd0: ArrayLike,
     t_end: float,
-    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike] | ArrayLike | None = None,
+    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
+    | ArrayLike
+    | None = None,
     *,
     timestep: float = DEFAULT_TIMESTEP,
     sample_every: int = 1,
@@ -318,8 +351,14 @@ def simulate(
     start, rate_start = _one(q0, "q0"), _one(qd0, "qd0")
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
-    if isinstance(sample_every, bool) or not isinstance(sample_every, (int, np.integer)) or sample_every < 1:
-        raise ValueError(f"sample_every must be an integer >= 1 (steps); got {sample_every!r}")
+    if (
+        isinstance(sample_every, bool)
+        or not isinstance(sample_every, (int, np.integer))
+        or sample_every < 1
+    ):
+        raise ValueError(
+            f"sample_every must be an integer >= 1 (steps); got {sample_every!r}"
+        )
     n_steps = int(round(t_end / timestep))
     if not 1 <= n_steps <= MAX_STEPS:
         raise ValueError(
@@ -335,10 +374,16 @@ def simulate(
     data = mujoco.MjData(model)
     data.qpos[:], data.qvel[:] = start, rate_start
     tip_id = model.site("tip").id
-    wall_id = model.geom("wall").id if "wall" in mjcf_options and mjcf_options["wall"] is not None else None
+    wall_id = (
+        model.geom("wall").id
+        if "wall" in mjcf_options and mjcf_options["wall"] is not None
+        else None
+    )
     buffer = np.zeros(6)
     if sample_every > n_steps:
-        raise ValueError(f"sample_every must be at most the number of steps, {n_steps}; got {sample_every}")
+        raise ValueError(
+            f"sample_every must be at most the number of steps, {n_steps}; got {sample_every}"
+        )
     n_samples = n_steps // sample_every + 1
     times = np.empty(n_samples)
     q, qd, tau, p_tip, force = (np.zeros((n_samples, 2)) for _ in range(5))
@@ -358,11 +403,15 @@ def simulate(
     if wall_id is None and not arm.has_limits:
         # no limit, no wall: nothing for MuJoCo's constraint solver to do (halves the cost of a step)
         model.opt.disableflags |= int(mujoco.mjtDisableBit.mjDSBL_CONSTRAINT)
-    refresh = mujoco.mj_kinematics if wall_id is None else mujoco.mj_forward  # what the recorded values need
+    refresh = (
+        mujoco.mj_kinematics if wall_id is None else mujoco.mj_forward
+    )  # what the recorded values need
     mujoco.mj_forward(model, data)
     tau_now = torques_now(0.0)
     record(0, 0.0, tau_now)
-    if constant is not None:  # free motion or constant torques: MuJoCo takes sample_every steps per call
+    if (
+        constant is not None
+    ):  # free motion or constant torques: MuJoCo takes sample_every steps per call
         data.ctrl[:] = constant
         for row in range(1, n_samples):
             mujoco.mj_step(model, data, sample_every)
@@ -477,12 +526,17 @@ class WallPush:
         :attr:`force_by_tip` should be for a settled arm.
         """
         q = self.q_settled
-        return np.asarray(np.linalg.solve(jacobian(self.arm, q).T, self.tau - self.arm.gravity(q)), dtype=np.float64)
+        return np.asarray(
+            np.linalg.solve(jacobian(self.arm, q).T, self.tau - self.arm.gravity(q)),
+            dtype=np.float64,
+        )
 
     @property
     def relative_error(self) -> float:
         """``|force_by_tip_normal - force_magnitude| / force_magnitude`` (the agreement with the statics)."""
-        return abs(self.force_by_tip_normal - self.force_magnitude) / self.force_magnitude
+        return (
+            abs(self.force_by_tip_normal - self.force_magnitude) / self.force_magnitude
+        )
 
 
 def wall_push(
@@ -577,19 +631,33 @@ def wall_push(
     (500.0, True, True)
     """
     mujoco = _mujoco("wall_push")
-    elbow = check_elbow(elbow, ("down", "up", "auto"), why="wall_push simulates one configuration")
+    elbow = check_elbow(
+        elbow, ("down", "up", "auto"), why="wall_push simulates one configuration"
+    )
     the_wall = as_wall(wall)
     duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
     timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
     impratio = as_finite_scalar(impratio, "impratio", minimum=1.0)
     n_steps = int(round(duration / timestep))
     if not 10 <= n_steps <= MAX_STEPS:
-        raise ValueError(f"duration / timestep gives {n_steps} steps; allowed 10 to {MAX_STEPS}")
+        raise ValueError(
+            f"duration / timestep gives {n_steps} steps; allowed 10 to {MAX_STEPS}"
+        )
     contact = wall_contact(arm, the_wall, force_magnitude, include_gravity=True)
-    row = contact.branch("down" if elbow == "auto" else elbow) if len(contact.elbow) > 1 else 0
+    row = (
+        contact.branch("down" if elbow == "auto" else elbow)
+        if len(contact.elbow) > 1
+        else 0
+    )
     q_contact, tau = contact.q[row], contact.tau[row]
     solref = (2.0 * timestep, 1.0) if contact_solref is None else contact_solref
-    model = build_model(arm, wall=the_wall, timestep=timestep, contact_solref=solref, contact_solimp=contact_solimp)
+    model = build_model(
+        arm,
+        wall=the_wall,
+        timestep=timestep,
+        contact_solref=solref,
+        contact_solimp=contact_solimp,
+    )
     model.opt.impratio = impratio
     data = mujoco.MjData(model)
     data.qpos[:] = q_contact

@@ -91,7 +91,9 @@ def _pair(value: Iterable[float], name: str) -> tuple[float, ...]:
     try:
         pair = tuple(float(v) for v in value)
     except TypeError as exc:
-        raise ValueError(f"{name} must be None or a sequence of numbers; got {value!r}") from exc
+        raise ValueError(
+            f"{name} must be None or a sequence of numbers; got {value!r}"
+        ) from exc
     if not all(math.isfinite(v) for v in pair):
         raise ValueError(f"{name} must be finite numbers; got {pair}")
     return pair
@@ -189,11 +191,17 @@ def to_mjcf(
     (m1, inertia_1), (m2, inertia_2) = _link_inertias(arm, "to_mjcf")
     try:
         wall_line = None if wall is None else as_wall(wall)
-    except ValueError as error:  # the same refusal, saying that None (no wall) is allowed here too
-        raise ValueError(f"wall must be None (no wall) or {str(error).removeprefix('wall must be ')}") from None
+    except (
+        ValueError
+    ) as error:  # the same refusal, saying that None (no wall) is allowed here too
+        raise ValueError(
+            f"wall must be None (no wall) or {str(error).removeprefix('wall must be ')}"
+        ) from None
     reach = arm.l1 + arm.l2
     tip_radius = reach / 1000.0 if tip_radius is None else tip_radius
-    tip_radius = as_finite_scalar(tip_radius, "tip_radius (m)", minimum=0.0, strictly=True)
+    tip_radius = as_finite_scalar(
+        tip_radius, "tip_radius (m)", minimum=0.0, strictly=True
+    )
     timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
     if integrator not in INTEGRATORS:
         raise ValueError(f"integrator must be one of {INTEGRATORS}; got {integrator!r}")
@@ -203,7 +211,9 @@ def to_mjcf(
     if contact_solref is not None:
         solref = _pair(contact_solref, "contact_solref")
         if len(solref) != 2:
-            raise ValueError(f"contact_solref must be 2 numbers (timeconst, dampratio); got {solref}")
+            raise ValueError(
+                f"contact_solref must be 2 numbers (timeconst, dampratio); got {solref}"
+            )
         contact += f' solref="{_nums(*solref)}"'
     if contact_solimp is not None:
         solimp = _pair(contact_solimp, "contact_solimp")
@@ -212,8 +222,14 @@ def to_mjcf(
                 f"contact_solimp must be 3 or 5 numbers (dmin, dmax, width[, midpoint, power]); got {solimp}"
             )
         contact += f' solimp="{_nums(*solimp)}"'
-    if not isinstance(model_name, str) or not model_name or any(c in model_name for c in "<>&\""):
-        raise ValueError(f"model_name must be a non-empty string without <, >, & or \"; got {model_name!r}")
+    if (
+        not isinstance(model_name, str)
+        or not model_name
+        or any(c in model_name for c in '<>&"')
+    ):
+        raise ValueError(
+            f'model_name must be a non-empty string without <, >, & or "; got {model_name!r}'
+        )
 
     joint_ranges = ['limited="false"', 'limited="false"']
     tendon = ""
@@ -232,7 +248,11 @@ def to_mjcf(
                 "  </tendon>\n"
             )
     rod_radius = reach / 100.0
-    site = f'        <site name="tip" pos="{_num(arm.l2)} 0 0" size="{_num(2 * tip_radius)}"/>\n' if tip_site else ""
+    site = (
+        f'        <site name="tip" pos="{_num(arm.l2)} 0 0" size="{_num(2 * tip_radius)}"/>\n'
+        if tip_site
+        else ""
+    )
     wall_geom = ""
     if wall_line is not None:
         normal = wall_line.into_wall()  # from the base's side into the wall
@@ -359,14 +379,26 @@ def to_urdf(
         )
     if not isinstance(z_up, (bool, np.bool_)):
         raise ValueError(f"z_up must be True or False; got {z_up!r}")
-    effort_limit = as_finite_scalar(effort_limit, "effort_limit (N m)", minimum=0.0, strictly=True)
-    velocity_limit = as_finite_scalar(velocity_limit, "velocity_limit (rad/s)", minimum=0.0, strictly=True)
-    if not isinstance(robot_name, str) or not robot_name or any(c in robot_name for c in "<>&\""):
-        raise ValueError(f"robot_name must be a non-empty string without <, >, & or \"; got {robot_name!r}")
+    effort_limit = as_finite_scalar(
+        effort_limit, "effort_limit (N m)", minimum=0.0, strictly=True
+    )
+    velocity_limit = as_finite_scalar(
+        velocity_limit, "velocity_limit (rad/s)", minimum=0.0, strictly=True
+    )
+    if (
+        not isinstance(robot_name, str)
+        or not robot_name
+        or any(c in robot_name for c in '<>&"')
+    ):
+        raise ValueError(
+            f'robot_name must be a non-empty string without <, >, & or "; got {robot_name!r}'
+        )
     thickness = (arm.l1 + arm.l2) / 50.0
 
     def link(name: str, length: float, mass: float, inertia: float) -> str:
-        box = f'<geometry><box size="{_nums(length, thickness, thickness)}"/></geometry>'
+        box = (
+            f'<geometry><box size="{_nums(length, thickness, thickness)}"/></geometry>'
+        )
         origin = f'<origin xyz="{_num(length / 2.0)} 0 0" rpy="0 0 0"/>'
         return (
             f'  <link name="{name}">\n'

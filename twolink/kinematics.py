@@ -23,7 +23,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import arm_lengths, as_finite_scalar, as_pairs, broadcast_shape, pair_floats, require_arm
+from ._validate import (
+    arm_lengths,
+    as_finite_scalar,
+    as_pairs,
+    broadcast_shape,
+    pair_floats,
+)
 from .errors import SingularityError, UnreachableError
 
 if TYPE_CHECKING:
@@ -67,7 +73,9 @@ _cos, _sin, _empty = math.cos, math.sin, np.empty
 
 
 # ---------------------------------------------------------------- the formulas (floats or arrays)
-def tip_from_trig(l1: float, l2: float, c1: Values, s1: Values, c12: Values, s12: Values) -> tuple[Values, Values]:
+def tip_from_trig(
+    l1: float, l2: float, c1: Values, s1: Values, c12: Values, s12: Values
+) -> tuple[Values, Values]:
     """The tip ``(x, y) = (l1 c1 + l2 c12, l1 s1 + l2 s12)``.
 
     ``c1, s1`` are ``cos q1, sin q1`` and ``c12, s12`` are ``cos(q1 + q2),
@@ -112,7 +120,9 @@ def torques_from_jacobian(
     return j11 * fx + j21 * fy, j12 * fx + j22 * fy
 
 
-def _tip_of_angles(l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]) -> tuple[Values, Values]:
+def _tip_of_angles(
+    l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]
+) -> tuple[Values, Values]:
     """:func:`tip_from_trig` of a block of angles, evaluated with numpy."""
     q12 = q1 + q2
     return tip_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
@@ -151,7 +161,9 @@ def evaluate_blockwise(
     """
     for start in range(0, len(out), BLOCK_ROWS):
         block = slice(start, start + BLOCK_ROWS)
-        for column, values in enumerate(formula(*constants, *(array[block] for array in columns))):
+        for column, values in enumerate(
+            formula(*constants, *(array[block] for array in columns))
+        ):
             out[block, column] = values
     return out
 
@@ -160,7 +172,9 @@ def evaluate_blockwise(
 _HALF_MAX = float(np.finfo(np.float64).max) / 2.0
 
 
-def link_angles(q: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def link_angles(
+    q: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """The link angles ``(q1, q1 + q2)`` from the x-axis of checked configurations ``q`` ``(..., 2)``.
 
     Raises
@@ -199,8 +213,14 @@ def require_finite_angle_sum(q: NDArray[np.float64]) -> None:
     with np.errstate(over="ignore"):
         overflowed = ~np.isfinite(q[..., 0] + q[..., 1])
     if np.any(overflowed):
-        index = tuple(int(i) for i in np.argwhere(overflowed)[0]) if overflowed.ndim else ()
-        where = f" (index {index}, first of {int(np.count_nonzero(overflowed))})" if overflowed.ndim else ""
+        index = (
+            tuple(int(i) for i in np.argwhere(overflowed)[0]) if overflowed.ndim else ()
+        )
+        where = (
+            f" (index {index}, first of {int(np.count_nonzero(overflowed))})"
+            if overflowed.ndim
+            else ""
+        )
         first, second = q[index]
         raise ValueError(
             f"q = ({first:.6g}, {second:.6g}) rad{where}: q1 + q2 overflows float64; the joint angles must "
@@ -236,10 +256,14 @@ def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         l1, l2 = arm_lengths(arm)
         try:
             x, y = tip_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
-        except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
+        except (
+            ValueError
+        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
             pass
         else:
-            p_tip = _empty(2)  # then two item assignments: faster than np.array of a tuple
+            p_tip = _empty(
+                2
+            )  # then two item assignments: faster than np.array of a tuple
             p_tip[0] = x
             p_tip[1] = y
             return p_tip
@@ -248,7 +272,9 @@ def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     require_finite_angle_sum(q)
     p_tips = np.empty(q.shape)
     flat = q.reshape(-1, 2)
-    evaluate_blockwise(_tip_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), p_tips.reshape(-1, 2))
+    evaluate_blockwise(
+        _tip_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), p_tips.reshape(-1, 2)
+    )
     return p_tips
 
 
@@ -281,7 +307,9 @@ def joint_positions(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     points = np.zeros(q.shape[:-1] + (3, 2))
     points[..., 1, 0] = l1 * c1
     points[..., 1, 1] = l1 * s1
-    points[..., 2, 0], points[..., 2, 1] = tip_from_trig(l1, l2, c1, s1, np.cos(q12), np.sin(q12))
+    points[..., 2, 0], points[..., 2, 1] = tip_from_trig(
+        l1, l2, c1, s1, np.cos(q12), np.sin(q12)
+    )
     return points
 
 
@@ -318,11 +346,17 @@ def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
         try:
-            j11, j12, j21, j22 = jacobian_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
-        except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
+            j11, j12, j21, j22 = jacobian_from_trig(
+                l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
+            )
+        except (
+            ValueError
+        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
             pass
         else:
-            J = _empty((2, 2))  # then four item assignments: faster than np.array of a list
+            J = _empty(
+                (2, 2)
+            )  # then four item assignments: faster than np.array of a list
             J[0, 0] = j11
             J[0, 1] = j12
             J[1, 0] = j21
@@ -333,11 +367,15 @@ def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     require_finite_angle_sum(q)
     Js = np.empty(q.shape[:-1] + (2, 2))
     flat = q.reshape(-1, 2)
-    evaluate_blockwise(_jacobian_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), Js.reshape(-1, 4))
+    evaluate_blockwise(
+        _jacobian_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), Js.reshape(-1, 4)
+    )
     return Js
 
 
-def joint_torques(arm: TwoLinkArm, q: ArrayLike, force_by_tip: ArrayLike) -> NDArray[np.float64]:
+def joint_torques(
+    arm: TwoLinkArm, q: ArrayLike, force_by_tip: ArrayLike
+) -> NDArray[np.float64]:
     """Static joint torques ``tau = J(q)^T force_by_tip`` that hold a tip force.
 
     ``force_by_tip`` is the force the tip exerts on the environment (for
@@ -384,11 +422,17 @@ def joint_torques(arm: TwoLinkArm, q: ArrayLike, force_by_tip: ArrayLike) -> NDA
         q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
         try:
-            J_entries = jacobian_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
-        except ValueError:  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
+            J_entries = jacobian_from_trig(
+                l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
+            )
+        except (
+            ValueError
+        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
             pass
         else:
-            tau = _empty(2)  # then two item assignments: faster than np.array of a tuple
+            tau = _empty(
+                2
+            )  # then two item assignments: faster than np.array of a tuple
             tau[0], tau[1] = torques_from_jacobian(*J_entries, *force_pair)
             return tau
     q = as_pairs(q, "q")
@@ -397,7 +441,12 @@ def joint_torques(arm: TwoLinkArm, q: ArrayLike, force_by_tip: ArrayLike) -> NDA
     J = jacobian(arm, q)
     taus = np.empty(shape)
     taus[..., 0], taus[..., 1] = torques_from_jacobian(
-        J[..., 0, 0], J[..., 0, 1], J[..., 1, 0], J[..., 1, 1], force_by_tip[..., 0], force_by_tip[..., 1]
+        J[..., 0, 0],
+        J[..., 0, 1],
+        J[..., 1, 0],
+        J[..., 1, 1],
+        force_by_tip[..., 0],
+        force_by_tip[..., 1],
     )
     return taus
 
@@ -523,7 +572,9 @@ def distance_outside_reach(arm: TwoLinkArm, p: ArrayLike) -> NDArray[np.float64]
     return np.maximum(0.0, np.maximum(distance - r_max, r_min - distance))
 
 
-def require_within_reach(arm: TwoLinkArm, p: ArrayLike, what: str = "target") -> NDArray[np.float64]:
+def require_within_reach(
+    arm: TwoLinkArm, p: ArrayLike, what: str = "target"
+) -> NDArray[np.float64]:
     """Return points ``p`` as an array, or raise naming the first one outside the reach annulus.
 
     The package's one reach test and one message: the point, its distance
@@ -563,9 +614,15 @@ def require_within_reach(arm: TwoLinkArm, p: ArrayLike, what: str = "target") ->
     distance = np.hypot(p[..., 0], p[..., 1])
     outside = (distance > r_max + slack) | (distance < r_min - slack)
     if np.any(outside):
-        index = tuple(int(i) for i in np.argwhere(outside)[0]) if np.ndim(outside) else ()
+        index = (
+            tuple(int(i) for i in np.argwhere(outside)[0]) if np.ndim(outside) else ()
+        )
         x, y = p[index]
-        where = f" (index {index}, first of {int(np.count_nonzero(outside))})" if np.ndim(outside) else ""
+        where = (
+            f" (index {index}, first of {int(np.count_nonzero(outside))})"
+            if np.ndim(outside)
+            else ""
+        )
         raise UnreachableError(
             f"{what} ({x:.6g}, {y:.6g}){where} is {_distance_words(float(distance[index]), r_min, r_max, slack)}; "
             f"this arm reaches distances in [{r_min:.6g}, {r_max:.6g}] m (l1={l1:.6g}, l2={l2:.6g})"
@@ -592,7 +649,9 @@ def _distance_words(distance: float, r_min: float, r_max: float, slack: float) -
     )
 
 
-def require_nonsingular(arm: TwoLinkArm, q: ArrayLike, what: str, tol: float = SINGULARITY_TOL) -> NDArray[np.float64]:
+def require_nonsingular(
+    arm: TwoLinkArm, q: ArrayLike, what: str, tol: float = SINGULARITY_TOL
+) -> NDArray[np.float64]:
     """Raise :class:`~twolink.SingularityError` where ``|sin q2| <= tol`` (stretched or folded arm).
 
     The package's one singularity test and one message.
@@ -629,7 +688,11 @@ def require_nonsingular(arm: TwoLinkArm, q: ArrayLike, what: str, tol: float = S
     if np.any(near):
         index = tuple(int(i) for i in np.argwhere(near)[0]) if near.ndim else ()
         q1, q2 = q[index]
-        where = f" (index {index}, first of {int(np.count_nonzero(near))})" if near.ndim else ""
+        where = (
+            f" (index {index}, first of {int(np.count_nonzero(near))})"
+            if near.ndim
+            else ""
+        )
         raise SingularityError(
             f"{what} needs J invertible, but q = ({q1:.6g}, {q2:.6g}) rad{where} is singular: |sin q2| = "
             f"{float(sin_q2[index]):.3g} <= tol = {tol:.3g} (|det J| = {l1 * l2 * float(sin_q2[index]):.3g} m^2, "

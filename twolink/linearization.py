@@ -33,7 +33,8 @@ python-control is imported inside the functions that need it, so
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, Callable
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -117,7 +118,9 @@ def tip_mass(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
 _DAMPING_KINDS = ("scalar", "matrix")
 
 
-def critical_damping(arm: TwoLinkArm, q: ArrayLike, stiffness: ArrayLike, kind: str = "scalar") -> float | NDArray[np.float64]:
+def critical_damping(
+    arm: TwoLinkArm, q: ArrayLike, stiffness: ArrayLike, kind: str = "scalar"
+) -> float | NDArray[np.float64]:
     """Damping that makes the linearised impedance loop at ``q`` critically damped.
 
     At the rest point (gravity compensated) the loop is
@@ -174,15 +177,23 @@ def critical_damping(arm: TwoLinkArm, q: ArrayLike, stiffness: ArrayLike, kind: 
     return (D + D.T) / 2.0
 
 
-def _net_torque(arm: TwoLinkArm, controller: Controller, t: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
+def _net_torque(
+    arm: TwoLinkArm, controller: Controller, t: float, q: NDArray[np.float64]
+) -> NDArray[np.float64]:
     tau = np.asarray(controller(t, q, np.zeros(2)), dtype=float)
     if tau.shape != (2,) or not np.all(np.isfinite(tau)):
-        raise ValueError(f"the controller must return two finite torques (N m); got {tau!r} at q = {q}")
+        raise ValueError(
+            f"the controller must return two finite torques (N m); got {tau!r} at q = {q}"
+        )
     return tau - arm.gravity(q)
 
 
 def equilibrium(
-    arm: TwoLinkArm, controller: Controller, q0: ArrayLike, t: float = 0.0, tol: float = 1e-12
+    arm: TwoLinkArm,
+    controller: Controller,
+    q0: ArrayLike,
+    t: float = 0.0,
+    tol: float = 1e-12,
 ) -> NDArray[np.float64]:
     """A configuration where the controller holds the arm at rest: ``tau(t, q, 0) = g(q)``.
 
@@ -223,20 +234,28 @@ def equilibrium(
     t = as_finite_scalar(t, "t (s)")
     import scipy.optimize
 
-    solution = scipy.optimize.root(lambda q: _net_torque(arm, controller, t, q), start, tol=tol)
+    solution = scipy.optimize.root(
+        lambda q: _net_torque(arm, controller, t, q), start, tol=tol
+    )
     if not solution.success:
-        raise ValueError(f"no equilibrium found near q0 = {start} rad: {solution.message}")
+        raise ValueError(
+            f"no equilibrium found near q0 = {start} rad: {solution.message}"
+        )
     return solution.x
 
 
 def _finite_difference(
-    function: Callable[[NDArray[np.float64]], NDArray[np.float64]], x: NDArray[np.float64], step: float
+    function: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+    x: NDArray[np.float64],
+    step: float,
 ) -> NDArray[np.float64]:
     columns = []
     for index in range(len(x)):
         offset = np.zeros(len(x))
         offset[index] = step * max(1.0, abs(x[index]))
-        columns.append((function(x + offset) - function(x - offset)) / (2.0 * offset[index]))
+        columns.append(
+            (function(x + offset) - function(x - offset)) / (2.0 * offset[index])
+        )
     return np.column_stack(columns)
 
 
@@ -249,14 +268,24 @@ def _torque_derivatives(
         by_q, by_qd = analytic(t, q)
         return np.asarray(by_q, dtype=float), np.asarray(by_qd, dtype=float)
     zero = np.zeros(2)
-    by_q = _finite_difference(lambda q_trial: np.asarray(controller(t, q_trial, zero), dtype=float), q, step)
-    by_qd = _finite_difference(lambda qd_trial: np.asarray(controller(t, q, qd_trial), dtype=float), zero, step)
+    by_q = _finite_difference(
+        lambda q_trial: np.asarray(controller(t, q_trial, zero), dtype=float), q, step
+    )
+    by_qd = _finite_difference(
+        lambda qd_trial: np.asarray(controller(t, q, qd_trial), dtype=float), zero, step
+    )
     return by_q, by_qd
 
 
 def closed_loop_matrices(
-    arm: TwoLinkArm, controller: Controller, q_eq: ArrayLike, t: float = 0.0, tol: float = 1e-6
-) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    arm: TwoLinkArm,
+    controller: Controller,
+    q_eq: ArrayLike,
+    t: float = 0.0,
+    tol: float = 1e-6,
+) -> tuple[
+    NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]
+]:
     """The matrices ``(A, B, C, D)`` of the closed loop linearised at the equilibrium ``(q_eq, 0)``.
 
     See the module docstring for the formulas; states ``(q1, q2, qd1, qd2)``,
@@ -373,13 +402,19 @@ def linearize(
     control = require("control", "twolink.linearization.linearize")
 
     A, B, C, D = closed_loop_matrices(arm, controller, q_eq, t=t, tol=tol)
-    options: dict[str, Any] = {"states": list(STATES), "inputs": list(INPUTS), "outputs": list(OUTPUTS)}
+    options: dict[str, Any] = {
+        "states": list(STATES),
+        "inputs": list(INPUTS),
+        "outputs": list(OUTPUTS),
+    }
     if name is not None:
         options["name"] = str(name)
     return control.ss(A, B, C, D, **options)
 
 
-def closed_loop_system(arm: TwoLinkArm, controller: Controller, name: str | None = None) -> Any:
+def closed_loop_system(
+    arm: TwoLinkArm, controller: Controller, name: str | None = None
+) -> Any:
     """The nonlinear closed loop as a python-control :func:`control.nlsys`.
 
     ``xdot = (qd, M^-1 (tau(t, q, qd) + J^T force_on_tip - C qd - g))``,
@@ -400,16 +435,32 @@ def closed_loop_system(arm: TwoLinkArm, controller: Controller, name: str | None
     """
     control = require("control", "twolink.linearization.closed_loop_system")
 
-    def update(t: float, state: NDArray[np.float64], force_on_tip: NDArray[np.float64], params: Any) -> NDArray[np.float64]:
+    def update(
+        t: float,
+        state: NDArray[np.float64],
+        force_on_tip: NDArray[np.float64],
+        params: Any,
+    ) -> NDArray[np.float64]:
         q, qd = state[:2], state[2:]
         # J^T force_on_tip, the joint torque of the input force acting on the tip (force_by_tip = -force_on_tip)
-        tau = np.asarray(controller(t, q, qd), dtype=float) - joint_torques(arm, q, force_by_tip=-force_on_tip)
+        tau = np.asarray(controller(t, q, qd), dtype=float) - joint_torques(
+            arm, q, force_by_tip=-force_on_tip
+        )
         return np.concatenate([qd, arm.forward_dynamics(q, qd, tau)])
 
-    def output(t: float, state: NDArray[np.float64], force_on_tip: NDArray[np.float64], params: Any) -> NDArray[np.float64]:
+    def output(
+        t: float,
+        state: NDArray[np.float64],
+        force_on_tip: NDArray[np.float64],
+        params: Any,
+    ) -> NDArray[np.float64]:
         return arm.fk(state[:2])
 
-    options: dict[str, Any] = {"states": list(STATES), "inputs": list(INPUTS), "outputs": list(OUTPUTS)}
+    options: dict[str, Any] = {
+        "states": list(STATES),
+        "inputs": list(INPUTS),
+        "outputs": list(OUTPUTS),
+    }
     if name is not None:
         options["name"] = str(name)
     return control.nlsys(update, output, **options)

@@ -28,7 +28,14 @@ from matplotlib.typing import ColorType
 from numpy.typing import ArrayLike, NDArray
 
 from ._optional import COURSE_INSTALL, HTMLDisplay, html, require
-from ._validate import InputTypeError, as_configuration, as_finite_scalar, as_pairs, real_array, require_arm
+from ._validate import (
+    InputTypeError,
+    as_configuration,
+    as_finite_scalar,
+    as_pairs,
+    real_array,
+    require_arm,
+)
 from .velocity import Ellipse
 
 if TYPE_CHECKING:
@@ -73,14 +80,18 @@ def _path(q_path: ArrayLike) -> NDArray[np.float64]:
     """``q_path`` as an array of shape ``(n, 2)`` with ``n >= 1``, or a message naming its shape."""
     q_frames: NDArray[np.float64] = as_pairs(q_path, "q_path")
     if q_frames.ndim != 2 or len(q_frames) < 1:
-        raise ValueError(f"q_path must have shape (n, 2) with n >= 1 (radians); got shape {q_frames.shape}")
+        raise ValueError(
+            f"q_path must have shape (n, 2) with n >= 1 (radians); got shape {q_frames.shape}"
+        )
     return q_frames
 
 
 def _figure_of(ax: Axes) -> Figure:
     """The figure that holds ``ax`` (the top-level one when ``ax`` sits in a subfigure)."""
     figure = ax.figure
-    if not isinstance(figure, Figure):  # a SubFigure: its own .figure is the top-level one
+    if not isinstance(
+        figure, Figure
+    ):  # a SubFigure: its own .figure is the top-level one
         figure = figure.figure
     return figure
 
@@ -135,7 +146,9 @@ def setup_axes(
     return ax
 
 
-def draw_reach(arm: TwoLinkArm, *, ax: Axes | None = None, **style: Any) -> list[Circle]:
+def draw_reach(
+    arm: TwoLinkArm, *, ax: Axes | None = None, **style: Any
+) -> list[Circle]:
     """Draw the reach annulus' two circles (``r_min`` and ``r_max``; none of radius 0).
 
     Parameters
@@ -159,7 +172,12 @@ def draw_reach(arm: TwoLinkArm, *, ax: Axes | None = None, **style: Any) -> list
     >>> plt.close(ax.figure)
     """
     ax = _axes(ax, "draw_reach")
-    options: dict[str, Any] = {"fill": False, "linestyle": "--", "color": "0.6", "linewidth": 1.0}
+    options: dict[str, Any] = {
+        "fill": False,
+        "linestyle": "--",
+        "color": "0.6",
+        "linewidth": 1.0,
+    }
     options.update(style)
     circles = []
     for radius in arm.reach:
@@ -268,14 +286,24 @@ def draw_strobe(
     """
     ax = _axes(ax, "draw_strobe")
     q_samples = _path(q_path)
-    indices = np.linspace(0, len(q_samples) - 1, min(frames, len(q_samples))).round().astype(int)
+    indices = (
+        np.linspace(0, len(q_samples) - 1, min(frames, len(q_samples)))
+        .round()
+        .astype(int)
+    )
     lines = []
     for rank, index in enumerate(indices):
         alpha = 0.25 + 0.75 * rank / max(1, len(indices) - 1)
-        lines.append(draw_arm(arm, q_samples[index], ax=ax, color=color, alpha=alpha, linewidth=3.0))
+        lines.append(
+            draw_arm(
+                arm, q_samples[index], ax=ax, color=color, alpha=alpha, linewidth=3.0
+            )
+        )
     if path:
         p_path = arm.fk(q_samples)
-        lines.extend(ax.plot(p_path[:, 0], p_path[:, 1], color=PATH_COLOR, linewidth=1.5))
+        lines.extend(
+            ax.plot(p_path[:, 0], p_path[:, 1], color=PATH_COLOR, linewidth=1.5)
+        )
     return lines
 
 
@@ -332,7 +360,9 @@ def animate_arm(
     if t is not None:
         times = real_array(t, "t")
         if times.shape != (len(q_frames),):
-            raise ValueError(f"t must have shape ({len(q_frames)},), one time per frame of q_path; got {times.shape}")
+            raise ValueError(
+                f"t must have shape ({len(q_frames)},), one time per frame of q_path; got {times.shape}"
+            )
     ax = setup_axes(arm, ax=ax, title=title)
     p_path = arm.fk(q_frames)
     arm_line = draw_arm(arm, q_frames[0], ax=ax)
@@ -351,7 +381,9 @@ def animate_arm(
             artists.extend(extra(frame))
         return artists
 
-    return animation.FuncAnimation(_figure_of(ax), update, frames=len(q_frames), interval=interval, blit=False)
+    return animation.FuncAnimation(
+        _figure_of(ax), update, frames=len(q_frames), interval=interval, blit=False
+    )
 
 
 def animation_html(anim: animation.Animation) -> HTMLDisplay:
@@ -370,7 +402,7 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
     """
     import matplotlib
 
-    plt.close(getattr(anim, "_fig"))  # matplotlib keeps the figure in _fig, outside its type stubs
+    plt.close(anim._fig)  # matplotlib keeps the figure in _fig, outside its type stubs
     try:
         imageio_ffmpeg = require("imageio_ffmpeg", "twolink.plot.animation_html")
         ffmpeg = imageio_ffmpeg.get_ffmpeg_exe()
@@ -379,7 +411,9 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
             "<p><em>twolink.plot.animation_html: ffmpeg (imageio-ffmpeg) is not installed, so this is "
             f"a JavaScript animation instead of a video; {COURSE_INSTALL} gives the video.</em></p>"
         )
-        with matplotlib.rc_context({"animation.embed_limit": 5.0}):  # MB, as for the video
+        with matplotlib.rc_context(
+            {"animation.embed_limit": 5.0}
+        ):  # MB, as for the video
             return html(note + anim.to_jshtml(default_mode="loop"))
     with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg}):
         return html(anim.to_html5_video(embed_limit=5.0))
@@ -429,7 +463,9 @@ def animate_simulation(
     t = result.t[frames]
     interval = 1000.0 * float(t[-1] - t[0]) / max(1, len(frames) - 1) / speed
     arm = require_arm(result.arm, "result.arm")
-    return animate_arm(arm, result.q[frames], t=t, ax=ax, path=path, interval=interval, title=title)
+    return animate_arm(
+        arm, result.q[frames], t=t, ax=ax, path=path, interval=interval, title=title
+    )
 
 
 # --- velocity and statics: ellipses, force arrows, torque arcs, walls
@@ -480,7 +516,9 @@ def draw_ellipse(
     """
     ax = _axes(ax, "draw_ellipse")
     if np.ndim(ellipse.centre) != 1:
-        raise ValueError(f"draw_ellipse draws one ellipse (centre of shape (2,)); got {np.shape(ellipse.centre)}")
+        raise ValueError(
+            f"draw_ellipse draws one ellipse (centre of shape (2,)); got {np.shape(ellipse.centre)}"
+        )
     points = ellipse.points(scale=scale, clip=clip)
     (fill,) = ax.fill(points[:, 0], points[:, 1], color=color, alpha=alpha, label=label)
     (outline,) = ax.plot(points[:, 0], points[:, 1], color=color, linewidth=1.2)
@@ -534,11 +572,17 @@ def draw_force(
     >>> plt.close(ax.figure)
     """
     ax = _axes(ax, "draw_force")
-    p_point: NDArray[np.float64] = as_configuration(point, "point", "one (x, y) point", "metres")
-    f_vector: NDArray[np.float64] = as_configuration(vector, "vector", "one force (Fx, Fy)", "newtons")
+    p_point: NDArray[np.float64] = as_configuration(
+        point, "point", "one (x, y) point", "metres"
+    )
+    f_vector: NDArray[np.float64] = as_configuration(
+        vector, "vector", "one force (Fx, Fy)", "newtons"
+    )
     if at not in ("tail", "head"):
         raise ValueError(f"at must be 'tail' or 'head'; got {at!r}")
-    scale = as_finite_scalar(scale, "scale (metres of figure per newton)", minimum=0.0, strictly=True)
+    scale = as_finite_scalar(
+        scale, "scale (metres of figure per newton)", minimum=0.0, strictly=True
+    )
     if at == "tail":
         tail, head = p_point, p_point + scale * f_vector
     else:
@@ -604,19 +648,35 @@ def draw_torque(
     >>> plt.close(ax.figure)
     """
     ax = _axes(ax, "draw_torque")
-    c_point: NDArray[np.float64] = as_configuration(centre, "centre", "one (x, y) point", "metres")
+    c_point: NDArray[np.float64] = as_configuration(
+        centre, "centre", "one (x, y) point", "metres"
+    )
     tau = as_finite_scalar(tau, "tau (N m)")
-    radius = as_finite_scalar(radius, "radius (figure metres)", minimum=0.0, strictly=True)
+    radius = as_finite_scalar(
+        radius, "radius (figure metres)", minimum=0.0, strictly=True
+    )
     if abs(tau) <= zero_tol:
         circle = Circle(
-            (float(c_point[0]), float(c_point[1])), radius * 0.5, fill=False, color=color, linewidth=1.5, linestyle=":"
+            (float(c_point[0]), float(c_point[1])),
+            radius * 0.5,
+            fill=False,
+            color=color,
+            linewidth=1.5,
+            linestyle=":",
         )
         ax.add_patch(circle)
         return circle
     sweep = np.sign(tau) * np.radians(270.0)
     angle = start + np.linspace(0.0, sweep, 40)
     vertices = c_point + radius * np.stack([np.cos(angle), np.sin(angle)], axis=-1)
-    arrow = FancyArrowPatch(path=Path(vertices), arrowstyle="-|>", mutation_scale=12, color=color, linewidth=1.8, zorder=5)
+    arrow = FancyArrowPatch(
+        path=Path(vertices),
+        arrowstyle="-|>",
+        mutation_scale=12,
+        color=color,
+        linewidth=1.8,
+        zorder=5,
+    )
     ax.add_patch(arrow)
     return arrow
 
@@ -660,16 +720,22 @@ def draw_wall(
     >>> plt.close(ax.figure)
     """
     ax = _axes(ax, "draw_wall")
-    half_length = as_finite_scalar(half_length, "half_length (m)", minimum=0.0, strictly=True)
+    half_length = as_finite_scalar(
+        half_length, "half_length (m)", minimum=0.0, strictly=True
+    )
     normal = wall.into_wall()
     along = np.array([-normal[1], normal[0]])
     foot = wall.point - (wall.point @ along) * along  # nearest point to the base
     ends = foot + np.outer([-half_length, half_length], along)
     lines = ax.plot(ends[:, 0], ends[:, 1], color=color, linewidth=2.5)
-    for offset in np.arange(-half_length, half_length + 1e-12, max(hatch, half_length / 40)):
+    for offset in np.arange(
+        -half_length, half_length + 1e-12, max(hatch, half_length / 40)
+    ):
         base = foot + offset * along
         tip = base + hatch * (normal + along) / np.sqrt(2.0)
-        lines += ax.plot([base[0], tip[0]], [base[1], tip[1]], color=color, linewidth=0.8)
+        lines += ax.plot(
+            [base[0], tip[0]], [base[1], tip[1]], color=color, linewidth=0.8
+        )
     return lines
 
 
@@ -741,7 +807,9 @@ def plot_time_series(
     ax = _axes(ax, "plot_time_series")
     times = real_array(t, "t (s)")
     if times.ndim != 1 or not np.all(np.isfinite(times)):
-        raise ValueError(f"t must be finite times in seconds of shape (n,); got shape {times.shape}")
+        raise ValueError(
+            f"t must be finite times in seconds of shape (n,); got shape {times.shape}"
+        )
     data = real_array(values, "values")
     if data.ndim == 1:
         data = data[:, None]
@@ -751,12 +819,18 @@ def plot_time_series(
         )
     for name, text in (("quantity", quantity), ("unit", unit)):
         if not isinstance(text, str) or not text.strip():
-            raise InputTypeError(f"{name} must be a non-empty string (the axis label is 'quantity [unit]'); got {text!r}")
+            raise InputTypeError(
+                f"{name} must be a non-empty string (the axis label is 'quantity [unit]'); got {text!r}"
+            )
     columns = data.shape[1]
     if labels is not None and (isinstance(labels, str) or len(labels) != columns):
-        raise ValueError(f"labels must be a sequence of {columns} strings, one per column of values; got {labels!r}")
+        raise ValueError(
+            f"labels must be a sequence of {columns} strings, one per column of values; got {labels!r}"
+        )
     if colors is not None and (isinstance(colors, str) or len(colors) != columns):
-        raise ValueError(f"colors must be a sequence of {columns} colours, one per column of values; got {colors!r}")
+        raise ValueError(
+            f"colors must be a sequence of {columns} colours, one per column of values; got {colors!r}"
+        )
     lines = []
     for column in range(columns):
         options = dict(line_options)
@@ -783,7 +857,13 @@ _NOTE_CORNERS = {
 }
 
 
-def draw_note(text: str, *, ax: Axes | None = None, corner: str = "lower left", fontsize: float = 8.0) -> Text:
+def draw_note(
+    text: str,
+    *,
+    ax: Axes | None = None,
+    corner: str = "lower left",
+    fontsize: float = 8.0,
+) -> Text:
     """Write a boxed note in a corner of the axes (values, the drawing scale of ellipses or arrows).
 
     Parameters
@@ -809,9 +889,13 @@ def draw_note(text: str, *, ax: Axes | None = None, corner: str = "lower left", 
     """
     ax = _axes(ax, "draw_note")
     if not isinstance(text, str):
-        raise InputTypeError(f"text must be a string; got {text!r} ({type(text).__name__})")
+        raise InputTypeError(
+            f"text must be a string; got {text!r} ({type(text).__name__})"
+        )
     if corner not in _NOTE_CORNERS:
-        raise ValueError(f"corner must be one of {', '.join(map(repr, _NOTE_CORNERS))}; got {corner!r}")
+        raise ValueError(
+            f"corner must be one of {', '.join(map(repr, _NOTE_CORNERS))}; got {corner!r}"
+        )
     x, y, horizontal, vertical = _NOTE_CORNERS[corner]
     return ax.text(
         x,

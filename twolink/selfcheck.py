@@ -23,8 +23,10 @@ NOT_SOLVED = "not solved yet"
 CORRECT = "correct"
 WRONG = "wrong"
 
-_LINE = re.compile(r"^Exercise (?P<number>\d+\.\d+)(?: \((?P<part>[^)]*)\))?: "
-                   r"(?P<status>correct|not solved yet|wrong|not right yet)\b")
+_LINE = re.compile(
+    r"^Exercise (?P<number>\d+\.\d+)(?: \((?P<part>[^)]*)\))?: "
+    r"(?P<status>correct|not solved yet|wrong|not right yet)\b"
+)
 
 
 class PartResult(NamedTuple):
@@ -80,23 +82,36 @@ convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with si
     entry = exercises.get(exercise)
     names = [part.name for part in entry.parts]
     if len(answers) > len(names):
-        raise TypeError(f"exercise {entry.number} has {len(names)} parts ({', '.join(names)}), got {len(answers)} answers")
+        raise TypeError(
+            f"exercise {entry.number} has {len(names)} parts ({', '.join(names)}), got {len(answers)} answers"
+        )
     unknown = sorted(set(named_answers) - set(names))
     if unknown:
-        raise TypeError(f"exercise {entry.number} has no part {unknown[0]!r}; its parts are {', '.join(names)}")
+        raise TypeError(
+            f"exercise {entry.number} has no part {unknown[0]!r}; its parts are {', '.join(names)}"
+        )
     given: dict[str, object] = dict(zip(names, answers))
     for name, value in named_answers.items():
         if name in given:
-            raise TypeError(f"the answer {name!r} of exercise {entry.number} is given twice")
+            raise TypeError(
+                f"the answer {name!r} of exercise {entry.number} is given twice"
+            )
         given[name] = value
-    solved = {name: value for name, value in given.items() if not exercises.is_unsolved(value)}
+    solved = {
+        name: value for name, value in given.items() if not exercises.is_unsolved(value)
+    }
     results = []
     for part in entry.parts:
         label = f"Exercise {entry.number} ({part.label})"
         if part.name not in solved:
-            status, line = NOT_SOLVED, f"{label}: {NOT_SOLVED} (replace the ... in {part.name} with your answer)."
+            status, line = (
+                NOT_SOLVED,
+                f"{label}: {NOT_SOLVED} (replace the ... in {part.name} with your answer).",
+            )
         else:
-            siblings = {name: value for name, value in solved.items() if name != part.name}
+            siblings = {
+                name: value for name, value in solved.items() if name != part.name
+            }
             try:
                 reason = part.judge(solved[part.name], siblings)
             except exercises.Wrong as wrong:
@@ -123,6 +138,7 @@ def parse_line(line: str) -> tuple[str, str, str] | None:
     match = _LINE.match(line.strip())
     if not match:
         return None
-    status = WRONG if match["status"] == "not right yet" else match["status"]  # the word for wrong in older notebooks' outputs
+    status = (
+        WRONG if match["status"] == "not right yet" else match["status"]
+    )  # the word for wrong in older notebooks' outputs
     return match["number"], match["part"] or "", status
-

@@ -16,20 +16,27 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, Callable
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import dynamics
 from ._validate import (
-    InputTypeError, NonFiniteTorque, as_configuration, as_count, as_finite_scalar, frozen_array,
-    public_torque_floats, real_array,
+    InputTypeError,
+    NonFiniteTorque,
+    as_configuration,
+    as_count,
+    as_finite_scalar,
+    frozen_array,
+    public_torque_floats,
+    real_array,
 )
-from .errors import SimulationError
 from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME, EvaluationBudget
+from .errors import SimulationError
 from .kinematics import fk
 from .trajectory import path_positions
 
@@ -43,13 +50,20 @@ TorqueLaw = Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLik
 #: A potential energy ``V(q)`` in joules, vectorised over configurations ``(n, 2)`` -> ``(n,)``.
 PotentialEnergy = Callable[[NDArray[np.float64]], ArrayLike]
 
-__all__ = ["simulate", "SimulationResult", "SimulationError", "DEFAULT_MAX_EVALUATIONS", "DEFAULT_MAX_WALL_TIME"]
+__all__ = [
+    "simulate",
+    "SimulationResult",
+    "SimulationError",
+    "DEFAULT_MAX_EVALUATIONS",
+    "DEFAULT_MAX_WALL_TIME",
+]
 
 #: Solver settings used unless the caller passes others: an 8th-order
 #: Runge-Kutta method at tolerances tight enough that the energy of free
 #: motion drifts by less than 1e-8 of its scale over 10 s (read-only).
-DEFAULT_SOLVER_OPTIONS = MappingProxyType({"method": "DOP853", "rtol": 1e-10, "atol": 1e-10})
-
+DEFAULT_SOLVER_OPTIONS = MappingProxyType(
+    {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
+)
 
 
 #: The explicit Runge-Kutta methods of ``solve_ivp`` (stiff loops need an implicit one).
@@ -77,15 +91,17 @@ def _timed_events(events, out_of_time):
 
     def timed(event):
         if not callable(event):
-            raise InputTypeError(f"events must be callables event(t, y) (or a list of them); got {event!r}")
+            raise InputTypeError(
+                f"events must be callables event(t, y) (or a list of them); got {event!r}"
+            )
 
         def checked(t, state):
             out_of_time(t, state)
             return event(t, state)
 
         # solve_ivp reads these two attributes of an event function
-        setattr(checked, "terminal", getattr(event, "terminal", False))
-        setattr(checked, "direction", getattr(event, "direction", 0.0))
+        checked.terminal = getattr(event, "terminal", False)
+        checked.direction = getattr(event, "direction", 0.0)
         return checked
 
     return timed(events) if callable(events) else [timed(event) for event in events]
@@ -140,7 +156,10 @@ def _budget_advice(inner, stop, evaluations, used, t_end):
             f"against {t_end:.6g} s to simulate)"
         )
         if explicit:
-            return advice + f": use an implicit method, method='Radau' or method='LSODA', instead of {used!r}"
+            return (
+                advice
+                + f": use an implicit method, method='Radau' or method='LSODA', instead of {used!r}"
+            )
         return advice + ": loosen rtol/atol or raise the budget"
     if explicit:
         return "try looser tolerances, method='Radau' or method='LSODA' (if the loop is stiff), or a larger budget"
@@ -153,7 +172,9 @@ def _budget_advice(inner, stop, evaluations, used, t_end):
 def _check_t_eval(t_eval, t_end):
     times = real_array(t_eval, "t_eval", "times in seconds (real numbers)")
     if times.ndim != 1 or times.size == 0:
-        raise ValueError(f"t_eval must be a non-empty 1-D array of times (s); got shape {times.shape}")
+        raise ValueError(
+            f"t_eval must be a non-empty 1-D array of times (s); got shape {times.shape}"
+        )
     if not np.all(np.isfinite(times)):
         raise ValueError("t_eval must be finite times (s); it holds NaN or infinity")
     if times.size > 1 and not np.all(np.diff(times) > 0.0):
@@ -210,7 +231,9 @@ class SimulationResult:
         """Where the tip is, ``fk(q)``: shape (n, 2), metres (as :attr:`twolink.trajectory.JointTrajectory.p_tip`)."""
         return fk(self.arm, self.q)
 
-    def tracking_error(self, path: Path | JointTrajectory | ArrayLike | None = None) -> NDArray[np.float64]:
+    def tracking_error(
+        self, path: Path | JointTrajectory | ArrayLike | None = None
+    ) -> NDArray[np.float64]:
         """Distance of the tip from where ``path`` wants it, ``|p_tip - p_path|`` per sample: shape (n,), metres.
 
         The same method as :meth:`twolink.trajectory.JointTrajectory.tracking_error`.
@@ -298,7 +321,9 @@ class SimulationResult:
             )
         if not np.all(np.isfinite(values)):
             first = int(np.flatnonzero(~np.isfinite(values))[0])
-            raise ValueError(f"extra_potential(q) returned {values[first]} J at t = {self.t[first]:.6g} s (sample {first})")
+            raise ValueError(
+                f"extra_potential(q) returned {values[first]} J at t = {self.t[first]:.6g} s (sample {first})"
+            )
         return values
 
     def energy_drift(self, extra_potential: PotentialEnergy | None = None) -> float:
@@ -439,7 +464,9 @@ def simulate(
     ValueError: t_end (s) must be > 0.0; got -1.0
     """
     q_start = as_configuration(q0, "q0")
-    qd_start = as_configuration(qd0, "qd0", what="one pair of joint rates", unit="rad/s")
+    qd_start = as_configuration(
+        qd0, "qd0", what="one pair of joint rates", unit="rad/s"
+    )
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     budget = EvaluationBudget(max_evaluations, max_wall_time)
     max_evaluations, max_wall_time = budget.max_evaluations, budget.max_wall_time
@@ -453,7 +480,12 @@ def simulate(
 
     def out_of_time(t, state):
         if budget.out_of_time():
-            raise _BudgetExceeded(t, state, f"its budget of {budget.describe('max_wall_time')}", wall_time=True)
+            raise _BudgetExceeded(
+                t,
+                state,
+                f"its budget of {budget.describe('max_wall_time')}",
+                wall_time=True,
+            )
 
     def timed(t, state):
         nonlocal calls
@@ -472,11 +504,18 @@ def simulate(
         last[0], last[1] = t, state
         spent = budget.spend()
         if spent is not None:
-            raise _BudgetExceeded(t, state, f"its budget of {budget.describe(spent)}", wall_time=spent == "max_wall_time")
+            raise _BudgetExceeded(
+                t,
+                state,
+                f"its budget of {budget.describe(spent)}",
+                wall_time=spent == "max_wall_time",
+            )
         try:
             derivative = inner(t, state)
         except NonFiniteTorque as exc:
-            if budget.evaluations == 1:  # at the start: the torque function, not the motion
+            if (
+                budget.evaluations == 1
+            ):  # at the start: the torque function, not the motion
                 raise ValueError(str(exc)) from None
             raise SimulationError(
                 f"the motion blew up at t = {t:.6g} s: {exc} in the state q = ({state[0]:.6g}, {state[1]:.6g}) rad, "
@@ -490,13 +529,17 @@ def simulate(
             )
         return derivative
 
-    from scipy.integrate import solve_ivp  # here, not at the top: import twolink stays light
+    # here, not at the top: import twolink stays light
+
+    from scipy.integrate import solve_ivp
 
     try:
         method = options.get("method")
         if isinstance(method, str) and method in _EXPLICIT_METHODS:
             rate = _stiffness(timed, 0.0, start)
-            needed = _explicit_evaluations(method, rate, t_end) if rate is not None else 0.0
+            needed = (
+                _explicit_evaluations(method, rate, t_end) if rate is not None else 0.0
+            )
             if needed > max_evaluations / 4:
                 if "method" in solver_options:
                     if needed > max_evaluations:
@@ -511,7 +554,9 @@ def simulate(
                     options["method"] = "Radau"
                     note = f" (the loop is stiff, fastest rate {rate:.3g} 1/s at t = 0: integrated with method='Radau')"
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            solution = solve_ivp(right_hand_side, (0.0, t_end), start, t_eval=t_eval, **options)
+            solution = solve_ivp(
+                right_hand_side, (0.0, t_end), start, t_eval=t_eval, **options
+            )
     except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
         if isinstance(exc, NonFiniteTorque):  # from the stiffness estimate at the start
             raise ValueError(str(exc)) from None
@@ -526,7 +571,9 @@ def simulate(
             "check the controller's gains and the torques it returns"
         ) from exc
     except _BudgetExceeded as stop:
-        if budget.evaluations == 0:  # stopped while the stiffness at the start was estimated (around the start)
+        if (
+            budget.evaluations == 0
+        ):  # stopped while the stiffness at the start was estimated (around the start)
             stop.t, stop.state = 0.0, start
         per_call = (time.monotonic() - budget.started) / max(calls, 1)
         if stop.wall_time and torque is not None and per_call > SLOW_CALL:
@@ -536,7 +583,9 @@ def simulate(
                 "make it faster (no printing, plotting or sleeping in it) or raise max_wall_time"
             )
         else:
-            advice = _budget_advice(inner, stop, budget.evaluations, options.get("method", "RK45"), t_end)
+            advice = _budget_advice(
+                inner, stop, budget.evaluations, options.get("method", "RK45"), t_end
+            )
         raise SimulationError(
             f"the integration used up {stop.what} at t = {stop.t:.6g} s of {t_end:.6g} s "
             f"(state q = ({stop.state[0]:.6g}, {stop.state[1]:.6g}) rad, qd = ({stop.state[2]:.6g}, "

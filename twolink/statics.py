@@ -16,7 +16,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import InputTypeError, as_configuration, as_finite_scalar, as_pairs, require_arm
+from ._validate import (
+    InputTypeError,
+    as_configuration,
+    as_finite_scalar,
+    as_pairs,
+    require_arm,
+)
 from .errors import UnreachableError
 from .kinematics import REACH_RTOL, fk, joint_torques
 
@@ -60,7 +66,9 @@ class Wall:
 
     def __init__(self, point: ArrayLike, normal: ArrayLike) -> None:
         on_wall = as_configuration(point, "wall point", **_POINT)
-        direction = as_configuration(normal, "wall normal", what="one (x, y) vector", unit="any length")
+        direction = as_configuration(
+            normal, "wall normal", what="one (x, y) vector", unit="any length"
+        )
         length = float(np.hypot(direction[0], direction[1]))
         if not length > 0.0:
             raise ValueError(
@@ -181,11 +189,15 @@ class WallContact:
     def branch(self, elbow: str) -> int:
         """Row index of the configuration named ``elbow`` (``"down"``, ``"up"``, ...)."""
         if elbow not in self.elbow:
-            raise ValueError(f"no {elbow!r} configuration here; this contact has {self.elbow}")
+            raise ValueError(
+                f"no {elbow!r} configuration here; this contact has {self.elbow}"
+            )
         return self.elbow.index(elbow)
 
 
-def wall_contact(arm: TwoLinkArm, wall: Wall, force_magnitude: float, include_gravity: bool = False) -> WallContact:
+def wall_contact(
+    arm: TwoLinkArm, wall: Wall, force_magnitude: float, include_gravity: bool = False
+) -> WallContact:
     """Contact configurations pushing on ``wall`` with link 2 perpendicular to it, and their torques.
 
     Condition: the tip lies on the wall and link 2 points along the wall's
@@ -254,13 +266,17 @@ def wall_contact(arm: TwoLinkArm, wall: Wall, force_magnitude: float, include_gr
     """
     require_arm(arm)
     if not isinstance(include_gravity, (bool, np.bool_)):
-        raise InputTypeError(f"include_gravity must be True or False; got {include_gravity!r}")
+        raise InputTypeError(
+            f"include_gravity must be True or False; got {include_gravity!r}"
+        )
     if not isinstance(wall, Wall):
         raise ValueError(
             "wall must be a twolink.statics.Wall (Wall(point, normal) or Wall.through(p_a, p_b)); "
             f"got {type(wall).__name__}"
         )
-    force_magnitude = as_finite_scalar(force_magnitude, "force_magnitude (N)", minimum=0.0)
+    force_magnitude = as_finite_scalar(
+        force_magnitude, "force_magnitude (N)", minimum=0.0
+    )
     normal = wall.into_wall()
     distance = float(wall.point @ normal)
     r_low, r_high = abs(arm.l2 - arm.l1), arm.l1 + arm.l2
@@ -274,20 +290,28 @@ def wall_contact(arm: TwoLinkArm, wall: Wall, force_magnitude: float, include_gr
             f"can push on walls at distances in [{r_low:.6g}, {r_high:.6g}] m (l1={arm.l1:.6g}, l2={arm.l2:.6g})"
         )
     phi = float(np.arctan2(normal[1], normal[0]))
-    if one_minus_c2 <= slack:  # at the reach limit within round-off: one stretched configuration
+    if (
+        one_minus_c2 <= slack
+    ):  # at the reach limit within round-off: one stretched configuration
         elbow: tuple[str, ...] = ("stretched",)
         q2_values = [0.0]
     elif one_plus_c2 <= slack:
         elbow, q2_values = ("folded",), [np.pi]
     else:
-        q2 = 2.0 * float(np.arctan2(np.sqrt(one_minus_c2), np.sqrt(one_plus_c2)))  # acos(cos q2), well conditioned
+        q2 = 2.0 * float(
+            np.arctan2(np.sqrt(one_minus_c2), np.sqrt(one_plus_c2))
+        )  # acos(cos q2), well conditioned
         elbow, q2_values = ("down", "up"), [q2, -q2]
     q = np.array([[phi - value, value] for value in q2_values])
     q[:, 0] = np.arctan2(np.sin(q[:, 0]), np.cos(q[:, 0]))
     q[:, 0] = np.where(q[:, 0] == -np.pi, np.pi, q[:, 0])
     force_by_tip = force_magnitude * normal
     tau_wall = joint_torques(arm, q, force_by_tip)
-    tau_gravity = np.asarray(arm.gravity(q), dtype=float) if include_gravity else np.zeros_like(tau_wall)
+    tau_gravity = (
+        np.asarray(arm.gravity(q), dtype=float)
+        if include_gravity
+        else np.zeros_like(tau_wall)
+    )
     return WallContact(
         wall=wall,
         force_magnitude=force_magnitude,

@@ -42,7 +42,9 @@ if TYPE_CHECKING:
 __all__ = ["joint_stiffness", "tip_stiffness", "stiffness_ellipse"]
 
 
-def joint_stiffness(arm: TwoLinkArm, q: ArrayLike, tip_stiffness: ArrayLike) -> NDArray[np.float64]:
+def joint_stiffness(
+    arm: TwoLinkArm, q: ArrayLike, tip_stiffness: ArrayLike
+) -> NDArray[np.float64]:
     """The joint stiffness ``J^T K_tip J`` (N m/rad) that a tip stiffness amounts to at ``q``.
 
     Parameters
@@ -76,7 +78,9 @@ def joint_stiffness(arm: TwoLinkArm, q: ArrayLike, tip_stiffness: ArrayLike) -> 
     return (K_joint + K_joint.T) / 2.0
 
 
-def tip_stiffness(arm: TwoLinkArm, q: ArrayLike, joint_stiffness: ArrayLike) -> NDArray[np.float64]:
+def tip_stiffness(
+    arm: TwoLinkArm, q: ArrayLike, joint_stiffness: ArrayLike
+) -> NDArray[np.float64]:
     """The stiffness ``J^-T K_joint J^-1`` (N/m) felt at the tip for a joint stiffness at ``q``.
 
     Parameters
@@ -115,13 +119,17 @@ def tip_stiffness(arm: TwoLinkArm, q: ArrayLike, joint_stiffness: ArrayLike) -> 
     try:
         require_nonsingular(arm, q, "the tip stiffness")
     except SingularityError as error:
-        raise SingularityError(f"{error}; along the arm the tip stiffness is unbounded") from None
+        raise SingularityError(
+            f"{error}; along the arm the tip stiffness is unbounded"
+        ) from None
     J_inverse = np.linalg.inv(jacobian(arm, q))
     K_tip = J_inverse.T @ K_joint @ J_inverse
     return (K_tip + K_tip.T) / 2.0
 
 
-def stiffness_ellipse(arm: TwoLinkArm, q: ArrayLike, tip_stiffness: ArrayLike) -> Ellipse:
+def stiffness_ellipse(
+    arm: TwoLinkArm, q: ArrayLike, tip_stiffness: ArrayLike
+) -> Ellipse:
     """The stiffness ellipse at the tip: the restoring force for each unit displacement.
 
     ``{K d : |d| = 1}``: semi-axes are the eigenvalues of ``K`` (N/m),
@@ -152,4 +160,8 @@ def stiffness_ellipse(arm: TwoLinkArm, q: ArrayLike, tip_stiffness: ArrayLike) -
     q = as_configuration(q)
     K_tip = gain_matrix(tip_stiffness, "tip stiffness (N/m)")
     eigenvalues, eigenvectors = np.linalg.eigh(K_tip)
-    return Ellipse(centre=fk(arm, q), semi_axes=eigenvalues[::-1].copy(), directions=eigenvectors[:, ::-1].copy())
+    return Ellipse(
+        centre=fk(arm, q),
+        semi_axes=eigenvalues[::-1].copy(),
+        directions=eigenvectors[:, ::-1].copy(),
+    )

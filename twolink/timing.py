@@ -27,7 +27,9 @@ MAX_SECONDS = 60.0
 __all__ = ["median_time", "IK_METHODS", "compare_ik_methods"]
 
 
-def median_time(function: Callable[[], object], repeat: int = 5, min_seconds: float = 0.05) -> float:
+def median_time(
+    function: Callable[[], object], repeat: int = 5, min_seconds: float = 0.05
+) -> float:
     """Median wall time of one call of ``function()``, in seconds.
 
     Calls are batched so that each measurement lasts about ``min_seconds``
@@ -57,11 +59,17 @@ def median_time(function: Callable[[], object], repeat: int = 5, min_seconds: fl
     True
     """
     repeat = as_count(repeat, "repeat", minimum=1, maximum=1000)
-    min_seconds = as_finite_scalar(min_seconds, "min_seconds (s)", minimum=0.0, strictly=True)
+    min_seconds = as_finite_scalar(
+        min_seconds, "min_seconds (s)", minimum=0.0, strictly=True
+    )
     if min_seconds > MAX_SECONDS:
-        raise ValueError(f"min_seconds must be at most {MAX_SECONDS} s (a timing budget, not a wait); got {min_seconds}")
+        raise ValueError(
+            f"min_seconds must be at most {MAX_SECONDS} s (a timing budget, not a wait); got {min_seconds}"
+        )
     if not callable(function):
-        raise InputTypeError(f"function must be a callable of no arguments; got {function!r}")
+        raise InputTypeError(
+            f"function must be a callable of no arguments; got {function!r}"
+        )
     timer = timeit.Timer(function)
     number = 1
     while True:  # 1, 10, 100, ... calls until a run lasts a tenth of min_seconds
@@ -83,7 +91,9 @@ def _solvers(q0: tuple[float, ...], step: float) -> dict[str, _Solver]:
         "closed form": lambda arm, p: ik.closed_form(arm, p, elbow="down"),
         "newton": lambda arm, p: ik.newton(arm, p, q0=q0),
         "minimize (BFGS)": lambda arm, p: ik.minimize(arm, p, q0=q0),
-        "minimize (SLSQP, constrained)": lambda arm, p: ik.minimize(arm, p, q0=q0, constrained=True),
+        "minimize (SLSQP, constrained)": lambda arm, p: ik.minimize(
+            arm, p, q0=q0, constrained=True
+        ),
         "brute force": lambda arm, p: ik.brute_force(arm, p, step=step),
     }
 
@@ -136,10 +146,14 @@ def compare_ik_methods(
     >>> rows[0]["method"], rows[0]["solved"], rows[0]["max_residual"] < 1e-12
     ('closed form', 1.0, True)
     """
-    points: NDArray[np.float64] = require_within_reach(arm, as_pairs(targets, "targets"))
+    points: NDArray[np.float64] = require_within_reach(
+        arm, as_pairs(targets, "targets")
+    )
     repeat = as_count(repeat, "repeat", minimum=1, maximum=1000)
     if points.ndim != 2 or len(points) == 0:
-        raise ValueError(f"targets must have shape (n, 2) with n >= 1 (nothing to time otherwise); got {points.shape}")
+        raise ValueError(
+            f"targets must have shape (n, 2) with n >= 1 (nothing to time otherwise); got {points.shape}"
+        )
     solvers = _solvers(tuple(as_pairs(q0, "q0").tolist()), step)
     unknown = [name for name in methods if name not in solvers]
     if unknown:
@@ -161,7 +175,11 @@ def compare_ik_methods(
                 solve(arm, points)
 
         residual = np.hypot(*(arm.fk(q) - points).T)
-        tolerance = (arm.l1 + 2 * arm.l2) * step / 2 if name == "brute force" else 1e-9 * (arm.l1 + arm.l2)
+        tolerance = (
+            (arm.l1 + 2 * arm.l2) * step / 2
+            if name == "brute force"
+            else 1e-9 * (arm.l1 + arm.l2)
+        )
         rows.append(
             {
                 "method": name,
@@ -171,4 +189,3 @@ def compare_ik_methods(
             }
         )
     return rows
-

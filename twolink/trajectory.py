@@ -34,19 +34,38 @@ Examples
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, Callable, Literal, Union, overload
+from typing import TYPE_CHECKING, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import as_configuration, as_count, as_finite_scalar, as_pairs, finite_result, real_array, require_arm
+from ._validate import (
+    as_configuration,
+    as_count,
+    as_finite_scalar,
+    as_pairs,
+    finite_result,
+    real_array,
+    require_arm,
+)
+from .budgets import (
+    DEFAULT_MAX_EVALUATIONS,
+    DEFAULT_MAX_WALL_TIME,
+    MAX_SAMPLES,
+    EvaluationBudget,
+)
 from .controllers import JointReference
 from .conventions import check_elbow
-from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME, MAX_SAMPLES, EvaluationBudget
 from .errors import InputTypeError, SimulationError, SingularityError, UnreachableError
-from .kinematics import fk, jacobian, jacobian_rate, require_nonsingular, require_within_reach
-from .velocity import joint_rates, joint_rates_dls
 from .ik import LIMIT_TOL, solutions_within_limits
+from .kinematics import (
+    fk,
+    jacobian,
+    jacobian_rate,
+    require_nonsingular,
+    require_within_reach,
+)
+from .velocity import joint_rates, joint_rates_dls
 from .workspace import describe_limits, require_reachable
 
 if TYPE_CHECKING:
@@ -69,18 +88,25 @@ TIME_LAWS = ("linear", "cubic", "quintic")
 _BRANCHES = ("down", "up")
 
 #: Why ``elbow="both"`` means nothing for a trajectory (see :func:`twolink.conventions.check_elbow`).
-_ONE_BRANCH = "a path follows one branch at a time: trace it once with 'down' and once with 'up'"
+_ONE_BRANCH = (
+    "a path follows one branch at a time: trace it once with 'down' and once with 'up'"
+)
 
 # what time_scaling, at and sample return: two, three or four float arrays
 _Array = NDArray[np.float64]
 _Two = tuple[NDArray[np.float64], NDArray[np.float64]]
 _Three = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
-_Four = tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
+_Four = tuple[
+    NDArray[np.float64], NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]
+]
 
 
 @overload
 def time_scaling(
-    t: ArrayLike, duration: float, law: str = ..., with_acceleration: Literal[False] = ...
+    t: ArrayLike,
+    duration: float,
+    law: str = ...,
+    with_acceleration: Literal[False] = ...,
 ) -> _Two: ...
 @overload
 def time_scaling(
@@ -142,7 +168,11 @@ def time_scaling(
     if law == "linear":
         s, ds, dds = tau, np.ones_like(tau), np.zeros_like(tau)
     elif law == "cubic":
-        s, ds, dds = tau * tau * (3.0 - 2.0 * tau), 6.0 * tau * (1.0 - tau), 6.0 - 12.0 * tau
+        s, ds, dds = (
+            tau * tau * (3.0 - 2.0 * tau),
+            6.0 * tau * (1.0 - tau),
+            6.0 - 12.0 * tau,
+        )
     else:
         s = tau**3 * (10.0 - 15.0 * tau + 6.0 * tau * tau)
         ds = 30.0 * tau * tau * (1.0 - tau) ** 2
@@ -155,7 +185,6 @@ def time_scaling(
 
 def _point(value: ArrayLike, name: str) -> _Array:
     return as_configuration(value, name, what="one (x, y) point", unit="metres")
-
 
 
 #: Largest ``gain * duration`` of :func:`resolved_rate_trajectory`: the tracking error
@@ -205,7 +234,9 @@ class _TimedPath:
         return (p, v, a) if with_acceleration else (p, v)
 
     @overload
-    def sample(self, n: int = ..., with_acceleration: Literal[False] = ...) -> _Three: ...
+    def sample(
+        self, n: int = ..., with_acceleration: Literal[False] = ...
+    ) -> _Three: ...
     @overload
     def sample(self, n: int, with_acceleration: Literal[True]) -> _Four: ...
     @overload
@@ -253,23 +284,46 @@ class LinePath(_TimedPath):
     duration: float
     law: str
 
-    def __init__(self, p_start: ArrayLike, p_end: ArrayLike, duration: float, law: str = "quintic") -> None:
+    def __init__(
+        self,
+        p_start: ArrayLike,
+        p_end: ArrayLike,
+        duration: float,
+        law: str = "quintic",
+    ) -> None:
         object.__setattr__(self, "p_start", tuple(_point(p_start, "p_start").tolist()))
         object.__setattr__(self, "p_end", tuple(_point(p_end, "p_end").tolist()))
-        object.__setattr__(self, "duration", as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True))
+        object.__setattr__(
+            self,
+            "duration",
+            as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True),
+        )
         object.__setattr__(self, "law", law)
         time_scaling(0.0, self.duration, self.law)  # checks the law's name
 
     @property
     def length(self) -> float:
         """Length of the segment, metres."""
-        return float(np.hypot(self.p_end[0] - self.p_start[0], self.p_end[1] - self.p_start[1]))
+        return float(
+            np.hypot(self.p_end[0] - self.p_start[0], self.p_end[1] - self.p_start[1])
+        )
 
     def _at(self, t: ArrayLike) -> _Three:
-        s, s_dot, s_ddot = time_scaling(t, self.duration, self.law, with_acceleration=True)
-        with np.errstate(over="ignore", invalid="ignore"):  # _finite_motion names an overflow
-            start, chord = np.asarray(self.p_start), np.subtract(self.p_end, self.p_start)
-            p, v, a = start + np.multiply.outer(s, chord), np.multiply.outer(s_dot, chord), np.multiply.outer(s_ddot, chord)
+        s, s_dot, s_ddot = time_scaling(
+            t, self.duration, self.law, with_acceleration=True
+        )
+        with np.errstate(
+            over="ignore", invalid="ignore"
+        ):  # _finite_motion names an overflow
+            start, chord = (
+                np.asarray(self.p_start),
+                np.subtract(self.p_end, self.p_start),
+            )
+            p, v, a = (
+                start + np.multiply.outer(s, chord),
+                np.multiply.outer(s_dot, chord),
+                np.multiply.outer(s_ddot, chord),
+            )
         return _finite_motion(self, p, v, a)
 
 
@@ -330,10 +384,20 @@ class CirclePath(_TimedPath):
         turns: float = 1.0,
     ) -> None:
         object.__setattr__(self, "centre", tuple(_point(centre, "centre").tolist()))
-        object.__setattr__(self, "radius", as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True))
-        object.__setattr__(self, "duration", as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True))
+        object.__setattr__(
+            self,
+            "radius",
+            as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True),
+        )
+        object.__setattr__(
+            self,
+            "duration",
+            as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True),
+        )
         object.__setattr__(self, "law", law)
-        object.__setattr__(self, "start_angle", as_finite_scalar(start_angle, "start_angle (rad)"))
+        object.__setattr__(
+            self, "start_angle", as_finite_scalar(start_angle, "start_angle (rad)")
+        )
         turns = as_finite_scalar(turns, "turns")
         if turns == 0.0 or abs(turns) > MAX_TURNS:
             raise ValueError(
@@ -349,8 +413,12 @@ class CirclePath(_TimedPath):
         return float(2.0 * np.pi * self.radius * abs(self.turns))
 
     def _at(self, t: ArrayLike) -> _Three:
-        s, s_dot, s_ddot = time_scaling(t, self.duration, self.law, with_acceleration=True)
-        with np.errstate(over="ignore", invalid="ignore"):  # _finite_motion names an overflow
+        s, s_dot, s_ddot = time_scaling(
+            t, self.duration, self.law, with_acceleration=True
+        )
+        with np.errstate(
+            over="ignore", invalid="ignore"
+        ):  # _finite_motion names an overflow
             sweep = 2.0 * np.pi * self.turns
             angle = self.start_angle + sweep * s
             rate, angular_acceleration = sweep * s_dot, sweep * s_ddot  # rad/s, rad/s^2
@@ -366,13 +434,19 @@ class CirclePath(_TimedPath):
 
 def _finite_motion(path: _TimedPath, p: _Array, v: _Array, a: _Array) -> _Three:
     """``(p, v, a)`` of a path if all are finite, else an error saying which overflows float64."""
-    for values, what in ((p, "positions (m)"), (v, "velocities (m/s)"), (a, "accelerations (m/s^2)")):
-        finite_result(values, f"path's {what}", f"{path!r} is too large or too fast for float64")
+    for values, what in (
+        (p, "positions (m)"),
+        (v, "velocities (m/s)"),
+        (a, "accelerations (m/s^2)"),
+    ):
+        finite_result(
+            values, f"path's {what}", f"{path!r} is too large or too fast for float64"
+        )
     return p, v, a
 
 
 #: What :func:`ik_trajectory` follows: a timed path, or points in order.
-Path = Union[LinePath, CirclePath]
+Path = LinePath | CirclePath
 
 
 def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointReference:
@@ -383,7 +457,9 @@ def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointRefe
     that at ``s = 0`` every derivative is the sample itself, to round-off.
     Outside ``[t_0, t_n]`` the reference holds the end position at rest.
     """
-    times = np.array(t, dtype=float)  # copies: the reference does not change with the trajectory's arrays
+    times = np.array(
+        t, dtype=float
+    )  # copies: the reference does not change with the trajectory's arrays
     q, qd, qdd = (np.array(values, dtype=float) for values in (q, qd, qdd))
     steps = np.diff(times)
     changes = np.diff(q, axis=0)
@@ -408,7 +484,12 @@ def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointRefe
         h2 = 0.5 * s2 * (1.0 - s) ** 3
         h3 = 0.5 * s3 * (1.0 - s) ** 2
         h4 = s3 * (-4.0 + 7.0 * s - 3.0 * s2)
-        return q[k] + h5 * changes[k] + h * (h1 * qd[k] + h4 * qd[k + 1]) + h * h * (h2 * qdd[k] + h3 * qdd[k + 1])
+        return (
+            q[k]
+            + h5 * changes[k]
+            + h * (h1 * qd[k] + h4 * qd[k + 1])
+            + h * h * (h2 * qdd[k] + h3 * qdd[k + 1])
+        )
 
     def velocity(time: float) -> NDArray[np.float64]:
         time = float(time)
@@ -423,7 +504,12 @@ def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointRefe
         d2 = 0.5 * s * (1.0 - s) ** 2 * (2.0 - 5.0 * s)
         d3 = 0.5 * s2 * (1.0 - s) * (3.0 - 5.0 * s)
         d4 = s2 * (-12.0 + 28.0 * s - 15.0 * s2)
-        return d5 / h * changes[k] + d1 * qd[k] + d4 * qd[k + 1] + h * (d2 * qdd[k] + d3 * qdd[k + 1])
+        return (
+            d5 / h * changes[k]
+            + d1 * qd[k]
+            + d4 * qd[k + 1]
+            + h * (d2 * qdd[k] + d3 * qdd[k + 1])
+        )
 
     def acceleration(time: float) -> NDArray[np.float64]:
         time = float(time)
@@ -438,7 +524,12 @@ def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointRefe
         c2 = (1.0 - s) * (1.0 - 8.0 * s + 10.0 * s2)
         c3 = s * (3.0 - 12.0 * s + 10.0 * s2)
         c4 = s * (-24.0 + 84.0 * s - 60.0 * s2)
-        return c5 / (h * h) * changes[k] + (c1 * qd[k] + c4 * qd[k + 1]) / h + c2 * qdd[k] + c3 * qdd[k + 1]
+        return (
+            c5 / (h * h) * changes[k]
+            + (c1 * qd[k] + c4 * qd[k + 1]) / h
+            + c2 * qdd[k]
+            + c3 * qdd[k + 1]
+        )
 
     return JointReference(position, velocity, acceleration)
 
@@ -486,7 +577,9 @@ class JointTrajectory:
         """Where the tip actually is, ``fk(q)``: shape (n, 2), metres."""
         return fk(self.arm, self.q)
 
-    def tracking_error(self, path: Path | JointTrajectory | ArrayLike | None = None) -> NDArray[np.float64]:
+    def tracking_error(
+        self, path: Path | JointTrajectory | ArrayLike | None = None
+    ) -> NDArray[np.float64]:
         """Distance of the tip from where ``path`` wants it, ``|p_tip - p_path|`` per sample: shape (n,), metres.
 
         The same method as :meth:`twolink.SimulationResult.tracking_error`.
@@ -552,7 +645,9 @@ class JointTrajectory:
         return _quintic_hermite(self.t, self.q, self.qd, self.qdd)
 
 
-def path_positions(path: Path | JointTrajectory | ArrayLike, t: ArrayLike) -> NDArray[np.float64]:
+def path_positions(
+    path: Path | JointTrajectory | ArrayLike, t: ArrayLike
+) -> NDArray[np.float64]:
     """Where ``path`` wants the tip at the times ``t``: shape ``(len(t), 2)``, metres.
 
     What :meth:`JointTrajectory.tracking_error` and
@@ -592,10 +687,17 @@ def path_positions(path: Path | JointTrajectory | ArrayLike, t: ArrayLike) -> ND
     """
     times = real_array(t, "t (s)")
     if times.ndim != 1 or not np.all(np.isfinite(times)):
-        raise ValueError(f"t must be a 1-D array of finite times (s); got shape {times.shape}")
+        raise ValueError(
+            f"t must be a 1-D array of finite times (s); got shape {times.shape}"
+        )
     if isinstance(path, JointTrajectory):
         same = path.t.shape == times.shape and bool(
-            np.allclose(path.t, times, rtol=0.0, atol=1e-12 * max(1.0, float(np.max(np.abs(times), initial=0.0))))
+            np.allclose(
+                path.t,
+                times,
+                rtol=0.0,
+                atol=1e-12 * max(1.0, float(np.max(np.abs(times), initial=0.0))),
+            )
         )
         if not same:
             span = f"[{times[0]:.6g}, {times[-1]:.6g}] s" if times.size else "no time"
@@ -625,7 +727,9 @@ def path_positions(path: Path | JointTrajectory | ArrayLike, t: ArrayLike) -> ND
     return np.array(points, dtype=float)
 
 
-def _path_samples(path: Path | ArrayLike, n: int) -> tuple[_Array, _Array, _Array, _Array, bool]:
+def _path_samples(
+    path: Path | ArrayLike, n: int
+) -> tuple[_Array, _Array, _Array, _Array, bool]:
     """``(t, p, v, a, timed)`` from a path object, or from an (m, 2) array of points (then ``t`` counts samples)."""
     sample = getattr(path, "sample", None)
     if callable(sample):
@@ -633,13 +737,17 @@ def _path_samples(path: Path | ArrayLike, n: int) -> tuple[_Array, _Array, _Arra
         return t, p, v, a, True
     points = as_pairs(path, "path")
     if points.ndim != 2 or len(points) < 2:
-        raise ValueError(f"a path of points must have shape (m, 2) with m >= 2; got {points.shape}")
+        raise ValueError(
+            f"a path of points must have shape (m, 2) with m >= 2; got {points.shape}"
+        )
     t = np.arange(len(points), dtype=float)
     v = np.gradient(points, t, axis=0)
     return t, points, v, np.gradient(v, t, axis=0), False
 
 
-def _choose_branch(arm: TwoLinkArm, points: _Array, valid: NDArray[np.bool_], elbow: str) -> int:
+def _choose_branch(
+    arm: TwoLinkArm, points: _Array, valid: NDArray[np.bool_], elbow: str
+) -> int:
     """The one branch used for the whole path, or a clear error."""
     valid_everywhere = np.all(valid, axis=0)
     wanted = _BRANCHES if elbow == "auto" else (elbow,)
@@ -650,7 +758,9 @@ def _choose_branch(arm: TwoLinkArm, points: _Array, valid: NDArray[np.bool_], el
     for name in wanted:
         first = int(np.flatnonzero(~valid[:, _BRANCHES.index(name)])[0])
         x, y = points[first]
-        leaves.append(f"elbow {name} leaves them at path point {first} ({x:.6g}, {y:.6g})")
+        leaves.append(
+            f"elbow {name} leaves them at path point {first} ({x:.6g}, {y:.6g})"
+        )
     advice = (
         "every point is reachable, but not on one branch: split the path, or let it pass through a "
         "stretched or folded (singular) pose where the branches meet"
@@ -690,7 +800,11 @@ BASE_ROUNDOFF = 1e-12
 
 
 def _switching_path(
-    arm: TwoLinkArm, points: _Array, q_both: _Array, valid: NDArray[np.bool_], start_branch: int
+    arm: TwoLinkArm,
+    points: _Array,
+    q_both: _Array,
+    valid: NDArray[np.bool_],
+    start_branch: int,
 ) -> tuple[_Array, NDArray[np.int_]] | None:
     """A continuous joint path that may change branch where the branches meet, or None.
 
@@ -711,15 +825,22 @@ def _switching_path(
     for k in range(1, count):
         candidates = _nearest_turn(q_both[k], q[k - 1])
         # within round-off of the base the point's direction (and so q1) means nothing
-        at_base = r_min == 0.0 and not np.hypot(*points[k]) > BASE_ROUNDOFF * (arm.l1 + arm.l2)
+        at_base = r_min == 0.0 and not np.hypot(*points[k]) > BASE_ROUNDOFF * (
+            arm.l1 + arm.l2
+        )
         if at_base:  # every q1 puts the tip there: keep the previous one
             candidates[:, 0] = q[k - 1, 0]
         steps = np.max(np.abs(candidates - q[k - 1]), axis=-1)
         steps = np.where(valid[k], steps, np.inf)
-        meet = abs(np.sin(q[k - 1, 1])) <= BRANCH_MEET_TOL or abs(np.sin(candidates[branch, 1])) <= BRANCH_MEET_TOL
+        meet = (
+            abs(np.sin(q[k - 1, 1])) <= BRANCH_MEET_TOL
+            or abs(np.sin(candidates[branch, 1])) <= BRANCH_MEET_TOL
+        )
         # switch at a singular pose when the other branch is nearer, or between two samples that
         # straddle one (staying would jump, the other branch is a small step away)
-        if (meet and steps[1 - branch] < steps[branch]) or (steps[branch] > JUMP_TOL >= steps[1 - branch]):
+        if (meet and steps[1 - branch] < steps[branch]) or (
+            steps[branch] > JUMP_TOL >= steps[1 - branch]
+        ):
             branch = 1 - branch
         q[k] = candidates[branch]
         branches[k] = branch
@@ -752,7 +873,11 @@ RATE_SINGULARITY_TOL = 1e-3
 
 def _finite_differences(values: _Array, t: _Array) -> _Array:
     """``d values / dt`` by :func:`numpy.gradient` (second order, also at the ends when there are 3 samples)."""
-    return np.gradient(values, t, axis=0, edge_order=2) if len(t) > 2 else np.gradient(values, t, axis=0)
+    return (
+        np.gradient(values, t, axis=0, edge_order=2)
+        if len(t) > 2
+        else np.gradient(values, t, axis=0)
+    )
 
 
 def ik_trajectory(
@@ -873,7 +998,11 @@ def ik_trajectory(
             f"({describe_limits(arm)}): it would have to wrap round by 360 deg at path point {first}"
         )
     qd = _finite_differences(q, t)
-    regular = np.abs(np.sin(q[:, 1])) > RATE_SINGULARITY_TOL if timed else np.zeros(len(t), dtype=bool)
+    regular = (
+        np.abs(np.sin(q[:, 1])) > RATE_SINGULARITY_TOL
+        if timed
+        else np.zeros(len(t), dtype=bool)
+    )
     if np.any(regular):
         qd[regular] = joint_rates(arm, q[regular], v_path[regular])
     qdd = _finite_differences(qd, t)
@@ -882,7 +1011,14 @@ def ik_trajectory(
         centripetal = _times(jacobian_rate(arm, q[regular], qd[regular]), qd[regular])
         qdd[regular] = joint_rates(arm, q[regular], a_path[regular] - centripetal)
     return JointTrajectory(
-        arm=arm, t=t, q=q, qd=qd, qdd=qdd, p_ref=points, elbow=_BRANCHES[branch], method="closed form",
+        arm=arm,
+        t=t,
+        q=q,
+        qd=qd,
+        qdd=qdd,
+        p_ref=points,
+        elbow=_BRANCHES[branch],
+        method="closed form",
         branch_switches=switches,
     )
 
@@ -974,7 +1110,9 @@ def resolved_rate_trajectory(
     """
     require_arm(arm)
     if not callable(getattr(path, "at", None)):
-        raise ValueError("resolved_rate_trajectory needs a path object with at(t) (LinePath or CirclePath)")
+        raise ValueError(
+            "resolved_rate_trajectory needs a path object with at(t) (LinePath or CirclePath)"
+        )
     elbow = check_elbow(elbow, ("down", "up", "auto"), why=_ONE_BRANCH)
     gain = as_finite_scalar(gain, "gain (1/s)", minimum=0.0)
     damping = as_finite_scalar(damping, "damping (m/rad)", minimum=0.0)
@@ -1017,8 +1155,12 @@ def resolved_rate_trajectory(
         try:  # the package's one singularity message, with the time
             require_nonsingular(arm, q, f"resolved rate at t = {now:.6g} s")
         except SingularityError as exc:
-            raise SingularityError(f"{exc}; pass damping > 0 (damped least squares) to pass it") from None
-        return joint_rates(arm, q, v_command)  # raises joint_rates' own error (its tolerance)
+            raise SingularityError(
+                f"{exc}; pass damping > 0 (damped least squares) to pass it"
+            ) from None
+        return joint_rates(
+            arm, q, v_command
+        )  # raises joint_rates' own error (its tolerance)
 
     if method is None:
         method = "LSODA" if gain * duration / 3.3 > 1e4 else "RK45"
@@ -1043,9 +1185,19 @@ def resolved_rate_trajectory(
             f"(method {method!r}, gain {gain:.3g} 1/s): {advice}"
         )
 
-    from scipy.integrate import solve_ivp  # here, not at the top: import twolink stays light
+    # here, not at the top: import twolink stays light
 
-    solution = solve_ivp(budgeted_rates, (t[0], t[-1]), q_begin, t_eval=t, rtol=rtol, atol=rtol * 1e-2, method=method)
+    from scipy.integrate import solve_ivp
+
+    solution = solve_ivp(
+        budgeted_rates,
+        (t[0], t[-1]),
+        q_begin,
+        t_eval=t,
+        rtol=rtol,
+        atol=rtol * 1e-2,
+        method=method,
+    )
     if not solution.success:
         raise SimulationError(
             f"resolved rate: the integration failed at t = {reached:.6g} s of {duration:.6g} s "
@@ -1055,12 +1207,26 @@ def resolved_rate_trajectory(
     qd = np.array([rates(now, q_now) for now, q_now in zip(t, q)])
     qdd = _rate_derivative(arm, q, qd, points, v_ref, a_ref, gain, damping)
     return JointTrajectory(
-        arm=arm, t=t, q=q, qd=qd, qdd=qdd, p_ref=points, elbow=start_branch, method="resolved rate"
+        arm=arm,
+        t=t,
+        q=q,
+        qd=qd,
+        qdd=qdd,
+        p_ref=points,
+        elbow=start_branch,
+        method="resolved rate",
     )
 
 
 def _rate_derivative(
-    arm: TwoLinkArm, q: _Array, qd: _Array, p_ref: _Array, v_ref: _Array, a_ref: _Array, gain: float, damping: float
+    arm: TwoLinkArm,
+    q: _Array,
+    qd: _Array,
+    p_ref: _Array,
+    v_ref: _Array,
+    a_ref: _Array,
+    gain: float,
+    damping: float,
 ) -> _Array:
     """``d qd / dt`` of the resolved-rate law along the motion, exactly.
 
@@ -1074,10 +1240,16 @@ def _rate_derivative(
     J_rate = jacobian_rate(arm, q, qd)
     v_tip = _times(J, qd)
     v_command = v_ref + gain * (p_ref - fk(arm, q))
-    wanted = a_ref + gain * (v_ref - v_tip) - _times(J_rate, qd)  # J qdd should give this
+    wanted = (
+        a_ref + gain * (v_ref - v_tip) - _times(J_rate, qd)
+    )  # J qdd should give this
     if damping == 0.0:
         return joint_rates(arm, q, wanted)
     # (J^T J + damping^2 I)^-1 = V diag(1 / (s^2 + damping^2)) V^T, with J = U diag(s) V^T
     _, singular_values, Vt = np.linalg.svd(J)
-    residual_term = _times(Vt, _transposed_times(J_rate, v_command - v_tip)) / (singular_values**2 + damping**2)
-    return joint_rates_dls(arm, q, wanted, damping) + _transposed_times(Vt, residual_term)
+    residual_term = _times(Vt, _transposed_times(J_rate, v_command - v_tip)) / (
+        singular_values**2 + damping**2
+    )
+    return joint_rates_dls(arm, q, wanted, damping) + _transposed_times(
+        Vt, residual_term
+    )

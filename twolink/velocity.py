@@ -39,7 +39,9 @@ __all__ = [
 # that import it with the velocity functions.
 
 
-def _broadcast_pairs(q: ArrayLike, other: ArrayLike, other_name: str) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+def _broadcast_pairs(
+    q: ArrayLike, other: ArrayLike, other_name: str
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     q_pairs: NDArray[np.float64] = as_pairs(q, "q")
     other_pairs: NDArray[np.float64] = as_pairs(other, other_name)
     try:
@@ -83,7 +85,9 @@ def _sin_q2(q: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.sin(q[..., 1])
 
 
-def joint_rates(arm: TwoLinkArm, q: ArrayLike, v_tip: ArrayLike, tol: float = SINGULARITY_TOL) -> NDArray[np.float64]:
+def joint_rates(
+    arm: TwoLinkArm, q: ArrayLike, v_tip: ArrayLike, tol: float = SINGULARITY_TOL
+) -> NDArray[np.float64]:
     """Joint rates that give the tip velocity ``v_tip``: ``qd = J(q)^-1 v_tip``.
 
     Solved with :func:`numpy.linalg.solve`, refusing configurations within
@@ -130,11 +134,18 @@ def joint_rates(arm: TwoLinkArm, q: ArrayLike, v_tip: ArrayLike, tol: float = SI
     try:
         require_nonsingular(arm, q, "solving for the joint rates", tol)
     except SingularityError as error:
-        raise SingularityError(f"{error}; the joint rates are unbounded there: use joint_rates_dls") from None
+        raise SingularityError(
+            f"{error}; the joint rates are unbounded there: use joint_rates_dls"
+        ) from None
     scale = _row_scale(v_tip)
     with np.errstate(over="ignore", invalid="ignore"):
-        qd = np.linalg.solve(jacobian(arm, q), (v_tip / scale)[..., None])[..., 0] * scale
-    return finite_result(qd, "joint rates qd (rad/s)", "v_tip is too large for this (near-singular) pose")
+        qd = (
+            np.linalg.solve(jacobian(arm, q), (v_tip / scale)[..., None])[..., 0]
+            * scale
+        )
+    return finite_result(
+        qd, "joint rates qd (rad/s)", "v_tip is too large for this (near-singular) pose"
+    )
 
 
 def _row_scale(v_tip: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -161,11 +172,15 @@ def _accurate_svd(
     U, singular_values, Vt = np.linalg.svd(jacobian(arm, q))
     s_max = singular_values[..., 0]
     det = np.abs(arm.l1 * arm.l2 * _sin_q2(q))
-    singular_values[..., 1] = np.divide(det, s_max, out=np.zeros_like(det), where=s_max > 0.0)
+    singular_values[..., 1] = np.divide(
+        det, s_max, out=np.zeros_like(det), where=s_max > 0.0
+    )
     return U, singular_values, Vt
 
 
-def joint_rates_dls(arm: TwoLinkArm, q: ArrayLike, v_tip: ArrayLike, damping: float) -> NDArray[np.float64]:
+def joint_rates_dls(
+    arm: TwoLinkArm, q: ArrayLike, v_tip: ArrayLike, damping: float
+) -> NDArray[np.float64]:
     """Damped-least-squares joint rates ``qd = J^T (J J^T + damping^2 I)^-1 v_tip``.
 
     The rates minimise ``|J qd - v_tip|^2 + damping^2 |qd|^2``: they stay
@@ -224,7 +239,9 @@ def joint_rates_dls(arm: TwoLinkArm, q: ArrayLike, v_tip: ArrayLike, damping: fl
     weights *= singular_values / radius / radius
     with np.errstate(over="ignore", invalid="ignore"):
         qd = np.einsum("...ji,...j->...i", Vt, weights) * scale
-    return finite_result(qd, "joint rates qd (rad/s)", "v_tip is too large for this damping")
+    return finite_result(
+        qd, "joint rates qd (rad/s)", "v_tip is too large for this damping"
+    )
 
 
 def manipulability(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
@@ -279,9 +296,15 @@ class Ellipse:
         """Angle of the major axis from the x-axis, radians in ``(-pi/2, pi/2]``."""
         major = self.directions[..., :, 0]
         angle = np.arctan2(major[..., 1], major[..., 0])
-        return np.where(angle <= -np.pi / 2, angle + np.pi, np.where(angle > np.pi / 2, angle - np.pi, angle))
+        return np.where(
+            angle <= -np.pi / 2,
+            angle + np.pi,
+            np.where(angle > np.pi / 2, angle - np.pi, angle),
+        )
 
-    def points(self, n: int = 64, scale: float = 1.0, clip: float | None = None) -> NDArray[np.float64]:
+    def points(
+        self, n: int = 64, scale: float = 1.0, clip: float | None = None
+    ) -> NDArray[np.float64]:
         """Points on the boundary, ``(..., n, 2)``, for ``ax.plot`` or ``ax.fill``.
 
         Parameters
@@ -308,13 +331,19 @@ class Ellipse:
         scale = as_finite_scalar(scale, "scale", minimum=0.0, strictly=True)
         lengths = np.asarray(self.semi_axes, dtype=float) * scale
         if clip is not None:
-            lengths = np.minimum(lengths, as_finite_scalar(clip, "clip", minimum=0.0, strictly=True))
+            lengths = np.minimum(
+                lengths, as_finite_scalar(clip, "clip", minimum=0.0, strictly=True)
+            )
         elif not np.all(np.isfinite(lengths)):
-            raise ValueError("the ellipse has an unbounded axis (a singular configuration): pass clip=")
+            raise ValueError(
+                "the ellipse has an unbounded axis (a singular configuration): pass clip="
+            )
         phase = np.linspace(0.0, 2.0 * np.pi, int(n))
         unit_circle = np.stack([np.cos(phase), np.sin(phase)], axis=-1)  # (n, 2)
         local = unit_circle * lengths[..., None, :]  # (..., n, 2)
-        return self.centre[..., None, :] + np.einsum("...ij,...nj->...ni", self.directions, local)
+        return self.centre[..., None, :] + np.einsum(
+            "...ij,...nj->...ni", self.directions, local
+        )
 
 
 def _svd(
@@ -384,4 +413,6 @@ def force_ellipse(arm: TwoLinkArm, q: ArrayLike) -> Ellipse:
     q, U, singular_values = _svd(arm, q)
     inverse = np.full_like(singular_values, np.inf)
     np.divide(1.0, singular_values, out=inverse, where=singular_values > 0.0)
-    return Ellipse(centre=fk(arm, q), semi_axes=inverse[..., ::-1], directions=U[..., :, ::-1])
+    return Ellipse(
+        centre=fk(arm, q), semi_axes=inverse[..., ::-1], directions=U[..., :, ::-1]
+    )

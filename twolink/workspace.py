@@ -33,7 +33,7 @@ array([ True, False, False])
 from __future__ import annotations
 
 import time
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -114,7 +114,9 @@ def _on_branches(valid: NDArray[np.bool_], elbow: str) -> NDArray[np.bool_]:
     return valid[..., 0 if elbow == "down" else 1]
 
 
-def is_reachable(arm: TwoLinkArm, p: ArrayLike, tol: float = LIMIT_TOL, elbow: str = "auto") -> NDArray[np.bool_]:
+def is_reachable(
+    arm: TwoLinkArm, p: ArrayLike, tol: float = LIMIT_TOL, elbow: str = "auto"
+) -> NDArray[np.bool_]:
     """Whether a configuration within the joint limits puts the tip at ``p``.
 
     Vectorised: solves both closed-form branches at every point and checks
@@ -207,7 +209,11 @@ def require_reachable(
         return points
     index = tuple(int(i) for i in np.argwhere(~reachable)[0]) if reachable.ndim else ()
     x, y = points[index]
-    where = f" (index {index}, first of {int(np.count_nonzero(~reachable))})" if reachable.ndim else ""
+    where = (
+        f" (index {index}, first of {int(np.count_nonzero(~reachable))})"
+        if reachable.ndim
+        else ""
+    )
     r_min, r_max = arm.reach
     # each angle shown as the turn nearest the middle of its limit interval: how far outside it is
     q_plain = closed_form(arm, points[index], elbow="both").q
@@ -257,7 +263,11 @@ def sample_reachable(
     """
     require_arm(arm)
     n = as_count(n, "n (samples)", minimum=1, maximum=MAX_SAMPLES)
-    if not (seed is None or isinstance(seed, (int, np.integer)) and not isinstance(seed, (bool, np.bool_))):
+    if not (
+        seed is None
+        or isinstance(seed, (int, np.integer))
+        and not isinstance(seed, (bool, np.bool_))
+    ):
         raise InputTypeError(f"seed must be an integer (or None); got {seed!r}")
     rng = np.random.default_rng(seed)
     if arm.has_limits:
@@ -265,7 +275,11 @@ def sample_reachable(
     else:
         low, high = np.full(2, -np.pi), np.full(2, np.pi)
     angles = rng.uniform(low, high, size=(n, 2))
-    q = to_relative(angles) if arm.has_limits and arm.limit_convention == "absolute" else angles
+    q = (
+        to_relative(angles)
+        if arm.has_limits and arm.limit_convention == "absolute"
+        else angles
+    )
     return arm.fk(q), q
 
 
@@ -282,13 +296,17 @@ def _values_in(value: float, low: float, high: float) -> list[float]:
     return [float(value + _TWO_PI * k) for k in np.arange(first, last + 1)]
 
 
-def _overlaps(low_a: float, high_a: float, low_b: float, high_b: float) -> list[tuple[float, float]]:
+def _overlaps(
+    low_a: float, high_a: float, low_b: float, high_b: float
+) -> list[tuple[float, float]]:
     """Intervals where ``[low_a, high_a]`` meets ``[low_b, high_b] + 2 pi k`` (for any k)."""
     intervals = []
     for k in range(-2, 3):
         low = max(low_a, low_b + _TWO_PI * k)
         high = min(high_a, high_b + _TWO_PI * k)
-        if high > low:  # a single shared angle is a corner, already an end point of the edge arcs
+        if (
+            high > low
+        ):  # a single shared angle is a corner, already an end point of the edge arcs
             intervals.append((low, high))
     return intervals
 
@@ -343,35 +361,79 @@ def candidate_arcs(arm: TwoLinkArm) -> list[Arc]:
         if bounded[0]:
             for q1 in (low[0], high[0]):
                 elbow_point = (l1 * np.cos(q1), l1 * np.sin(q1))
-                arcs.append(Arc(elbow_point, l2, q1 + low[1], span[1], _label("q1", q1), "joint limit"))
+                arcs.append(
+                    Arc(
+                        elbow_point,
+                        l2,
+                        q1 + low[1],
+                        span[1],
+                        _label("q1", q1),
+                        "joint limit",
+                    )
+                )
         if bounded[1]:
             for q2 in (low[1], high[1]):
                 radius, offset = _polar_offset(arm, q2)
-                arcs.append(Arc(origin, radius, low[0] + offset, span[0], _label("q2", q2), "joint limit"))
+                arcs.append(
+                    Arc(
+                        origin,
+                        radius,
+                        low[0] + offset,
+                        span[0],
+                        _label("q2", q2),
+                        "joint limit",
+                    )
+                )
         for singular, name in ((0.0, "full stretch"), (np.pi, "full fold")):
             for q2 in _values_in(singular, low[1], high[1])[:1]:
                 radius, offset = _polar_offset(arm, q2)
-                arcs.append(Arc(origin, radius, low[0] + offset, span[0], f"{_label('q2', singular)} ({name})", "singular"))
+                arcs.append(
+                    Arc(
+                        origin,
+                        radius,
+                        low[0] + offset,
+                        span[0],
+                        f"{_label('q2', singular)} ({name})",
+                        "singular",
+                    )
+                )
         return arcs
     if bounded[0]:
         for q1 in (low[0], high[0]):
             elbow_point = (l1 * np.cos(q1), l1 * np.sin(q1))
-            arcs.append(Arc(elbow_point, l2, low[1], span[1], _label("q1", q1), "joint limit"))
+            arcs.append(
+                Arc(elbow_point, l2, low[1], span[1], _label("q1", q1), "joint limit")
+            )
     if bounded[1]:
         for q12 in (low[1], high[1]):
             centre = (l2 * np.cos(q12), l2 * np.sin(q12))
-            arcs.append(Arc(centre, l1, low[0], span[0], _label("q1 + q2", q12), "joint limit"))
+            arcs.append(
+                Arc(centre, l1, low[0], span[0], _label("q1 + q2", q12), "joint limit")
+            )
     # Full stretch: link angles equal; full fold: link 2 turned back by pi.
-    for shift, name, radius in ((0.0, "full stretch", l1 + l2), (np.pi, "full fold", abs(l1 - l2))):
+    for shift, name, radius in (
+        (0.0, "full stretch", l1 + l2),
+        (np.pi, "full fold", abs(l1 - l2)),
+    ):
         for first, last in _overlaps(low[0], high[0], low[1] - shift, high[1] - shift):
             offset = 0.0 if (shift == 0.0 or l1 >= l2) else np.pi
-            arcs.append(Arc(origin, radius, first + offset, last - first, f"{_label('q2', shift)} ({name})", "singular"))
+            arcs.append(
+                Arc(
+                    origin,
+                    radius,
+                    first + offset,
+                    last - first,
+                    f"{_label('q2', shift)} ({name})",
+                    "singular",
+                )
+            )
     return arcs
 
 
 def _same_circle(arc_a: Arc, arc_b: Arc, scale: float) -> bool:
     return bool(
-        np.hypot(arc_a.centre[0] - arc_b.centre[0], arc_a.centre[1] - arc_b.centre[1]) <= 1e-12 * scale
+        np.hypot(arc_a.centre[0] - arc_b.centre[0], arc_a.centre[1] - arc_b.centre[1])
+        <= 1e-12 * scale
         and abs(arc_a.radius - arc_b.radius) <= 1e-12 * scale
     )
 
@@ -383,10 +445,15 @@ def _same_arc(arc_a: Arc, arc_b: Arc, scale: float) -> bool:
     points_a = arc_a.point_at(np.array([0.0, 0.5, 1.0]))
     points_b = arc_b.point_at(np.array([0.0, 0.5, 1.0]))
     close = 1e-9 * scale
-    return bool(np.abs(points_a - points_b).max() <= close or np.abs(points_a - points_b[::-1]).max() <= close)
+    return bool(
+        np.abs(points_a - points_b).max() <= close
+        or np.abs(points_a - points_b[::-1]).max() <= close
+    )
 
 
-def boundary_arcs(arm: TwoLinkArm, probe: float = 1e-5, elbow: str = "auto") -> list[Arc]:
+def boundary_arcs(
+    arm: TwoLinkArm, probe: float = 1e-5, elbow: str = "auto"
+) -> list[Arc]:
     """The boundary of the reachable set, as exact arcs.
 
     Method: every candidate arc (:func:`candidate_arcs`) is cut where it
@@ -448,7 +515,9 @@ def boundary_arcs(arm: TwoLinkArm, probe: float = 1e-5, elbow: str = "auto") -> 
             if _same_circle(arc, other, scale):
                 crossings = other.end_points
             else:
-                crossings = circle_intersections(arc.centre, arc.radius, other.centre, other.radius)
+                crossings = circle_intersections(
+                    arc.centre, arc.radius, other.centre, other.radius
+                )
             if len(crossings):
                 fractions = arc.fraction_of(crossings)
                 cuts.extend(fractions[fractions >= 0.0])
@@ -461,7 +530,11 @@ def boundary_arcs(arm: TwoLinkArm, probe: float = 1e-5, elbow: str = "auto") -> 
     kept: list[Arc] = []
     for piece, piece_on_edge in zip(pieces, on_edge):
         sliver = 0.0 < piece.radius * abs(piece.sweep) < 1e-6 * scale
-        if piece_on_edge and not sliver and not any(_same_arc(piece, other, scale) for other in kept):
+        if (
+            piece_on_edge
+            and not sliver
+            and not any(_same_arc(piece, other, scale) for other in kept)
+        ):
             kept.append(piece)
     return kept
 
@@ -574,7 +647,9 @@ def largest_inscribed_circle(
     require_arm(arm)
     starts = as_count(starts, "starts", minimum=1, maximum=START_CANDIDATES)
     elbow = check_elbow(elbow)
-    max_wall_time = as_finite_scalar(max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True)
+    max_wall_time = as_finite_scalar(
+        max_wall_time, "max_wall_time (s)", minimum=0.0, strictly=True
+    )
     deadline = time.monotonic() + max_wall_time
     arcs = boundary_arcs(arm, elbow=elbow)
     if not arcs:
@@ -584,13 +659,18 @@ def largest_inscribed_circle(
             "up": "is elbow up",
             "both": "reaches a point that the other branch reaches too",
         }[elbow]
-        raise ValueError(f"no circle fits: no configuration within the joint limits ({describe_limits(arm)}) {reached}")
+        raise ValueError(
+            f"no circle fits: no configuration within the joint limits ({describe_limits(arm)}) {reached}"
+        )
     scale = arm.reach[1]
     samples, _ = sample_reachable(arm, n=START_CANDIDATES, seed=seed)
     room = clearance(arm, samples, arcs, elbow=elbow)
     chosen: list[int] = []
     for index in np.argsort(room)[::-1]:
-        if all(np.hypot(*(samples[index] - samples[other])) > 0.5 * room[index] for other in chosen):
+        if all(
+            np.hypot(*(samples[index] - samples[other])) > 0.5 * room[index]
+            for other in chosen
+        ):
             chosen.append(index)
         if len(chosen) == starts:
             break
@@ -609,7 +689,12 @@ def largest_inscribed_circle(
                 negative_clearance,
                 samples[index],
                 method="Nelder-Mead",
-                options={"xatol": 1e-12 * scale, "fatol": 1e-14 * scale, "maxiter": 4000, "maxfev": 8000},
+                options={
+                    "xatol": 1e-12 * scale,
+                    "fatol": 1e-14 * scale,
+                    "maxiter": 4000,
+                    "maxfev": 8000,
+                },
             )
         except _OutOfTime:
             raise RuntimeError(
@@ -623,7 +708,9 @@ def largest_inscribed_circle(
     return best_centre, best_radius
 
 
-def circle_points(centre: ArrayLike, radius: float, n: int, start_angle: float = 0.0) -> NDArray[np.float64]:
+def circle_points(
+    centre: ArrayLike, radius: float, n: int, start_angle: float = 0.0
+) -> NDArray[np.float64]:
     """``n`` equally spaced points on a circle, counter-clockwise from ``start_angle``.
 
     The last point is one step before the first (no repeated point).

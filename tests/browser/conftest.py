@@ -40,8 +40,13 @@ SCREENSHOTS = ROOT / "build" / "screenshots"
 #: JupyterLab user settings for the test server: render every cell (no
 #: virtual scrolling, so all outputs are in the page) and no news pop-ups.
 LAB_SETTINGS = {
-    "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {"windowingMode": "none"},
-    "@jupyterlab/apputils-extension/notification.jupyterlab-settings": {"fetchNews": "false", "checkForUpdates": False},
+    "@jupyterlab/notebook-extension/tracker.jupyterlab-settings": {
+        "windowingMode": "none"
+    },
+    "@jupyterlab/apputils-extension/notification.jupyterlab-settings": {
+        "fetchNews": "false",
+        "checkForUpdates": False,
+    },
 }
 
 
@@ -83,7 +88,9 @@ class ProcessGroups:
         for signum in (signal.SIGTERM, signal.SIGINT):
             try:
                 self.previous[signum] = signal.signal(signum, self._on_signal)
-            except ValueError:  # not the main thread: atexit and the fixture's teardown remain
+            except (
+                ValueError
+            ):  # not the main thread: atexit and the fixture's teardown remain
                 pass
 
     def _on_signal(self, signum, frame):
@@ -164,7 +171,9 @@ def browser():
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as playwright:
-        chromium = playwright.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=True)
+        chromium = playwright.chromium.launch(
+            executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=True
+        )
         try:
             yield chromium
         finally:
@@ -191,7 +200,12 @@ def jupyterlab(tmp_path_factory):
     port = free_port()
     env = dict(os.environ)
     env.pop("MPLBACKEND", None)
-    for name in ("JUPYTER_CONFIG_DIR", "JUPYTER_RUNTIME_DIR", "JUPYTERLAB_SETTINGS_DIR", "JUPYTERLAB_WORKSPACES_DIR"):
+    for name in (
+        "JUPYTER_CONFIG_DIR",
+        "JUPYTER_RUNTIME_DIR",
+        "JUPYTERLAB_SETTINGS_DIR",
+        "JUPYTERLAB_WORKSPACES_DIR",
+    ):
         env[name] = str(home / name.lower())
     for name, values in LAB_SETTINGS.items():
         settings_file = pathlib.Path(env["JUPYTERLAB_SETTINGS_DIR"]) / name
@@ -200,12 +214,18 @@ def jupyterlab(tmp_path_factory):
     log = open(home / "server.log", "w")
     server = PROCESS_GROUPS.start(
         [
-            sys.executable, "-m", "jupyterlab",
-            "--no-browser", "--allow-root",
-            "--ServerApp.ip=127.0.0.1", f"--ServerApp.port={port}", "--ServerApp.port_retries=0",
+            sys.executable,
+            "-m",
+            "jupyterlab",
+            "--no-browser",
+            "--allow-root",
+            "--ServerApp.ip=127.0.0.1",
+            f"--ServerApp.port={port}",
+            "--ServerApp.port_retries=0",
             f"--IdentityProvider.token={token}",
             f"--ServerApp.root_dir={notebooks}",
-            "--LabApp.news_url=", "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+            "--LabApp.news_url=",
+            "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
         ],
         env=env,
         stdout=log,
@@ -216,13 +236,19 @@ def jupyterlab(tmp_path_factory):
         deadline = time.monotonic() + 60
         while True:
             if server.poll() is not None:
-                raise RuntimeError(f"JupyterLab exited with {server.returncode}: {(home / 'server.log').read_text()[-2000:]}")
+                raise RuntimeError(
+                    f"JupyterLab exited with {server.returncode}: {(home / 'server.log').read_text()[-2000:]}"
+                )
             try:
-                urllib.request.urlopen(f"{base_url}/api/status?token={token}", timeout=2)
+                urllib.request.urlopen(
+                    f"{base_url}/api/status?token={token}", timeout=2
+                )
                 break
             except OSError:
                 if time.monotonic() > deadline:
-                    raise RuntimeError("JupyterLab did not answer within 60 s")
+                    raise RuntimeError(
+                        "JupyterLab did not answer within 60 s"
+                    ) from None
                 time.sleep(0.5)
         yield {"url": base_url, "token": token, "notebooks": notebooks}
     finally:

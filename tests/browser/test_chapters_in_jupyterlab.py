@@ -8,8 +8,8 @@ and plays.  A screenshot per chapter goes to build/screenshots/.
 """
 
 import json
-import urllib.request
 import re
+import urllib.request
 
 import pytest
 
@@ -20,7 +20,9 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 
 def expected_widgets(path):
     source = "\n".join(
-        "".join(cell["source"]) for cell in json.loads(path.read_text(encoding="utf-8"))["cells"] if cell["cell_type"] == "code"
+        "".join(cell["source"])
+        for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]
+        if cell["cell_type"] == "code"
     )
     return source.count("widgets.interactive("), source.count("animation_html(")
 
@@ -60,10 +62,14 @@ def shut_down_kernels(jupyterlab):
     """Stop every kernel the server runs, so chapters do not pile up kernels."""
     base = f"{jupyterlab['url']}/api/kernels"
     headers = {"Authorization": f"token {jupyterlab['token']}"}
-    with urllib.request.urlopen(urllib.request.Request(base, headers=headers), timeout=10) as response:
+    with urllib.request.urlopen(
+        urllib.request.Request(base, headers=headers), timeout=10
+    ) as response:
         kernels = json.load(response)
     for kernel in kernels:
-        request = urllib.request.Request(f"{base}/{kernel['id']}", headers=headers, method="DELETE")
+        request = urllib.request.Request(
+            f"{base}/{kernel['id']}", headers=headers, method="DELETE"
+        )
         urllib.request.urlopen(request, timeout=10).close()
 
 
@@ -83,7 +89,9 @@ def test_chapter_runs_and_plays_in_jupyterlab(jupyterlab, page, path):
 
 def run_chapter(jupyterlab, page, path):
     # a workspace of its own, so tabs of earlier chapters are not restored
-    page.goto(f"{jupyterlab['url']}/lab/workspaces/{path.stem}/tree/{path.name}?reset&token={jupyterlab['token']}")
+    page.goto(
+        f"{jupyterlab['url']}/lab/workspaces/{path.stem}/tree/{path.name}?reset&token={jupyterlab['token']}"
+    )
     panel = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden)")
     panel.locator(".jp-Cell").first.wait_for(timeout=90_000)
     accept_kernel_dialog(page)
@@ -93,18 +101,26 @@ def run_chapter(jupyterlab, page, path):
     wait_until_idle(page, 300_000)
 
     errors = panel.locator("[data-mime-type='application/vnd.jupyter.error']")
-    assert errors.count() == 0, f"{path.name}: error output: {errors.first.inner_text()[:500]}"
+    assert errors.count() == 0, (
+        f"{path.name}: error output: {errors.first.inner_text()[:500]}"
+    )
     stderr = panel.locator("[data-mime-type='application/vnd.jupyter.stderr']")
-    assert stderr.count() == 0, f"{path.name}: stderr output: {stderr.first.inner_text()[:500]}"
+    assert stderr.count() == 0, (
+        f"{path.name}: stderr output: {stderr.first.inner_text()[:500]}"
+    )
 
     interactive_count, animation_count = expected_widgets(path)
     containers = panel.locator(".widget-interact")
-    assert containers.count() == interactive_count, f"{path.name}: {containers.count()} interactive widgets rendered, {interactive_count} built"
+    assert containers.count() == interactive_count, (
+        f"{path.name}: {containers.count()} interactive widgets rendered, {interactive_count} built"
+    )
     moved = []
     for index in range(containers.count()):
         container = containers.nth(index)
         sliders = container.locator(".widget-slider")
-        assert sliders.count() >= 1, f"{path.name}: interactive widget {index} has no slider"
+        assert sliders.count() >= 1, (
+            f"{path.name}: interactive widget {index} has no slider"
+        )
         container.scroll_into_view_if_needed()
         for slider_index in range(sliders.count()):
             slider = sliders.nth(slider_index)
@@ -113,7 +129,9 @@ def run_chapter(jupyterlab, page, path):
             before_figure = figure_source(container)
             slider.locator(".noUi-handle").first.focus()
             page.keyboard.press("ArrowRight")
-            if readout.inner_text() == before_value:  # at the top of its range: go the other way
+            if (
+                readout.inner_text() == before_value
+            ):  # at the top of its range: go the other way
                 page.keyboard.press("ArrowLeft")
                 page.keyboard.press("ArrowLeft")
             page.wait_for_function(
@@ -130,11 +148,15 @@ def run_chapter(jupyterlab, page, path):
                     arg=[container.element_handle(), before_figure],
                     timeout=30_000,
                 )
-            moved.append(f"{index}:{slider.locator('.widget-label').first.inner_text()}")
+            moved.append(
+                f"{index}:{slider.locator('.widget-label').first.inner_text()}"
+            )
     assert len(moved) >= interactive_count
 
     videos = panel.locator(".jp-OutputArea-output video")
-    assert videos.count() >= animation_count, f"{path.name}: {videos.count()} videos, {animation_count} animations built"
+    assert videos.count() >= animation_count, (
+        f"{path.name}: {videos.count()} videos, {animation_count} animations built"
+    )
     for index in range(videos.count()):
         state = videos.nth(index).evaluate(
             """async video => {
@@ -149,10 +171,14 @@ def run_chapter(jupyterlab, page, path):
                 return result;
             }"""
         )
-        assert state["error"] is None and state["duration"] > 0 and state["time"] > 0, f"{path.name}: video {index} {state}"
+        assert state["error"] is None and state["duration"] > 0 and state["time"] > 0, (
+            f"{path.name}: video {index} {state}"
+        )
 
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     if containers.count():
         containers.first.scroll_into_view_if_needed()
     page.screenshot(path=str(SCREENSHOTS / f"{path.stem}.png"))
-    print(f"{path.name}: {containers.count()} interactive widgets, sliders moved {moved}, {videos.count()} videos played")
+    print(
+        f"{path.name}: {containers.count()} interactive widgets, sliders moved {moved}, {videos.count()} videos played"
+    )

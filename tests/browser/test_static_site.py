@@ -20,7 +20,9 @@ NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 def site(tmp_path_factory):
     out = tmp_path_factory.mktemp("site")
     editions.build_site(ROOT / "notebooks", out)
-    handler = functools.partial(http.server.SimpleHTTPRequestHandler, directory=str(out))
+    handler = functools.partial(
+        http.server.SimpleHTTPRequestHandler, directory=str(out)
+    )
     server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), handler)
     thread = threading.Thread(target=server.serve_forever, daemon=True)
     thread.start()
@@ -38,10 +40,24 @@ def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page
     # about:blank (an empty frame some scripts create) is not a network load
     page.on(
         "requestfailed",
-        lambda request: request.url == "about:blank" or failures.append(f"failed ({request.failure}): {request.url}"),
+        lambda request: (
+            request.url == "about:blank"
+            or failures.append(f"failed ({request.failure}): {request.url}")
+        ),
     )
-    page.on("response", lambda response: response.status >= 400 and failures.append(f"{response.status}: {response.url}"))
-    page.on("request", lambda request: request.url.startswith(local) or failures.append(f"external: {request.url}"))
+    page.on(
+        "response",
+        lambda response: (
+            response.status >= 400
+            and failures.append(f"{response.status}: {response.url}")
+        ),
+    )
+    page.on(
+        "request",
+        lambda request: (
+            request.url.startswith(local) or failures.append(f"external: {request.url}")
+        ),
+    )
 
     page.goto(f"{site}/index.html")
     links = page.locator("ol li a")
@@ -56,13 +72,20 @@ def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page
             # let MathJax finish typesetting (it loads fonts as it goes) before looking or leaving
             page.evaluate("() => new Promise(resolve => MathJax.Hub.Queue(resolve))")
         page.wait_for_load_state("networkidle")
-        source = "\n".join("".join(cell["source"]) for cell in json.loads(path.read_text(encoding="utf-8"))["cells"])
+        source = "\n".join(
+            "".join(cell["source"])
+            for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]
+        )
         images = page.locator(".jp-OutputArea-output img")
         assert images.count() >= 1, f"{href}: no figures"
-        broken = page.evaluate("() => [...document.querySelectorAll('img')].filter(i => !(i.complete && i.naturalWidth > 0)).length")
+        broken = page.evaluate(
+            "() => [...document.querySelectorAll('img')].filter(i => !(i.complete && i.naturalWidth > 0)).length"
+        )
         assert broken == 0, f"{href}: {broken} images failed to render"
         videos = page.locator("video")
-        assert videos.count() >= source.count("animation_html("), f"{href}: animations missing"
+        assert videos.count() >= source.count("animation_html("), (
+            f"{href}: animations missing"
+        )
         for index in range(videos.count()):
             state = videos.nth(index).evaluate(
                 """async video => {
@@ -72,8 +95,12 @@ def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page
                     return {duration: video.duration, time: video.currentTime};
                 }"""
             )
-            assert state["duration"] > 0 and state["time"] > 0, f"{href}: video {index} does not play: {state}"
+            assert state["duration"] > 0 and state["time"] > 0, (
+                f"{href}: video {index} does not play: {state}"
+            )
         if "$" in source:
             rendered = page.locator(".MathJax, .MathJax_Display")
-            assert rendered.count() > 0, f"{href}: LaTeX in the notebook but no MathJax output in the page"
+            assert rendered.count() > 0, (
+                f"{href}: LaTeX in the notebook but no MathJax output in the page"
+            )
     assert not failures, failures

@@ -12,8 +12,8 @@ first use, so a notebook's check cell holds no reference at all:
 21
 """
 
-from .registry import REGISTRY, Exercise, Part, Wrong, is_unsolved
 from . import ch1, ch2, ch3, ch4, ch5, ch6, ch7  # noqa: F401  (each registers its chapter's exercises)
+from .registry import REGISTRY, Exercise, Part, Wrong, is_unsolved
 
 __all__ = ["Exercise", "Part", "Wrong", "get", "all_exercises", "is_unsolved"]
 
@@ -22,10 +22,17 @@ def get(number: str) -> Exercise:
     """The exercise numbered ``number`` (e.g. ``"2.1"``); a clear error for an unknown number."""
     key = str(number).removeprefix("Exercise").strip()
     if key not in REGISTRY:
-        raise KeyError(f"no exercise {number!r}; the exercises are {', '.join(REGISTRY)}")
+        raise KeyError(
+            f"no exercise {number!r}; the exercises are {', '.join(REGISTRY)}"
+        )
     return REGISTRY[key]
 
 
 def all_exercises() -> list[Exercise]:
     """Every registered exercise, in chapter order."""
-    return [REGISTRY[number] for number in sorted(REGISTRY, key=lambda n: tuple(int(x) for x in n.split(".")))]
+    return [
+        REGISTRY[number]
+        for number in sorted(
+            REGISTRY, key=lambda n: tuple(int(x) for x in n.split("."))
+        )
+    ]

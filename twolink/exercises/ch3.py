@@ -8,7 +8,17 @@ from numpy.typing import ArrayLike, NDArray
 from .. import arms
 from ..arm import TwoLinkArm
 from ..sources import compsys726
-from .registry import Part, Wrong, angles_close, close, matches, numbers, reference, register, scalar
+from .registry import (
+    Part,
+    Wrong,
+    angles_close,
+    close,
+    matches,
+    numbers,
+    reference,
+    register,
+    scalar,
+)
 
 CHAPTER = "03_jacobian_velocity"
 Q_3_1_DEG = (20.0, 70.0)
@@ -34,7 +44,9 @@ def judge_rates_3_1(answer: object, siblings: dict[str, object]) -> None:
 @reference
 def speed_3_2() -> float:
     """Tip speed (m/s) of the OSAKE arm, q2 = 90 deg held, joint 1 at 5 deg/s."""
-    velocity = arms.osake.tip_velocity(np.radians([0.0, Q2_3_2_DEG]), np.radians([RATE_3_2_DEG_S, 0.0]))
+    velocity = arms.osake.tip_velocity(
+        np.radians([0.0, Q2_3_2_DEG]), np.radians([RATE_3_2_DEG_S, 0.0])
+    )
     return float(np.linalg.norm(velocity))
 
 
@@ -72,7 +84,9 @@ def judge_angle_3_3(answer: object, siblings: dict[str, object]) -> None:
     if matches(angles_close, q2_deg, 90.0, atol=ANGLE_TOLERANCE_DEG_3_3, period=360.0):
         raise Wrong("90 deg gives the largest manipulability, not the roundest ellipse")
     slack = ANGLE_TOLERANCE_DEG_3_3 * (1 + 1e-9)
-    if not matches(angles_close, q2_deg, -best_deg, atol=slack, period=360.0):  # the mirror elbow is as round
+    if not matches(
+        angles_close, q2_deg, -best_deg, atol=slack, period=360.0
+    ):  # the mirror elbow is as round
         angles_close(q2_deg, best_deg, atol=slack, period=360.0)
 
 
@@ -89,7 +103,9 @@ def judge_condition_3_3(answer: object, siblings: dict[str, object]) -> None:
     value = scalar(answer)
     best, slack = condition_best_3_3()
     if matches(close, value, 1.0 / best, atol=slack):
-        raise Wrong("this is sigma_min / sigma_max; the condition number is sigma_max / sigma_min (>= 1)")
+        raise Wrong(
+            "this is sigma_min / sigma_max; the condition number is sigma_max / sigma_min (>= 1)"
+        )
     if matches(close, value, best**2, atol=4 * slack):
         raise Wrong("this is the condition number of J J^T, the square of J's")
     close(value, best, atol=slack)
@@ -97,19 +113,37 @@ def judge_condition_3_3(answer: object, siblings: dict[str, object]) -> None:
 
 register(
     "3.1",
-    Part("qd_ex1", "joint rates", judge_rates_3_1, "solve J(q) qd = (0, 0.2); angles in radians"),
+    Part(
+        "qd_ex1",
+        "joint rates",
+        judge_rates_3_1,
+        "solve J(q) qd = (0, 0.2); angles in radians",
+    ),
     chapter=CHAPTER,
 )
 register(
     "3.2",
-    Part("tip_speed_ex2", "tip speed", judge_speed_3_2, "speed = r * omega with r = |p| and omega in rad/s"),
+    Part(
+        "tip_speed_ex2",
+        "tip speed",
+        judge_speed_3_2,
+        "speed = r * omega with r = |p| and omega in rad/s",
+    ),
     chapter=CHAPTER,
 )
 register(
     "3.3",
-    Part("q2_best_deg_ex3", "angle", judge_angle_3_3,
-         "np.linalg.cond(arm_line.jacobian(q)) depends on q2 only; scan q2 in degrees with a step of at most 1 deg"),
-    Part("cond_best_ex3", "condition number", judge_condition_3_3,
-         "the smallest sigma_max / sigma_min over your scan (np.linalg.cond of J)"),
+    Part(
+        "q2_best_deg_ex3",
+        "angle",
+        judge_angle_3_3,
+        "np.linalg.cond(arm_line.jacobian(q)) depends on q2 only; scan q2 in degrees with a step of at most 1 deg",
+    ),
+    Part(
+        "cond_best_ex3",
+        "condition number",
+        judge_condition_3_3,
+        "the smallest sigma_max / sigma_min over your scan (np.linalg.cond of J)",
+    ),
     chapter=CHAPTER,
 )

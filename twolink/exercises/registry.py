@@ -24,8 +24,23 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..conventions import wrap_angle
 
-__all__ = ["Part", "Exercise", "Judge", "Wrong", "REGISTRY", "register", "is_unsolved", "numbers", "reference",
-           "close", "angles_close", "scalar", "boolean", "matches", "usable"]
+__all__ = [
+    "Part",
+    "Exercise",
+    "Judge",
+    "Wrong",
+    "REGISTRY",
+    "register",
+    "is_unsolved",
+    "numbers",
+    "reference",
+    "close",
+    "angles_close",
+    "scalar",
+    "boolean",
+    "matches",
+    "usable",
+]
 
 _T = TypeVar("_T")
 _P = ParamSpec("_P")
@@ -89,7 +104,9 @@ class Exercise:
         for part in self.parts:
             if part.name == name:
                 return part
-        raise KeyError(f"exercise {self.number} has no part {name!r}; its parts are {[p.name for p in self.parts]}")
+        raise KeyError(
+            f"exercise {self.number} has no part {name!r}; its parts are {[p.name for p in self.parts]}"
+        )
 
 
 REGISTRY: dict[str, Exercise] = {}
@@ -107,7 +124,9 @@ def register(number: str, *parts: Part, chapter: str = "") -> Exercise:
 # ---------------------------------------------------------------- comparisons
 
 
-def numbers(answer: object, shape: tuple[int, ...], what: str = "your answer") -> NDArray[np.float64]:
+def numbers(
+    answer: object, shape: tuple[int, ...], what: str = "your answer"
+) -> NDArray[np.float64]:
     """The answer as a float array of ``shape``; lists, tuples, arrays and numpy scalars all do.
 
     >>> numbers([1, 2], (2,)).tolist()
@@ -124,21 +143,30 @@ def numbers(answer: object, shape: tuple[int, ...], what: str = "your answer") -
     try:
         values = np.asarray(answer)
     except Exception as exc:  # ragged lists and the like
-        raise Wrong(f"expected numbers, could not read them ({type(exc).__name__})") from None
+        raise Wrong(
+            f"expected numbers, could not read them ({type(exc).__name__})"
+        ) from None
     if values.dtype == object or values.dtype.kind not in "biufc":
         raise Wrong(f"expected numbers, got {type(answer).__name__} of {values.dtype}")
     if values.dtype.kind == "c":
-        if np.any(np.abs(values.imag) > 1e-9 * max(1.0, float(np.max(np.abs(values.real), initial=0.0)))):
+        if np.any(
+            np.abs(values.imag)
+            > 1e-9 * max(1.0, float(np.max(np.abs(values.real), initial=0.0)))
+        ):
             raise Wrong("expected real numbers, got complex ones")
         values = values.real
     values = values.astype(float)
     size = int(np.prod(shape)) if shape else 1
     if values.shape != tuple(shape):
-        if values.size == size and (shape == () or values.ndim == 0 or values.squeeze().shape == tuple(shape)):
+        if values.size == size and (
+            shape == () or values.ndim == 0 or values.squeeze().shape == tuple(shape)
+        ):
             values = values.reshape(shape)
         else:
             count = f"{size} number" + ("s" if size != 1 else "")
-            raise Wrong(f"expected {count} (shape {tuple(shape)}), got shape {values.shape}")
+            raise Wrong(
+                f"expected {count} (shape {tuple(shape)}), got shape {values.shape}"
+            )
     if not np.all(np.isfinite(values)):
         raise Wrong(f"{what} contains nan or inf")
     return values
@@ -170,7 +198,9 @@ def _off_by(error: float, tolerance: float) -> str:
     return f"off by {error:.3g} (allowed {tolerance:.2g})"
 
 
-def close(values: ArrayLike, expected: ArrayLike, atol: float = 0.0, rtol: float = 0.0) -> None:
+def close(
+    values: ArrayLike, expected: ArrayLike, atol: float = 0.0, rtol: float = 0.0
+) -> None:
     """Raise :class:`Wrong` unless ``|values - expected| <= atol + rtol |expected|`` everywhere.
 
     ``values`` and ``expected`` are numbers or arrays that broadcast together.
@@ -190,7 +220,9 @@ def close(values: ArrayLike, expected: ArrayLike, atol: float = 0.0, rtol: float
     raise Wrong(_off_by(float(error.flat[worst]), float(np.ravel(allowed)[worst])))
 
 
-def angles_close(values: ArrayLike, expected: ArrayLike, atol: float, period: float = 2 * np.pi) -> None:
+def angles_close(
+    values: ArrayLike, expected: ArrayLike, atol: float, period: float = 2 * np.pi
+) -> None:
     """Like :func:`close` for angles: the difference is wrapped, so angles ``period`` apart are equal.
 
     ``values`` and ``expected`` are angles (numbers or arrays that broadcast
@@ -203,7 +235,15 @@ def angles_close(values: ArrayLike, expected: ArrayLike, atol: float, period: fl
     twolink.exercises.registry.Wrong: off by 0.2 (allowed 0.001)
     """
     scale = 2 * np.pi / period
-    difference = np.abs(wrap_angle(scale * (np.asarray(values, dtype=float) - np.asarray(expected, dtype=float)))) / scale
+    difference = (
+        np.abs(
+            wrap_angle(
+                scale
+                * (np.asarray(values, dtype=float) - np.asarray(expected, dtype=float))
+            )
+        )
+        / scale
+    )
     if np.all(difference <= atol):
         return
     raise Wrong(_off_by(float(np.max(difference)), atol))
@@ -218,7 +258,9 @@ def matches(check: Callable[_P, object], *args: _P.args, **kwargs: _P.kwargs) ->
     return True
 
 
-def usable(siblings: dict[str, object], name: str, convert: Callable[[object], _T]) -> _T | None:
+def usable(
+    siblings: dict[str, object], name: str, convert: Callable[[object], _T]
+) -> _T | None:
     """A sibling's answer converted by ``convert``, or ``None`` if it is missing or unusable."""
     if name not in siblings:
         return None

@@ -36,7 +36,12 @@ METHOD = "closed-form"
 
 # the one-target path's functions, bound once (a global and an attribute lookup each cost a few % of a call)
 _sqrt, _atan2, _array = math.sqrt, math.atan2, np.array
-_BRANCH_WORDS = {"down": "elbow down", "up": "elbow up", "both": "both branches", "auto": "elbow down, no joint limits"}
+_BRANCH_WORDS = {
+    "down": "elbow down",
+    "up": "elbow up",
+    "both": "both branches",
+    "auto": "elbow down, no joint limits",
+}
 
 
 def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
@@ -124,39 +129,95 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     target = pair_floats(p)
     if target is not None and type(elbow) is str:
         # one target on floats: the formula with math, as the vectorised path evaluates it with numpy
-        cached: Any = arm  # (TwoLinkArm sets _derived, its cache of constants, in __post_init__)
+        cached: Any = (
+            arm  # (TwoLinkArm sets _derived, its cache of constants, in __post_init__)
+        )
         try:
             l1, l2 = arm.l1, arm.l2
             terms = cached._derived["closed_form"]
-        except AttributeError:  # not a TwoLinkArm (or not an arm: arm_lengths raises, naming it)
+        except (
+            AttributeError
+        ):  # not a TwoLinkArm (or not an arm: arm_lengths raises, naming it)
             l1, l2 = arm_lengths(arm)
             terms = _reach_terms(arm)
         except KeyError:  # the first call on this arm
             terms = _reach_terms(arm)
-        r_min_squared, r_max_squared, inverse, low_outer, low_inner, threshold, messages = terms
+        (
+            r_min_squared,
+            r_max_squared,
+            inverse,
+            low_outer,
+            low_inner,
+            threshold,
+            messages,
+        ) = terms
         x, y = target
-        one_minus_c2, one_plus_c2 = _cosine_rule(x, y, r_min_squared, r_max_squared, inverse)
-        if one_minus_c2 >= low_outer and one_plus_c2 >= low_inner:  # else the vectorised path raises
+        one_minus_c2, one_plus_c2 = _cosine_rule(
+            x, y, r_min_squared, r_max_squared, inverse
+        )
+        if (
+            one_minus_c2 >= low_outer and one_plus_c2 >= low_inner
+        ):  # else the vectorised path raises
             if one_minus_c2 < 0.0:  # round-off at full stretch
                 one_minus_c2 = 0.0
             if one_plus_c2 < 0.0:  # round-off at full fold
                 one_plus_c2 = 0.0
             if elbow == "down" or (elbow == "auto" and arm.q_min is None):
-                q1, q2 = _branch_angles(l1, l2, x, y, one_minus_c2, one_plus_c2, 1.0, _sqrt, _atan2)
-                return one_answer_result(arm, x, y, q1, q2, 0, threshold, METHOD, messages[elbow], _failure_detail)
+                q1, q2 = _branch_angles(
+                    l1, l2, x, y, one_minus_c2, one_plus_c2, 1.0, _sqrt, _atan2
+                )
+                return one_answer_result(
+                    arm,
+                    x,
+                    y,
+                    q1,
+                    q2,
+                    0,
+                    threshold,
+                    METHOD,
+                    messages[elbow],
+                    _failure_detail,
+                )
             if elbow == "up":
-                q1, q2 = _branch_angles(l1, l2, x, y, one_minus_c2, one_plus_c2, -1.0, _sqrt, _atan2)
-                return one_answer_result(arm, x, y, q1, q2, 0, threshold, METHOD, messages[elbow], _failure_detail)
+                q1, q2 = _branch_angles(
+                    l1, l2, x, y, one_minus_c2, one_plus_c2, -1.0, _sqrt, _atan2
+                )
+                return one_answer_result(
+                    arm,
+                    x,
+                    y,
+                    q1,
+                    q2,
+                    0,
+                    threshold,
+                    METHOD,
+                    messages[elbow],
+                    _failure_detail,
+                )
             if elbow == "both":
                 q_both = _array(
-                    [_branch_angles(l1, l2, x, y, one_minus_c2, one_plus_c2, sign, _sqrt, _atan2) for sign in (1.0, -1.0)]
+                    [
+                        _branch_angles(
+                            l1, l2, x, y, one_minus_c2, one_plus_c2, sign, _sqrt, _atan2
+                        )
+                        for sign in (1.0, -1.0)
+                    ]
                 )
-                return assemble_result(arm, target, q_both, 0, threshold, METHOD, messages[elbow], _failure_detail)
+                return assemble_result(
+                    arm,
+                    target,
+                    q_both,
+                    0,
+                    threshold,
+                    METHOD,
+                    messages[elbow],
+                    _failure_detail,
+                )
             # "auto" with joint limits, or not an elbow word: the vectorised path
     elbow = check_elbow(elbow)
     targets: NDArray[np.float64] = as_pairs(p, "target p")
     try:
-        arm.l1, arm.l2
+        _lengths = arm.l1, arm.l2  # the cheap check of an arm-like object
     except AttributeError:
         require_arm(arm)
     terms = _reach_terms(arm)
@@ -165,10 +226,14 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     if elbow == "auto" and arm.has_limits:
         q_flat, message = _within_limits_first(arm, targets, flat, terms)
     else:
-        q_flat = _branches(arm, targets, flat, terms, "down" if elbow == "auto" else elbow)
+        q_flat = _branches(
+            arm, targets, flat, terms, "down" if elbow == "auto" else elbow
+        )
         message = f"solved {count} target{'s' if count != 1 else ''} in closed form ({_BRANCH_WORDS[elbow]})"
     q = q_flat.reshape(((2,) if elbow == "both" else ()) + targets.shape)
-    return assemble_result(arm, targets, q, 0, terms[5], METHOD, message, _failure_detail)
+    return assemble_result(
+        arm, targets, q, 0, terms[5], METHOD, message, _failure_detail
+    )
 
 
 def _failure_detail(index: int, residual: float) -> str:
@@ -204,7 +269,11 @@ def _within_limits_first(
 
 
 def _branches(
-    arm: TwoLinkArm, p: NDArray[np.float64], flat: NDArray[np.float64], terms: _Terms, elbow: str
+    arm: TwoLinkArm,
+    p: NDArray[np.float64],
+    flat: NDArray[np.float64],
+    terms: _Terms,
+    elbow: str,
 ) -> NDArray[np.float64]:
     """The closed form on flat targets ``(n, 2)``: ``(n, 2)`` for one branch, ``(2, n, 2)`` for ``"both"``.
 
@@ -213,17 +282,25 @@ def _branches(
     l1, l2 = arm.l1, arm.l2
     r_min_squared, r_max_squared, inverse, low_outer, low_inner = terms[:5]
     q = np.empty((2, len(flat), 2) if elbow == "both" else (len(flat), 2))
-    for start in range(0, len(flat), BLOCK_ROWS):  # block by block: the temporaries stay in the CPU cache
+    for start in range(
+        0, len(flat), BLOCK_ROWS
+    ):  # block by block: the temporaries stay in the CPU cache
         block = slice(start, start + BLOCK_ROWS)
         x, y = flat[block, 0], flat[block, 1]
-        one_minus_c2, one_plus_c2 = _cosine_rule(x, y, r_min_squared, r_max_squared, inverse)
+        one_minus_c2, one_plus_c2 = _cosine_rule(
+            x, y, r_min_squared, r_max_squared, inverse
+        )
         if one_minus_c2.min() < low_outer or one_plus_c2.min() < low_inner:
             # the one reach test raises, naming the first target out of reach (a target this test put out
             # by one rounding on the edge of REACH_RTOL and it puts in is solved at the boundary below)
             require_within_reach(arm, p)
         np.maximum(one_minus_c2, 0.0, out=one_minus_c2)  # round-off at full stretch
         np.maximum(one_plus_c2, 0.0, out=one_plus_c2)  # round-off at full fold
-        for out, sign in ((q[0], 1.0), (q[1], -1.0)) if elbow == "both" else ((q, 1.0 if elbow == "down" else -1.0),):
+        for out, sign in (
+            ((q[0], 1.0), (q[1], -1.0))
+            if elbow == "both"
+            else ((q, 1.0 if elbow == "down" else -1.0),)
+        ):
             out[block, 0], out[block, 1] = _branch_angles(
                 l1, l2, x, y, one_minus_c2, one_plus_c2, sign, np.sqrt, np.arctan2
             )
@@ -231,7 +308,9 @@ def _branches(
 
 
 # ---------------------------------------------------------------- the formula (floats or arrays)
-def _cosine_rule(x: Any, y: Any, r_min_squared: float, r_max_squared: float, inverse: float) -> tuple[Any, Any]:
+def _cosine_rule(
+    x: Any, y: Any, r_min_squared: float, r_max_squared: float, inverse: float
+) -> tuple[Any, Any]:
     """``(1 - cos q2, 1 + cos q2)`` of the cosine rule ``cos q2 = (r^2 - l1^2 - l2^2) / (2 l1 l2)``.
 
     Taken straight from ``r^2 = x^2 + y^2`` as ``(r_max^2 - r^2) / (2 l1 l2)``
@@ -268,7 +347,9 @@ def _branch_angles(
     sin_q2 = sign * sqrt(one_minus_c2 * one_plus_c2)
     k1 = one_plus_c2 * l2 + (l1 - l2)
     k2 = l2 * sin_q2
-    return atan2(y * k1 - x * k2, x * k1 + y * k2), atan2(sin_q2, (one_plus_c2 - one_minus_c2) * 0.5)
+    return atan2(y * k1 - x * k2, x * k1 + y * k2), atan2(
+        sin_q2, (one_plus_c2 - one_minus_c2) * 0.5
+    )
 
 
 # r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, the success threshold, the message of one target per elbow
@@ -298,5 +379,16 @@ def _compute_reach_terms(l1: float, l2: float) -> _Terms:
     inverse = 1.0 / (2.0 * l1 * l2)
     low_outer = (r_max * r_max - (r_max + slack) ** 2) * inverse
     low_inner = (max(r_min - slack, 0.0) ** 2 - r_min * r_min) * inverse
-    messages = {elbow: f"solved 1 target in closed form ({words})" for elbow, words in _BRANCH_WORDS.items()}
-    return r_min * r_min, r_max * r_max, inverse, low_outer, low_inner, CLOSED_FORM_RTOL * r_max, messages
+    messages = {
+        elbow: f"solved 1 target in closed form ({words})"
+        for elbow, words in _BRANCH_WORDS.items()
+    }
+    return (
+        r_min * r_min,
+        r_max * r_max,
+        inverse,
+        low_outer,
+        low_inner,
+        CLOSED_FORM_RTOL * r_max,
+        messages,
+    )

@@ -16,7 +16,13 @@ from .targets import reachable_targets
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = ["brute_force", "grid_axis", "GRID_CHUNK", "MAX_AXIS_POINTS", "MAX_GRID_POINTS"]
+__all__ = [
+    "brute_force",
+    "grid_axis",
+    "GRID_CHUNK",
+    "MAX_AXIS_POINTS",
+    "MAX_GRID_POINTS",
+]
 
 #: Grid points evaluated at once: bounds memory however fine the step, and keeps
 #: each chunk (a few 256 KB arrays) in cache; larger chunks measured 2-3x slower.
@@ -57,7 +63,9 @@ def grid_axis(low: float, high: float, step: float) -> NDArray[np.float64]:
     high = as_finite_scalar(high, "high (radians)")
     step = as_finite_scalar(step, "step (radians)", minimum=0.0, strictly=True)
     if low > high:
-        raise ValueError(f"a grid axis needs low <= high; got [{low:.6g}, {high:.6g}] rad")
+        raise ValueError(
+            f"a grid axis needs low <= high; got [{low:.6g}, {high:.6g}] rad"
+        )
     intervals = (high - low) / step
     if not intervals < MAX_AXIS_POINTS:
         raise ValueError(
@@ -72,7 +80,9 @@ def grid_axis(low: float, high: float, step: float) -> NDArray[np.float64]:
 
 
 def _joint_ranges(
-    arm: TwoLinkArm, q1_range: tuple[float, float] | None, q2_range: tuple[float, float] | None
+    arm: TwoLinkArm,
+    q1_range: tuple[float, float] | None,
+    q2_range: tuple[float, float] | None,
 ) -> list[tuple[float, float]]:
     ranges = []
     q_min, q_max = arm.q_min, arm.q_max
@@ -81,12 +91,20 @@ def _joint_ranges(
         if given is None:
             low, high = -np.pi, np.pi
         else:
-            ends = real_array(given, name, "None or a pair (low, high) of angles in radians")
+            ends = real_array(
+                given, name, "None or a pair (low, high) of angles in radians"
+            )
             if ends.shape != (2,) or not np.all(np.isfinite(ends)):
-                raise ValueError(f"{name} must be None or a pair (low, high) of finite angles in radians; got {given!r}")
+                raise ValueError(
+                    f"{name} must be None or a pair (low, high) of finite angles in radians; got {given!r}"
+                )
             low, high = ends.tolist()
         # relative limits bound both joints; absolute ones bound q1 here (link 2 is masked on the grid)
-        if q_min is not None and q_max is not None and (arm.limit_convention == "relative" or joint == 0):
+        if (
+            q_min is not None
+            and q_max is not None
+            and (arm.limit_convention == "relative" or joint == 0)
+        ):
             low, high = max(low, q_min[joint]), min(high, q_max[joint])
         if low > high:
             raise ValueError(
@@ -202,7 +220,11 @@ def brute_force(
             f"{MAX_GRID_POINTS:.0e}: use a larger step"
         )
     absolute_limits = None
-    if arm.q_min is not None and arm.q_max is not None and arm.limit_convention == "absolute":
+    if (
+        arm.q_min is not None
+        and arm.q_max is not None
+        and arm.limit_convention == "absolute"
+    ):
         absolute_limits = (arm.q_min[1], arm.q_max[1])
 
     p_flat = p.reshape(-1, 2)
@@ -216,8 +238,12 @@ def brute_force(
     # success needs a grid point within the bound, the point within the limits, and the target
     # inside the workspace the limits leave (a target just outside it is near a limit's grid point)
     within = np.asarray(arm.within_limits(q))
-    reachable = np.ravel(np.any(solutions_within_limits(arm, p_flat)[1], axis=-1))  # workspace.is_reachable
-    threshold = np.where(within & reachable, bound + distance_outside_reach(arm, p_flat), -np.inf)
+    reachable = np.ravel(
+        np.any(solutions_within_limits(arm, p_flat)[1], axis=-1)
+    )  # workspace.is_reachable
+    threshold = np.where(
+        within & reachable, bound + distance_outside_reach(arm, p_flat), -np.inf
+    )
 
     def failure_detail(index: int, residual: float) -> str:
         if not reachable[index]:
@@ -230,7 +256,12 @@ def brute_force(
         )
 
     return assemble_result(
-        arm, p, q.reshape(p.shape), grid_points, threshold, "brute-force",
+        arm,
+        p,
+        q.reshape(p.shape),
+        grid_points,
+        threshold,
+        "brute-force",
         solved_message=f"all {len(q)} targets within the grid bound {bound:.3g} m ({grid_points} points)",
         failure_detail=failure_detail,
     )

@@ -17,9 +17,20 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validate import as_count, as_finite_scalar, broadcast_start, pair_floats, require_arm
+from .._validate import (
+    as_count,
+    as_finite_scalar,
+    broadcast_start,
+    pair_floats,
+    require_arm,
+)
 from ..conventions import wrap_angle
-from ..kinematics import REACH_RTOL, distance_outside_reach, jacobian_from_trig, tip_from_trig
+from ..kinematics import (
+    REACH_RTOL,
+    distance_outside_reach,
+    jacobian_from_trig,
+    tip_from_trig,
+)
 from .result import IKResult, assemble_result, one_answer_result
 from .targets import reachable_targets
 
@@ -35,7 +46,13 @@ __all__ = ["newton", "TOL_MAX"]
 TOL_MAX = 1e-2
 
 
-def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float = 1e-12, max_iter: int = 100) -> IKResult:
+def newton(
+    arm: TwoLinkArm,
+    p: ArrayLike,
+    q0: ArrayLike = (0.5, 1.0),
+    tol: float = 1e-12,
+    max_iter: int = 100,
+) -> IKResult:
     """Solve ``fk(q) = p`` by Newton's method with step control and angle wrapping.
 
     Each iteration takes the damped Newton (Levenberg-Marquardt) step
@@ -90,7 +107,9 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
     target = pair_floats(p)
     q0_pair = pair_floats(q0) if target is not None else None
     if target is not None and q0_pair is not None:
-        if getattr(arm, "_derived", None) is None:  # every TwoLinkArm has it (and is an arm)
+        if (
+            getattr(arm, "_derived", None) is None
+        ):  # every TwoLinkArm has it (and is an arm)
             require_arm(arm)
         distance = math.hypot(target[0], target[1])
         r_min, r_max = abs(arm.l1 - arm.l2), arm.l1 + arm.l2
@@ -124,12 +143,22 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
     damping_cap = DAMPING_CAP * scale**2
     iterations = np.zeros(len(q1), dtype=int)
     active = np.flatnonzero(error > threshold)
-    with np.errstate(divide="ignore", invalid="ignore"):  # det = 0 (damping underflowed at a singular J): rejected
+    with np.errstate(
+        divide="ignore", invalid="ignore"
+    ):  # det = 0 (damping underflowed at a singular J): rejected
         for _ in range(max_iter):
             if active.size == 0:
                 break
-            J_entries = jacobian_from_trig(l1, l2, c1[active], s1[active], c12[active], s12[active])
-            dq1, dq2 = _lm_step(*J_entries, l1 * l2 * s2[active], rx[active], ry[active], damping[active])
+            J_entries = jacobian_from_trig(
+                l1, l2, c1[active], s1[active], c12[active], s12[active]
+            )
+            dq1, dq2 = _lm_step(
+                *J_entries,
+                l1 * l2 * s2[active],
+                rx[active],
+                ry[active],
+                damping[active],
+            )
             t1 = _wrap(q1[active] + dq1)
             t2 = _wrap(q2[active] + dq2)
             trial = _trig(np.cos, np.sin, t1, t2)
@@ -141,18 +170,31 @@ def newton(arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), tol: float
             q1[accepted], q2[accepted] = t1[better], t2[better]
             for cached, new in zip((c1, s1, c12, s12, s2), trial):
                 cached[accepted] = new[better]
-            rx[accepted], ry[accepted], error[accepted] = trx[better], try_[better], error_trial[better]
+            rx[accepted], ry[accepted], error[accepted] = (
+                trx[better],
+                try_[better],
+                error_trial[better],
+            )
             damping[accepted] *= DAMPING_DOWN
             damping[active[~better]] *= DAMPING_UP
             iterations[active] += 1
-            still = (error[active] > threshold[active]) & (damping[active] < damping_cap)
+            still = (error[active] > threshold[active]) & (
+                damping[active] < damping_cap
+            )
             active = active[still]
 
     q = np.stack([q1, q2], axis=-1).reshape(p.shape)
     return assemble_result(
-        arm, p, q, iterations, threshold, "newton",
+        arm,
+        p,
+        q,
+        iterations,
+        threshold,
+        "newton",
         solved_message=_solved_message(len(q), iterations.max(initial=0)),
-        failure_detail=lambda index, residual: _failure_detail(residual, iterations[index]),
+        failure_detail=lambda index, residual: _failure_detail(
+            residual, iterations[index]
+        ),
     )
 
 
@@ -193,7 +235,9 @@ def _wrap(angle: _Number) -> _Number:
     return (angle + _PI) % _TWO_PI - _PI
 
 
-def _trig(cos: Callable[[Any], Any], sin: Callable[[Any], Any], q1: Any, q2: Any) -> tuple[Any, Any, Any, Any, Any]:
+def _trig(
+    cos: Callable[[Any], Any], sin: Callable[[Any], Any], q1: Any, q2: Any
+) -> tuple[Any, Any, Any, Any, Any]:
     """``(cos q1, sin q1, cos q12, sin q12, sin q2)``; ``cos``/``sin`` from :mod:`math` or numpy."""
     q12 = q1 + q2
     return cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
@@ -222,7 +266,12 @@ def _lm_step(
 
 
 def _newton_pair(
-    arm: TwoLinkArm, target: tuple[float, float], q0: tuple[float, float], distance: float, tol: float, max_iter: int
+    arm: TwoLinkArm,
+    target: tuple[float, float],
+    q0: tuple[float, float],
+    distance: float,
+    tol: float,
+    max_iter: int,
 ) -> IKResult:
     """:func:`newton` for one target on floats: the same iteration as the vectorised path."""
     l1, l2 = arm.l1, arm.l2
@@ -239,11 +288,13 @@ def _newton_pair(
     damping_cap = DAMPING_CAP * scale * scale
     iterations = 0
     if error > threshold:
-        for iterations in range(1, max_iter + 1):
+        for iterations in range(1, max_iter + 1):  # noqa: B007 (read after the loop)
             j11, j12, j21, j22 = jacobian_from_trig(l1, l2, c1, s1, c12, s12)
             try:
                 dq1, dq2 = _lm_step(j11, j12, j21, j22, l1l2 * s2, rx, ry, damping)
-            except ZeroDivisionError:  # the damping underflowed at a singular J; the step is rejected
+            except (
+                ZeroDivisionError
+            ):  # the damping underflowed at a singular J; the step is rejected
                 dq1 = dq2 = math.nan
             t1, t2 = _wrap(q1 + dq1), _wrap(q2 + dq2)
             tc1, ts1, tc12, ts12, ts2 = _trig(cos, sin, t1, t2)
@@ -260,6 +311,14 @@ def _newton_pair(
             if not (error > threshold and damping < damping_cap):
                 break
     return one_answer_result(
-        arm, x, y, q1, q2, iterations, threshold, "newton", _solved_message(1, iterations),
+        arm,
+        x,
+        y,
+        q1,
+        q2,
+        iterations,
+        threshold,
+        "newton",
+        _solved_message(1, iterations),
         lambda index, residual: _failure_detail(residual, iterations),
     )

@@ -19,12 +19,13 @@ from numpy.typing import ArrayLike, NDArray
 from .._validate import as_finite_scalar, as_pairs, require_arm
 from ..kinematics import REACH_RTOL, distance_outside_reach
 from .analytic import closed_form
-from .turns import BASE_ROUND_OFF, LIMIT_TOL, free_q1_at_base, move_into_limits
+from .turns import LIMIT_TOL, free_q1_at_base, move_into_limits
 
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
 __all__ = ["LIMIT_TOL", "move_into_limits", "solutions_within_limits"]
+
 
 def solutions_within_limits(
     arm: TwoLinkArm, p: ArrayLike, tol: float = LIMIT_TOL
@@ -80,9 +81,17 @@ def solutions_within_limits(
     in_reach = distance_outside_reach(arm, points) <= REACH_RTOL * r_max
     # points outside the annulus are projected onto it, so that the closed form never raises
     safe = np.where(distance > 0.0, distance, 1.0)
-    direction = np.where(distance[..., None] > 0.0, points / safe[..., None], np.array([1.0, 0.0]))
-    p_projected = np.where(in_reach[..., None], points, direction * np.clip(distance, r_min, r_max)[..., None])
-    q_both = np.ascontiguousarray(np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2))
+    direction = np.where(
+        distance[..., None] > 0.0, points / safe[..., None], np.array([1.0, 0.0])
+    )
+    p_projected = np.where(
+        in_reach[..., None],
+        points,
+        direction * np.clip(distance, r_min, r_max)[..., None],
+    )
+    q_both = np.ascontiguousarray(
+        np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2)
+    )
     valid = np.broadcast_to(in_reach[..., None], q_both.shape[:-1]).copy()
     if arm.has_limits:
         at_base, free_q1 = free_q1_at_base(arm, points)

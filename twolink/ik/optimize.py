@@ -36,10 +36,16 @@ def _solve_one(
 
         def squared_error(q: NDArray[np.float64]) -> tuple[float, NDArray[np.float64]]:
             residual_vec = (fk(arm, q) - p_target) / scale
-            return float(0.5 * residual_vec @ residual_vec), jacobian(arm, q).T @ residual_vec / scale
+            return float(0.5 * residual_vec @ residual_vec), jacobian(
+                arm, q
+            ).T @ residual_vec / scale
 
         return scipy.optimize.minimize(
-            squared_error, q0, jac=True, method="BFGS", options={"gtol": 1e-14, "maxiter": 500}
+            squared_error,
+            q0,
+            jac=True,
+            method="BFGS",
+            options={"gtol": 1e-14, "maxiter": 500},
         )
 
     # fmincon-style feasibility problem: minimise a constant subject to fk(q) = p.
@@ -60,7 +66,11 @@ def _solve_one(
 
 
 def minimize(
-    arm: TwoLinkArm, p: ArrayLike, q0: ArrayLike = (0.5, 1.0), constrained: bool = False, tol: float = 1e-9
+    arm: TwoLinkArm,
+    p: ArrayLike,
+    q0: ArrayLike = (0.5, 1.0),
+    constrained: bool = False,
+    tol: float = 1e-9,
 ) -> IKResult:
     """Solve IK with :func:`scipy.optimize.minimize`, one target at a time.
 
@@ -118,7 +128,12 @@ def minimize(
     q0_flat = broadcast_start(q0, p.shape, "q0").reshape(-1, 2)
     p_flat = p.reshape(-1, 2)
     bounds = None
-    if constrained and arm.q_min is not None and arm.q_max is not None and arm.limit_convention == "relative":
+    if (
+        constrained
+        and arm.q_min is not None
+        and arm.q_max is not None
+        and arm.limit_convention == "relative"
+    ):
         bounds = list(zip(arm.q_min, arm.q_max))
         q0_flat = np.clip(q0_flat, arm.q_min, arm.q_max)
 
@@ -133,7 +148,14 @@ def minimize(
 
     threshold = tol * (arm.l1 + arm.l2) + distance_outside_reach(arm, p_flat)
     return assemble_result(
-        arm, p, q.reshape(p.shape), iterations, threshold, "minimize-slsqp" if constrained else "minimize-bfgs",
+        arm,
+        p,
+        q.reshape(p.shape),
+        iterations,
+        threshold,
+        "minimize-slsqp" if constrained else "minimize-bfgs",
         solved_message=f"solved all {len(q)} targets",
-        failure_detail=lambda index, residual: f"residual {residual:.3g} m; scipy said: {scipy_messages[index]}",
+        failure_detail=lambda index, residual: (
+            f"residual {residual:.3g} m; scipy said: {scipy_messages[index]}"
+        ),
     )

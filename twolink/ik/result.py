@@ -147,7 +147,11 @@ class IKResult:
                     f"residual={self.residual:.3g}, within_limits={self.within_limits}, iterations={self.iterations},\n"
                     f"         message={self.message!r})"
                 )
-        success, residual, within = np.asarray(self.success), np.asarray(self.residual), np.asarray(self.within_limits)
+        success, residual, within = (
+            np.asarray(self.success),
+            np.asarray(self.residual),
+            np.asarray(self.within_limits),
+        )
         count = success.size  # a batch: shapes and a summary
         largest = f"{residual.max():.3g}" if count else "-"
         return (
@@ -163,7 +167,9 @@ def _flat(values: ArrayLike, size: int, name: str, kind: type) -> NDArray[Any]:
     if array.ndim == 0:
         return np.full(size, array)
     if array.size != size:
-        raise ValueError(f"{name} must be one value or one per answer ({size}); got shape {array.shape}")
+        raise ValueError(
+            f"{name} must be one value or one per answer ({size}); got shape {array.shape}"
+        )
     return array.reshape(size)
 
 
@@ -173,16 +179,24 @@ def _one(value: ArrayLike, name: str, kind: type) -> Any:
         return value
     array = np.asarray(value)
     if array.size != 1:
-        raise ValueError(f"{name} must be one value or one per answer (1); got shape {array.shape}")
+        raise ValueError(
+            f"{name} must be one value or one per answer (1); got shape {array.shape}"
+        )
     return kind(array.reshape(()))
 
 
-def _failure_message(failures: int, count: int, what: str, first: int, detail: str) -> str:
-    return f"failed for {failures} of {count} {what} (first: flat index {first}, {detail})"
+def _failure_message(
+    failures: int, count: int, what: str, first: int, detail: str
+) -> str:
+    return (
+        f"failed for {failures} of {count} {what} (first: flat index {first}, {detail})"
+    )
 
 
 def _limits_note(outside: int, count: int) -> str:
-    return f"; {outside} of {count} answers violate the joint limits (see within_limits)"
+    return (
+        f"; {outside} of {count} answers violate the joint limits (see within_limits)"
+    )
 
 
 def one_answer_result(
@@ -204,13 +218,19 @@ def one_answer_result(
     the values and the message a batch of one would get.
     """
     q12 = q1 + q2
-    tip_x, tip_y = tip_from_trig(arm.l1, arm.l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
+    tip_x, tip_y = tip_from_trig(
+        arm.l1, arm.l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
+    )
     residual = _hypot(tip_x - x, tip_y - y)
     success = residual <= threshold
     if success:
         message = solved_message
     else:
-        detail = failure_detail(0, residual) if failure_detail is not None else f"residual {residual:.3g} m"
+        detail = (
+            failure_detail(0, residual)
+            if failure_detail is not None
+            else f"residual {residual:.3g} m"
+        )
         message = _failure_message(1, 1, "targets", 0, detail)
     within = True if arm.q_min is None else arm.within_limits((q1, q2))
     if not within:
@@ -274,13 +294,23 @@ def assemble_result(
     """
     target_shape = np.shape(p)
     if q.shape[q.ndim - len(target_shape) :] != target_shape or q.shape[-1:] != (2,):
-        raise ValueError(f"q of shape {q.shape} does not hold one answer per target p of shape {target_shape}")
+        raise ValueError(
+            f"q of shape {q.shape} does not hold one answer per target p of shape {target_shape}"
+        )
     if q.shape == (2,):
         x, y = p if type(p) is tuple else np.asarray(p, dtype=float).tolist()
         q1, q2 = q.tolist()
         return one_answer_result(
-            arm, x, y, q1, q2, _one(iterations, "iterations", int), _one(threshold, "threshold", float),
-            method, solved_message, failure_detail,
+            arm,
+            x,
+            y,
+            q1,
+            q2,
+            _one(iterations, "iterations", int),
+            _one(threshold, "threshold", float),
+            method,
+            solved_message,
+            failure_detail,
         )
     shape = q.shape[:-1]
     q_flat = q.reshape(-1, 2)

@@ -8,7 +8,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_pairs
-
 from ..kinematics import require_within_reach
 
 if TYPE_CHECKING:

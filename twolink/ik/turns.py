@@ -36,7 +36,10 @@ _TWO_PI = 2.0 * np.pi
 
 
 def _turns_into_range(
-    angles: NDArray[np.float64], low: NDArray[np.float64], high: NDArray[np.float64], tol: float
+    angles: NDArray[np.float64],
+    low: NDArray[np.float64],
+    high: NDArray[np.float64],
+    tol: float,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """Whole turns (radians, a multiple of 2 pi) that move each angle into ``[low - tol, high + tol]``.
 
@@ -107,7 +110,9 @@ def move_into_limits(
     return angles + turns, np.all(inside, axis=-1)
 
 
-def free_q1_at_base(arm: TwoLinkArm, points: NDArray[np.float64]) -> tuple[NDArray[np.bool_], float | None]:
+def free_q1_at_base(
+    arm: TwoLinkArm, points: NDArray[np.float64]
+) -> tuple[NDArray[np.bool_], float | None]:
     """Where ``points`` are the base of an arm with ``l1 == l2``, and a ``q1`` with which the folded arm is within limits.
 
     At the base (within ``BASE_ROUND_OFF * (l1 + l2)``, for an arm whose
@@ -144,7 +149,9 @@ def free_q1_at_base(arm: TwoLinkArm, points: NDArray[np.float64]) -> tuple[NDArr
     r_min, r_max = arm.reach
     if r_min > BASE_ROUND_OFF * r_max:  # the base is out of reach
         return np.zeros(points.shape[:-1], dtype=np.bool_), None
-    at_base = np.asarray(np.hypot(points[..., 0], points[..., 1]) <= BASE_ROUND_OFF * r_max)
+    at_base = np.asarray(
+        np.hypot(points[..., 0], points[..., 1]) <= BASE_ROUND_OFF * r_max
+    )
     if arm.q_min is None or arm.q_max is None:
         return at_base, None
     (low_1, low_2), (high_1, high_2) = arm.q_min, arm.q_max

@@ -68,10 +68,20 @@ X_LINE = np.arange(10.0, 101.0, 10.0)
 """The table's points, ``x = 10, 20, ..., 100``."""
 RATE_FACTOR = -10.0
 """The factor the printed rate column carries (a tip velocity the text never states)."""
-PRINTED_ANGLES_DEG = np.array([
-    [49.0, 172.0], [61.0, 164.0], [86.0, 156.0], [28.0, 147.0], [38.0, 139.0],
-    [70.0, 130.0], [13.0, 121.0], [62.0, 111.0], [21.0, 101.0], [-3.3, 90.0],
-])
+PRINTED_ANGLES_DEG = np.array(
+    [
+        [49.0, 172.0],
+        [61.0, 164.0],
+        [86.0, 156.0],
+        [28.0, 147.0],
+        [38.0, 139.0],
+        [70.0, 130.0],
+        [13.0, 121.0],
+        [62.0, 111.0],
+        [21.0, 101.0],
+        [-3.3, 90.0],
+    ]
+)
 """The source's printed angle table ``(q1, q2)`` in degrees, one row per ``x`` of :data:`X_LINE`, shape (10, 2).
 
 Derived, not transcribed: the reproduction :func:`ik_as_written` at
@@ -92,11 +102,15 @@ def _array(values: ArrayLike, name: str) -> NDArray[np.float64]:
 
 
 def _lengths(a1: float, a2: float) -> tuple[float, float]:
-    return (as_finite_scalar(a1, "a1", minimum=0.0, strictly=True),
-            as_finite_scalar(a2, "a2", minimum=0.0, strictly=True))
+    return (
+        as_finite_scalar(a1, "a1", minimum=0.0, strictly=True),
+        as_finite_scalar(a2, "a2", minimum=0.0, strictly=True),
+    )
 
 
-def ik_as_written(x: ArrayLike, y: ArrayLike = Y_LINE, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
+def ik_as_written(
+    x: ArrayLike, y: ArrayLike = Y_LINE, a1: float = A1, a2: float = A2
+) -> NDArray[np.float64]:
     """Joint angles ``(q1, q2)`` in degrees, as the source's IK function computed them.
 
     ``q2 = acosd((x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2))`` is right (degrees,
@@ -137,16 +151,23 @@ def ik_as_written(x: ArrayLike, y: ArrayLike = Y_LINE, a1: float = A1, a2: float
         raise ValueError("x must be nonzero: the source's atand(y/x) divides by x")
     cos_q2 = (x**2 + y**2 - a1**2 - a2**2) / (2.0 * a1 * a2)
     if np.any(np.abs(cos_q2) > 1.0):
-        raise ValueError(f"target out of reach of the a1 = {a1:g}, a2 = {a2:g} arm: "
-                         f"(x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2) = {cos_q2[np.abs(cos_q2) > 1.0].ravel()[0]:.4g} "
-                         "is outside [-1, 1]")
+        raise ValueError(
+            f"target out of reach of the a1 = {a1:g}, a2 = {a2:g} arm: "
+            f"(x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2) = {cos_q2[np.abs(cos_q2) > 1.0].ravel()[0]:.4g} "
+            "is outside [-1, 1]"
+        )
     q2_deg = np.degrees(np.arccos(cos_q2))  # acosd: right
-    q1_deg = np.degrees(np.arctan(y / x)) - np.degrees(  # atand(y/x), and sin/cos of degrees: wrong
-        np.arctan(a2 * np.sin(q2_deg) / (a1 + a2 * np.cos(q2_deg))))
+    q1_deg = np.degrees(
+        np.arctan(y / x)
+    ) - np.degrees(  # atand(y/x), and sin/cos of degrees: wrong
+        np.arctan(a2 * np.sin(q2_deg) / (a1 + a2 * np.cos(q2_deg)))
+    )
     return np.stack([q1_deg, q2_deg], axis=-1)
 
 
-def q2_rate_vertical(q1: ArrayLike, q2: ArrayLike, y_rate: ArrayLike, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
+def q2_rate_vertical(
+    q1: ArrayLike, q2: ArrayLike, y_rate: ArrayLike, a1: float = A1, a2: float = A2
+) -> NDArray[np.float64]:
     """``q2dot = (-a1 s1 - a2 s12) / (a1 a2 s2) * ydot`` for a tip moving only vertically (the source's, right).
 
     Parameters
@@ -173,7 +194,9 @@ def q2_rate_vertical(q1: ArrayLike, q2: ArrayLike, y_rate: ArrayLike, a1: float 
     return (-a1 * np.sin(q1) - a2 * np.sin(q1 + q2)) / (a1 * a2 * np.sin(q2)) * y_rate
 
 
-def q1_rate_horizontal(q1: ArrayLike, q2: ArrayLike, x_rate: ArrayLike, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
+def q1_rate_horizontal(
+    q1: ArrayLike, q2: ArrayLike, x_rate: ArrayLike, a1: float = A1, a2: float = A2
+) -> NDArray[np.float64]:
     """``q1dot = a2 c12 / (a1 a2 s2) * xdot`` for a tip moving only horizontally (the source's, right).
 
     Parameters
@@ -200,7 +223,9 @@ def q1_rate_horizontal(q1: ArrayLike, q2: ArrayLike, x_rate: ArrayLike, a1: floa
     return a2 * np.cos(q1 + q2) / (a1 * a2 * np.sin(q2)) * x_rate
 
 
-def rate_as_printed(q_deg: ArrayLike, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
+def rate_as_printed(
+    q_deg: ArrayLike, a1: float = A1, a2: float = A2
+) -> NDArray[np.float64]:
     """The source's rate column: -10 times the vertical formula at the printed angles.
 
     The table was to give the joint rates for horizontal motion; its printed

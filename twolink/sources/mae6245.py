@@ -71,7 +71,9 @@ def _check_acos(acos: str) -> Callable[[Any], Any]:
     return _ACOS[acos]
 
 
-def x_equation_roots(p: ArrayLike, theta2: float, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
+def x_equation_roots(
+    p: ArrayLike, theta2: float, a1: float = A1, a2: float = A2
+) -> NDArray[np.float64]:
     """Both roots of the assignment's closed form: the x-equation solved for theta1.
 
     With theta2 known, ``x = (a1 + a2 cos theta2) cos theta1 - a2 sin theta2 sin theta1``
@@ -114,14 +116,20 @@ def x_equation_roots(p: ArrayLike, theta2: float, a1: float = A1, a2: float = A2
     b = -a2 * np.sin(theta2)
     discriminant = a**2 + b**2 - x**2
     if discriminant < 0:
-        raise ValueError(f"no real root: x = {x:g} exceeds sqrt(a^2 + b^2) = {np.hypot(a, b):g} for theta2 = {theta2:g}")
+        raise ValueError(
+            f"no real root: x = {x:g} exceeds sqrt(a^2 + b^2) = {np.hypot(a, b):g} for theta2 = {theta2:g}"
+        )
     direction = np.arctan2(b, a)
     half_angle = np.arctan2(np.sqrt(discriminant), x)
     return np.array([direction + half_angle, direction - half_angle])
 
 
 def y_residual(
-    q1: ArrayLike, p: ArrayLike = TARGET, acos: str = "matlab", a1: float = A1, a2: float = A2
+    q1: ArrayLike,
+    p: ArrayLike = TARGET,
+    acos: str = "matlab",
+    a1: float = A1,
+    a2: float = A2,
 ) -> NDArray[np.float64] | np.float64:
     """The assignment's objective: ``abs(a1 sin q1 + a2 sin(acos((x - a1 cos q1)/a2)) - y)``.
 
@@ -163,7 +171,9 @@ def y_residual(
     x, y = np.asarray(p, dtype=float)
     angle = np.asarray(q1, dtype=float)
     with np.errstate(invalid="ignore"):
-        residual = a1 * np.sin(angle) + a2 * np.sin(arccos((x - a1 * np.cos(angle)) / a2)) - y
+        residual = (
+            a1 * np.sin(angle) + a2 * np.sin(arccos((x - a1 * np.cos(angle)) / a2)) - y
+        )
     return np.abs(residual)
 
 
@@ -203,7 +213,11 @@ class NumericalRun:
 
 
 def numerical_ik(
-    p: ArrayLike = TARGET, q1_start: float = Q1_START, acos: str = "matlab", a1: float = A1, a2: float = A2
+    p: ArrayLike = TARGET,
+    q1_start: float = Q1_START,
+    acos: str = "matlab",
+    a1: float = A1,
+    a2: float = A2,
 ) -> NumericalRun:
     """The assignment's numerical IK, translated: minimise :func:`y_residual` over q1, then q2.
 
@@ -269,7 +283,9 @@ def numerical_ik(
     )
 
 
-def fk_check(theta1: float = FK_CHECK_THETA1, theta2: float = 0.0, a1: float = A1, a2: float = A2) -> NDArray[np.float64]:
+def fk_check(
+    theta1: float = FK_CHECK_THETA1, theta2: float = 0.0, a1: float = A1, a2: float = A2
+) -> NDArray[np.float64]:
     """The assignment's FK check: ``x = a1 cos t1 + a2 cos(t1 + t2)``, ``y`` likewise.
 
     It was typed with theta1 = 0.7845 instead of the 0.7854 its IK had printed.
@@ -293,7 +309,12 @@ def fk_check(theta1: float = FK_CHECK_THETA1, theta2: float = 0.0, a1: float = A
     >>> fk_check().round(4)
     array([14.1548, 14.1294])
     """
-    return np.array([a1 * np.cos(theta1) + a2 * np.cos(theta1 + theta2), a1 * np.sin(theta1) + a2 * np.sin(theta1 + theta2)])
+    return np.array(
+        [
+            a1 * np.cos(theta1) + a2 * np.cos(theta1 + theta2),
+            a1 * np.sin(theta1) + a2 * np.sin(theta1 + theta2),
+        ]
+    )
 
 
 def circle_angles(step: float = CIRCLE_STEP) -> NDArray[np.float64]:

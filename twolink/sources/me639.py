@@ -60,10 +60,14 @@ _ACOS_SLACK = 1e-12  # rounding slack on the cosine at full stretch
 
 def _check_reading(reading: str) -> None:
     if reading not in READINGS:
-        raise ValueError(f"reading must be 'sin' (the transcribed typo) or 'cos' (correct); got {reading!r}")
+        raise ValueError(
+            f"reading must be 'sin' (the transcribed typo) or 'cos' (correct); got {reading!r}"
+        )
 
 
-def source_ik(p_tip: ArrayLike, *, reading: str = "cos", l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
+def source_ik(
+    p_tip: ArrayLike, *, reading: str = "cos", l1: float = 2.0, l2: float = 2.0
+) -> NDArray[np.float64]:
     """The source's inverse kinematics: absolute link angles ``(q1, q2_abs)`` for a tip point.
 
     The source computes the elbow angle (link 2 relative to link 1) with
@@ -137,7 +141,9 @@ def source_ik(p_tip: ArrayLike, *, reading: str = "cos", l1: float = 2.0, l2: fl
     return np.stack([q1, q1 + theta], axis=-1)
 
 
-def source_fk(q_abs: ArrayLike, *, l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
+def source_fk(
+    q_abs: ArrayLike, *, l1: float = 2.0, l2: float = 2.0
+) -> NDArray[np.float64]:
     """Tip position from absolute link angles: ``(l1 cos q1 + l2 cos q2_abs, l1 sin q1 + l2 sin q2_abs)``.
 
     Where the arm's tip really is for the angles the source commanded.
@@ -163,10 +169,14 @@ def source_fk(q_abs: ArrayLike, *, l1: float = 2.0, l2: float = 2.0) -> NDArray[
     l2 = as_finite_scalar(l2, "l2", minimum=0.0, strictly=True)
     angles = as_pairs(q_abs, "q_abs")
     q1, q2 = angles[..., 0], angles[..., 1]
-    return np.stack([l1 * np.cos(q1) + l2 * np.cos(q2), l1 * np.sin(q1) + l2 * np.sin(q2)], axis=-1)
+    return np.stack(
+        [l1 * np.cos(q1) + l2 * np.cos(q2), l1 * np.sin(q1) + l2 * np.sin(q2)], axis=-1
+    )
 
 
-def source_link_torques(q_abs: ArrayLike, force_by_tip: ArrayLike, *, l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
+def source_link_torques(
+    q_abs: ArrayLike, force_by_tip: ArrayLike, *, l1: float = 2.0, l2: float = 2.0
+) -> NDArray[np.float64]:
     """The source's torque formulas: ``T_i = l_i (F_y cos q_i - F_x sin q_i)``, absolute angles.
 
     With ``F = force_by_tip``, the force the tip exerts, these are the motor
@@ -231,7 +241,12 @@ class WallSearchResult:
 
 
 def source_wall_search(
-    *, reading: str = "cos", n_points: int = 100_000, force_magnitude: float = 500.0, l1: float = 2.0, l2: float = 2.0
+    *,
+    reading: str = "cos",
+    n_points: int = 100_000,
+    force_magnitude: float = 500.0,
+    l1: float = 2.0,
+    l2: float = 2.0,
 ) -> WallSearchResult:
     """The source's wall search, vectorised: the first point with ``round(q2_abs, 4) == round(pi/4, 4)``.
 
@@ -278,7 +293,11 @@ def source_wall_search(
     (array([3.4116, 0.5884]), 867.11, array([3.345, 0.892]))
     """
     _check_reading(reading)
-    if isinstance(n_points, bool) or not isinstance(n_points, (int, np.integer)) or n_points < 2:
+    if (
+        isinstance(n_points, bool)
+        or not isinstance(n_points, (int, np.integer))
+        or n_points < 2
+    ):
         raise ValueError(f"n_points must be an integer >= 2; got {n_points!r}")
     force_magnitude = as_finite_scalar(force_magnitude, "force_magnitude (N)")
     s = np.linspace(0.0, 1.0, int(n_points))
@@ -286,7 +305,9 @@ def source_wall_search(
     q_abs = source_ik(p_wall, reading=reading, l1=l1, l2=l2)
     hits = np.flatnonzero(np.round(q_abs[:, 1], 4) == round(np.pi / 4, 4))
     if hits.size == 0:
-        raise ValueError(f"no point of the {n_points} matched round(q2_abs, 4) == {round(np.pi / 4, 4)}")
+        raise ValueError(
+            f"no point of the {n_points} matched round(q2_abs, 4) == {round(np.pi / 4, 4)}"
+        )
     i = int(hits[0])
     force = force_magnitude * np.array([1.0, 1.0]) / np.sqrt(2.0)
     return WallSearchResult(
@@ -298,7 +319,9 @@ def source_wall_search(
     )
 
 
-def source_spring_torques(p_tip: ArrayLike, *, k: float = 600.0, l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
+def source_spring_torques(
+    p_tip: ArrayLike, *, k: float = 600.0, l1: float = 2.0, l2: float = 2.0
+) -> NDArray[np.float64]:
     """The source's spring torques: ``F = k (x, y)`` and ``t_i = k y l_i cos q_i - k x l_i sin q_i``.
 
     The spring is anchored at the origin (``x`` where ``x0 - x`` belongs), the
@@ -338,7 +361,12 @@ def source_spring_torques(p_tip: ArrayLike, *, k: float = 600.0, l1: float = 2.0
 
 
 def correct_spring_torques_dh(
-    q_dh: ArrayLike, p_rest: ArrayLike, *, k: float = 600.0, l1: float = 2.0, l2: float = 2.0
+    q_dh: ArrayLike,
+    p_rest: ArrayLike,
+    *,
+    k: float = 600.0,
+    l1: float = 2.0,
+    l2: float = 2.0,
 ) -> NDArray[np.float64]:
     """The correct spring law in DH torques: ``tau = J(q)^T k (x0 - x)``.
 

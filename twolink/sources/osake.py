@@ -66,11 +66,15 @@ PRINTED_SPEED_CM_S = 10.8975
 
 
 def _lengths(l1: float, l2: float) -> tuple[float, float]:
-    return (as_finite_scalar(l1, "l1 (cm)", minimum=0.0, strictly=True),
-            as_finite_scalar(l2, "l2 (cm)", minimum=0.0, strictly=True))
+    return (
+        as_finite_scalar(l1, "l1 (cm)", minimum=0.0, strictly=True),
+        as_finite_scalar(l2, "l2 (cm)", minimum=0.0, strictly=True),
+    )
 
 
-def h02_as_expanded(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM, d: float = D_CM) -> NDArray[np.float64]:
+def h02_as_expanded(
+    q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM, d: float = D_CM
+) -> NDArray[np.float64]:
     """The source's hand-expanded ``H_0^2``, with both of its mistakes.
 
     Where ``cos(q1 + q2)`` belongs the expansion has ``cos q1 cos q2``, where
@@ -118,7 +122,9 @@ def h02_as_expanded(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM, d: float
     return H
 
 
-def jacobian_as_printed(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM) -> NDArray[np.float64]:
+def jacobian_as_printed(
+    q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM
+) -> NDArray[np.float64]:
     """The 6x2 Jacobian the source's derivation printed, with the expanded ``H_0^2``'s product error.
 
     The derivation writes its recipe with ``(d_2^0 - d_1^0)`` in both columns,
@@ -184,8 +190,11 @@ def jacobian_as_printed(q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM) -> N
     l1, l2 = _lengths(l1, l2)
     c1, s1, c2 = np.cos(q[..., 0]), np.sin(q[..., 0]), np.cos(q[..., 1])
     J = np.zeros(q.shape[:-1] + (6, 2))
-    J[..., 0, 1], J[..., 1, 1] = -l2 * s1 * c2, l2 * c1 * c2   # l2 (-s12, c12) with s12 -> s1 c2, c12 -> c1 c2
-    J[..., 0, 0] = -l1 * s1 + J[..., 0, 1]                      # plus the l1 lever from the base
+    J[..., 0, 1], J[..., 1, 1] = (
+        -l2 * s1 * c2,
+        l2 * c1 * c2,
+    )  # l2 (-s12, c12) with s12 -> s1 c2, c12 -> c1 c2
+    J[..., 0, 0] = -l1 * s1 + J[..., 0, 1]  # plus the l1 lever from the base
     J[..., 1, 0] = l1 * c1 + J[..., 1, 1]
     J[..., 5, :] = 1.0
     return J
@@ -224,11 +233,15 @@ def cpp_read_int(typed: str) -> int:
     """
     match = re.match(r"\s*([+-]?\d+)", str(typed))
     if match is None:
-        raise ValueError(f"typed must start with an integer for `cin >> int`; got {typed!r}")
+        raise ValueError(
+            f"typed must start with an integer for `cin >> int`; got {typed!r}"
+        )
     return int(match.group(1))
 
 
-def matmul_triple_loop(left: Sequence[Sequence[float]], right: Sequence[Sequence[float]]) -> list[list[float]]:
+def matmul_triple_loop(
+    left: Sequence[Sequence[float]], right: Sequence[Sequence[float]]
+) -> list[list[float]]:
     """The matrix product ``(AB)_ij = sum_k A_ik B_kj`` by three nested loops, as the C++ program did.
 
     Correct (it is the definition) and slow; kept to compare with ``@``.
@@ -251,8 +264,10 @@ def matmul_triple_loop(left: Sequence[Sequence[float]], right: Sequence[Sequence
     """
     n_rows, n_inner, n_cols = len(left), len(right), len(right[0])
     if any(len(row) != n_inner for row in left):
-        raise ValueError(f"left must have {n_inner} columns (the rows of right); got rows of lengths "
-                         f"{[len(row) for row in left]}")
+        raise ValueError(
+            f"left must have {n_inner} columns (the rows of right); got rows of lengths "
+            f"{[len(row) for row in left]}"
+        )
     product = [[0.0] * n_cols for _ in range(n_rows)]
     for i in range(n_rows):
         for j in range(n_cols):
@@ -263,12 +278,22 @@ def matmul_triple_loop(left: Sequence[Sequence[float]], right: Sequence[Sequence
 
 def _dh_planar(theta: float, d: float, a: float) -> list[list[float]]:
     c, s = np.cos(theta), np.sin(theta)
-    return [[c, -s, 0.0, a * c], [s, c, 0.0, a * s], [0.0, 0.0, 1.0, d], [0.0, 0.0, 0.0, 1.0]]
+    return [
+        [c, -s, 0.0, a * c],
+        [s, c, 0.0, a * s],
+        [0.0, 0.0, 1.0, d],
+        [0.0, 0.0, 0.0, 1.0],
+    ]
 
 
 def cpp_fk_tip(
-    q: ArrayLike, l1_typed: str = "10", l2_typed: str = "11.5", d: float = D_CM, *, int_lengths: bool = True,
-    drop_offset: bool = True
+    q: ArrayLike,
+    l1_typed: str = "10",
+    l2_typed: str = "11.5",
+    d: float = D_CM,
+    *,
+    int_lengths: bool = True,
+    drop_offset: bool = True,
 ) -> NDArray[np.float64]:
     """The tip ``(x, y, z)`` in cm as the source's C++ forward-kinematics program computed it.
 
@@ -315,7 +340,9 @@ def cpp_fk_tip(
     return np.array([H02[0][3], H02[1][3], H02[2][3]])
 
 
-def velocity_program_speed(t: float = 2.0, l1: float = L1_CM, l2: float = L2_CM, step: float = 1e-6) -> float:
+def velocity_program_speed(
+    t: float = 2.0, l1: float = L1_CM, l2: float = L2_CM, step: float = 1e-6
+) -> float:
     """The number the source's C++ velocity program prints as its "end-tip angular velocity", reproduced.
 
     The program states all its details, and this function follows them:
@@ -370,13 +397,21 @@ def velocity_program_speed(t: float = 2.0, l1: float = L1_CM, l2: float = L2_CM,
     step = as_finite_scalar(step, "step (s)", minimum=0.0, strictly=True)
     l1, l2 = _lengths(l1, l2)
 
-    def angles(time: float) -> NDArray[np.float64]:  # the numbers the program fed to cos/sin ("degrees")
+    def angles(
+        time: float,
+    ) -> NDArray[np.float64]:  # the numbers the program fed to cos/sin ("degrees")
         return np.array([3.0 * time, 60.0])
 
     theta = angles(t)
-    theta_dot = (angles(t + step) - angles(t)) / step  # forward difference: the slope (3, 0), to round-off
+    theta_dot = (
+        angles(t + step) - angles(t)
+    ) / step  # forward difference: the slope (3, 0), to round-off
     q12 = theta[0] + theta[1]
-    J = np.array([[-l1 * np.sin(theta[0]) - l2 * np.sin(q12), -l2 * np.sin(q12)],
-                  [l1 * np.cos(theta[0]) + l2 * np.cos(q12), l2 * np.cos(q12)]])
+    J = np.array(
+        [
+            [-l1 * np.sin(theta[0]) - l2 * np.sin(q12), -l2 * np.sin(q12)],
+            [l1 * np.cos(theta[0]) + l2 * np.cos(q12), l2 * np.cos(q12)],
+        ]
+    )
     vx, vy = J @ theta_dot
     return float(np.sqrt(vx**2 + vy**2))

@@ -32,7 +32,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cache
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -109,7 +109,10 @@ def dynamics_symbols() -> dict[str, sp.Symbol]:
 
 
 def time_derivative(
-    expr: sp.Expr, coordinates: Sequence[sp.Symbol], rates: Sequence[sp.Symbol], accelerations: Sequence[sp.Symbol]
+    expr: sp.Expr,
+    coordinates: Sequence[sp.Symbol],
+    rates: Sequence[sp.Symbol],
+    accelerations: Sequence[sp.Symbol],
 ) -> sp.Expr:
     """Total time derivative of ``expr(q, qd)`` by the chain rule.
 
@@ -139,7 +142,9 @@ def time_derivative(
     )
 
 
-def christoffel_coriolis(M: sp.Matrix, coordinates: Sequence[sp.Symbol], rates: Sequence[sp.Symbol]) -> sp.Matrix:
+def christoffel_coriolis(
+    M: sp.Matrix, coordinates: Sequence[sp.Symbol], rates: Sequence[sp.Symbol]
+) -> sp.Matrix:
     """The Coriolis/centrifugal matrix from the Christoffel symbols of ``M``.
 
     ``C[i, j] = sum_k Gamma_ijk qd_k`` with
@@ -235,10 +240,14 @@ class EquationsOfMotion:
         [0],
         [0]])
         """
-        return sp.simplify(sp.expand(self.M * self.qdd + self.C * self.qd + self.g - self.euler_lagrange))
+        return sp.simplify(
+            sp.expand(
+                self.M * self.qdd + self.C * self.qd + self.g - self.euler_lagrange
+            )
+        )
 
 
-@lru_cache(maxsize=None)
+@cache
 def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
     """Derive the equations of motion of the 2R arm by Euler-Lagrange.
 
@@ -279,7 +288,9 @@ def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
     if model not in MODELS:
         raise ValueError(f"model must be one of {MODELS}; got {model!r}")
     s = dynamics_symbols()
-    l1, l2, m1, m2, I1, I2, g = (s[name] for name in ("l1", "l2", "m1", "m2", "I1", "I2", "g"))
+    l1, l2, m1, m2, I1, I2, g = (
+        s[name] for name in ("l1", "l2", "m1", "m2", "I1", "I2", "g")
+    )
     if model == "relative":
         q = [s["q1"], s["q2"]]
         qd = [s["qd1"], s["qd2"]]
@@ -288,7 +299,9 @@ def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
         torques = [s["tau1"], s["tau2"]]
         # Motor 1 turns link 1 against the ground; motor 2 turns link 2
         # against link 1, so it does work on the relative angle.
-        work = torques[0] * link_angles[0] + torques[1] * (link_angles[1] - link_angles[0])
+        work = torques[0] * link_angles[0] + torques[1] * (
+            link_angles[1] - link_angles[0]
+        )
     else:
         q = [s["theta1"], s["theta2"]]
         qd = [s["thetad1"], s["thetad2"]]
@@ -300,14 +313,26 @@ def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
 
     elbow = sp.Matrix([l1 * sp.cos(link_angles[0]), l1 * sp.sin(link_angles[0])])
     centre_1 = elbow / 2
-    centre_2 = elbow + sp.Matrix([l2 * sp.cos(link_angles[1]), l2 * sp.sin(link_angles[1])]) / 2
+    centre_2 = (
+        elbow
+        + sp.Matrix([l2 * sp.cos(link_angles[1]), l2 * sp.sin(link_angles[1])]) / 2
+    )
     rates = sp.Matrix(qd)
     v_c1 = centre_1.jacobian(q) * rates
     v_c2 = centre_2.jacobian(q) * rates
-    omega = [sum(sp.diff(angle, coordinate) * rate for coordinate, rate in zip(q, qd)) for angle in link_angles]
+    omega = [
+        sum(sp.diff(angle, coordinate) * rate for coordinate, rate in zip(q, qd))
+        for angle in link_angles
+    ]
     kinetic = sp.trigsimp(
         sp.expand(
-            (m1 * v_c1.dot(v_c1) + I1 * omega[0] ** 2 + m2 * v_c2.dot(v_c2) + I2 * omega[1] ** 2) / 2
+            (
+                m1 * v_c1.dot(v_c1)
+                + I1 * omega[0] ** 2
+                + m2 * v_c2.dot(v_c2)
+                + I2 * omega[1] ** 2
+            )
+            / 2
         )
     )
     potential = g * (m1 * centre_1[1] + m2 * centre_2[1])
@@ -315,7 +340,8 @@ def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
 
     euler_lagrange = sp.Matrix(
         [
-            time_derivative(sp.diff(lagrangian, rate), q, qd, qdd) - sp.diff(lagrangian, coordinate)
+            time_derivative(sp.diff(lagrangian, rate), q, qd, qdd)
+            - sp.diff(lagrangian, coordinate)
             for coordinate, rate in zip(q, qd)
         ]
     )
@@ -364,16 +390,32 @@ class NumericDynamics:
 
     def mass_matrix(self, arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         """``M(q)``, shape (2, 2), for one configuration ``q`` of shape (2,)."""
-        return np.asarray(self._mass_matrix(*as_configuration(q, "q"), *self._parameters(arm)), dtype=np.float64)
+        return np.asarray(
+            self._mass_matrix(*as_configuration(q, "q"), *self._parameters(arm)),
+            dtype=np.float64,
+        )
 
-    def coriolis(self, arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
+    def coriolis(
+        self, arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike
+    ) -> NDArray[np.float64]:
         """``C(q, qd)``, shape (2, 2), for one state (``q``, ``qd`` of shape (2,))."""
-        return np.asarray(self._coriolis(*as_configuration(q, "q"), *as_configuration(qd, "qd", what="one pair of joint rates", unit="rad/s"), *self._parameters(arm)), dtype=np.float64)
+        return np.asarray(
+            self._coriolis(
+                *as_configuration(q, "q"),
+                *as_configuration(
+                    qd, "qd", what="one pair of joint rates", unit="rad/s"
+                ),
+                *self._parameters(arm),
+            ),
+            dtype=np.float64,
+        )
 
     def gravity(self, arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         """``g(q)``, shape (2,), for one configuration ``q`` of shape (2,)."""
-        return np.asarray(self._gravity(*as_configuration(q, "q"), *self._parameters(arm)), dtype=np.float64).reshape(2)
-
+        return np.asarray(
+            self._gravity(*as_configuration(q, "q"), *self._parameters(arm)),
+            dtype=np.float64,
+        ).reshape(2)
 
 
 def lambdify_dynamics(equations: EquationsOfMotion | str) -> NumericDynamics:
@@ -399,7 +441,11 @@ def lambdify_dynamics(equations: EquationsOfMotion | str) -> NumericDynamics:
     """
     if isinstance(equations, str):
         equations = equations_of_motion(equations)
-    q, qd, parameters = list(equations.q), list(equations.qd), list(equations.parameters)
+    q, qd, parameters = (
+        list(equations.q),
+        list(equations.qd),
+        list(equations.parameters),
+    )
     return NumericDynamics(
         model=equations.model,
         _mass_matrix=sp.lambdify(q + parameters, equations.M, modules="numpy"),

@@ -39,7 +39,12 @@ def planar_symbols() -> dict[str, sp.Symbol]:
     return {"q1": q1, "q2": q2, "l1": l1, "l2": l2, "d": d}
 
 
-def dh_matrix(theta: sp.Expr | float, d: sp.Expr | float, a: sp.Expr | float, alpha: sp.Expr | float) -> sp.Matrix:
+def dh_matrix(
+    theta: sp.Expr | float,
+    d: sp.Expr | float,
+    a: sp.Expr | float,
+    alpha: sp.Expr | float,
+) -> sp.Matrix:
     """The DH transform ``Rot_z(theta) Trans_z(d) Trans_x(a) Rot_x(alpha)`` as a sympy matrix.
 
     Parameters
@@ -72,11 +77,24 @@ def dh_matrix(theta: sp.Expr | float, d: sp.Expr | float, a: sp.Expr | float, al
     ...
     twolink.errors.InputTypeError: theta must be a sympy expression, a real number or a symbol name (a Python identifier such as 'q1'); got the string "__import__('os')", which is not a name (it is never evaluated)
     """
-    theta, d, a, alpha = (_dh_entry(value, name) for value, name in ((theta, "theta"), (d, "d"), (a, "a"), (alpha, "alpha")))
+    theta, d, a, alpha = (
+        _dh_entry(value, name)
+        for value, name in ((theta, "theta"), (d, "d"), (a, "a"), (alpha, "alpha"))
+    )
     return sp.Matrix(
         [
-            [sp.cos(theta), -sp.sin(theta) * sp.cos(alpha), sp.sin(theta) * sp.sin(alpha), a * sp.cos(theta)],
-            [sp.sin(theta), sp.cos(theta) * sp.cos(alpha), -sp.cos(theta) * sp.sin(alpha), a * sp.sin(theta)],
+            [
+                sp.cos(theta),
+                -sp.sin(theta) * sp.cos(alpha),
+                sp.sin(theta) * sp.sin(alpha),
+                a * sp.cos(theta),
+            ],
+            [
+                sp.sin(theta),
+                sp.cos(theta) * sp.cos(alpha),
+                -sp.cos(theta) * sp.sin(alpha),
+                a * sp.sin(theta),
+            ],
             [0, sp.sin(alpha), sp.cos(alpha), d],
             [0, 0, 0, 1],
         ]
@@ -94,16 +112,22 @@ def _dh_entry(value: object, name: str) -> sp.Expr:
         return value
     if isinstance(value, str):
         if not value.isidentifier():
-            raise InputTypeError(f"{name} must be {_ALLOWED}; got the string {value!r}, which is not a name (it is never evaluated)")
+            raise InputTypeError(
+                f"{name} must be {_ALLOWED}; got the string {value!r}, which is not a name (it is never evaluated)"
+            )
         return sp.Symbol(value)
     if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
         if not math.isfinite(value):
             raise ValueError(f"{name} must be finite; got {value}")
         return sp.sympify(value, strict=True)
-    raise InputTypeError(f"{name} must be {_ALLOWED}; got {value!r} ({type(value).__name__})")
+    raise InputTypeError(
+        f"{name} must be {_ALLOWED}; got {value!r} ({type(value).__name__})"
+    )
 
 
-def planar_fk(with_offset: bool = False) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:
+def planar_fk(
+    with_offset: bool = False,
+) -> tuple[sp.Matrix, sp.Matrix, sp.Matrix, sp.Matrix]:
     """``(A1, A2, T_02, p_tip)`` of the planar arm, with ``T_02 = A1 A2`` simplified.
 
     Parameters
