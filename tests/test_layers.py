@@ -147,3 +147,42 @@ def test_no_function_level_import_of_a_twolink_module(module):
     assert late == [], (
         f"{module} imports twolink modules inside functions (line, module): {late}"
     )
+
+
+def _imported_modules() -> list:
+    import importlib
+
+    return [importlib.import_module(name) for name in sorted(MODULES)]
+
+
+def test_no_attribute_hides_a_module():
+    """``twolink.X`` is the module ``twolink/X.py`` (a function of the same name
+    would make ``import twolink.X`` hand back the function)."""
+    import importlib
+
+    hidden = []
+    for module in _imported_modules():
+        if "." not in module.__name__:
+            continue
+        parent_name, short = module.__name__.rsplit(".", 1)
+        if getattr(importlib.import_module(parent_name), short) is not module:
+            hidden.append(module.__name__)
+    assert hidden == []
+
+
+# The symbolic mirror of a numeric formula keeps its name (``symbolic.dh_matrix`` is
+# ``dh.dh_matrix`` with symbols); each source module keeps the names its source used.
+SAME_NAME_ALLOWED = ("twolink.symbolic", "twolink.sources.")
+
+
+def test_one_public_name_one_object():
+    """A name in two modules' ``__all__`` is the same object re-exported, not two
+    different functions that happen to share a name."""
+    owners: dict[str, dict[int, str]] = {}
+    for module in _imported_modules():
+        if module.__name__.startswith(SAME_NAME_ALLOWED):
+            continue
+        for name in getattr(module, "__all__", ()):
+            owners.setdefault(name, {})[id(getattr(module, name))] = module.__name__
+    clashes = {name: sorted(by.values()) for name, by in owners.items() if len(by) > 1}
+    assert clashes == {}

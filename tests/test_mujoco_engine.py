@@ -47,7 +47,7 @@ def test_joint_accelerations_equal_forward_dynamics(arm, q, qd, tau):
     ],
 )
 def test_free_motion_matches_twolink_simulate(arm, q0, qd0):
-    mj = engine.simulate(arm, q0, qd0, 1.0, timestep=1e-3, sample_every=10)
+    mj = engine.simulate_in_mujoco(arm, q0, qd0, 1.0, timestep=1e-3, sample_every=10)
     reference = simulate(arm, q0, qd0, 1.0, t_eval=mj.t, rtol=1e-11, atol=1e-11)
     assert np.ptp(mj.q[:, 1]) > 0.1  # it moved
     assert np.max(np.abs(mj.q - reference.q)) < 1e-7
@@ -61,10 +61,10 @@ def test_free_motion_matches_twolink_simulate(arm, q0, qd0):
 
 def test_rk4_error_shrinks_with_the_step():
     arm = arms.two_metre
-    coarse = engine.simulate(
+    coarse = engine.simulate_in_mujoco(
         arm, [np.pi / 4, 0.0], [0.0, 0.0], 0.5, timestep=4e-3, sample_every=125
     )
-    fine = engine.simulate(
+    fine = engine.simulate_in_mujoco(
         arm, [np.pi / 4, 0.0], [0.0, 0.0], 0.5, timestep=2e-3, sample_every=250
     )
     reference = simulate(
@@ -84,7 +84,7 @@ def test_rk4_error_shrinks_with_the_step():
 def test_constant_torques_equal_to_gravity_hold_the_arm():
     arm = arms.two_metre
     q0 = np.array([0.7, -0.4])
-    held = engine.simulate(
+    held = engine.simulate_in_mujoco(
         arm, q0, [0.0, 0.0], 0.2, torque=arm.gravity(q0), timestep=1e-3
     )
     assert np.allclose(held.q, q0, atol=1e-12)
@@ -100,7 +100,7 @@ def test_the_same_impedance_controller_drives_both_and_mujoco_converges_with_the
     )
     errors = []
     for timestep in (1e-3, 5e-4):
-        mj = engine.simulate(
+        mj = engine.simulate_in_mujoco(
             arm,
             q0,
             [0.0, 0.0],
@@ -127,7 +127,7 @@ def test_a_blow_up_is_a_simulation_error_naming_the_time():
     with pytest.raises(
         SimulationError, match=r"mjWARN_BADCTRL at or before t = 0.001 s"
     ):
-        engine.simulate(
+        engine.simulate_in_mujoco(
             arms.two_metre, [0.0, 0.0], [0.0, 0.0], 0.01, torque=shove, timestep=1e-3
         )
 
@@ -135,7 +135,7 @@ def test_a_blow_up_is_a_simulation_error_naming_the_time():
         return 1e4 * np.asarray(qd)
 
     with pytest.raises(SimulationError, match=r"at or before t = "):
-        engine.simulate(
+        engine.simulate_in_mujoco(
             arms.two_metre,
             [0.0, 0.0],
             [0.1, 0.0],
@@ -159,7 +159,7 @@ def test_a_blow_up_is_a_simulation_error_naming_the_time():
 def test_simulate_rejects_bad_arguments(kwargs, message):
     arguments = {"t_end": 0.01, "timestep": 1e-3} | kwargs
     with pytest.raises(ValueError, match=message):
-        engine.simulate(arms.two_metre, [0.0, 0.0], [0.0, 0.0], **arguments)
+        engine.simulate_in_mujoco(arms.two_metre, [0.0, 0.0], [0.0, 0.0], **arguments)
 
 
 @pytest.mark.parametrize(
@@ -235,6 +235,6 @@ def test_without_mujoco_the_error_names_the_function_and_the_install(monkeypatch
     monkeypatch.setitem(sys.modules, "mujoco", None)
     with pytest.raises(
         ImportError,
-        match=r'twolink.engine.simulate needs mujoco.*pip install "twolink\[course\]"',
+        match=r'twolink.engine.simulate_in_mujoco needs mujoco.*pip install "twolink\[course\]"',
     ):
-        engine.simulate(arms.two_metre, [0.0, 0.0], [0.0, 0.0], 0.01)
+        engine.simulate_in_mujoco(arms.two_metre, [0.0, 0.0], [0.0, 0.0], 0.01)

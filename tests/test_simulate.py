@@ -504,7 +504,7 @@ def test_a_non_finite_torque_gives_a_public_error(t_start):
         from twolink import engine
 
         calls.append(
-            lambda: engine.simulate(
+            lambda: engine.simulate_in_mujoco(
                 arms.two_metre, [0.3, 0.2], [0.0, 0.0], 1.0, _nan_from(t_start)
             )
         )

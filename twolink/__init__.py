@@ -43,7 +43,7 @@ from .controllers import (
 from .conventions import to_absolute, to_relative, wrap_angle
 from .errors import SingularityError, UnreachableError
 from .linearization import linearize
-from .simulate import SimulationError, SimulationResult, simulate
+from .simulation import SimulationError, SimulationResult, simulate
 from .statics import Wall, WallContact, wall_contact
 
 __version__ = "0.1.0"

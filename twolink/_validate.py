@@ -483,7 +483,7 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
     """A torque callable's result ``torque(t, q, qd)`` as two finite floats, or a clear error.
 
     Shared by :func:`twolink.dynamics.state_derivative`, :func:`twolink.simulate`
-    and :func:`twolink.engine.simulate`.
+    and :func:`twolink.engine.simulate_in_mujoco`.
 
     Raises
     ------

@@ -1,6 +1,6 @@
 """The default budgets of every integration in the package (one place, so that no module imports another for them).
 
-:func:`twolink.simulate.simulate` and
+:func:`twolink.simulation.simulate` and
 :func:`twolink.trajectory.resolved_rate_trajectory` stop with a
 :class:`~twolink.errors.SimulationError` that names the budget when one is
 spent, and :func:`twolink.workspace.largest_inscribed_circle` (wall time
@@ -47,7 +47,7 @@ DEFAULT_MAX_WALL_TIME = 30.0
 class EvaluationBudget:
     """The budget of one integration: right-hand-side evaluations and wall time.
 
-    One copy of the check that :func:`twolink.simulate.simulate` and
+    One copy of the check that :func:`twolink.simulation.simulate` and
     :func:`twolink.trajectory.resolved_rate_trajectory` make at every
     evaluation of their right-hand side.
 

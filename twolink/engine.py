@@ -11,7 +11,7 @@ the install command when it is missing.
 * :func:`joint_accelerations` -- MuJoCo's ``qdd`` (``mj_forward``) for a
   state and motor torques, to compare with
   :func:`twolink.dynamics.forward_dynamics`;
-* :func:`simulate` -- the arm moved by MuJoCo (fixed step, RK4) from
+* :func:`simulate_in_mujoco` -- the arm moved by MuJoCo (fixed step, RK4) from
   ``(q0, qd0)``, free or driven by torques ``tau(t, q, qd)`` -- the same
   callables (controllers) :func:`twolink.simulate` takes;
 * :func:`wall_push` -- the course's wall problem: the arm at the contact
@@ -51,7 +51,7 @@ from ._validate import (
 )
 from .conventions import check_elbow
 from .kinematics import jacobian
-from .simulate import SimulationError, SimulationResult
+from .simulation import SimulationError, SimulationResult
 from .statics import Wall, as_wall, wall_contact
 
 if TYPE_CHECKING:
@@ -60,7 +60,7 @@ if TYPE_CHECKING:
 __all__ = [
     "build_model",
     "joint_accelerations",
-    "simulate",
+    "simulate_in_mujoco",
     "EngineResult",
     "wall_push",
     "WallPush",
@@ -69,7 +69,7 @@ __all__ = [
     "MAX_STEPS",
 ]
 
-#: The default fixed step of :func:`simulate`, seconds: RK4 at 0.1 ms keeps
+#: The default fixed step of :func:`simulate_in_mujoco`, seconds: RK4 at 0.1 ms keeps
 #: the 2 m arm's free swing within 1e-9 rad of scipy's DOP853 at 1e-10 over 2 s.
 DEFAULT_TIMESTEP = 1e-4
 
@@ -269,7 +269,7 @@ def _check_state(data: Any, t: float, who: str) -> None:
         )
 
 
-def simulate(
+def simulate_in_mujoco(
     arm: TwoLinkArm,
     q0: ArrayLike,
     qd0: ArrayLike,
@@ -339,15 +339,15 @@ def simulate(
 
     >>> from twolink import arms, engine, simulate
     >>> arm = arms.two_metre
-    >>> held = engine.simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 0.5, torque=lambda t, q, qd: arm.gravity(q))
+    >>> held = engine.simulate_in_mujoco(arm, [np.pi / 4, 0.0], [0.0, 0.0], 0.5, torque=lambda t, q, qd: arm.gravity(q))
     >>> bool(np.allclose(held.q, [np.pi / 4, 0.0], atol=1e-9))
     True
-    >>> free = engine.simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 1.0, sample_every=100)
+    >>> free = engine.simulate_in_mujoco(arm, [np.pi / 4, 0.0], [0.0, 0.0], 1.0, sample_every=100)
     >>> reference = simulate(arm, [np.pi / 4, 0.0], [0.0, 0.0], 1.0, t_eval=free.t)
     >>> bool(np.max(np.abs(free.q - reference.q)) < 1e-9)
     True
     """
-    mujoco = _mujoco("simulate")
+    mujoco = _mujoco("simulate_in_mujoco")
     start, rate_start = _one(q0, "q0"), _one(qd0, "qd0")
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
@@ -416,7 +416,7 @@ def simulate(
         for row in range(1, n_samples):
             mujoco.mj_step(model, data, sample_every)
             t = row * sample_every * timestep
-            _check_state(data, t, "engine.simulate")
+            _check_state(data, t, "engine.simulate_in_mujoco")
             refresh(model, data)
             record(row, t, constant)
     else:
@@ -424,7 +424,7 @@ def simulate(
             data.ctrl[:] = tau_now
             mujoco.mj_step(model, data)
             t = step * timestep
-            _check_state(data, t, "engine.simulate")
+            _check_state(data, t, "engine.simulate_in_mujoco")
             tau_now = torques_now(t)
             if step % sample_every == 0:
                 # mj_step leaves the position-dependent quantities (site_xpos, contacts) at the

@@ -40,7 +40,7 @@ from .velocity import Ellipse
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
-    from .simulate import SimulationResult
+    from .simulation import SimulationResult
     from .statics import Wall
 
 __all__ = [

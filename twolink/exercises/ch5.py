@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 from .. import arms
 from ..arm import TwoLinkArm
 from ..dynamics import energy
-from ..simulate import SimulationResult, simulate
+from ..simulation import SimulationResult, simulate
 from .registry import (
     Part,
     Wrong,
