@@ -26,6 +26,7 @@ from . import (
     dynamics,
     ik,
     linearization,
+    references,
     statics,
     stiffness,
     trajectory,
@@ -38,11 +39,11 @@ from .controllers import (
     ComputedTorque,
     Impedance,
     JointPD,
-    JointReference,
 )
 from .conventions import to_absolute, to_relative, wrap_angle
 from .errors import SingularityError, UnreachableError
 from .linearization import linearize
+from .references import JointReference
 from .simulation import SimulationError, SimulationResult, simulate
 from .statics import Wall, WallContact, wall_contact
 
@@ -70,6 +71,7 @@ __all__ = [
     "workspace",
     "trajectory",
     "controllers",
+    "references",
     "contact",
     "linearization",
     "stiffness",

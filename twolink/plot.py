@@ -402,7 +402,8 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
     """
     import matplotlib
 
-    plt.close(anim._fig)  # matplotlib keeps the figure in _fig, outside its type stubs
+    # matplotlib keeps the figure in _fig, outside its type stubs
+    plt.close(getattr(anim, "_fig"))  # noqa: B009
     try:
         imageio_ffmpeg = require("imageio_ffmpeg", "twolink.plot.animation_html")
         ffmpeg = imageio_ffmpeg.get_ffmpeg_exe()

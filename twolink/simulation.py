@@ -99,9 +99,9 @@ def _timed_events(events, out_of_time):
             out_of_time(t, state)
             return event(t, state)
 
-        # solve_ivp reads these two attributes of an event function
-        checked.terminal = getattr(event, "terminal", False)
-        checked.direction = getattr(event, "direction", 0.0)
+        # solve_ivp reads these two attributes of an event function (not in its type)
+        setattr(checked, "terminal", getattr(event, "terminal", False))  # noqa: B010
+        setattr(checked, "direction", getattr(event, "direction", 0.0))  # noqa: B010
         return checked
 
     return timed(events) if callable(events) else [timed(event) for event in events]

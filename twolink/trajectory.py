@@ -54,7 +54,6 @@ from .budgets import (
     MAX_SAMPLES,
     EvaluationBudget,
 )
-from .controllers import JointReference
 from .conventions import check_elbow
 from .errors import InputTypeError, SimulationError, SingularityError, UnreachableError
 from .ik import LIMIT_TOL, solutions_within_limits
@@ -65,6 +64,7 @@ from .kinematics import (
     require_nonsingular,
     require_within_reach,
 )
+from .references import JointReference
 from .velocity import joint_rates, joint_rates_dls
 from .workspace import describe_limits, require_reachable
 
@@ -626,11 +626,11 @@ class JointTrajectory:
         differs from the path's exact joint motion by ``O(h^6)`` in the
         interval ``h``.  Outside ``[t[0], t[-1]]`` it holds the end position
         at rest (zero rate and acceleration), like
-        :meth:`twolink.controllers.JointReference.from_samples`.
+        :meth:`twolink.references.JointReference.from_samples`.
 
         Returns
         -------
-        twolink.controllers.JointReference
+        twolink.references.JointReference
             For :class:`~twolink.controllers.JointPD` or
             :class:`~twolink.controllers.ComputedTorque` (``reference=``).
 

@@ -148,11 +148,13 @@ def _motion(
         raise Wrong(
             f"expected the result of simulate(...) (with .t, .q, .qd), got a {type(answer).__name__}"
         )
-    t = np.asarray(answer.t, dtype=np.float64)
+    # read by name: the answer is any object with .t, .q, .qd (checked above)
+    t = np.asarray(getattr(answer, "t"), dtype=np.float64)  # noqa: B009
     n = t.shape[0] if t.ndim == 1 else 0
     if n < 2:
         raise Wrong("expected a simulation with at least two samples in .t")
-    return t, numbers(answer.q, (n, 2), "its .q"), numbers(answer.qd, (n, 2), "its .qd")
+    q, qd = getattr(answer, "q"), getattr(answer, "qd")  # noqa: B009
+    return t, numbers(q, (n, 2), "its .q"), numbers(qd, (n, 2), "its .qd")
 
 
 def _judged_motion(
