@@ -186,3 +186,40 @@ def test_one_public_name_one_object():
             owners.setdefault(name, {})[id(getattr(module, name))] = module.__name__
     clashes = {name: sorted(by.values()) for name, by in owners.items() if len(by) > 1}
     assert clashes == {}
+
+
+def test_only_the_cache_module_touches_the_arms_cache():
+    """A TwoLinkArm's cache of derived constants is read and written in one place,
+    ``twolink._derived``; every other module goes through its functions."""
+    import re
+
+    from twolink import _derived
+
+    name = re.escape(_derived.CACHE_ATTRIBUTE)
+    # the attribute read on an object (arm._derived) or named in a string ("_derived")
+    use = re.compile(rf"\w\.{name}\b|[\"']{name}[\"']")
+    touching = [
+        module
+        for module, path in MODULES.items()
+        if module != "twolink._derived" and use.search(path.read_text(encoding="utf-8"))
+    ]
+    assert touching == []
+
+
+def test_the_cache_is_filled_once_and_ignored_by_equality():
+    from twolink import TwoLinkArm, _derived, dynamics, ik
+
+    arm, twin = (
+        TwoLinkArm(l1=2.0, l2=1.0, m1=1.0, m2=1.0),
+        TwoLinkArm(2.0, 1.0, 1.0, 1.0),
+    )
+    ik.closed_form(arm, [2.0, 1.0])
+    dynamics.mass_matrix(arm, [0.3, 0.4])
+    cache = getattr(arm, _derived.CACHE_ATTRIBUTE)
+    assert set(cache) == {"closed_form", "dynamics"}
+    first = dict(cache)
+    ik.closed_form(arm, [1.0, 2.0])
+    dynamics.mass_matrix(arm, [0.5, 0.1])
+    assert all(cache[key] is first[key] for key in first)
+    assert arm == twin and hash(arm) == hash(twin) and repr(arm) == repr(twin)
+    assert _derived.has_cache(arm) and not _derived.has_cache(object())

@@ -13,6 +13,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import dh, dynamics, kinematics, velocity
+from ._derived import attach_cache
 from ._validate import as_finite_scalar, as_pairs, pair_floats, real_array
 
 __all__ = ["TwoLinkArm"]
@@ -170,9 +171,9 @@ class TwoLinkArm:
             object.__setattr__(self, name, value)
         object.__setattr__(self, "q_min", q_min)
         object.__setattr__(self, "q_max", q_max)
-        # derived constants, computed on first use by the modules that need them
-        # (dynamics); not a dataclass field, so equality, hashing and repr ignore it
-        object.__setattr__(self, "_derived", {})
+        # constants derived from the parameters, computed on first use by the
+        # modules that need them (read and written only by the module _derived)
+        attach_cache(self)
 
     # ------------------------------------------------------------------ parameters
     @property

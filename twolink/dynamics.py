@@ -42,6 +42,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import kinematics
+from ._derived import derived
 from ._validate import (
     NonFiniteTorque,
     as_pairs,
@@ -83,16 +84,8 @@ class _Constants(NamedTuple):
 
 
 def _constants(arm):
-    """The arm's :class:`_Constants`, computed once per :class:`twolink.TwoLinkArm` (cached on it)."""
-    derived = getattr(arm, "_derived", None)
-    if (
-        derived is None
-    ):  # not a TwoLinkArm (an object with the same attributes, or not an arm)
-        return _compute_constants(arm)
-    constants = derived.get("dynamics")
-    if constants is None:
-        constants = derived["dynamics"] = _compute_constants(arm)
-    return constants
+    """The arm's :class:`_Constants`, computed once per :class:`twolink.TwoLinkArm`."""
+    return derived(arm, "dynamics", _compute_constants)
 
 
 def _compute_constants(arm):

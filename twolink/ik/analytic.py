@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._derived import derived
 from .._validate import arm_lengths, as_pairs, pair_floats, require_arm
 from ..conventions import check_elbow
 from ..kinematics import BLOCK_ROWS, REACH_RTOL, require_within_reach
@@ -129,19 +130,11 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     target = pair_floats(p)
     if target is not None and type(elbow) is str:
         # one target on floats: the formula with math, as the vectorised path evaluates it with numpy
-        cached: Any = (
-            arm  # (TwoLinkArm sets _derived, its cache of constants, in __post_init__)
-        )
         try:
             l1, l2 = arm.l1, arm.l2
-            terms = cached._derived["closed_form"]
-        except (
-            AttributeError
-        ):  # not a TwoLinkArm (or not an arm: arm_lengths raises, naming it)
+        except AttributeError:  # not an arm: arm_lengths raises, naming it
             l1, l2 = arm_lengths(arm)
-            terms = _reach_terms(arm)
-        except KeyError:  # the first call on this arm
-            terms = _reach_terms(arm)
+        terms = derived(arm, "closed_form", _reach_terms_of)
         (
             r_min_squared,
             r_max_squared,
@@ -357,20 +350,18 @@ _Terms = tuple[float, float, float, float, float, float, dict[str, str]]
 
 
 def _reach_terms(arm: TwoLinkArm) -> _Terms:
-    """``(r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, threshold, messages)``, cached per arm.
+    """``(r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, threshold, messages)``, once per arm.
 
     ``low_outer`` and ``low_inner`` are the lowest accepted ``1 - cos q2`` and
     ``1 + cos q2``: the annulus widened by ``REACH_RTOL * r_max``;
     ``threshold`` is the success bound ``CLOSED_FORM_RTOL * r_max``, and
     ``messages[elbow]`` the message of one target solved.
     """
-    derived = getattr(arm, "_derived", None)
-    if derived is None:  # not a TwoLinkArm
-        return _compute_reach_terms(arm.l1, arm.l2)
-    terms = derived.get("closed_form")
-    if terms is None:
-        terms = derived["closed_form"] = _compute_reach_terms(arm.l1, arm.l2)
-    return terms
+    return derived(arm, "closed_form", _reach_terms_of)
+
+
+def _reach_terms_of(arm: TwoLinkArm) -> _Terms:
+    return _compute_reach_terms(arm.l1, arm.l2)
 
 
 def _compute_reach_terms(l1: float, l2: float) -> _Terms:

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._derived import has_cache
 from .._validate import (
     as_count,
     as_finite_scalar,
@@ -107,9 +108,7 @@ def newton(
     target = pair_floats(p)
     q0_pair = pair_floats(q0) if target is not None else None
     if target is not None and q0_pair is not None:
-        if (
-            getattr(arm, "_derived", None) is None
-        ):  # every TwoLinkArm has it (and is an arm)
+        if not has_cache(arm):  # a TwoLinkArm is an arm; check anything else
             require_arm(arm)
         distance = math.hypot(target[0], target[1])
         r_min, r_max = abs(arm.l1 - arm.l2), arm.l1 + arm.l2
