@@ -81,6 +81,8 @@ PIXELS_PER_STEP = 2
 TRACK_MIN_PX, TRACK_MAX_PX = 280, 640
 #: Width of every control's label, so that the tracks line up.
 LABEL_WIDTH = "9em"
+#: The CSS class of an explorer's box in the page.
+CSS_CLASS = "twolink-explorer"
 #: Most steps on one slider (a finer slider cannot be aimed at one value).
 MAX_STEPS = 2000
 
@@ -404,11 +406,13 @@ class Explorer:
         self.updates = 0
         self._holding = False
         self.refresh()
+        figure.tight_layout()  # once, for the first state: labels inside the canvas
         for control in self.controls.values():
             control.observe(self._changed, names="value")
         self.widget = widgets.VBox(
             [*self.controls.values(), *extra, figure.canvas, self._text]
         )
+        self.widget.add_class(CSS_CLASS)  # how a page (and the browser tests) finds it
 
     @property
     def values(self) -> dict[str, Any]:
