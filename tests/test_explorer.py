@@ -237,3 +237,60 @@ def test_the_site_template_gives_a_described_png_its_alternative_text(tmp_path):
     )
     page, _ = exporter.from_notebook_node(notebook)
     assert f'alt="{view.description}"' in page
+
+
+NOTEBOOKS = sorted(
+    (__import__("pathlib").Path(__file__).resolve().parents[1] / "notebooks").glob(
+        "*.ipynb"
+    )
+)
+
+
+def _globals_read_by_functions(table):
+    """Global names read inside the functions (at any depth) of a symbol table."""
+    names = set()
+    for child in table.get_children():
+        if child.get_type() == "function":
+            names |= {
+                symbol.get_name()
+                for symbol in child.get_symbols()
+                if symbol.is_global() and symbol.is_referenced()
+            }
+        names |= _globals_read_by_functions(child)
+    return names
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
+def test_no_later_cell_rebinds_a_name_an_explorer_moves(path):
+    """An explorer's update runs long after its cell, when every cell has run: a
+    global it reads (``ax``, ``line``) that a later cell rebinds would make the
+    sliders move another figure.  Build explorers inside a function instead."""
+    import symtable
+
+    import nbformat
+    from IPython.core.inputtransformer2 import TransformerManager
+
+    to_python = TransformerManager().transform_cell
+    cells = [
+        to_python(cell.source)
+        for cell in nbformat.read(path, as_version=4).cells
+        if cell.cell_type == "code"
+    ]
+    problems = []
+    for index, source in enumerate(cells):
+        if "explorer.Explorer(" not in source:
+            continue
+        read = _globals_read_by_functions(symtable.symtable(source, "cell", "exec"))
+        for later_index in range(index + 1, len(cells)):
+            table = symtable.symtable(cells[later_index], "cell", "exec")
+            rebound = {
+                symbol.get_name()
+                for symbol in table.get_symbols()
+                if symbol.is_assigned() or symbol.is_imported()
+            }
+            for name in sorted(read & rebound):
+                problems.append(
+                    f"code cell {index} builds an explorer whose functions read {name!r}, "
+                    f"which code cell {later_index} rebinds"
+                )
+    assert problems == []

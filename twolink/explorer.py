@@ -67,7 +67,10 @@ from decimal import Decimal
 from typing import Any
 
 import matplotlib
+from matplotlib.artist import Artist
+from matplotlib.axis import Axis
 from matplotlib.figure import Figure
+from matplotlib.spines import Spine
 
 from ._optional import require
 from ._validate import InputTypeError, as_finite_scalar
@@ -405,8 +408,21 @@ class Explorer:
         self._text = widgets.HTML(layout=widgets.Layout(max_width="640px"))
         self.updates = 0
         self._holding = False
+        self._background: Any = None
+        self._saving = False
+        self._limits: list[tuple[float, ...]] = []
+        self._animated: list[Artist] = []
+        figure.canvas.mpl_connect("draw_event", self._on_draw)
         self.refresh()
         figure.tight_layout()  # once, for the first state: labels inside the canvas
+        # what ipympl's own display would set: the first picture and the size, in
+        # pixels, that the browser's canvas starts from
+        canvas: Any = figure.canvas
+        width, height = figure.get_size_inches() * figure.dpi
+        canvas._size = (width, height)
+        canvas._data_url = "data:image/png;base64," + base64.b64encode(
+            self.png()
+        ).decode("ascii")
         for control in self.controls.values():
             control.observe(self._changed, names="value")
         self.widget = widgets.VBox(
@@ -437,23 +453,90 @@ class Explorer:
             self.refresh()
 
     def refresh(self) -> None:
-        """Move the artists for the current values and ask the canvas to render."""
+        """Move the artists for the current values and show them.
+
+        What the update changed is found by matplotlib's ``stale`` flags: when
+        only artists inside the axes moved (lines, texts, patches), they are
+        drawn over the saved background and only they are sent (blitting);
+        anything else (limits, a new axes, the first draw) redraws the figure.
+        """
         values = self.values
         self._update(**values)
         self.updates += 1
         if self._describe is not None:
             self.description = str(self._describe(**values))
             self._text.value = f"<p>{html.escape(self.description)}</p>"
-        self.figure.canvas.draw_idle()
+        self._show_changes()
+
+    def _moved_artists(self) -> list[Artist] | None:
+        """The axes' children the update changed, or None when the figure must be redrawn."""
+        if self._background is None or self._limits != self._axes_limits():
+            return None
+        moved: list[Artist] = []
+        for ax in self.figure.axes:
+            if not ax.stale:
+                continue
+            for child in ax.get_children():
+                if child.stale:
+                    if isinstance(child, (Axis, Spine)) or child is ax.patch:
+                        return None
+                    moved.append(child)
+        if self.figure.stale and not moved:
+            return None  # a change outside the axes
+        return moved
+
+    def _axes_limits(self) -> list[tuple[float, ...]]:
+        return [(*ax.get_xlim(), *ax.get_ylim()) for ax in self.figure.axes]
+
+    def _show_changes(self) -> None:
+        canvas: Any = self.figure.canvas
+        moved = self._moved_artists()
+        if moved is None or any(artist not in self._animated for artist in moved):
+            for artist in moved or ():
+                artist.set_animated(True)
+                self._animated.append(artist)
+            self._background = None
+            canvas.draw()  # a full draw now; _on_draw saves the new background
+            return
+        canvas.restore_region(self._background)
+        for artist in self._animated:
+            if artist.figure is self.figure:  # not removed by the update
+                self.figure.draw_artist(artist)
+        for artist in moved:
+            artist.stale = False
+        self.figure.stale = False
+        canvas.blit(self.figure.bbox)
+
+    def _on_draw(self, event: Any) -> None:
+        """After a full draw: save the background, then draw the moving artists on it."""
+        canvas: Any = self.figure.canvas
+        if (
+            self._saving
+            or getattr(event, "renderer", None) is not canvas.get_renderer()
+        ):
+            return  # a savefig or a layout pass, not the canvas's own picture
+        self._background = canvas.copy_from_bbox(self.figure.bbox)
+        self._limits = self._axes_limits()
+        self._animated = [a for a in self._animated if a.figure is self.figure]
+        for artist in self._animated:
+            self.figure.draw_artist(artist)
 
     def _changed(self, change: Any) -> None:
         if not self._holding:
             self.refresh()
 
     def png(self) -> bytes:
-        """The figure as it stands, as PNG bytes."""
+        """The figure as it stands, moving artists included, as PNG bytes."""
         buffer = io.BytesIO()
-        self.figure.savefig(buffer, format="png", dpi=self.figure.dpi)
+        self._saving = True
+        for artist in self._animated:
+            artist.set_animated(False)
+        try:
+            self.figure.savefig(buffer, format="png", dpi=self.figure.dpi)
+        finally:
+            for artist in self._animated:
+                artist.set_animated(True)
+            self._saving = False
         return buffer.getvalue()
 
     def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[str, Any], dict[str, Any]]:
