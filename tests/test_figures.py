@@ -6,7 +6,9 @@ every figure is inspected when the chapter calls ``plt.show()`` or hands an
 animation to ``plot.animation_html`` (no video is encoded): both axes show a
 quantity with a unit in brackets, and a figure that draws velocity ellipses or
 velocity arrows on position axes says in its own text how many metres of
-figure one m/s is.  Cells marked ``# NBVAL_IGNORE_OUTPUT`` (sliders and
+figure one m/s is.  An explorer (``twolink.explorer.Explorer``) is checked as
+it is built, after every control was moved to its ends (and every option
+chosen) without an error.  Cells marked ``# NBVAL_IGNORE_OUTPUT`` (sliders and
 timings: they redraw what a checked cell already drew, or only measure) are
 skipped.
 """
@@ -23,6 +25,7 @@ import pytest  # noqa: E402
 from IPython.core.inputtransformer2 import TransformerManager  # noqa: E402
 from matplotlib.quiver import Quiver  # noqa: E402
 
+import twolink.explorer  # noqa: E402
 import twolink.plot  # noqa: E402
 from twolink import arms, velocity  # noqa: E402
 
@@ -83,6 +86,19 @@ def problems_in(figure, ellipse_axes):
     return found
 
 
+def _extreme_values(control):
+    """The values a hand can reach at the ends of a control (and every option of a choice)."""
+    if hasattr(control, "options"):
+        return list(control.options)
+    if isinstance(control.value, tuple):  # a range slider
+        return [
+            (control.min, control.min),
+            (control.max, control.max),
+            (control.min, control.max),
+        ]
+    return [control.min, control.max]
+
+
 def run_chapter(name, monkeypatch):
     """Run the chapter's checked code cells; return (problems, number of figures checked)."""
     problems, ellipse_axes, checked = [], set(), []
@@ -107,8 +123,32 @@ def run_chapter(name, monkeypatch):
         check_open_figures()  # the animation's figure is still open here
         return None
 
+    explorer_init = twolink.explorer.Explorer.__init__
+
+    def checking_explorer(self, *args, **kwargs):
+        """Build the explorer, then move every control to its ends and back:
+        the figure must follow without an error and stay labelled."""
+        explorer_init(self, *args, **kwargs)
+        start = self.values
+        for name, control in self.controls.items():
+            for value in _extreme_values(control):
+                try:
+                    self.set(**{name: value})
+                except Exception as error:  # noqa: BLE001 - reported with the value
+                    problems.append(
+                        f"code cell {where['cell']}: explorer control {name} = {value!r}: "
+                        f"{type(error).__name__}: {error}"
+                    )
+            self.set(**start)
+        checked.append(self.figure)
+        problems.extend(
+            f"code cell {where['cell']}: explorer: {problem}"
+            for problem in problems_in(self.figure, ellipse_axes)
+        )
+
     monkeypatch.setattr(twolink.plot, "draw_ellipse", recording_draw_ellipse)
     monkeypatch.setattr(twolink.plot, "animation_html", checking_animation_html)
+    monkeypatch.setattr(twolink.explorer.Explorer, "__init__", checking_explorer)
     monkeypatch.setattr(plt, "show", check_open_figures)
     monkeypatch.chdir(NOTEBOOK_DIR)
     to_python = TransformerManager().transform_cell

@@ -45,8 +45,11 @@ def install_cell_source(default_requirement: str | None = None) -> str:
         import twolink  # noqa: F401
     except ImportError:
         import os
+    <BLANKLINE>
         source = os.environ.get("TWOLINK_SOURCE", "twolink[course]")
-        print(f"twolink is not installed here: installing {source} (set TWOLINK_SOURCE to install from elsewhere)")
+        print(
+            f"twolink is not installed here: installing {source} (set TWOLINK_SOURCE to install from elsewhere)"
+        )
         %pip install --quiet "{source}"
         import twolink  # noqa: F401
     """
@@ -59,10 +62,13 @@ def install_cell_source(default_requirement: str | None = None) -> str:
             "    import twolink  # noqa: F401",
             "except ImportError:",
             "    import os",
+            "",
             f"    source = os.environ.get({SOURCE_VARIABLE!r}, {default_requirement!r})".replace(
                 "'", '"'
             ),
-            f'    print(f"twolink is not installed here: installing {{source}} (set {SOURCE_VARIABLE} to install from elsewhere)")',
+            "    print(",
+            f'        f"twolink is not installed here: installing {{source}} (set {SOURCE_VARIABLE} to install from elsewhere)"',
+            "    )",
             '    %pip install --quiet "{source}"',
             "    import twolink  # noqa: F401",
         ]

@@ -24,6 +24,7 @@ _DISTRIBUTIONS = {
     "control": "control",
     "imageio_ffmpeg": "imageio-ffmpeg",
     "ipywidgets": "ipywidgets",
+    "ipympl": "ipympl",
     "IPython": "ipython",
     "mujoco": "mujoco",
 }
@@ -62,7 +63,8 @@ def require(module: str, function: str) -> ModuleType:
     try:
         return importlib.import_module(module)
     except ImportError as error:
-        distribution = _DISTRIBUTIONS.get(module, module)
+        top = module.partition(".")[0]
+        distribution = _DISTRIBUTIONS.get(top, top)
         raise ImportError(
             f"{function} needs {distribution}, which is not installed: {COURSE_INSTALL} "
             f"installs it with the other course-only dependencies",

@@ -47,6 +47,7 @@ __all__ = [
     "setup_axes",
     "draw_reach",
     "draw_arm",
+    "move_arm",
     "draw_strobe",
     "animate_arm",
     "animation_html",
@@ -242,6 +243,30 @@ def draw_arm(
         solid_capstyle="round",
     )
     ax.plot([0.0], [0.0], marker="s", color="k", markersize=8)
+    return line
+
+
+def move_arm(line: Line2D, arm: TwoLinkArm, q: ArrayLike) -> Line2D:
+    """Move an arm drawn by :func:`draw_arm` to the configuration ``q`` (radians).
+
+    What an explorer calls on a slider change: the line's data change, nothing
+    is drawn anew.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> ax = setup_axes(arms.two_metre)
+    >>> line = draw_arm(arms.two_metre, [0.0, 0.0], ax=ax)
+    >>> np.round(move_arm(line, arms.two_metre, [np.pi / 2, 0.0]).get_xydata(), 12)
+    array([[0., 0.],
+           [0., 2.],
+           [0., 4.]])
+    >>> plt.close(ax.figure)
+    """
+    if not isinstance(line, Line2D):
+        raise InputTypeError(f"line must be the Line2D draw_arm returned; got {line!r}")
+    points = arm.joint_positions(as_configuration(q))
+    line.set_data(points[:, 0], points[:, 1])
     return line
 
 

@@ -1,0 +1,239 @@
+"""twolink.explorer: controls labelled with units on round grids, a figure drawn
+once and moved in place, and what an explorer stores for static pages."""
+
+import base64
+
+import matplotlib
+import matplotlib.pyplot as plt
+import numpy as np
+import pytest
+
+from twolink import arms, explorer, plot
+from twolink.errors import InputTypeError
+
+ARM = arms.two_metre
+
+
+def _arm_explorer(**kwargs):
+    figure, ax = explorer.explorer_figure(3.0, 3.0)
+    plot.setup_axes(ARM, ax=ax)
+    line = plot.draw_arm(ARM, [0.0, 0.0], ax=ax)
+    calls = []
+
+    def update(q1, q2):
+        calls.append((q1, q2))
+        plot.move_arm(line, ARM, np.radians([q1, q2]))
+
+    def describe(q1, q2):
+        x, y = ARM.fk(np.radians([q1, q2]))
+        return f"The arm at q = ({q1}°, {q2}°), tip at ({x:.2f}, {y:.2f}) m."
+
+    controls = {
+        "q1": explorer.slider("q1", "deg", 30, -180, 180, 5),
+        "q2": explorer.slider("q2", "deg", 45, -180, 180, 5),
+    }
+    view = explorer.Explorer(figure, update, controls, describe=describe, **kwargs)
+    return view, line, calls
+
+
+def test_the_figure_is_drawn_once_and_moved_in_place():
+    view, line, calls = _arm_explorer()
+    artists_before = list(view.figure.axes[0].get_children())
+    view.set(q1=90, q2=0)
+    view.controls["q2"].value = 90
+    assert calls == [(30, 45), (90, 0), (90, 90)]
+    assert view.updates == 3
+    assert list(view.figure.axes[0].get_children()) == artists_before
+    np.testing.assert_allclose(line.get_xydata()[-1], [-2.0, 2.0], atol=1e-12)
+    assert view.description == "The arm at q = (90°, 90°), tip at (-2.00, 2.00) m."
+
+
+def test_a_change_to_the_same_value_does_not_update():
+    view, _, calls = _arm_explorer()
+    view.set(q1=30)
+    assert calls == [(30, 45)]
+
+
+def test_the_explorers_figure_stays_out_of_pyplot_and_keeps_its_backend():
+    backend = matplotlib.get_backend()
+    before = plt.get_fignums()
+    view, _, _ = _arm_explorer()
+    assert plt.get_fignums() == before
+    assert matplotlib.get_backend() == backend
+    assert type(view.figure.canvas).__module__ == "ipympl.backend_nbagg"
+    canvas = view.figure.canvas
+    assert not (canvas.toolbar_visible or canvas.header_visible or canvas.resizable)
+
+
+def test_display_stores_widgets_a_png_of_the_first_state_and_its_description():
+    view, _, _ = _arm_explorer()
+    data, metadata = view._repr_mimebundle_()
+    assert "application/vnd.jupyter.widget-view+json" in data
+    png = base64.b64decode(data["image/png"])
+    assert png.startswith(b"\x89PNG") and png == view.png()
+    assert data["text/plain"] == view.description
+    assert metadata["image/png"]["alt"] == view.description
+    assert metadata["image/png"]["width"] == 240  # 3 in at 80 dpi
+
+
+def test_the_layout_holds_controls_extra_canvas_and_description():
+    import ipywidgets as widgets
+
+    button = widgets.Button(description="exact run")
+    view, _, _ = _arm_explorer(extra=[button])
+    children = view.widget.children
+    assert children[:2] == tuple(view.controls.values())
+    assert children[2] is button and children[3] is view.figure.canvas
+    assert view.description in children[4].value
+
+
+def test_set_refuses_unknown_controls():
+    view, _, _ = _arm_explorer()
+    with pytest.raises(
+        ValueError, match=r"no control named \['q3'\]; the controls are"
+    ):
+        view.set(q3=1)
+
+
+@pytest.mark.parametrize(
+    ("figure", "update", "controls", "message"),
+    [
+        (
+            "not a figure",
+            lambda: None,
+            {"a": None},
+            "figure must be a matplotlib Figure",
+        ),
+        (None, 3, {}, "update and describe must be callables"),
+        (None, lambda: None, {}, "controls must be a non-empty mapping"),
+        (None, lambda: None, {"not an id": None}, "must be named by an identifier"),
+    ],
+)
+def test_explorer_refuses_what_it_cannot_use(figure, update, controls, message):
+    if figure is None:
+        figure, _ = explorer.explorer_figure(2.0, 2.0)
+    if controls and "a" not in controls:
+        controls = {"not an id": explorer.slider("x", "m", 0, 0, 1, 1)}
+    with pytest.raises(InputTypeError, match=message):
+        explorer.Explorer(figure, update, controls)
+
+
+def test_an_inline_figure_is_refused_with_the_way_to_make_one():
+    figure = plt.figure()
+    with pytest.raises(InputTypeError, match="explorer_figure"):
+        explorer.Explorer(
+            figure, lambda: None, {"x": explorer.slider("x", "m", 0, 0, 1, 1)}
+        )
+    plt.close(figure)
+
+
+def test_slider_labels_steps_and_readouts():
+    angle = explorer.slider("q1", "deg", 30, -180, 180, 5)
+    assert (angle.description, angle.min, angle.max, angle.step) == (
+        "q1 [deg]",
+        -180,
+        180,
+        5,
+    )
+    stiffness = explorer.slider("stiffness k", "N/m", 600.0, 50.0, 3000.0, 50.0)
+    assert stiffness.readout_format == ".0f"
+    position = explorer.slider("position", "", 0.25, 0.0, 1.0, 0.005)
+    assert position.description == "position" and position.readout_format == ".3f"
+    assert not explorer.slider(
+        "m1", "kg", 1.0, 0.1, 5.0, 0.1, continuous=False
+    ).continuous_update
+
+
+def test_the_track_grows_with_the_number_of_steps_within_limits():
+    def track(slider):
+        return int(slider.layout.width.split("+ ")[1].rstrip("px)")) - 90
+
+    few = explorer.slider("a", "m", 0, 0, 10, 1)
+    many = explorer.slider("b", "m", 0, 0, 250, 1)
+    most = explorer.slider("c", "m", 0, 0, 2000, 1)
+    assert track(few) == explorer.TRACK_MIN_PX
+    assert track(many) == 250 * explorer.PIXELS_PER_STEP
+    assert track(most) == explorer.TRACK_MAX_PX
+
+
+@pytest.mark.parametrize(
+    ("arguments", "message"),
+    [
+        (
+            ("x", "m", 0.25, 0.0, 1.0, 0.1),
+            r"start value 0.25 is not on the grid 0 \+ k 0.1",
+        ),
+        (("x", "m", 2.0, 0.0, 1.0, 0.5), "not on the grid 0 \\+ k 0.5 within 0..1"),
+        (("x", "m", 0.0, 0.0, 1.0, 0.3), "not a whole number of steps of 0.3"),
+        (("x", "m", 0.0, 1.0, 1.0, 0.1), "minimum must be below the maximum"),
+        (("x", "m", 0.0, 0.0, 1.0, 0.0), "step of x \\[m\\]"),
+        (("x", "m", 0.0, 0.0, 1.0, 1e-4), "more than MAX_STEPS"),
+        (("x", "m", float("nan"), 0.0, 1.0, 0.1), "value of x \\[m\\]"),
+    ],
+)
+def test_slider_refuses_grids_that_do_not_land_on_round_values(arguments, message):
+    with pytest.raises(ValueError, match=message):
+        explorer.slider(*arguments)
+
+
+@pytest.mark.parametrize("label", ["", "   ", None, 3])
+def test_a_control_needs_a_label_in_words(label):
+    with pytest.raises(InputTypeError, match="label in words"):
+        explorer.slider(label, "m", 0, 0, 1, 1)
+
+
+def test_range_slider_and_choice():
+    limits = explorer.range_slider("q1 limits", "deg", (0, 90), -180, 180, 5)
+    assert (limits.description, limits.value) == ("q1 limits [deg]", (0, 90))
+    with pytest.raises(ValueError, match="must be ordered"):
+        explorer.range_slider("q1 limits", "deg", (90, 0), -180, 180, 5)
+    with pytest.raises(InputTypeError, match="takes ints"):
+        explorer.range_slider("q1 limits", "deg", (0.5, 90), -180, 180, 5)
+    elbow = explorer.choice("elbow", ["down", "up"], "up")
+    assert (elbow.description, elbow.value) == ("elbow", "up")
+    with pytest.raises(ValueError, match=r"must be one of \['down', 'up'\]"):
+        explorer.choice("elbow", ["down", "up"], "left")
+    with pytest.raises(InputTypeError, match="options must be words"):
+        explorer.choice("elbow", [1, 2], 1)
+
+
+def test_explorer_figure_sizes_and_columns():
+    figure, axes = explorer.explorer_figure(8.0, 3.0, ncols=2)
+    assert len(axes) == 2 and tuple(figure.get_size_inches()) == (8.0, 3.0)
+    with pytest.raises(ValueError, match="ncols must be a positive int"):
+        explorer.explorer_figure(3.0, 3.0, ncols=0)
+    with pytest.raises(ValueError, match="width"):
+        explorer.explorer_figure(-1.0, 3.0)
+
+
+def test_move_arm_refuses_what_draw_arm_did_not_return():
+    with pytest.raises(InputTypeError, match="Line2D draw_arm returned"):
+        plot.move_arm("line", ARM, [0.0, 0.0])
+
+
+def test_set_with_several_values_updates_once():
+    view, _, calls = _arm_explorer()
+    view.set(q1=90, q2=0)
+    assert calls == [(30, 45), (90, 0)]
+
+
+def test_the_site_template_gives_a_described_png_its_alternative_text(tmp_path):
+    import nbformat
+    from nbconvert import HTMLExporter
+
+    view, _, _ = _arm_explorer()
+    data, metadata = view._repr_mimebundle_()
+    data.pop("application/vnd.jupyter.widget-view+json")  # stored without widget state
+    notebook = nbformat.v4.new_notebook()
+    cell = nbformat.v4.new_code_cell("view")
+    cell.outputs = [
+        nbformat.v4.new_output("display_data", data=data, metadata=metadata)
+    ]
+    notebook.cells = [cell]
+    root = __import__("pathlib").Path(__file__).resolve().parents[1]
+    exporter = HTMLExporter(
+        extra_template_basedirs=[str(root / "tools" / "site_template")],
+        template_name="course",
+    )
+    page, _ = exporter.from_notebook_node(notebook)
+    assert f'alt="{view.description}"' in page

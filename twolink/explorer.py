@@ -1,0 +1,476 @@
+"""Explorers: sliders that move a figure drawn once, at the speed of the hand.
+
+An explorer is a figure whose artists are made once, the controls (sliders,
+choices) that change it, and an ``update(**values)`` function that moves those
+artists (``set_data``, ``set_text``, ...) for new values.  The figure lives in
+an ipympl canvas (Matplotlib's interactive Jupyter backend), which sends the
+browser only the pixels that changed, so a move costs the update and one
+render, not a new figure and a new PNG.
+
+- :func:`explorer_figure` makes the figure, on an ipympl canvas;
+- :func:`slider`, :func:`range_slider` and :func:`choice` make controls
+  labelled in words with units, with steps that land on round values and a
+  track wide enough for their number of steps;
+- :class:`Explorer` wires them: it calls ``update`` once, then on every
+  change, and shows a sentence describing what the figure shows (the text
+  alternative) under the figure.
+
+While a slider is dragged the browser's widget manager sends the kernel only
+the latest value once the previous one is handled, and the canvas renders
+when the browser asks for a frame, so the latest value wins and nothing is
+still drawing after the hand stops, as long as ``update`` is quick: keep heavy
+work (samples, meshes, reference curves) out of it, computed once beforehand.
+
+Displayed in a notebook an explorer stores, besides the live widgets, a PNG of
+its first state and its description, which static renderers (nbconvert,
+GitHub) show instead of the widgets.
+
+Examples
+--------
+>>> import numpy as np
+>>> from twolink import arms, explorer, plot
+>>> arm = arms.two_metre
+>>> figure, ax = explorer_figure(4.0, 4.0)
+>>> _ = plot.setup_axes(arm, ax=ax)
+>>> line = plot.draw_arm(arm, [0.0, 0.0], ax=ax)
+>>> def update(q1, q2):
+...     plot.move_arm(line, arm, np.radians([q1, q2]))
+>>> def describe(q1, q2):
+...     x, y = arm.fk(np.radians([q1, q2]))
+...     return f"The arm at q = ({q1:g}°, {q2:g}°), tip at ({x:.2f}, {y:.2f}) m."
+>>> view = Explorer(
+...     figure,
+...     update,
+...     {"q1": slider("q1", "deg", 30, -180, 180, 1), "q2": slider("q2", "deg", 45, -180, 180, 1)},
+...     describe=describe,
+... )
+>>> view.description
+'The arm at q = (30°, 45°), tip at (2.25, 2.93) m.'
+>>> view.set(q2=0)
+>>> view.description
+'The arm at q = (30°, 0°), tip at (3.46, 2.00) m.'
+>>> np.round(line.get_xydata()[-1], 2)
+array([3.46, 2.  ])
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import io
+import itertools
+import math
+import sys
+import warnings
+from collections.abc import Callable, Mapping, Sequence
+from decimal import Decimal
+from typing import Any
+
+import matplotlib
+from matplotlib.figure import Figure
+
+from ._optional import require
+from ._validate import InputTypeError, as_finite_scalar
+
+__all__ = ["Explorer", "explorer_figure", "slider", "range_slider", "choice"]
+
+#: Pixels of slider track per step, at least: finer and a key press or a
+#: drag of one pixel would skip values.
+PIXELS_PER_STEP = 2
+#: Track width limits, pixels: wide enough to aim, narrow enough for a laptop.
+TRACK_MIN_PX, TRACK_MAX_PX = 280, 640
+#: Width of every control's label, so that the tracks line up.
+LABEL_WIDTH = "9em"
+#: The CSS class of an explorer's box in the page.
+CSS_CLASS = "twolink-explorer"
+#: Most steps on one slider (a finer slider cannot be aimed at one value).
+MAX_STEPS = 2000
+
+_figure_numbers = itertools.count(1)
+
+
+def _ipympl_backend() -> Any:
+    """ipympl's backend module, leaving pyplot's backend as it was.
+
+    ``import ipympl`` switches pyplot to itself when matplotlib is loaded; the
+    notebook's other figures must stay on their own backend (inline), so the
+    backend in use before is put back.
+    """
+    if "ipympl.backend_nbagg" in sys.modules:
+        return sys.modules["ipympl.backend_nbagg"]
+    saved = dict.__getitem__(matplotlib.rcParams, "backend")
+    module = require("ipympl.backend_nbagg", "twolink.explorer")
+    if dict.__getitem__(matplotlib.rcParams, "backend") != saved:
+        if "matplotlib.pyplot" in sys.modules:  # (saved may be "auto": a sentinel)
+            sys.modules["matplotlib.pyplot"].switch_backend(saved)
+        else:
+            dict.__setitem__(matplotlib.rcParams, "backend", saved)
+    return module
+
+
+def _widgets() -> Any:
+    return require("ipywidgets", "twolink.explorer")
+
+
+def explorer_figure(
+    width: float, height: float, *, ncols: int = 1, dpi: float = 80.0, **subplot_kw: Any
+) -> tuple[Figure, Any]:
+    """A figure of ``width`` x ``height`` inches on an ipympl canvas, and its axes.
+
+    The figure is not registered with pyplot, so the notebook's other figures
+    keep their backend (inline) and this one is shown only inside its
+    :class:`Explorer`.  The canvas has no toolbar, header or footer and does
+    not resize.
+
+    Parameters
+    ----------
+    width, height : float
+        Size in inches (at ``dpi`` pixels per inch).
+    ncols : int
+        Number of axes side by side (``axes`` is then an array of them).
+    dpi : float
+        Pixels per inch of the figure (ipympl doubles the pixels on a
+        high-resolution screen by itself).
+    **subplot_kw
+        Passed to :meth:`matplotlib.figure.Figure.subplots` (e.g. ``gridspec_kw``).
+
+    Returns
+    -------
+    (matplotlib.figure.Figure, axes)
+    """
+    width = as_finite_scalar(width, "width (inches)", minimum=0.0, strictly=True)
+    height = as_finite_scalar(height, "height (inches)", minimum=0.0, strictly=True)
+    if type(ncols) is not int or ncols < 1:
+        raise ValueError(f"ncols must be a positive int; got {ncols!r}")
+    backend = _ipympl_backend()
+    figure = Figure(figsize=(width, height), dpi=dpi)
+    with warnings.catch_warnings():
+        # ipympl 0.10's toolbar passes traitlets an argument it deprecates
+        warnings.filterwarnings(
+            "ignore", "Passing unrecognized arguments", DeprecationWarning
+        )
+        canvas = backend.Canvas(figure)
+        backend.FigureManager(canvas, next(_figure_numbers))
+    canvas.header_visible = False
+    canvas.footer_visible = False
+    canvas.toolbar_visible = False
+    canvas.resizable = False
+    canvas.capture_scroll = False
+    axes = figure.subplots(1, ncols, **subplot_kw)
+    return figure, axes
+
+
+def _decimals(step: float) -> int:
+    exponent = Decimal(repr(step)).normalize().as_tuple().exponent
+    return max(0, -int(exponent)) if isinstance(exponent, int) else 0
+
+
+def _on_grid(value: float, minimum: float, step: float) -> bool:
+    steps = (value - minimum) / step
+    return abs(steps - round(steps)) <= 1e-9 * max(1.0, abs(steps))
+
+
+def _grid(
+    label: str, unit: str, minimum: float, maximum: float, step: float
+) -> tuple[float, float, float, int]:
+    name = f"{label} [{unit}]" if unit else label
+    minimum = as_finite_scalar(minimum, f"the minimum of {name}")
+    maximum = as_finite_scalar(maximum, f"the maximum of {name}")
+    step = as_finite_scalar(step, f"the step of {name}", minimum=0.0, strictly=True)
+    if not minimum < maximum:
+        raise ValueError(
+            f"{name}: the minimum must be below the maximum; got {minimum:g} and {maximum:g}"
+        )
+    if not _on_grid(maximum, minimum, step):
+        raise ValueError(
+            f"{name}: the range {minimum:g}..{maximum:g} is not a whole number of steps of {step:g}"
+        )
+    steps = round((maximum - minimum) / step)
+    if steps > MAX_STEPS:
+        raise ValueError(
+            f"{name}: {steps} steps of {step:g} is more than MAX_STEPS = {MAX_STEPS}; use a larger step"
+        )
+    return minimum, maximum, step, steps
+
+
+def _layout(steps: int) -> Any:
+    track = min(max(TRACK_MIN_PX, PIXELS_PER_STEP * steps), TRACK_MAX_PX)
+    return _widgets().Layout(width=f"calc({LABEL_WIDTH} + {track + 90}px)")
+
+
+def _label(label: str, unit: str) -> str:
+    if not isinstance(label, str) or not label.strip():
+        raise InputTypeError(f"a control needs a label in words; got {label!r}")
+    if not isinstance(unit, str):
+        raise InputTypeError(f"unit must be a string ('' for none); got {unit!r}")
+    return f"{label} [{unit}]" if unit else label
+
+
+def slider(
+    label: str,
+    unit: str,
+    value: float,
+    minimum: float,
+    maximum: float,
+    step: float,
+    *,
+    continuous: bool = True,
+) -> Any:
+    """A slider labelled ``"label [unit]"`` whose steps land on round values.
+
+    An ``IntSlider`` when value, ends and step are all ints, else a
+    ``FloatSlider`` whose readout shows as many decimals as the step has.
+
+    Parameters
+    ----------
+    label : str
+        What the slider sets, in words or a symbol (``"q1"``, ``"stiffness k"``).
+    unit : str
+        Its unit (``"deg"``, ``"N/m"``; ``""`` for a pure number).
+    value, minimum, maximum, step : float
+        The start value and the grid; ``value`` and ``maximum`` must lie on the
+        grid ``minimum + k step``.
+    continuous : bool
+        Send values while dragging (the default); ``False`` only on release.
+
+    Examples
+    --------
+    >>> angle = slider("q1", "deg", 30, -180, 180, 5)
+    >>> angle.description, angle.value, type(angle).__name__
+    ('q1 [deg]', 30, 'IntSlider')
+    >>> slider("stiffness k", "N/m", 600.0, 50.0, 3000.0, 50.0).readout_format
+    '.0f'
+    >>> slider("x", "m", 0.25, 0.0, 1.0, 0.1)
+    Traceback (most recent call last):
+    ...
+    ValueError: x [m]: the start value 0.25 is not on the grid 0 + k 0.1
+    """
+    widgets = _widgets()
+    description = _label(label, unit)
+    low, high, size, steps = _grid(label, unit, minimum, maximum, step)
+    start = as_finite_scalar(value, f"the value of {description}")
+    if not (low <= start <= high and _on_grid(start, low, size)):
+        raise ValueError(
+            f"{description}: the start value {start:g} is not on the grid {low:g} + k {size:g}"
+            + ("" if low <= start <= high else f" within {low:g}..{high:g}")
+        )
+    common = dict(
+        description=description,
+        continuous_update=bool(continuous),
+        style={"description_width": LABEL_WIDTH},
+        layout=_layout(steps),
+    )
+    if all(type(number) is int for number in (value, minimum, maximum, step)):
+        return widgets.IntSlider(
+            value=value, min=minimum, max=maximum, step=step, **common
+        )
+    return widgets.FloatSlider(
+        value=start,
+        min=low,
+        max=high,
+        step=size,
+        readout_format=f".{_decimals(size)}f",
+        **common,
+    )
+
+
+def range_slider(
+    label: str,
+    unit: str,
+    value: tuple[int, int],
+    minimum: int,
+    maximum: int,
+    step: int,
+    *,
+    continuous: bool = True,
+) -> Any:
+    """An integer range slider (two handles) labelled ``"label [unit]"``.
+
+    Examples
+    --------
+    >>> limits = range_slider("q1 limits", "deg", (0, 90), -180, 180, 5)
+    >>> limits.description, limits.value
+    ('q1 limits [deg]', (0, 90))
+    """
+    widgets = _widgets()
+    description = _label(label, unit)
+    if not all(type(number) is int for number in (minimum, maximum, step, *value)):
+        raise InputTypeError(f"{description}: a range slider takes ints")
+    low, high, size, steps = _grid(label, unit, minimum, maximum, step)
+    first, last = value
+    if not (
+        low <= first <= last <= high
+        and _on_grid(first, low, size)
+        and _on_grid(last, low, size)
+    ):
+        raise ValueError(
+            f"{description}: the start range {value} must be ordered, within "
+            f"{minimum}..{maximum} and on its grid of {step}"
+        )
+    return widgets.IntRangeSlider(
+        value=(first, last),
+        min=minimum,
+        max=maximum,
+        step=step,
+        description=description,
+        continuous_update=bool(continuous),
+        style={"description_width": LABEL_WIDTH},
+        layout=_layout(steps),
+    )
+
+
+def choice(label: str, options: Sequence[str], value: str) -> Any:
+    """Buttons for one of a few ``options`` (words), labelled ``label``.
+
+    Examples
+    --------
+    >>> elbow = choice("elbow", ["down", "up"], "down")
+    >>> elbow.description, elbow.value, elbow.options
+    ('elbow', 'down', ('down', 'up'))
+    """
+    widgets = _widgets()
+    description = _label(label, "")
+    names = list(options)
+    if not names or not all(isinstance(name, str) for name in names):
+        raise InputTypeError(f"{description}: options must be words; got {options!r}")
+    if value not in names:
+        raise ValueError(f"{description}: value must be one of {names}; got {value!r}")
+    return widgets.ToggleButtons(
+        options=names,
+        value=value,
+        description=description,
+        style={"description_width": LABEL_WIDTH, "button_width": "6em"},
+    )
+
+
+class Explorer:
+    """A figure drawn once and the controls that move it.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+        From :func:`explorer_figure`, with its artists already drawn.
+    update : callable
+        ``update(**values)``: moves the artists for the controls' values (keys
+        are the names of ``controls``).  Called once here, then on every change.
+    controls : mapping of str to widget
+        Name -> a control with a ``value`` (see :func:`slider`, :func:`choice`).
+    describe : callable, optional
+        ``describe(**values) -> str``: what the figure shows, in words (the
+        text alternative, shown under the figure and stored for static pages).
+    extra : sequence of widgets, optional
+        Further widgets placed after the controls (a button, a note).
+
+    Attributes
+    ----------
+    widget : ipywidgets.VBox
+        Controls, canvas and description, displayed by ``display(explorer)``.
+    """
+
+    def __init__(
+        self,
+        figure: Figure,
+        update: Callable[..., object],
+        controls: Mapping[str, Any],
+        *,
+        describe: Callable[..., str] | None = None,
+        extra: Sequence[Any] = (),
+    ) -> None:
+        widgets = _widgets()
+        if not isinstance(figure, Figure) or not isinstance(
+            figure.canvas, widgets.DOMWidget
+        ):
+            raise InputTypeError(
+                "figure must be a matplotlib Figure from twolink.explorer.explorer_figure "
+                f"(on an ipympl canvas); got {figure!r}"
+            )
+        if not callable(update) or (describe is not None and not callable(describe)):
+            raise InputTypeError("update and describe must be callables of the values")
+        if not isinstance(controls, Mapping) or not controls:
+            raise InputTypeError(
+                "controls must be a non-empty mapping of names to widgets"
+            )
+        for name, control in controls.items():
+            if not (isinstance(name, str) and name.isidentifier()) or not hasattr(
+                control, "value"
+            ):
+                raise InputTypeError(
+                    f"control {name!r} must be named by an identifier and have a value; got {control!r}"
+                )
+        self.figure = figure
+        self.controls = dict(controls)
+        self._update = update
+        self._describe = describe
+        self.description = ""
+        self._text = widgets.HTML(layout=widgets.Layout(max_width="640px"))
+        self.updates = 0
+        self._holding = False
+        self.refresh()
+        figure.tight_layout()  # once, for the first state: labels inside the canvas
+        for control in self.controls.values():
+            control.observe(self._changed, names="value")
+        self.widget = widgets.VBox(
+            [*self.controls.values(), *extra, figure.canvas, self._text]
+        )
+        self.widget.add_class(CSS_CLASS)  # how a page (and the browser tests) finds it
+
+    @property
+    def values(self) -> dict[str, Any]:
+        """The controls' current values, by name."""
+        return {name: control.value for name, control in self.controls.items()}
+
+    def set(self, **values: Any) -> None:
+        """Set controls by name, then update the figure once (if a value changed)."""
+        unknown = sorted(set(values) - set(self.controls))
+        if unknown:
+            raise ValueError(
+                f"no control named {unknown}; the controls are {sorted(self.controls)}"
+            )
+        before = self.values
+        self._holding = True
+        try:
+            for name, value in values.items():
+                self.controls[name].value = value
+        finally:
+            self._holding = False
+        if self.values != before:
+            self.refresh()
+
+    def refresh(self) -> None:
+        """Move the artists for the current values and ask the canvas to render."""
+        values = self.values
+        self._update(**values)
+        self.updates += 1
+        if self._describe is not None:
+            self.description = str(self._describe(**values))
+            self._text.value = f"<p>{html.escape(self.description)}</p>"
+        self.figure.canvas.draw_idle()
+
+    def _changed(self, change: Any) -> None:
+        if not self._holding:
+            self.refresh()
+
+    def png(self) -> bytes:
+        """The figure as it stands, as PNG bytes."""
+        buffer = io.BytesIO()
+        self.figure.savefig(buffer, format="png", dpi=self.figure.dpi)
+        return buffer.getvalue()
+
+    def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[str, Any], dict[str, Any]]:
+        data = self.widget._repr_mimebundle_(**kwargs)
+        data = dict(data[0] if isinstance(data, tuple) else data)
+        text = self.description or "An interactive figure with " + ", ".join(
+            getattr(control, "description", name) or name
+            for name, control in self.controls.items()
+        )
+        data["image/png"] = base64.b64encode(self.png()).decode("ascii")
+        data["text/plain"] = text
+        width, height = self.figure.get_size_inches() * self.figure.dpi
+        metadata = {
+            "image/png": {
+                "width": int(math.ceil(width)),
+                "height": int(math.ceil(height)),
+                "alt": text,
+            }
+        }
+        return data, metadata
