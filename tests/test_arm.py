@@ -1,14 +1,22 @@
-"""TwoLinkArm construction, validation and presets."""
+"""TwoLinkArm: construction, validation, limits and the methods' wrappers (the presets: tests/test_arms.py)."""
 
 import dataclasses
+import warnings
 
 import numpy as np
 import pytest
+from _cases import BAD_NUMBERS, stable_id
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import twolink
-from twolink import TwoLinkArm, arms
+from twolink import (
+    TwoLinkArm,
+    arms,
+    ik,
+)
+from twolink.arm import LENGTH_RANGE
+from twolink.errors import InputTypeError
 
 
 def test_defaults_and_fields():
@@ -67,17 +75,6 @@ def test_invalid_parameters_raise_value_error(kwargs, fragment):
         match=fragment.replace("(", r"\(").replace(")", r"\)").replace("^", r"\^"),
     ):
         TwoLinkArm(**kwargs)
-
-
-def test_presets_match_the_sources():
-    assert (arms.two_metre.l1, arms.two_metre.l2) == (2.0, 2.0)
-    assert (arms.ten.l1, arms.ten.l2) == (10.0, 10.0)
-    assert np.allclose(np.degrees(arms.ten.q_min), [0.0, -90.0])
-    assert np.allclose(np.degrees(arms.ten.q_max), [90.0, 90.0])
-    assert (arms.osake.l1, arms.osake.l2, arms.osake.d) == (0.10, 0.115, 0.065)
-    assert arms.two_metre_limited.limit_convention == "absolute"
-    assert np.allclose(np.degrees(arms.two_metre_limited.q_min), [35.0, 35.0])
-    assert np.allclose(np.degrees(arms.two_metre_limited.q_max), [145.0, 145.0])
 
 
 def test_within_limits_relative_and_absolute():
@@ -163,3 +160,68 @@ def test_within_limits_checks_its_tolerance_for_one_configuration_as_for_a_batch
     for q in ([0.1, 0.2], np.array([[0.1, 0.2]])):
         with pytest.raises(ValueError, match=r"tol \(rad\)"):
             arms.ten.within_limits(q, tol=tol)
+
+
+# ----------------------------- magnitudes: parameters outside the representable range
+@pytest.mark.parametrize(
+    "kwargs, name",
+    [
+        ({"l1": 1e155, "l2": 1.0}, "l1"),
+        ({"l1": 1.0, "l2": 1e-160}, "l2"),
+        ({"l1": 1.0, "l2": 1.0, "m1": 1e300}, "m1"),
+        ({"l1": 1.0, "l2": 1.0, "m2": 1e200}, "m2"),
+        ({"l1": 1.0, "l2": 1.0, "I1": 1e200}, "I1"),
+        ({"l1": 1.0, "l2": 1.0, "g": 1e300}, "g"),
+    ],
+)
+def test_parameters_outside_the_representable_range_are_refused_naming_the_range(
+    kwargs, name
+):
+    with pytest.raises(
+        ValueError, match=rf"{name} .* is outside the representable range"
+    ):
+        TwoLinkArm(**kwargs)
+
+
+@pytest.mark.parametrize("length", [LENGTH_RANGE[0], 1e-30, 1.0, 1e30, LENGTH_RANGE[1]])
+def test_arms_at_the_ends_of_the_range_are_exact(length):
+    arm = TwoLinkArm(
+        length, length, m1=2.0, m2=3.0, g=0.0
+    )  # with gravity, tiny arms are all weight (qdd lost to m g l)
+    q = np.array([0.4, 1.1])
+    qdd_wanted = np.array([0.8, -1.3])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow or underflow warnings either
+        p = arm.fk(q)
+        assert np.allclose(ik.closed_form(arm, p).q, q, rtol=1e-12)
+        tau = arm.inverse_dynamics(q, [0.3, -0.2], qdd_wanted)
+        qdd = arm.forward_dynamics(q, [0.3, -0.2], tau)
+    assert np.all(np.isfinite(tau))
+    assert np.allclose(qdd, qdd_wanted, rtol=1e-9, atol=1e-9)
+
+
+# ------------------------------------------------------------ types of the parameters
+@pytest.mark.parametrize("bad", BAD_NUMBERS, ids=stable_id)
+@pytest.mark.parametrize("field", ["l1", "l2", "m1", "m2", "g", "d", "I1", "I2"])
+def test_arm_parameters_refuse_non_numbers(field, bad):
+    kwargs = {"l1": 1.0, "l2": 1.0, field: bad}
+    if bad is None and field in ("I1", "I2"):
+        return  # None is the documented default (uniform rod)
+    with pytest.raises(InputTypeError, match=field):
+        TwoLinkArm(**kwargs)
+
+
+@pytest.mark.parametrize(
+    "bad",
+    ["12", "ab", [1.0, "2"], [True, 1.0], [1j, 1.0], 5.0, [[0.0, 1.0]]],
+    ids=stable_id,
+)
+def test_joint_limits_refuse_strings_and_other_non_angles(bad):
+    with pytest.raises(ValueError, match="q_min"):
+        TwoLinkArm(1.0, 1.0, q_min=bad, q_max=(1.0, 1.0))
+
+
+@pytest.mark.parametrize("bad", [None, 1, ["relative"]], ids=stable_id)
+def test_limit_convention_must_be_a_name(bad):
+    with pytest.raises(ValueError, match="limit_convention must be one of"):
+        TwoLinkArm(1.0, 1.0, limit_convention=bad)

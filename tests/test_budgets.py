@@ -21,7 +21,7 @@ def test_max_samples_bounds_the_sample_counts():
 def test_simulation_results_share_one_read_only_helper():
     import twolink.engine  # noqa: F401  (the module, not a function)
 
-    simulate_module = sys.modules["twolink.simulate"]
+    simulate_module = sys.modules["twolink.simulation"]
     engine_module = sys.modules["twolink.engine"]
     assert not hasattr(simulate_module, "_frozen") and not hasattr(
         engine_module, "_frozen"

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from conftest import arms as arm_strategy
 from conftest import configurations, dynamic_arms
-from twolink import TwoLinkArm, arms, dynamics, ik, simulate, statics
+from twolink import TwoLinkArm, arms, ik, simulate, statics
 from twolink.contact import SpringWall, TipForce
 from twolink.controllers import (
     CartesianSpring,
@@ -369,39 +369,6 @@ def wave_reference(centre, amplitude, omega):
     )
 
 
-def test_reference_from_samples_reproduces_a_cubic_and_holds_its_ends():
-    t = np.linspace(0.0, 2.0, 9)
-    q = np.column_stack([t**3 - t, 0.5 * t**2])
-    qd = np.column_stack([3 * t**2 - 1, t])
-    reference = JointReference.from_samples(t, q, qd)  # clamped ends: exact for a cubic
-    for time in [0.1, 0.77, 1.5, 1.99]:
-        q_ref, qd_ref, qdd_ref = reference(time)
-        assert np.allclose(q_ref, [time**3 - time, 0.5 * time**2], atol=1e-12)
-        assert np.allclose(qd_ref, [3 * time**2 - 1, time], atol=1e-12)
-        assert np.allclose(qdd_ref, [6 * time, 1.0], atol=1e-11)
-    for time, end in [(-1.0, 0), (3.0, -1)]:
-        q_ref, qd_ref, qdd_ref = reference(time)
-        assert (
-            np.array_equal(q_ref, q[end])
-            and np.array_equal(qd_ref, ZERO)
-            and np.array_equal(qdd_ref, ZERO)
-        )
-
-
-@pytest.mark.parametrize(
-    "t, q, message",
-    [
-        ([0.0, 1.0, 1.0, 2.0], np.zeros((4, 2)), "strictly increasing"),
-        ([0.0, 1.0, 2.0, 3.0], np.zeros((3, 2)), r"must have shape \(4, 2\)"),
-        ([0.0, 1.0, 2.0], np.zeros((3, 2)), "at least 4 samples"),
-        ([0.0, 1.0, 2.0, 3.0], [[0, 0], [0, 0], [0, np.nan], [0, 0]], "finite"),
-    ],
-)
-def test_reference_from_bad_samples_raises(t, q, message):
-    with pytest.raises(ValueError, match=message):
-        JointReference.from_samples(t, q)
-
-
 @pytest.mark.parametrize(
     "arm", [arms.two_metre, TwoLinkArm(1.0, 0.6, m1=3.0, m2=1.0, I2=0.1)]
 )
@@ -484,121 +451,8 @@ def test_joint_pd_holds_its_reference_and_tracks_one_from_samples():
     assert np.max(np.abs(follow.q[-1] - samples(2.0)[0])) < 0.05
 
 
-# ---------------------------------------------------------------- contact: forces from the surroundings
+# ---------------------------------------------------------------- impedance against a wall
 WALL = statics.Wall.through([4.0, 0.0], [0.0, 4.0])
-
-
-def test_spring_wall_pushes_out_only_from_inside():
-    wall = SpringWall(WALL, stiffness=1e4, damping=100.0)
-    normal = np.array([1.0, 1.0]) / np.sqrt(2.0)
-    outside, on_wall, inside = [2.0, 1.0], [2.0, 2.0], [2.0, 2.0] + 0.01 * normal
-    assert np.array_equal(wall.force_on_tip(outside, [5.0, 5.0]), ZERO)
-    assert np.array_equal(wall.force_on_tip(on_wall, ZERO), ZERO)
-    assert np.allclose(
-        wall.force_on_tip(inside, ZERO), -100.0 * normal
-    )  # k s = 1e4 * 0.01
-    assert np.allclose(
-        wall.force_on_tip(inside, 0.5 * normal), -150.0 * normal
-    )  # moving in: damping adds
-    assert np.array_equal(
-        wall.force_on_tip(inside, -5.0 * normal), ZERO
-    )  # leaving fast: never pulls
-    assert wall.penetration([[2.0, 1.0], inside]).tolist() == pytest.approx([0.0, 0.01])
-
-
-@given(
-    dynamic_arms(),
-    configurations(),
-    st.tuples(st.floats(-50, 50), st.floats(-50, 50)).map(np.array),
-)
-def test_a_constant_force_on_tip_is_the_dynamics_force_by_tip_of_the_opposite_sign(
-    arm, q, push
-):
-    """A push F on the tip is the same as the tip exerting -F (dynamics' convention)."""
-    qd = np.array([0.3, -0.2])
-    pushed = TipForce(arm, lambda t, q_now, qd_now: arm.gravity(q_now), push)
-    via_tip_force = arm.forward_dynamics(q, qd, pushed(0.0, q, qd))
-    via_dynamics = dynamics.forward_dynamics(
-        arm, q, qd, arm.gravity(q), force_by_tip=-push
-    )
-    assert np.allclose(via_tip_force, via_dynamics, rtol=1e-9, atol=1e-9)
-    assert np.array_equal(pushed.force_on_tip_at(0.0, q, qd), push)
-
-
-@given(
-    dynamic_arms(),
-    configurations(),
-    st.tuples(st.floats(-3, 3), st.floats(-3, 3)).map(np.array),
-    st.floats(0.05, 0.5),
-    st.floats(1.0, 1e4),
-    st.floats(0.0, 100.0),
-)
-def test_a_spring_walls_force_on_tip_and_force_by_tip_give_the_same_dynamics(
-    arm, q, qd, depth, k, c
-):
-    """The two conventions agree: the wall's force_on_tip F enters as + J^T F, force_by_tip = -F as - J^T (-F)."""
-    p_tip = arm.fk(q)
-    distance = float(np.hypot(*p_tip))
-    assume(distance > 1e-3 * (arm.l1 + arm.l2))
-    normal = (
-        p_tip / distance
-    )  # the wall across the radius, the tip depth * |p| inside it
-    wall = SpringWall(
-        statics.Wall(p_tip - depth * distance * normal, normal), stiffness=k, damping=c
-    )
-    v_tip = arm.jacobian(q) @ qd
-    F = wall.force_on_tip(p_tip, v_tip)
-    assume(np.any(F != 0.0))
-    assert F @ normal < 0.0  # the wall pushes the tip back out, towards the base's side
-    world = TipForce(arm, None, wall)
-    assert np.array_equal(world.force_on_tip_at(0.0, q, qd), F)
-    tau_motor = np.array([0.7, -0.4]) * (1.0 + np.abs(arm.gravity(q)))
-    scale = 1.0 + np.abs(tau_motor).sum() + (arm.l1 + arm.l2) * np.abs(F).sum()
-    # forward: the surroundings' push adds J^T F to the motors' torques ...
-    with_push = arm.forward_dynamics(q, qd, tau_motor + world(0.0, q, qd))
-    as_exerted = dynamics.forward_dynamics(arm, q, qd, tau_motor, force_by_tip=-F)
-    M_inverse = np.abs(np.linalg.inv(arm.mass_matrix(q))).max()
-    assert np.allclose(with_push, as_exerted, rtol=0.0, atol=1e-12 * M_inverse * scale)
-    # ... and inverse: that motion needs the motors' torques less J^T F
-    qdd = np.array([0.5, -1.5])
-    needed = dynamics.inverse_dynamics(arm, q, qd, qdd, force_by_tip=-F)
-    assert np.allclose(
-        needed,
-        arm.inverse_dynamics(q, qd, qdd) - world(0.0, q, qd),
-        rtol=0.0,
-        atol=1e-12 * scale,
-    )
-    # statics: the motors hold a force_on_tip F with tau = -J^T F = J^T force_by_tip
-    held = arm.joint_torques(q, -F) + arm.gravity(q)
-    at_rest = np.zeros(2)
-    still = arm.forward_dynamics(
-        q, at_rest, held + TipForce(arm, None, F)(0.0, q, at_rest)
-    )
-    assert np.allclose(still, 0.0, atol=1e-12 * M_inverse * scale)
-
-
-def test_bad_contact_parameters_raise():
-    with pytest.raises(ValueError, match="wall stiffness"):
-        SpringWall(WALL, stiffness=-1.0)
-    with pytest.raises(ValueError, match="wall damping"):
-        SpringWall(WALL, stiffness=1.0, damping=np.nan)
-    with pytest.raises(ValueError, match="must be a twolink.statics.Wall"):
-        SpringWall("x + y = 4", stiffness=1.0)
-    with pytest.raises(ValueError, match="TipForce's arm must be a twolink.TwoLinkArm"):
-        TipForce("arm", None, [1.0, 2.0])
-    with pytest.raises(
-        ValueError, match="CartesianSpring's arm must be a twolink.TwoLinkArm"
-    ):
-        CartesianSpring(None, 600.0, [3.0, 1.0])
-    with pytest.raises(ValueError, match=r"force_on_tip must have shape \(\.\.\., 2\)"):
-        TipForce(arms.two_metre, None, [1.0, 2.0, 3.0])
-    with pytest.raises(
-        ValueError,
-        match=r"force_on_tip must be one force \(Fx, Fy\) of shape \(2,\) \(N\); got shape \(1, 2\)",
-    ):
-        TipForce(arms.two_metre, None, [[1.0, 2.0]])
-    with pytest.raises(ValueError, match="controller must be None or a callable"):
-        TipForce(arms.two_metre, 3.0, [1.0, 2.0])
 
 
 def test_impedance_pushing_on_a_stiff_wall_reproduces_the_statics_answer():
@@ -682,3 +536,12 @@ def test_a_reference_returning_the_wrong_shape_is_named():
 def test_gravity_compensation_takes_only_true_or_false(flag):
     with pytest.raises(ValueError, match=r"gravity_compensation must be True or False"):
         JointPD(arms.two_metre, 100.0, 20.0, [0.5, 0.5], gravity_compensation=flag)
+
+
+def test_a_shape_mismatch_of_the_impedance_force_names_the_arguments_and_their_shapes():
+    impedance = Impedance(arms.two_metre, 600.0, 50.0, [3.0, 1.0])
+    with pytest.raises(
+        ValueError,
+        match=r"q of shape \(3, 2\) and qd of shape \(4, 2\) do not broadcast",
+    ):
+        impedance.force_on_tip(np.zeros((3, 2)), np.zeros((4, 2)))

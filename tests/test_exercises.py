@@ -1,4 +1,4 @@
-"""The exercises' self-checks (twolink.selfcheck.check and twolink.exercises), tested.
+"""The exercises (twolink.exercises) through their self-checks, tested.
 
 For every exercise:
 
@@ -878,22 +878,6 @@ def test_equivalent_forms_are_accepted(number, form, right):
     what, changes = EQUIVALENT[number][form]
     status, lines = statuses(number, _apply(right[number], changes))
     assert set(status.values()) == {"correct"}, f"{number}, {what}: {lines}"
-
-
-def test_check_arguments_and_messages():
-    with pytest.raises(KeyError, match="no exercise '9.9'"):
-        selfcheck.check("9.9", 1.0)
-    with pytest.raises(TypeError, match="no part 'p_tip'"):
-        selfcheck.check("1.1", p_tip=[0.0, 0.0])
-    with pytest.raises(TypeError, match="1 parts"):
-        selfcheck.check("1.1", [0.0, 0.0], [1.0, 1.0])
-    with contextlib.redirect_stdout(io.StringIO()) as printed:
-        report = selfcheck.check("2.1", [0.0, 0.0])
-    line = printed.getvalue().splitlines()[0]
-    assert (
-        selfcheck.parse_line(line) == ("2.1", "angles", "wrong") and not report.passed
-    )
-    assert "m from the target" in line and " Hint: " in line
 
 
 def test_references_are_computed_by_the_package():

@@ -1,4 +1,4 @@
-"""twolink.linearization and twolink.stiffness: linear models of the closed loop, tip mass and stiffness."""
+"""twolink.linearization: linear models of the closed loop and the tip mass."""
 
 import dataclasses
 
@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from scipy.optimize import linear_sum_assignment
 
 from conftest import dynamic_arms
-from twolink import SingularityError, TwoLinkArm, arms, dynamics, ik, stiffness
+from twolink import SingularityError, TwoLinkArm, arms, dynamics, ik
 from twolink.contact import SpringWall, TipForce
 from twolink.controllers import CartesianSpring, ComputedTorque, Impedance, JointPD
 from twolink.linearization import (
@@ -300,53 +300,3 @@ def test_critical_damping_checks_its_arguments():
 
 
 # ---------------------------------------------------------------- stiffness felt at the tip
-@given(
-    dynamic_arms(),
-    st.floats(-np.pi, np.pi),
-    st.floats(0.2, np.pi - 0.2),
-    st.floats(1.0, 1000.0),
-    st.floats(-0.9, 0.9),
-    st.floats(1.0, 1000.0),
-)
-def test_joint_and_tip_stiffness_are_inverse_maps(arm, q1, q2, k11, correlation, k22):
-    q = np.array([q1, q2])
-    K_tip = np.array(
-        [
-            [k11, correlation * np.sqrt(k11 * k22)],
-            [correlation * np.sqrt(k11 * k22), k22],
-        ]
-    )
-    back = stiffness.tip_stiffness(arm, q, stiffness.joint_stiffness(arm, q, K_tip))
-    assert np.allclose(back, K_tip, rtol=1e-6, atol=1e-6 * k11)
-
-
-@pytest.mark.parametrize("q_ref", [[0.4, 1.3], [-1.0, 0.3], [2.0, -2.5]])
-def test_tip_stiffness_is_what_python_control_says_a_steady_push_does(q_ref):
-    """dcgain of the linearised loop is the compliance: K_tip^-1 for a joint PD, K^-1 for impedance."""
-    arm = arms.two_metre
-    kp = np.array([[300.0, 20.0], [20.0, 100.0]])
-    loop = linearize(arm, JointPD(arm, kp, 30.0, q_ref), q_ref)
-    assert np.allclose(
-        control.dcgain(loop),
-        np.linalg.inv(stiffness.tip_stiffness(arm, q_ref, kp)),
-        rtol=1e-9,
-    )
-    K = np.array([[600.0, 100.0], [100.0, 300.0]])
-    impedance = Impedance(arm, K, 40.0, arm.fk(q_ref))
-    assert np.allclose(
-        control.dcgain(linearize(arm, impedance, q_ref)), np.linalg.inv(K), rtol=1e-9
-    )
-
-
-def test_stiffness_ellipse_and_singular_poses():
-    arm = arms.two_metre
-    ellipse = stiffness.stiffness_ellipse(
-        arm, [0.2, 1.0], [[500.0, 100.0], [100.0, 500.0]]
-    )
-    assert np.allclose(ellipse.semi_axes, [600.0, 400.0])
-    assert np.allclose(np.abs(ellipse.directions[:, 0]), np.sqrt(0.5))
-    assert np.allclose(ellipse.centre, arm.fk([0.2, 1.0]))
-    with pytest.raises(SingularityError, match="unbounded"):
-        stiffness.tip_stiffness(arm, [0.5, 0.0], 100.0)
-    with pytest.raises(ValueError, match="one configuration"):
-        stiffness.joint_stiffness(arm, [[0.5, 0.0]], 100.0)

@@ -3,7 +3,10 @@
 import numpy as np
 import pytest
 
-from twolink import arms, timing
+from twolink import (
+    arms,
+    timing,
+)
 
 
 def circle(n=6):
@@ -33,3 +36,18 @@ def test_unknown_method_and_bad_targets():
         timing.compare_ik_methods(arms.ten, [10.0, 10.0])
     with pytest.raises(ValueError, match="repeat must be"):
         timing.median_time(lambda: None, repeat=0)
+
+
+def test_timing_an_empty_batch_is_refused_clearly():
+    from twolink import timing
+
+    with pytest.raises(ValueError, match=r"n >= 1"):
+        timing.compare_ik_methods(
+            arms.ten, np.empty((0, 2)), methods=["closed form"], repeat=1
+        )
+
+
+@pytest.mark.parametrize("seconds", [np.inf, np.nan, 1e9, -1.0, 0.0])
+def test_timing_helpers_refuse_infinite_budgets(seconds):
+    with pytest.raises(ValueError, match="min_seconds"):
+        timing.median_time(lambda: None, min_seconds=seconds)

@@ -1,4 +1,4 @@
-"""One vocabulary across the package (issue 12): every public name means one thing.
+"""One vocabulary across the package: every public name means one thing.
 
 The tests walk the public API (every public module, its ``__all__``, public
 classes and their methods) so that a function added later is checked too.
@@ -192,7 +192,7 @@ def test_down_and_up_mean_the_same_branch_everywhere():
 
 # ----------------------------------------------------------------------------- names
 
-#: Parameter names retired by issue 12, and what to say instead.
+#: Parameter names retired for the one vocabulary, and what to say instead.
 RETIRED = {
     "force": "force_by_tip (exerted by the tip) or force_on_tip (acting on the tip)",
     "center": "centre",

@@ -4,10 +4,11 @@ import re
 
 import numpy as np
 import pytest
+from _cases import limited_arms
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
-from conftest import angles, lengths, unit
+from conftest import angles, unit
 from twolink import (
     TwoLinkArm,
     UnreachableError,
@@ -19,24 +20,6 @@ from twolink import (
 )
 from twolink.arcs import Arc, circle_intersections
 from twolink.errors import InputTypeError
-
-
-@st.composite
-def limited_arms(draw):
-    """Arms with random joint limits in either convention (each range 0.05 rad .. 2 pi wide)."""
-    l1 = draw(lengths)
-    l2 = draw(st.floats(min_value=max(0.05, l1 / 20), max_value=min(20.0, l1 * 20)))
-    low = np.array([draw(angles), draw(angles)])
-    width = np.array(
-        [draw(st.floats(0.05, 2 * np.pi)), draw(st.floats(0.05, 2 * np.pi))]
-    )
-    return TwoLinkArm(
-        l1,
-        l2,
-        q_min=tuple(low),
-        q_max=tuple(low + width),
-        limit_convention=draw(st.sampled_from(["relative", "absolute"])),
-    )
 
 
 def configuration_within(arm, fractions):
@@ -434,7 +417,7 @@ def test_largest_circle_of_the_ten_arm_matches_the_closed_form():
     # widest circle has diameter a1 + a2 - sqrt(a1^2 + a2^2); one fits (direction 45 deg).
     exact = (20.0 - np.sqrt(10.0**2 + 10.0**2)) / 2.0
     centre, radius = workspace.largest_inscribed_circle(arms.ten)
-    assert abs(radius - exact) <= 1e-3  # the issue's requirement
+    assert abs(radius - exact) <= 1e-3  # within a millimetre of the exact radius
     assert abs(radius - exact) <= 1e-9 * arms.ten.reach[1]  # the docstring's claim
     assert np.hypot(*centre) == pytest.approx(20.0 - exact, abs=1e-6)
     on_circle = workspace.circle_points(centre, radius * (1 - 1e-9), 720)
@@ -560,24 +543,6 @@ def test_limit_description_is_in_degrees_and_names_the_convention():
     )
 
 
-@given(arm=limited_arms(), q1=st.floats(-10.0, 10.0), q2=st.floats(-10.0, 10.0))
-def test_move_into_limits_turns_angles_by_whole_turns_only_where_that_helps(
-    arm, q1, q2
-):
-    from twolink.ik.limits import move_into_limits
-
-    q = np.array([q1, q2])
-    moved, inside = move_into_limits(arm, q)
-    assert np.allclose(
-        arm.fk(moved), arm.fk(q), atol=1e-12 * arm.reach[1] + 1e-12
-    )  # the same pose
-    turns = (moved - q) / (2 * np.pi)
-    assert np.allclose(turns, np.round(turns), atol=1e-9)
-    assert bool(inside) == bool(arm.within_limits(moved, tol=ik.LIMIT_TOL))
-    if arm.within_limits(q, tol=ik.LIMIT_TOL):
-        assert np.array_equal(moved, q)  # already inside: exactly as given
-
-
 @given(arm=limited_arms(), fraction=unit, heading=angles)
 def test_closed_form_auto_is_within_the_limits_exactly_where_the_point_is_reachable(
     arm, fraction, heading
@@ -677,3 +642,10 @@ def test_the_base_is_reachable_when_a_folded_configuration_is_within_the_limits(
         1.0, 1.0 + 1e-6, q_min=q_min, q_max=q_max, limit_convention=convention
     )
     assert not workspace.is_reachable(unequal, [0.0, 0.0])  # the base is out of reach
+
+
+def test_sample_counts_beyond_the_memory_budget_are_refused():
+    with pytest.raises(
+        ValueError, match=r"n \(samples\) must be an integer <= 10000000"
+    ):
+        workspace.sample_reachable(arms.two_metre, n=5 * 10**9)

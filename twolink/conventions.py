@@ -144,10 +144,14 @@ def wrap_angle(angle: ArrayLike) -> NDArray[np.float64] | np.float64:
     --------
     >>> float(wrap_angle(3 * np.pi / 2) / np.pi)
     -0.5
+    >>> float(wrap_angle(np.nextafter(-np.pi, -4.0)))  # not pi: the interval is half open
+    -3.141592653589793
     """
     angles = real_array(angle, "angle (rad)")
     if not np.all(np.isfinite(angles)):
         raise ValueError(
             "angle must be finite (radians); NaN or infinity has no wrapped value"
         )
-    return (angles + np.pi) % (2.0 * np.pi) - np.pi
+    wrapped = (angles + np.pi) % (2.0 * np.pi) - np.pi
+    # just below -pi the remainder of a tiny negative number rounds up to a whole turn
+    return wrapped - 2.0 * np.pi * (wrapped >= np.pi)

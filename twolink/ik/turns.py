@@ -40,13 +40,12 @@ def _turns_into_range(
     low: NDArray[np.float64],
     high: NDArray[np.float64],
     tol: float,
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+) -> NDArray[np.float64]:
     """Whole turns (radians, a multiple of 2 pi) that move each angle into ``[low - tol, high + tol]``.
 
     The turn to the angle's representative in ``[low - tol, low - tol + 2 pi)``
     where that lies inside and the angle does not; 0 elsewhere (an angle
     already inside is returned unchanged, not rounded through a modulo).
-    Also whether the moved angle is inside.
     """
     inside_now = (angles >= low - tol) & (angles <= high + tol)
     representative = np.mod(angles - low + tol, _TWO_PI)
@@ -54,7 +53,7 @@ def _turns_into_range(
     inside_moved = representative <= high + tol
     turns = _TWO_PI * np.round((representative - angles) / _TWO_PI)
     turns[inside_now | ~inside_moved] = 0.0
-    return turns, inside_now | inside_moved
+    return turns
 
 
 def move_into_limits(
@@ -101,13 +100,16 @@ def move_into_limits(
         return angles.copy(), np.ones(angles.shape[:-1], dtype=np.bool_)
     low, high = np.asarray(arm.q_min, dtype=float), np.asarray(arm.q_max, dtype=float)
     if arm.limit_convention == "relative":
-        turns, inside = _turns_into_range(angles, low, high, tol)
+        turns = _turns_into_range(angles, low, high, tol)
     else:  # turn link 1 by t1 and link 2 by t2: q1 by t1, q2 = (q1 + q2) - q1 by t2 - t1
         link_angles = angles.copy()
         link_angles[..., 1] += angles[..., 0]
-        turns, inside = _turns_into_range(link_angles, low, high, tol)
+        turns = _turns_into_range(link_angles, low, high, tol)
         turns[..., 1] -= turns[..., 0]
-    return angles + turns, np.all(inside, axis=-1)
+    moved = angles + turns
+    # inside by the arm's own test of the moved angles: a representative a hair
+    # inside a limit can be an angle that rounds to a hair outside it
+    return moved, np.asarray(arm.within_limits(moved, tol=tol), dtype=np.bool_)
 
 
 def free_q1_at_base(

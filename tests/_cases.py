@@ -1,0 +1,48 @@
+"""Test inputs shared by several test files (``conftest.py`` holds the arm and state strategies).
+
+- ``BAD_NUMBERS``: what a number argument must refuse (shared validation, arm parameters).
+- ``stable_id``: a parametrize id that is the same in every process (xdist needs that).
+- ``limited_arms``: arms with random joint limits in either convention.
+"""
+
+import numpy as np
+from hypothesis import strategies as st
+
+from conftest import angles, lengths
+from twolink import TwoLinkArm
+
+BAD_NUMBERS = [
+    None,
+    "12",
+    "abc",
+    True,
+    False,
+    1 + 2j,
+    np.complex128(1.0),
+    object(),
+    [1.0],
+    {"x": 1},
+]
+
+
+def stable_id(value):
+    """A test id that is the same in every process (no memory addresses)."""
+    return "object" if type(value) is object else repr(value)
+
+
+@st.composite
+def limited_arms(draw):
+    """Arms with random joint limits in either convention (each range 0.05 rad .. 2 pi wide)."""
+    l1 = draw(lengths)
+    l2 = draw(st.floats(min_value=max(0.05, l1 / 20), max_value=min(20.0, l1 * 20)))
+    low = np.array([draw(angles), draw(angles)])
+    width = np.array(
+        [draw(st.floats(0.05, 2 * np.pi)), draw(st.floats(0.05, 2 * np.pi))]
+    )
+    return TwoLinkArm(
+        l1,
+        l2,
+        q_min=tuple(low),
+        q_max=tuple(low + width),
+        limit_convention=draw(st.sampled_from(["relative", "absolute"])),
+    )

@@ -1,0 +1,147 @@
+"""Where tests live: one file per public module, no grab-bag files, no issue numbers.
+
+- ``twolink/<module>.py`` is tested in ``tests/test_<module>.py``;
+- ``twolink/<package>/<module>.py`` in ``tests/test_<package>_<module>.py``, or,
+  when the package's ``__init__.py`` imports it (its names are the package's),
+  in ``tests/test_<package>.py`` with the package;
+- no ``tests/test_edges_*.py``: a test of an edge case goes to the file of the
+  module it exercises (a table spanning many modules to ``tests/test_validate.py``);
+- no issue numbers in tests or the package: history lives in git and CHANGELOG.md.
+"""
+
+import ast
+import pathlib
+import re
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "twolink"
+TESTS = ROOT / "tests"
+
+#: Public modules without a test file of their own, and why.
+NO_TEST_FILE = {
+    "twolink": "the package as a whole: tests/test_import.py",
+    "twolink.sources": "a docstring only: each source has its tests/test_sources_*.py",
+}
+
+#: "issue 12", "issues 11 and 12", "issue #21", " #21" (not "owner/repo#312", not a
+#: colour "#1f4e79", not a regex's "[ #0]"): a reference to this project's tracker.
+ISSUE_NUMBER = re.compile(
+    r"\bissues?\s+#?\d+|(?:^|(?<=[\s(]))#\d{1,5}\b(?![\w\]-])", re.IGNORECASE
+)
+
+
+def _module_name(path: pathlib.Path) -> str:
+    parts = path.relative_to(ROOT).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def public_modules() -> list[str]:
+    """Every module of the package with no part of its path starting with ``_``."""
+    names = []
+    for path in sorted(PACKAGE.rglob("*.py")):
+        parts = path.relative_to(PACKAGE).parts
+        if any(part.startswith("_") for part in parts[:-1]):
+            continue
+        if parts[-1].startswith("_") and parts[-1] != "__init__.py":
+            continue
+        names.append(_module_name(path))
+    return names
+
+
+def imported_by_its_package(module: str) -> bool:
+    """Whether ``package/__init__.py`` imports ``module`` (``from .module import ...``)."""
+    package, _, leaf = module.rpartition(".")
+    init = PACKAGE.joinpath(*package.split(".")[1:], "__init__.py")
+    for node in ast.walk(ast.parse(init.read_text())):
+        if isinstance(node, ast.ImportFrom) and node.level == 1:
+            if node.module == leaf:
+                return True
+            if node.module is None and any(a.name == leaf for a in node.names):
+                return True
+    return False
+
+
+def expected_test_files(module: str) -> list[str]:
+    """The test files any one of which holds ``module``'s tests."""
+    parts = module.split(".")[1:]  # without "twolink"
+    own = "test_" + "_".join(parts) + ".py"
+    if len(parts) == 2 and imported_by_its_package(module):
+        return [own, f"test_{parts[0]}.py"]
+    return [own]
+
+
+@pytest.mark.parametrize("module", public_modules())
+def test_every_public_module_has_its_test_file(module):
+    if module in NO_TEST_FILE:
+        return
+    candidates = expected_test_files(module)
+    assert any((TESTS / name).is_file() for name in candidates), (
+        f"{module} has no test file: write tests/{candidates[0]}"
+        + (f" (or tests/{candidates[1]})" if len(candidates) > 1 else "")
+    )
+
+
+def test_the_modules_without_a_test_file_still_exist():
+    """An entry of NO_TEST_FILE for a module that is gone or has a file is stale."""
+    modules = set(public_modules())
+    for module in NO_TEST_FILE:
+        assert module in modules, module
+        assert not any((TESTS / name).is_file() for name in expected_test_files(module))
+
+
+def test_the_rule_maps_modules_to_the_files_a_newcomer_would_look_for():
+    assert expected_test_files("twolink.kinematics") == ["test_kinematics.py"]
+    assert expected_test_files("twolink.ik.turns") == ["test_ik_turns.py"]
+    assert expected_test_files("twolink.ik.analytic") == [
+        "test_ik_analytic.py",
+        "test_ik.py",
+    ]
+    assert expected_test_files("twolink.sources.osake") == ["test_sources_osake.py"]
+    assert "twolink._validate" not in public_modules()
+    assert "twolink.ik" in public_modules()
+
+
+def test_no_grab_bag_test_files():
+    grab_bags = sorted(path.name for path in TESTS.glob("test_edges_*.py"))
+    assert not grab_bags, (
+        f"{grab_bags}: put each test in tests/test_<module>.py of the module it exercises"
+    )
+
+
+def _files_to_keep_free_of_issue_numbers() -> list[pathlib.Path]:
+    return sorted([*TESTS.rglob("*.py"), *PACKAGE.rglob("*.py")])
+
+
+@pytest.mark.parametrize(
+    "text, found",
+    [
+        ("# energy with a spring (issue 12)", True),
+        ('"""Edges of simulate (Issue 11, class 2)."""', True),
+        ("retired by issues 11 and 12", True),
+        ("see #21 for why", True),
+        ("the tracker's (#7)", True),
+        ("jupyter/nbclient#312 upstream", False),
+        ('LINK_COLOR = "#1f4e79"', False),
+        ('COLOR = "#123456"', False),
+        ('re.compile(r"%[-+ #0]*")', False),
+        ("the issue warns about round-off", False),
+        ("# ----- section", False),
+    ],
+)
+def test_the_issue_number_pattern(text, found):
+    assert bool(ISSUE_NUMBER.search(text)) is found
+
+
+def test_no_issue_numbers_in_tests_or_the_package():
+    found = [
+        f"{path.relative_to(ROOT)}:{number}: {line.strip()}"
+        for path in _files_to_keep_free_of_issue_numbers()
+        if path.name != "test_layout.py"  # its own examples
+        for number, line in enumerate(path.read_text().splitlines(), start=1)
+        if ISSUE_NUMBER.search(line)
+    ]
+    assert not found, (
+        "history lives in git and CHANGELOG.md, not in code:\n" + "\n".join(found)
+    )
