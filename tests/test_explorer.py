@@ -294,3 +294,37 @@ def test_no_later_cell_rebinds_a_name_an_explorer_moves(path):
                     f"which code cell {later_index} rebinds"
                 )
     assert problems == []
+
+
+def test_redraw_shows_a_change_made_outside_the_update_and_its_description():
+    view, line, _ = _arm_explorer()
+    view.figure.canvas.draw()  # as the browser's first request
+    line.set_data([0.0, -1.0], [0.0, -1.0])  # what a button would do
+    view.redraw("A button moved the arm to (-1, -1) m.")
+    assert view.description == "A button moved the arm to (-1, -1) m."
+    assert view.description in view.widget.children[-1].value
+    pixels = np.asarray(view.figure.canvas.buffer_rgba())
+    fresh = np.asarray(_png_pixels(view.png()))
+    assert pixels.shape == fresh.shape and np.array_equal(
+        pixels[..., :3], fresh[..., :3]
+    )
+
+
+def _png_pixels(png):
+    import io
+
+    from PIL import Image
+
+    return Image.open(io.BytesIO(png)).convert("RGBA")
+
+
+def test_blitted_moves_show_the_same_pixels_as_a_full_draw():
+    view, _, _ = _arm_explorer()
+    canvas = view.figure.canvas
+    canvas.draw()
+    for q1 in (40, 55, 70):  # the first move redraws, the next ones blit
+        view.set(q1=q1)
+    assert view._background is not None
+    blitted = np.asarray(canvas.buffer_rgba()).copy()
+    fresh = np.asarray(_png_pixels(view.png()))
+    assert np.array_equal(blitted[..., :3], fresh[..., :3])

@@ -65,6 +65,8 @@ SETTERS = {
     ),
 }
 NOT_DRAWING = {"animation_html"}  # shows an animation; takes no axes
+# move what a drawing function returned (for explorers); they take its artists, not axes
+MOVERS = {"move_arm", "move_strobe", "move_ellipse"}
 
 
 def _axes_of(name, result):
@@ -76,10 +78,10 @@ def _axes_of(name, result):
 
 
 def test_every_public_function_is_covered_here():
-    assert set(plot.__all__) == set(DRAWERS) | set(SETTERS) | NOT_DRAWING
+    assert set(plot.__all__) == set(DRAWERS) | set(SETTERS) | NOT_DRAWING | MOVERS
 
 
-@pytest.mark.parametrize("name", sorted(set(plot.__all__) - NOT_DRAWING))
+@pytest.mark.parametrize("name", sorted(set(plot.__all__) - NOT_DRAWING - MOVERS))
 def test_ax_is_keyword_only_first_after_the_star_and_defaults_to_none(name):
     parameters = inspect.signature(getattr(plot, name)).parameters.values()
     keyword_only = [
@@ -438,3 +440,32 @@ def test_parameters_use_the_package_vocabulary(name):
     assert not [p for p in parameters if "center" in p or p == "force"], list(
         parameters
     )
+
+
+def test_move_ellipse_and_move_strobe_follow_draw_ellipse_and_draw_strobe():
+    from twolink import velocity
+
+    arm = arms.two_metre
+    ax = plot.setup_axes(arm)
+    drawn = plot.draw_ellipse(
+        velocity.velocity_ellipse(arm, [0.3, 1.2]), ax=ax, scale=0.5
+    )
+    target = velocity.velocity_ellipse(arm, [1.0, 0.4])
+    plot.move_ellipse(drawn, target, scale=0.5)
+    fresh = plot.draw_ellipse(target, ax=ax, scale=0.5)
+    assert np.allclose(drawn[0].get_xy(), fresh[0].get_xy())
+    assert np.allclose(drawn[1].get_xydata(), fresh[1].get_xydata())
+    with pytest.raises(InputTypeError, match="fill, outline"):
+        plot.move_ellipse([drawn[1]], target)
+    path = np.linspace([0.0, 0.0], [1.0, 2.0], 30)
+    strobe = plot.draw_strobe(arm, np.zeros((30, 2)), ax=ax, frames=6)
+    plot.move_strobe(strobe, arm, path)
+    expected = plot.draw_strobe(arm, path, ax=ax, frames=6)
+    for moved, drawn_line in zip(strobe, expected):
+        assert np.allclose(moved.get_xydata(), drawn_line.get_xydata())
+    short = np.zeros((3, 2))
+    plot.move_strobe(strobe, arm, short)
+    assert [line.get_visible() for line in strobe[:-1]] == [True] * 3 + [False] * 3
+    with pytest.raises(InputTypeError, match="draw_strobe returned"):
+        plot.move_strobe([], arm, path)
+    plt.close(ax.figure)

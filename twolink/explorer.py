@@ -468,6 +468,17 @@ class Explorer:
             self._text.value = f"<p>{html.escape(self.description)}</p>"
         self._show_changes()
 
+    def redraw(self, description: str | None = None) -> None:
+        """Show artists changed outside the update (by a button's exact run, say).
+
+        ``description``, when given, replaces the sentence under the figure (it
+        then describes what the button drew, until the next change of a control).
+        """
+        if description is not None:
+            self.description = str(description)
+            self._text.value = f"<p>{html.escape(self.description)}</p>"
+        self._show_changes()
+
     def _moved_artists(self) -> list[Artist] | None:
         """The axes' children the update changed, or None when the figure must be redrawn."""
         if self._background is None or self._limits != self._axes_limits():
@@ -492,16 +503,12 @@ class Explorer:
         canvas: Any = self.figure.canvas
         moved = self._moved_artists()
         if moved is None or any(artist not in self._animated for artist in moved):
-            for artist in moved or ():
-                artist.set_animated(True)
-                self._animated.append(artist)
+            self._animate(moved or [])
             self._background = None
             canvas.draw()  # a full draw now; _on_draw saves the new background
             return
         canvas.restore_region(self._background)
-        for artist in self._animated:
-            if artist.figure is self.figure:  # not removed by the update
-                self.figure.draw_artist(artist)
+        self._draw_animated()
         for artist in moved:
             artist.stale = False
         self.figure.stale = False
@@ -517,8 +524,43 @@ class Explorer:
             return  # a savefig or a layout pass, not the canvas's own picture
         self._background = canvas.copy_from_bbox(self.figure.bbox)
         self._limits = self._axes_limits()
+        self._draw_animated()
+
+    def _animate(self, moved: list[Artist]) -> None:
+        """Mark ``moved`` and every artist its axes draws after them as animated.
+
+        A moving artist is drawn over the background; an artist that a full
+        draw would put on top of it (a higher ``zorder``, or the same and added
+        later: a base marker, a note) must then be drawn again over it too.
+        """
+        for ax in self.figure.axes:
+            order = self._drawing_order(ax)
+            starts = [order.index(artist) for artist in moved if artist in order]
+            for artist in order[min(starts) :] if starts else ():
+                if artist not in self._animated:
+                    artist.set_animated(True)
+                    self._animated.append(artist)
+        for artist in moved:  # outside any axes' children: on the figure
+            if artist not in self._animated:
+                artist.set_animated(True)
+                self._animated.append(artist)
+
+    @staticmethod
+    def _drawing_order(ax: Any) -> list[Artist]:
+        """The axes' children in the order ``Axes.draw`` draws them (by zorder, stable)."""
+        children = [child for child in ax.get_children() if child is not ax.patch]
+        return sorted(children, key=lambda child: child.get_zorder())
+
+    def _draw_animated(self) -> None:
+        """Draw the animated artists still in the figure, in drawing order."""
         self._animated = [a for a in self._animated if a.figure is self.figure]
-        for artist in self._animated:
+        rank = {}
+        for ax_index, ax in enumerate(self.figure.axes):
+            for position, artist in enumerate(self._drawing_order(ax)):
+                rank[id(artist)] = (ax_index, position)
+        for artist in sorted(
+            self._animated, key=lambda a: rank.get(id(a), (len(rank), 0))
+        ):
             self.figure.draw_artist(artist)
 
     def _changed(self, change: Any) -> None:

@@ -6,7 +6,9 @@ what it made, so notebooks compose figures without global state.
 ``ax=None`` means the current axes, :func:`matplotlib.pyplot.gca`; the
 functions that set up axes of their own (:func:`setup_axes`,
 :func:`animate_arm`, :func:`animate_simulation`) make a new, square figure
-instead.
+instead.  The ``move_*`` functions move what a drawing function returned
+(:func:`move_arm`, :func:`move_strobe`, :func:`move_ellipse`): an explorer
+(:mod:`twolink.explorer`) draws once and moves its artists on every change.
 """
 
 from __future__ import annotations
@@ -48,6 +50,8 @@ __all__ = [
     "draw_reach",
     "draw_arm",
     "move_arm",
+    "move_strobe",
+    "move_ellipse",
     "draw_strobe",
     "animate_arm",
     "animation_html",
@@ -270,6 +274,11 @@ def move_arm(line: Line2D, arm: TwoLinkArm, q: ArrayLike) -> Line2D:
     return line
 
 
+def _strobe_indices(samples: int, frames: int) -> NDArray[np.int_]:
+    """The samples a strobe of ``frames`` poses shows: evenly spaced, first and last."""
+    return np.linspace(0, samples - 1, min(frames, samples)).round().astype(int)
+
+
 def draw_strobe(
     arm: TwoLinkArm,
     q_path: ArrayLike,
@@ -311,11 +320,7 @@ def draw_strobe(
     """
     ax = _axes(ax, "draw_strobe")
     q_samples = _path(q_path)
-    indices = (
-        np.linspace(0, len(q_samples) - 1, min(frames, len(q_samples)))
-        .round()
-        .astype(int)
-    )
+    indices = _strobe_indices(len(q_samples), frames)
     lines = []
     for rank, index in enumerate(indices):
         alpha = 0.25 + 0.75 * rank / max(1, len(indices) - 1)
@@ -329,6 +334,43 @@ def draw_strobe(
         lines.extend(
             ax.plot(p_path[:, 0], p_path[:, 1], color=PATH_COLOR, linewidth=1.5)
         )
+    return lines
+
+
+def move_strobe(
+    lines: Sequence[Line2D], arm: TwoLinkArm, q_path: ArrayLike, *, path: bool = True
+) -> Sequence[Line2D]:
+    """Move a strobe drawn by :func:`draw_strobe` to a new motion ``q_path``.
+
+    ``lines`` is what :func:`draw_strobe` returned (the poses, then the tip's
+    path when ``path`` was true); the same samples are shown as it would pick.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> ax = setup_axes(arms.two_metre)
+    >>> lines = draw_strobe(arms.two_metre, np.zeros((20, 2)), ax=ax, frames=5)
+    >>> moved = move_strobe(lines, arms.two_metre, np.linspace([0.0, 0.0], [np.pi / 2, 0.0], 20))
+    >>> np.round(moved[-2].get_xydata()[-1], 12)  # the last pose: straight up
+    array([0., 4.])
+    >>> plt.close(ax.figure)
+    """
+    q_samples = _path(q_path)
+    poses = list(lines[:-1] if path else lines)
+    if not poses or not all(isinstance(line, Line2D) for line in lines):
+        raise InputTypeError(
+            "lines must be the list of Line2D that draw_strobe returned"
+        )
+    for line, index in zip(poses, _strobe_indices(len(q_samples), len(poses))):
+        move_arm(line, arm, q_samples[index])
+    if len(q_samples) < len(poses):  # fewer samples than poses: hide the rest
+        for line in poses[len(q_samples) :]:
+            line.set_visible(False)
+    for line in poses[: len(q_samples)]:
+        line.set_visible(True)
+    if path:
+        p_path = arm.fk(q_samples)
+        lines[-1].set_data(p_path[:, 0], p_path[:, 1])
     return lines
 
 
@@ -549,6 +591,37 @@ def draw_ellipse(
     (fill,) = ax.fill(points[:, 0], points[:, 1], color=color, alpha=alpha, label=label)
     (outline,) = ax.plot(points[:, 0], points[:, 1], color=color, linewidth=1.2)
     return [fill, outline]
+
+
+def move_ellipse(
+    artists: Sequence[Artist],
+    ellipse: Ellipse,
+    *,
+    scale: float = 1.0,
+    clip: float | None = None,
+) -> Sequence[Artist]:
+    """Move an ellipse drawn by :func:`draw_ellipse` (its fill and outline) to ``ellipse``.
+
+    Examples
+    --------
+    >>> from twolink import arms, velocity
+    >>> ax = setup_axes(arms.two_metre)
+    >>> drawn = draw_ellipse(velocity.velocity_ellipse(arms.two_metre, [0.3, 1.2]), ax=ax)
+    >>> ellipse = velocity.velocity_ellipse(arms.two_metre, [0.3, 0.6])
+    >>> fill, outline = move_ellipse(drawn, ellipse, scale=0.5)
+    >>> bool(np.allclose(outline.get_xydata(), ellipse.points(scale=0.5)))
+    True
+    >>> plt.close(ax.figure)
+    """
+    fill, outline = artists if len(artists) == 2 else (None, None)
+    if not (isinstance(fill, Polygon) and isinstance(outline, Line2D)):
+        raise InputTypeError(
+            "artists must be the [fill, outline] that draw_ellipse returned"
+        )
+    points = ellipse.points(scale=scale, clip=clip)
+    fill.set_xy(points)
+    outline.set_data(points[:, 0], points[:, 1])
+    return artists
 
 
 def draw_force(
