@@ -2,18 +2,18 @@
 
 For each notebook: open it, Run All Cells from the menu, wait for the kernel to
 go idle, then assert there is no error or stderr output, every interactive
-widget the notebook builds is rendered, moving each slider with the keyboard
-changes its readout and re-renders its figure, and every animation is present
+explorer the notebook builds (``twolink.explorer.Explorer``) is rendered,
+moving each of its sliders with the keyboard changes its readout and the
+pixels of its figure, and every animation is present
 and plays.  A screenshot per chapter goes to build/screenshots/.
 """
 
 import json
 import re
-import urllib.request
 
 import pytest
 
-from .conftest import ROOT, SCREENSHOTS
+from .conftest import ROOT, SCREENSHOTS, lab_browser
 
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
 
@@ -24,7 +24,7 @@ def expected_widgets(path):
         for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]
         if cell["cell_type"] == "code"
     )
-    return source.count("widgets.interactive("), source.count("animation_html(")
+    return source.count("explorer.Explorer("), source.count("animation_html(")
 
 
 def wait_until_idle(page, timeout_ms):
@@ -58,24 +58,20 @@ def wait_for_all_cells(page, timeout_ms):
     )
 
 
-def shut_down_kernels(jupyterlab):
-    """Stop every kernel the server runs, so chapters do not pile up kernels."""
-    base = f"{jupyterlab['url']}/api/kernels"
-    headers = {"Authorization": f"token {jupyterlab['token']}"}
-    with urllib.request.urlopen(
-        urllib.request.Request(base, headers=headers), timeout=10
-    ) as response:
-        kernels = json.load(response)
-    for kernel in kernels:
-        request = urllib.request.Request(
-            f"{base}/{kernel['id']}", headers=headers, method="DELETE"
-        )
-        urllib.request.urlopen(request, timeout=10).close()
+# A signature of what an explorer shows: the pixels of its canvases (ipympl).
+PICTURE = """box => {
+    let hash = 0;
+    for (const canvas of box.querySelectorAll('canvas')) {
+        if (!canvas.width || !canvas.height) continue;
+        const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+        for (let i = 0; i < data.length; i += 4) hash = (hash * 31 + data[i] + data[i + 1] + data[i + 2]) | 0;
+    }
+    return hash;
+}"""
 
 
-def figure_source(container):
-    images = container.locator("img")
-    return images.first.get_attribute("src") if images.count() else None
+def picture(container):
+    return container.evaluate(PICTURE)
 
 
 @pytest.mark.browser
@@ -84,7 +80,7 @@ def test_chapter_runs_and_plays_in_jupyterlab(jupyterlab, page, path):
     try:
         run_chapter(jupyterlab, page, path)
     finally:
-        shut_down_kernels(jupyterlab)
+        lab_browser.shut_down_kernels(jupyterlab)
 
 
 def run_chapter(jupyterlab, page, path):
@@ -110,9 +106,9 @@ def run_chapter(jupyterlab, page, path):
     )
 
     interactive_count, animation_count = expected_widgets(path)
-    containers = panel.locator(".widget-interact")
+    containers = panel.locator(".twolink-explorer")
     assert containers.count() == interactive_count, (
-        f"{path.name}: {containers.count()} interactive widgets rendered, {interactive_count} built"
+        f"{path.name}: {containers.count()} explorers rendered, {interactive_count} built"
     )
     moved = []
     for index in range(containers.count()):
@@ -126,7 +122,7 @@ def run_chapter(jupyterlab, page, path):
             slider = sliders.nth(slider_index)
             readout = slider.locator(".widget-readout")
             before_value = readout.inner_text()
-            before_figure = figure_source(container)
+            before_figure = picture(container)
             slider.locator(".noUi-handle").first.focus()
             page.keyboard.press("ArrowRight")
             if (
@@ -139,15 +135,11 @@ def run_chapter(jupyterlab, page, path):
                 arg=[readout.element_handle(), before_value],
                 timeout=10_000,
             )
-            if before_figure is not None:
-                page.wait_for_function(
-                    """([element, source]) => {
-                        const image = element.querySelector('img');
-                        return image && image.getAttribute('src') !== source;
-                    }""",
-                    arg=[container.element_handle(), before_figure],
-                    timeout=30_000,
-                )
+            page.wait_for_function(
+                f"([box, before]) => ({PICTURE})(box) !== before",
+                arg=[container.element_handle(), before_figure],
+                timeout=30_000,
+            )
             moved.append(
                 f"{index}:{slider.locator('.widget-label').first.inner_text()}"
             )
@@ -180,5 +172,5 @@ def run_chapter(jupyterlab, page, path):
         containers.first.scroll_into_view_if_needed()
     page.screenshot(path=str(SCREENSHOTS / f"{path.stem}.png"))
     print(
-        f"{path.name}: {containers.count()} interactive widgets, sliders moved {moved}, {videos.count()} videos played"
+        f"{path.name}: {containers.count()} explorers, sliders moved {moved}, {videos.count()} videos played"
     )

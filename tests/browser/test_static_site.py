@@ -1,4 +1,5 @@
-"""The static edition in a browser: every page loads offline, with figures and playable animations."""
+"""The static edition in a browser: every page loads offline, with figures, the
+explorers' described first states and playable animations."""
 
 import functools
 import http.server
@@ -82,6 +83,17 @@ def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page
             "() => [...document.querySelectorAll('img')].filter(i => !(i.complete && i.naturalWidth > 0)).length"
         )
         assert broken == 0, f"{href}: {broken} images failed to render"
+        # an explorer shows its first state, described by its alternative text,
+        # never the text of its widgets
+        described = page.locator(
+            ".jp-OutputArea-output img[alt]:not([alt^='No description'])"
+        )
+        assert described.count() >= source.count("explorer.Explorer("), (
+            f"{href}: an explorer's picture has no description"
+        )
+        text = page.inner_text("body")
+        for widget_text in ("interactive(children", "VBox(children", "Canvas(toolbar"):
+            assert widget_text not in text, f"{href}: shows {widget_text!r}"
         videos = page.locator("video")
         assert videos.count() >= source.count("animation_html("), (
             f"{href}: animations missing"
