@@ -649,3 +649,157 @@ def test_sample_counts_beyond_the_memory_budget_are_refused():
         ValueError, match=r"n \(samples\) must be an integer <= 10000000"
     ):
         workspace.sample_reachable(arms.two_metre, n=5 * 10**9)
+
+
+# ---------------------------------------------------------------- fast answers for a slider: BranchTable, grid search
+
+
+def _points_about(arm, rng, count=300):
+    """Random points over the reach square, the base, and tips of configurations on the limit box's edges."""
+    scale = arm.reach[1] * 1.2
+    random = rng.uniform(-scale, scale, size=(count, 2))
+    edge = np.array(
+        [
+            configuration_within(arm, fractions)
+            for fractions in ([0.0, 0.3], [1.0, 0.7], [0.4, 0.0], [0.6, 1.0], [0, 0])
+        ]
+    )
+    return np.vstack([random, arm.fk(edge), [[0.0, 0.0]]])
+
+
+@settings(max_examples=60)
+@given(arm=limited_arms(), other=limited_arms(), seed=st.integers(0, 2**16))
+def test_a_branch_table_answers_as_is_reachable_for_any_limits_on_its_links(
+    arm, other, seed
+):
+    """Solved once for the links, the table gives exactly what the package's limit rule gives."""
+    points = _points_about(arm, np.random.default_rng(seed))
+    # the table of one arm's links serves every arm with those links, whatever its limits
+    same_links = TwoLinkArm(
+        arm.l1,
+        arm.l2,
+        q_min=other.q_min,
+        q_max=other.q_max,
+        limit_convention=other.limit_convention,
+    )
+    table = workspace.BranchTable(TwoLinkArm(arm.l1, arm.l2), points)
+    for limited in (arm, same_links, TwoLinkArm(arm.l1, arm.l2)):
+        q_both, valid = table.solutions_within_limits(limited)
+        q_expected, valid_expected = ik.solutions_within_limits(limited, points)
+        assert np.array_equal(valid, valid_expected)
+        assert np.array_equal(q_both, q_expected)
+        assert np.array_equal(
+            table.reachable(limited), workspace.is_reachable(limited, points)
+        )
+        for column, elbow in enumerate(("down", "up")):
+            assert np.array_equal(
+                valid[:, column], workspace.is_reachable(limited, points, elbow=elbow)
+            )
+
+
+def test_a_branch_table_keeps_the_shape_of_its_points_and_refuses_other_links():
+    axis = np.linspace(-22.0, 22.0, 9)
+    grid = np.stack(np.meshgrid(axis, axis), axis=-1)
+    table = workspace.BranchTable(arms.ten, grid)
+    assert table.reachable(arms.ten).shape == (9, 9)
+    assert np.array_equal(
+        table.reachable(arms.ten), workspace.is_reachable(arms.ten, grid)
+    )
+    with pytest.raises(
+        ValueError, match=r"solved for l1 = 10, l2 = 10; got an arm with l1 = 2"
+    ):
+        table.solutions_within_limits(arms.two_metre)
+    with pytest.raises(InputTypeError, match="arm must be a twolink.TwoLinkArm"):
+        table.reachable(None)
+    with pytest.raises(ValueError, match="tol"):
+        table.reachable(arms.ten, tol=-1.0)
+    with pytest.raises(ValueError, match="p"):
+        workspace.BranchTable(arms.ten, [[1.0, 2.0, 3.0]])
+
+
+def test_a_branch_table_refuses_more_points_than_the_memory_budget(monkeypatch):
+    monkeypatch.setattr(workspace, "MAX_SAMPLES", 10)
+    with pytest.raises(
+        ValueError,
+        match=r"p holds 11 points; a BranchTable takes at most MAX_SAMPLES = 10",
+    ):
+        workspace.BranchTable(arms.ten, np.zeros((11, 2)))
+
+
+def _grid_inside(arm, spacing, elbow="auto"):
+    extent = arm.reach[1] * 1.1
+    axis = np.arange(-extent, extent + spacing / 2, spacing)
+    grid = np.stack(np.meshgrid(axis, axis), axis=-1).reshape(-1, 2)
+    return grid[workspace.is_reachable(arm, grid, elbow=elbow)]
+
+
+@settings(max_examples=15, deadline=None)
+@given(arm=limited_arms(), elbow=st.sampled_from(["auto", "down", "up"]))
+def test_the_grid_circle_fits_and_is_near_the_optimisers(arm, elbow):
+    """The grid's circle fits (checked by is_reachable around it) and is at most spacing / sqrt 2
+    short of largest_inscribed_circle's (its centre is that near a grid point, and clearance is
+    1-Lipschitz): no larger than the largest circle, hence within a spacing of it."""
+    scale = arm.reach[1]
+    spacing, tol = scale / 12, 1e-4 * scale
+    arcs = workspace.boundary_arcs(arm, elbow=elbow)
+    centre, radius = workspace.largest_circle_on_grid(
+        arcs, _grid_inside(arm, spacing, elbow), spacing, tol
+    )
+    try:
+        _, best = workspace.largest_inscribed_circle(arm, starts=2, elbow=elbow)
+    except ValueError:  # nothing reachable on this branch: no arcs, no candidates
+        assert centre is None and radius == 0.0
+        return
+    if centre is None:  # the workspace slips between the grid points: then it is thin
+        assert best <= spacing / np.sqrt(2)
+        return
+    assert radius == pytest.approx(
+        float(workspace.clearance(arm, centre, arcs, elbow=elbow)), abs=1e-12 * scale
+    )
+    ring = workspace.circle_points(centre, radius * (1 - 1e-6), 90)
+    assert np.all(workspace.is_reachable(arm, ring, elbow=elbow))
+    assert radius >= best - spacing / np.sqrt(2) - 1e-9 * scale
+
+
+@pytest.mark.parametrize(
+    "arm, exact",
+    [
+        (arms.ten, 10 - 5 * np.sqrt(2)),
+        (
+            arms.two_metre_limited,
+            4 * (1 - np.sin(np.radians(35))) / (3 - np.sin(np.radians(35))),
+        ),
+    ],
+    ids=["ten", "two_metre_limited"],
+)
+def test_the_grid_circle_of_the_course_arms_is_within_its_tolerance_of_the_closed_form(
+    arm, exact
+):
+    spacing = arm.reach[1] / 40
+    tol = 1e-4 * arm.reach[1]
+    centre, radius = workspace.largest_circle_on_grid(
+        workspace.boundary_arcs(arm), _grid_inside(arm, spacing), spacing, tol
+    )
+    assert exact - 2 * tol <= radius <= exact + 1e-12 * arm.reach[1]
+
+
+def test_largest_circle_on_grid_refuses_bad_input_and_answers_none_when_nothing_is_inside():
+    arcs = workspace.boundary_arcs(arms.ten)
+    inside = [[17.0, 5.0]]
+    assert workspace.largest_circle_on_grid(arcs, np.zeros((0, 2)), 1.0, 0.1) == (
+        None,
+        0.0,
+    )
+    assert workspace.largest_circle_on_grid([], inside, 1.0, 0.1) == (None, 0.0)
+    with pytest.raises(InputTypeError, match="arcs must be a list of twolink.arcs.Arc"):
+        workspace.largest_circle_on_grid(arms.ten, inside, 1.0, 0.1)
+    for spacing, tol in ((0.0, 0.1), (1.0, -0.1), (np.nan, 0.1), (1.0, np.inf)):
+        with pytest.raises(ValueError, match="spacing|tol"):
+            workspace.largest_circle_on_grid(arcs, inside, spacing, tol)
+    with pytest.raises(ValueError, match="MAX_REFINEMENTS = 30"):
+        workspace.largest_circle_on_grid(arcs, inside, 1.0, 1e-16)
+    # tol at least a third of the spacing: no refinement, the best candidate itself
+    centre, radius = workspace.largest_circle_on_grid(arcs, inside, 1.0, 1.0)
+    assert np.array_equal(centre, inside[0]) and radius == pytest.approx(
+        float(workspace.clearance(arms.ten, inside[0]))
+    )

@@ -10,6 +10,10 @@ of :class:`~twolink.TwoLinkArm` (``limit_convention="relative"`` bounds ``(q1, q
 - :func:`candidate_arcs` / :func:`boundary_arcs`: the boundary as exact arcs
   (one joint at a limit or at a singular value, the other swept).
 - :func:`clearance` and :func:`largest_inscribed_circle`: how much room there is.
+- :class:`BranchTable` and :func:`largest_circle_on_grid`: the same answers fast
+  enough for a slider, for arms that differ only in their limits (IK solved
+  once for a fixed set of points, only the limit test redone) and a coarse-to-fine
+  search for a large circle from points known to be inside.
 - :func:`circle_points`: equally spaced targets on a circle.
 - :func:`require_reachable`: the same test, raising a clear error naming the
   first point that is out of the workspace.
@@ -32,6 +36,7 @@ array([ True, False, False])
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from typing import TYPE_CHECKING
 
@@ -44,7 +49,12 @@ from .budgets import DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
 from .conventions import check_elbow, to_absolute, to_relative, wrap_angle
 from .errors import UnreachableError
 from .ik.analytic import closed_form
-from .ik.limits import LIMIT_TOL, solutions_within_limits
+from .ik.limits import (
+    LIMIT_TOL,
+    free_q1_at_base,
+    move_into_limits,
+    solutions_within_limits,
+)
 from .kinematics import require_within_reach
 
 if TYPE_CHECKING:
@@ -60,6 +70,8 @@ __all__ = [
     "boundary_arcs",
     "clearance",
     "largest_inscribed_circle",
+    "BranchTable",
+    "largest_circle_on_grid",
     "circle_points",
 ]
 
@@ -73,6 +85,16 @@ PROBE_RANGE = (1e-6, 1e-2)
 
 #: Reachable points :func:`largest_inscribed_circle` samples to pick its starts from (so at most this many starts).
 START_CANDIDATES = 4000
+
+#: Most refinement rounds of :func:`largest_circle_on_grid` (each divides its step by 3:
+#: 3**30 ~ 2e14, about the ratio of a reach to its round-off).
+MAX_REFINEMENTS = 30
+
+#: The pattern of one refinement round of :func:`largest_circle_on_grid`: 7 x 7 points,
+#: ``-3 .. 3`` steps either way (so a round covers the spacing of the round before).
+_REFINE_PATTERN = np.stack(np.meshgrid(*[np.arange(-3.0, 4.0)] * 2), axis=-1).reshape(
+    -1, 2
+)
 
 
 def describe_limits(arm: TwoLinkArm) -> str:
@@ -281,6 +303,118 @@ def sample_reachable(
         else angles
     )
     return arm.fk(q), q
+
+
+class BranchTable:
+    """Both IK branches at fixed points, solved once, for arms that differ only in their limits.
+
+    :func:`is_reachable` solves the closed form at every point, then applies
+    the package's limit rule (:func:`twolink.ik.solutions_within_limits`:
+    each angle moved by whole turns into its interval, with the slack
+    ``tol``).  The solving depends on the link lengths only.  A table solves
+    it once; :meth:`solutions_within_limits` then redoes only the limit test,
+    with the same rule and the same functions
+    (:func:`twolink.ik.limits.move_into_limits`,
+    :func:`twolink.ik.turns.free_q1_at_base`), so it gives exactly what
+    :func:`twolink.ik.solutions_within_limits` gives for the same arm and
+    points (tested), at a fraction of the cost: fast enough for a slider that
+    changes the limits over a shading grid.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+        Gives the link lengths (its limits, if any, are not used).
+    p : array_like, shape (..., 2)
+        The points, metres; at most ``MAX_SAMPLES`` of them.
+
+    Raises
+    ------
+    ValueError
+        For more than ``MAX_SAMPLES`` points, or (in the methods) an arm with
+        other link lengths.
+
+    Examples
+    --------
+    >>> from dataclasses import replace
+    >>> from twolink import arms
+    >>> table = BranchTable(arms.ten, [[12.5, 12.5], [15.0, 1.0], [1.0, 15.0], [0.0, 0.0]])
+    >>> table.solutions_within_limits(arms.ten)[1]
+    array([[ True,  True],
+           [False,  True],
+           [ True, False],
+           [False, False]])
+    >>> wider = replace(arms.ten, q_min=(-np.pi / 2, -np.pi), q_max=(np.pi / 2, np.pi))
+    >>> table.reachable(wider), is_reachable(wider, table.points)
+    (array([ True,  True,  True,  True]), array([ True,  True,  True,  True]))
+    >>> table.reachable(arms.two_metre_limited)
+    Traceback (most recent call last):
+    ...
+    ValueError: this BranchTable was solved for l1 = 10, l2 = 10; got an arm with l1 = 2, l2 = 2 (make a table for it)
+    """
+
+    def __init__(self, arm: TwoLinkArm, p: ArrayLike) -> None:
+        require_arm(arm)
+        points: NDArray[np.float64] = as_pairs(p, "p")
+        count = int(np.prod(points.shape[:-1]))
+        if count > MAX_SAMPLES:
+            raise ValueError(
+                f"p holds {count} points; a BranchTable takes at most MAX_SAMPLES = {MAX_SAMPLES}"
+            )
+        self.l1, self.l2 = float(arm.l1), float(arm.l2)
+        self.points = points
+        links = (
+            dataclasses.replace(arm, q_min=None, q_max=None) if arm.has_limits else arm
+        )
+        # without limits nothing is moved: the closed form's two branches, and the reach test
+        self._q_both, in_reach = solutions_within_limits(links, points)
+        self._in_reach: NDArray[np.bool_] = in_reach[..., 0]
+
+    def _require_links(self, arm: TwoLinkArm) -> None:
+        require_arm(arm)
+        if float(arm.l1) != self.l1 or float(arm.l2) != self.l2:
+            raise ValueError(
+                f"this BranchTable was solved for l1 = {self.l1:g}, l2 = {self.l2:g}; got an arm with "
+                f"l1 = {arm.l1:g}, l2 = {arm.l2:g} (make a table for it)"
+            )
+
+    def solutions_within_limits(
+        self, arm: TwoLinkArm, tol: float = LIMIT_TOL
+    ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """``twolink.ik.solutions_within_limits(arm, self.points, tol)``, from the stored branches.
+
+        Parameters
+        ----------
+        arm : TwoLinkArm
+            Same link lengths as the table's; any limits, either convention.
+        tol : float
+            Slack in radians at each limit.
+
+        Returns
+        -------
+        q_both : numpy.ndarray, shape (..., 2, 2)
+            Elbow down ``[..., 0, :]`` and up ``[..., 1, :]``, moved into the limits where possible.
+        valid : numpy.ndarray of bool, shape (..., 2)
+            Whether each branch reaches its point within the limits.
+        """
+        self._require_links(arm)
+        tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
+        q_both = self._q_both.copy()
+        valid = np.repeat(self._in_reach[..., None], 2, axis=-1)
+        if not arm.has_limits:
+            return q_both, valid
+        at_base, free_q1 = free_q1_at_base(arm, self.points)
+        if free_q1 is not None:
+            q_both[at_base & self._in_reach, :, 0] = free_q1
+        q_both, inside = move_into_limits(arm, q_both, tol)
+        return q_both, valid & inside
+
+    def reachable(self, arm: TwoLinkArm, tol: float = LIMIT_TOL) -> NDArray[np.bool_]:
+        """``is_reachable(arm, self.points, tol)`` (either branch), from the stored branches.
+
+        For one branch, or both, read the columns of
+        ``self.solutions_within_limits(arm, tol)[1]`` (elbow down, up).
+        """
+        return np.any(self.solutions_within_limits(arm, tol)[1], axis=-1)
 
 
 def _polar_offset(arm: TwoLinkArm, q2: float) -> tuple[float, float]:
@@ -706,6 +840,118 @@ def largest_inscribed_circle(
         if radius > best_radius:
             best_centre, best_radius = np.asarray(outcome.x, dtype=float), radius
     return best_centre, best_radius
+
+
+def largest_circle_on_grid(
+    arcs: list[Arc], candidates: ArrayLike, spacing: float, tol: float
+) -> tuple[NDArray[np.float64] | None, float]:
+    """A large circle inside a workspace, by a grid search: fast, not the largest.
+
+    Method: the candidate farthest from the boundary arcs, then rounds of
+    7 x 7 points about the best centre so far, ``spacing / 3`` apart in the
+    first round and a third as far apart in each next one, until that step
+    is at most ``tol``.  A round only tries points nearer the best centre than
+    its radius: they are inside the workspace (the disc about an inside point
+    with its clearance as radius holds no boundary point), so no
+    reachability test is needed, and the radius is the exact distance to
+    the arcs.  For the largest circle, :func:`largest_inscribed_circle`
+    (an optimiser, about a second; this takes milliseconds).
+
+    Accuracy: the circle always fits (its radius is the exact clearance of
+    its centre), and when the largest circle's centre lies within
+    ``spacing / sqrt 2`` of a candidate (a grid of that spacing covering the
+    workspace) the radius is at most ``spacing / sqrt 2`` short of the
+    largest (clearance changes no faster than the centre moves); in practice
+    it is within about ``tol`` (tested against :func:`largest_inscribed_circle`).
+
+    Parameters
+    ----------
+    arcs : list of twolink.arcs.Arc
+        The workspace's :func:`boundary_arcs` (with the ``elbow`` the
+        candidates were chosen for).
+    candidates : array_like, shape (..., 2)
+        Start points **inside** the workspace, for example the points of a
+        grid that :func:`is_reachable` (or :meth:`BranchTable.reachable`)
+        accepts; at most ``MAX_SAMPLES``.
+    spacing : float
+        Distance between neighbouring candidates, metres (> 0).
+    tol : float
+        The search stops when its step is at most this, metres (> 0); at most
+        ``MAX_REFINEMENTS`` = 30 rounds (``spacing / tol`` up to ``3**31``).
+
+    Returns
+    -------
+    centre : numpy.ndarray, shape (2,), or None
+        ``None`` when there are no arcs or no candidates (no circle to grow).
+    radius : float
+        Its distance to the arcs, metres; ``0.0`` with ``centre=None``.
+
+    Raises
+    ------
+    ValueError
+        For a ``spacing`` or ``tol`` that is not positive and finite, more
+        than ``MAX_REFINEMENTS`` rounds, or too many candidates.
+
+    Examples
+    --------
+    >>> from twolink import arms
+    >>> axis = np.linspace(-22.0, 22.0, 45)  # 1 m apart
+    >>> grid = np.stack(np.meshgrid(axis, axis), axis=-1).reshape(-1, 2)
+    >>> inside = grid[is_reachable(arms.ten, grid)]
+    >>> centre, radius = largest_circle_on_grid(boundary_arcs(arms.ten), inside, 1.0, 1e-3)
+    >>> round(radius, 3), round(float(10 - 5 * np.sqrt(2)), 3)  # the largest: 10 - 5 sqrt 2
+    (2.929, 2.929)
+    >>> bool(clearance(arms.ten, centre) >= radius - 1e-12)
+    True
+    >>> largest_circle_on_grid([], inside, 1.0, 1e-3)
+    (None, 0.0)
+    >>> largest_circle_on_grid(boundary_arcs(arms.ten), inside, 1.0, 1e-20)
+    Traceback (most recent call last):
+    ...
+    ValueError: tol = 1e-20 m needs 41 refinement rounds from spacing = 1 m; at most MAX_REFINEMENTS = 30 (spacing / tol up to 3**31)
+    """
+    if not isinstance(arcs, (list, tuple)) or not all(
+        isinstance(arc, Arc) for arc in arcs
+    ):
+        raise InputTypeError(
+            f"arcs must be a list of twolink.arcs.Arc (from workspace.boundary_arcs); got {arcs!r}"
+        )
+    points: NDArray[np.float64] = as_pairs(candidates, "candidates").reshape(-1, 2)
+    if len(points) > MAX_SAMPLES:
+        raise ValueError(
+            f"{len(points)} candidates; largest_circle_on_grid takes at most MAX_SAMPLES = {MAX_SAMPLES}"
+        )
+    spacing = as_finite_scalar(spacing, "spacing (m)", minimum=0.0, strictly=True)
+    tol = as_finite_scalar(tol, "tol (m)", minimum=0.0, strictly=True)
+    steps: list[float] = []
+    step = spacing / 3.0
+    while step > tol and len(steps) <= MAX_REFINEMENTS:
+        steps.append(step)
+        step /= 3.0
+    if len(steps) > MAX_REFINEMENTS:
+        needed = int(np.ceil(np.log(spacing / tol) / np.log(3.0))) - 1
+        raise ValueError(
+            f"tol = {tol:g} m needs {needed} refinement rounds from spacing = {spacing:g} m; at most "
+            f"MAX_REFINEMENTS = {MAX_REFINEMENTS} (spacing / tol up to 3**{MAX_REFINEMENTS + 1})"
+        )
+    if not arcs or len(points) == 0:
+        return None, 0.0
+
+    def distance_to_arcs(p: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.min([arc.distance(p) for arc in arcs], axis=0)
+
+    room = distance_to_arcs(points)
+    best = int(np.argmax(room))
+    centre, radius = points[best].copy(), float(room[best])
+    for step in steps:  # at most MAX_REFINEMENTS rounds of 49 points
+        near = centre + step * _REFINE_PATTERN
+        near = near[np.hypot(*(near - centre).T) < radius]
+        if len(near):
+            room = distance_to_arcs(near)
+            if room.max() > radius:
+                best = int(np.argmax(room))
+                centre, radius = near[best], float(room[best])
+    return centre, radius
 
 
 def circle_points(
