@@ -23,7 +23,11 @@ import twolink
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 HEAVY = ("scipy", "sympy", "matplotlib", "control", "mujoco")
 # The modules that exist to use a heavy library, and the one they load: chapters import them by name.
-HEAVY_BY_DESIGN = {"twolink.plot": "matplotlib", "twolink.symbolic": "sympy"}
+HEAVY_BY_DESIGN = {
+    "twolink.plot": "matplotlib",
+    "twolink.explorer": "matplotlib",
+    "twolink.symbolic": "sympy",
+}
 
 
 def run_fresh(code: str) -> str:
