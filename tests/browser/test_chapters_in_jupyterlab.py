@@ -78,6 +78,7 @@ def figure_source(container):
     return images.first.get_attribute("src") if images.count() else None
 
 
+@pytest.mark.infrastructure
 @pytest.mark.browser
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
 def test_chapter_runs_and_plays_in_jupyterlab(jupyterlab, page, path):
