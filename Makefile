@@ -12,7 +12,9 @@ NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
 help:
 	@echo "make lab        open the course in JupyterLab (creates .venv on first use);"
 	@echo "                extra JupyterLab options: make lab LAB_ARGS=\"--no-browser --port 8890\""
-	@echo "make test       unit tests, doctests, notebook hygiene and every notebook under strict nbval"
+	@echo "make test       unit tests, doctests, notebook hygiene, every notebook under strict nbval and the"
+	@echo "                infrastructure tests (venvs, wheels, nested pytest, browser, whole editions); the quick part:"
+	@echo "                .venv/bin/python -m pytest -m \"not infrastructure and not browser\""
 	@echo "make portable   every chapter (strict nbval) and doctest in several emulated numeric environments (CPU SIMD, BLAS kernels, threads)"
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables"

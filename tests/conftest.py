@@ -1,6 +1,8 @@
 """Shared hypothesis strategies and settings for the twolink tests."""
 
 import os
+import pathlib
+import sys
 
 import matplotlib
 import numpy as np
@@ -95,6 +97,53 @@ def acceleration_scale(arm, q, qd, tau):
         qd * qd,
     ]
     return max(float(np.max(np.abs(part))) for part in parts)
+
+
+# --- the order the files start in, so that both xdist workers stay busy to the end
+
+#: The slowest files, with their rough cost in seconds of one core (the sums of
+#: ``pytest --durations=0``; only the order matters).  pyproject.toml hands whole
+#: files to the workers (``--dist loadfile``) in collection order
+#: (``--no-loadscope-reorder``); these files are collected first, slowest first,
+#: so no long file starts last and leaves the other core idle.  Files not named
+#: here follow in their usual order.
+SLOW_FILES_SECONDS = {
+    "tests/browser/test_chapters_in_jupyterlab.py": 280,
+    "tests/test_student_edition.py": 110,
+    "tests/browser/test_static_site.py": 80,
+    "tests/test_pytest_anywhere.py": 70,
+    "tests/test_grade.py": 45,
+    "tests/test_import.py": 38,
+    "tests/test_figures.py": 34,
+    "tests/test_install_cell.py": 25,
+    "tests/test_exercises.py": 25,
+    "tests/test_benchmarks_run.py": 21,
+    "tests/test_trajectory.py": 18,
+    "tests/test_portable.py": 18,
+}
+
+
+def pytest_collection_modifyitems(config, items):
+    """Collect the slowest files first (a stable sort: each file's tests keep their order)."""
+    items.sort(key=lambda item: -SLOW_FILES_SECONDS.get(item.nodeid.split("::")[0], 0))
+
+
+# --- the student edition, built once per worker
+
+
+@pytest.fixture(scope="session")
+def student_edition(tmp_path_factory):
+    """A folder with the student edition of every chapter (``make student``), built once.
+
+    Read-only for the tests that share it: a test that changes a notebook works on a copy.
+    """
+    root = pathlib.Path(__file__).resolve().parent.parent
+    sys.path.insert(0, str(root / "tools"))
+    import editions
+
+    out = tmp_path_factory.mktemp("student-edition")
+    editions.build_student(root / "notebooks", out)
+    return out
 
 
 # --- the environment nbval's kernels inherit

@@ -48,6 +48,7 @@ def alive(pid):
     return state != "Z"
 
 
+@pytest.mark.infrastructure
 @pytest.mark.skipif(not pathlib.Path("/proc").is_dir(), reason="needs /proc (Linux)")
 @pytest.mark.parametrize("how", ["SIGTERM", "SIGINT", "exit"])
 def test_server_and_kernel_are_gone_after(how):

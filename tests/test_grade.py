@@ -14,15 +14,13 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
-import editions  # noqa: E402
 import grade  # noqa: E402
 
 CHAPTER = "01_dh_forward_kinematics.ipynb"
 
 
-def _student_chapter(tmp_path):
-    editions.build_student(ROOT / "notebooks", tmp_path / "edition")
-    return json.loads((tmp_path / "edition" / CHAPTER).read_text(encoding="utf-8"))
+def _student_chapter(student_edition):
+    return json.loads((student_edition / CHAPTER).read_text(encoding="utf-8"))
 
 
 def _replace(notebook, old, new):
@@ -36,21 +34,21 @@ def _replace(notebook, old, new):
 
 
 @pytest.fixture(scope="module")
-def graded(tmp_path_factory):
+def graded(tmp_path_factory, student_edition):
     tmp_path = tmp_path_factory.mktemp("grade")
     submissions = tmp_path / "submissions"
     submissions.mkdir()
-    untouched = _student_chapter(tmp_path)
+    untouched = _student_chapter(student_edition)
     (submissions / "ada_untouched.ipynb").write_text(
         json.dumps(untouched), encoding="utf-8"
     )
-    solved = _student_chapter(tmp_path)
+    solved = _student_chapter(student_edition)
     _replace(solved, "p_tip_ex1 = ...  # your code here", "p_tip_ex1 = osake.fk(q_ex1)")
     _replace(
         solved, "q_rel_ex3 = ...  # your code here", "q_rel_ex3 = np.array([1.0, 2.0])"
     )
     (submissions / "bob_solved.ipynb").write_text(json.dumps(solved), encoding="utf-8")
-    broken = _student_chapter(tmp_path)
+    broken = _student_chapter(student_edition)
     _replace(
         broken, "p_tip_ex1 = ...  # your code here", "p_tip_ex1 = undefined_name + 1"
     )
@@ -70,6 +68,7 @@ def _results(rows, name):
     }
 
 
+@pytest.mark.infrastructure
 def test_untouched_notebook_is_all_not_solved(graded):
     lines, rows = graded
     results = _results(rows, "ada_untouched.ipynb")
@@ -81,6 +80,7 @@ def test_untouched_notebook_is_all_not_solved(graded):
     )
 
 
+@pytest.mark.infrastructure
 def test_solved_and_wrong_parts_are_graded(graded):
     lines, rows = graded
     results = _results(rows, "bob_solved.ipynb")
@@ -96,6 +96,7 @@ def test_solved_and_wrong_parts_are_graded(graded):
     )
 
 
+@pytest.mark.infrastructure
 def test_a_notebook_that_fails_to_run_is_reported(graded):
     lines, rows = graded
     failed = [

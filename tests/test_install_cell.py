@@ -156,6 +156,7 @@ def test_in_a_clone_the_cell_installs_nothing(tmp_path, monkeypatch):
     assert "installing" not in outputs[2]
 
 
+@pytest.mark.infrastructure
 def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(
     tmp_path, monkeypatch
 ):

@@ -392,6 +392,7 @@ BARE_SCRIPT = textwrap.dedent("""
 """)
 
 
+@pytest.mark.infrastructure
 def test_the_wheel_works_with_only_its_four_core_dependencies(tmp_path):
     """pip wheel, then install it (dependencies checked, nothing downloaded) in a venv with numpy, scipy,
     sympy and matplotlib only; every module imports and the course-only functions explain themselves."""

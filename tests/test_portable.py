@@ -72,6 +72,7 @@ def _notebook(path, stored_text):
     return str(path)
 
 
+@pytest.mark.infrastructure
 def test_a_matching_notebook_passes_and_a_mismatching_one_fails(tmp_path, capsys):
     good = _notebook(tmp_path / "good.ipynb", "0.3\n")
     bad = _notebook(tmp_path / "bad.ipynb", "0.30000000000000004\n")

@@ -52,6 +52,7 @@ def pytest_in(folder, *args):
     )
 
 
+@pytest.mark.infrastructure
 @pytest.mark.parametrize(
     "where, args",
     [
@@ -67,6 +68,7 @@ def test_pytest_nbval_runs_from(repository, where, args):
     assert "1 passed" in result.stdout
 
 
+@pytest.mark.infrastructure
 def test_without_the_root_conftest_the_run_from_notebooks_fails(repository):
     (repository / "conftest.py").unlink()
     result = pytest_in(repository / "notebooks", "--nbval", "00_random_id.ipynb")

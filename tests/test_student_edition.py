@@ -146,9 +146,8 @@ SELFCHECK_VERDICT = re.compile(
 
 
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
-def test_student_edition_shows_nothing_in_advance(path, tmp_path):
-    editions.build_student(path.parent, tmp_path)
-    student = json.loads((tmp_path / path.name).read_text(encoding="utf-8"))
+def test_student_edition_shows_nothing_in_advance(path, student_edition):
+    student = json.loads((student_edition / path.name).read_text(encoding="utf-8"))
     assert selfcheck_cells(student), f"{path.name} has no self-check cells"
     for cell in selfcheck_cells(student):
         assert cell["outputs"] == [] and cell["execution_count"] is None, "".join(
@@ -167,10 +166,10 @@ def test_student_edition_shows_nothing_in_advance(path, tmp_path):
             assert "INSTRUCTOR -->" not in markdown and "<!-- STUDENT:" not in markdown
 
 
+@pytest.mark.infrastructure
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
-def test_student_edition_runs_and_reports_not_solved(path, tmp_path):
-    editions.build_student(path.parent, tmp_path)
-    student = nbformat.read(tmp_path / path.name, as_version=4)
+def test_student_edition_runs_and_reports_not_solved(path, student_edition):
+    student = nbformat.read(student_edition / path.name, as_version=4)
     assert "### BEGIN SOLUTION" not in json.dumps(student)
     HeadlessClient(
         student,

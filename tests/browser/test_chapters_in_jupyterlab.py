@@ -74,6 +74,7 @@ def picture(container):
     return container.evaluate(PICTURE)
 
 
+@pytest.mark.infrastructure
 @pytest.mark.browser
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
 def test_chapter_runs_and_plays_in_jupyterlab(jupyterlab, page, path):

@@ -34,6 +34,7 @@ def site(tmp_path_factory):
         server.server_close()
 
 
+@pytest.mark.infrastructure
 @pytest.mark.browser
 def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page):
     failures = []
