@@ -7,7 +7,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
 
-.PHONY: help install lock lab test portable notebooks bench bench-peers student grade site browser-test clean
+.PHONY: help install lock lab test portable notebooks bench bench-widgets bench-peers student grade site browser-test clean
 
 help:
 	@echo "make lab        open the course in JupyterLab (creates .venv on first use);"
@@ -17,7 +17,8 @@ help:
 	@echo "                .venv/bin/python -m pytest -m \"not infrastructure and not browser\""
 	@echo "make portable   every chapter (strict nbval) and doctest in several emulated numeric environments (CPU SIMD, BLAS kernels, threads)"
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
-	@echo "make bench      print the speed benchmark tables"
+	@echo "make bench      print the speed benchmark tables (bench-widgets included)"
+	@echo "make bench-widgets  key press to a changed picture for every explorer, in JupyterLab in Chromium"
 	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"
 	@echo "make student    write the student edition (solutions stubbed) to build/student/"
 	@echo "make grade SUBMISSIONS=folder  run returned notebooks headless; CSV + one line per notebook"
@@ -84,6 +85,9 @@ notebooks: $(STAMP)
 
 bench: $(STAMP)
 	@for script in benchmarks/bench_*.py; do $(BIN)/python "$$script" || exit 1; done
+
+bench-widgets: $(STAMP)
+	$(BIN)/python benchmarks/bench_widgets.py
 
 # Optional: the peers are not course requirements, so they go into their own venv.
 # A peer that will not install is reported by benchmarks/peers.py, not fatal.

@@ -15,6 +15,26 @@ import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCRIPTS = sorted((ROOT / "benchmarks").glob("bench_*.py"))
+sys.path.insert(0, str(ROOT / "tools"))
+
+import lab_browser  # noqa: E402
+
+# bench_widgets drives JupyterLab in Chromium: a browser test, skipped without one
+BROWSER_SCRIPTS = {"bench_widgets.py"}
+BROWSER_MISSING = lab_browser.missing()
+
+
+def _case(script):
+    if script.name not in BROWSER_SCRIPTS:
+        return script
+    return pytest.param(
+        script,
+        marks=[
+            pytest.mark.browser,
+            pytest.mark.infrastructure,
+            pytest.mark.skipif(bool(BROWSER_MISSING), reason=str(BROWSER_MISSING)),
+        ],
+    )
 
 
 def test_every_benchmark_script_is_covered():
@@ -25,10 +45,13 @@ def test_every_benchmark_script_is_covered():
         "bench_dynamics.py",
         "bench_ik_methods.py",
         "bench_import.py",
+        "bench_widgets.py",
     } <= names
 
 
-@pytest.mark.parametrize("script", SCRIPTS, ids=lambda path: path.name)
+@pytest.mark.parametrize(
+    "script", [_case(s) for s in SCRIPTS], ids=lambda path: path.name
+)
 def test_benchmark_runs_quick_and_prints_a_table(script):
     env = dict(
         os.environ,
