@@ -57,11 +57,12 @@ def derived(arm: Any, key: str, compute: Callable[[Any], _Value]) -> _Value:
     compute : callable
         ``arm -> value``; it raises for an object that is not an arm.
     """
+    try:
+        return arm._derived[key]  # the usual case, kept cheap: one call per formula use
+    except (AttributeError, KeyError):
+        pass
     cache = getattr(arm, CACHE_ATTRIBUTE, None)
     if cache is None:
         return compute(arm)
-    try:
-        return cache[key]
-    except KeyError:
-        value = cache[key] = compute(arm)
-        return value
+    value = cache[key] = compute(arm)
+    return value
