@@ -463,10 +463,10 @@ class Explorer:
         values = self.values
         self._update(**values)
         self.updates += 1
+        self._show_changes()  # the picture first: it is what the hand waits for
         if self._describe is not None:
             self.description = str(self._describe(**values))
             self._text.value = f"<p>{html.escape(self.description)}</p>"
-        self._show_changes()
 
     def redraw(self, description: str | None = None) -> None:
         """Show artists changed outside the update (by a button's exact run, say).
