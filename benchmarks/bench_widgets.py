@@ -39,8 +39,9 @@ from twolink.display import markdown_table  # noqa: E402
 TARGET_MEDIAN_MS = 50.0
 TARGET_P95_MS = 100.0
 TARGET_RUN_ALL_S = 8.0
-#: The CSS class of an explorer's box (twolink.explorer.CSS_CLASS).
-EXPLORER = ".twolink-explorer"
+#: An explorer's box: twolink.explorer.CSS_CLASS (an ipywidgets `interactive`
+#: before it, measured for comparison).
+EXPLORER = ".twolink-explorer, .widget-interact"
 #: No change within this long counts as a miss (reported, worst = this).
 TIMEOUT_MS = 5000.0
 
@@ -147,7 +148,8 @@ def move(page, box, handle, key: str) -> float | None:
 
 def measure_chapter(page, lab, path: Path, moves: int) -> dict:
     run_all = open_and_run(page, lab, path)
-    boxes = page.locator(f".jp-NotebookPanel:not(.lm-mod-hidden) {EXPLORER}")
+    panel = ".jp-NotebookPanel:not(.lm-mod-hidden)"
+    boxes = page.locator(", ".join(f"{panel} {box}" for box in EXPLORER.split(", ")))
     latencies: list[float] = []
     misses = 0
     settles: list[float] = []
