@@ -260,11 +260,28 @@ def _globals_read_by_functions(table):
     return names
 
 
+def _function_reads(table):
+    """Top-level functions of a cell -> the global names each reads (at any depth)."""
+    return {
+        child.get_name(): {
+            symbol.get_name()
+            for symbol in child.get_symbols()
+            if symbol.is_global() and symbol.is_referenced()
+        }
+        | _globals_read_by_functions(child)
+        for child in table.get_children()
+        if child.get_type() == "function"
+    }
+
+
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
 def test_no_later_cell_rebinds_a_name_an_explorer_moves(path):
     """An explorer's update runs long after its cell, when every cell has run: a
     global it reads (``ax``, ``line``) that a later cell rebinds would make the
-    sliders move another figure.  Build explorers inside a function instead."""
+    sliders move another figure.  The names read by the functions of the
+    explorer's cell count, and so do those read by the functions of earlier
+    cells that they call (at any depth).  Build explorers inside a function, or
+    give what they draw names of their own."""
     import symtable
 
     import nbformat
@@ -276,22 +293,32 @@ def test_no_later_cell_rebinds_a_name_an_explorer_moves(path):
         for cell in nbformat.read(path, as_version=4).cells
         if cell.cell_type == "code"
     ]
+    tables = [symtable.symtable(source, "cell", "exec") for source in cells]
     problems = []
     for index, source in enumerate(cells):
         if "explorer.Explorer(" not in source:
             continue
-        read = _globals_read_by_functions(symtable.symtable(source, "cell", "exec"))
+        defined = {}  # function name -> names it reads, the latest definition first
+        for earlier in tables[:index]:
+            defined.update(_function_reads(earlier))
+        read = _globals_read_by_functions(tables[index])
+        pending = list(read)
+        while pending:
+            name = pending.pop()
+            for more in defined.pop(name, set()) - read:
+                read.add(more)
+                pending.append(more)
         for later_index in range(index + 1, len(cells)):
-            table = symtable.symtable(cells[later_index], "cell", "exec")
             rebound = {
                 symbol.get_name()
-                for symbol in table.get_symbols()
+                for symbol in tables[later_index].get_symbols()
                 if symbol.is_assigned() or symbol.is_imported()
             }
             for name in sorted(read & rebound):
                 problems.append(
-                    f"code cell {index} builds an explorer whose functions read {name!r}, "
-                    f"which code cell {later_index} rebinds"
+                    f"code cell {index} builds an explorer whose functions read {name!r} "
+                    f"(directly or through a function they call), which code cell "
+                    f"{later_index} rebinds"
                 )
     assert problems == []
 
@@ -328,3 +355,22 @@ def test_blitted_moves_show_the_same_pixels_as_a_full_draw():
     blitted = np.asarray(canvas.buffer_rgba()).copy()
     fresh = np.asarray(_png_pixels(view.png()))
     assert np.array_equal(blitted[..., :3], fresh[..., :3])
+
+
+def test_the_rebinding_check_follows_functions_defined_in_earlier_cells(tmp_path):
+    import nbformat
+
+    notebook = nbformat.v4.new_notebook()
+    notebook.cells = [
+        nbformat.v4.new_code_cell("figure, ax = explorer.explorer_figure(3.0, 3.0)"),
+        nbformat.v4.new_code_cell("def move(q1):\n    ax.set_title(str(q1))"),
+        nbformat.v4.new_code_cell(
+            "def update(q1):\n    move(q1)\n\n"
+            "view = explorer.Explorer(figure, update, {})"
+        ),
+        nbformat.v4.new_code_cell("fig, ax = plt.subplots()"),
+    ]
+    path = tmp_path / "chapter.ipynb"
+    nbformat.write(notebook, path)
+    with pytest.raises(AssertionError, match="read 'ax' .*which code cell 3 rebinds"):
+        test_no_later_cell_rebinds_a_name_an_explorer_moves(path)
