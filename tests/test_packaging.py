@@ -393,7 +393,6 @@ BARE_SCRIPT = textwrap.dedent("""
 """)
 
 
-@pytest.mark.infrastructure
 def _tracked_copy(destination):
     """The checkout's tracked files (as they are now), copied to ``destination``.
 
@@ -424,6 +423,7 @@ def _tracked_copy(destination):
     return destination
 
 
+@pytest.mark.infrastructure
 def test_the_wheel_works_with_only_its_four_core_dependencies(tmp_path):
     """pip wheel, then install it (dependencies checked, nothing downloaded) in a venv with numpy, scipy,
     sympy and matplotlib only; every module imports and the course-only functions explain themselves."""
