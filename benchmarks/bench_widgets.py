@@ -46,23 +46,25 @@ EXPLORER = ".twolink-explorer, .widget-interact"
 TIMEOUT_MS = 5000.0
 
 # In the page: a signature of what an explorer shows (canvas pixels, image
-# sources, svg markup), and a watcher started before a key press that resolves
-# with the milliseconds from the key down to the first frame whose signature
-# differs.
-WATCH = """
-([box, timeoutMs]) => {
-  const signature = () => {
+# sources, svg markup), as a JavaScript function of the element ``box``.
+SIGNATURE = """(box => {
     let hash = 0;
     for (const canvas of box.querySelectorAll('canvas')) {
       if (!canvas.width || !canvas.height) continue;
       const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
       for (let i = 0; i < data.length; i += 8) hash = (hash * 31 + data[i]) | 0;
     }
-    for (const image of box.querySelectorAll('img')) hash = (hash * 31 + image.src.length) | 0;
-    for (const image of box.querySelectorAll('img')) for (let i = 0; i < image.src.length; i += 97) hash = (hash * 31 + image.src.charCodeAt(i)) | 0;
+    for (const image of box.querySelectorAll('img'))
+      for (let i = 0; i < image.src.length; i += 97) hash = (hash * 31 + image.src.charCodeAt(i)) | 0;
     for (const svg of box.querySelectorAll('svg')) hash = (hash * 31 + svg.outerHTML.length) | 0;
     return hash;
-  };
+})"""
+
+# A watcher started before a key press: it resolves with the milliseconds from
+# the key down to the first frame whose signature differs.
+WATCH = """
+([box, timeoutMs]) => {
+  const signature = () => SIGNATURE(box);
   const before = signature();
   window.__twolinkLatency = new Promise(resolve => {
     let start = null;
@@ -77,22 +79,13 @@ WATCH = """
     requestAnimationFrame(tick);
   });
 }
-"""
+""".replace("SIGNATURE", SIGNATURE)
 
 # After a burst: resolve with the time from the last key press to the last
 # frame whose picture changed, once it has been still for a second.
 SETTLE = """
 async ([box]) => {
-  const signature = () => {
-    let hash = 0;
-    for (const canvas of box.querySelectorAll('canvas')) {
-      if (!canvas.width || !canvas.height) continue;
-      const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
-      for (let i = 0; i < data.length; i += 8) hash = (hash * 31 + data[i]) | 0;
-    }
-    for (const image of box.querySelectorAll('img')) hash = (hash * 31 + image.src.length) | 0;
-    return hash;
-  };
+  const signature = () => SIGNATURE(box);
   const lastKey = window.__twolinkLastKey;
   let last = signature(), changedAt = performance.now();
   return await new Promise(resolve => {
@@ -105,7 +98,7 @@ async ([box]) => {
     requestAnimationFrame(tick);
   });
 }
-"""
+""".replace("SIGNATURE", SIGNATURE)
 
 
 def open_and_run(page, lab, path: Path) -> float:

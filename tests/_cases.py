@@ -1,6 +1,7 @@
 """Test inputs shared by several test files (``conftest.py`` holds the arm and state strategies).
 
 - ``BAD_NUMBERS``: what a number argument must refuse (shared validation, arm parameters).
+- ``BAD_PAIRS``: what a one-pair argument (a target, a configuration) must refuse.
 - ``stable_id``: a parametrize id that is the same in every process (xdist needs that).
 - ``limited_arms``: arms with random joint limits in either convention.
 """
@@ -22,6 +23,19 @@ BAD_NUMBERS = [
     object(),
     [1.0],
     {"x": 1},
+]
+
+BAD_PAIRS = [
+    [float("nan"), 1.0],
+    [0.0, float("inf")],
+    ["a", 1.0],
+    [None, 1.0],
+    [1 + 2j, 0.0],
+    [1.0, 2.0, 3.0],
+    [],
+    [True, False],
+    [10**400, 0.0],
+    np.array([np.nan, 1.0]),
 ]
 
 

@@ -5,6 +5,7 @@ import re
 
 import numpy as np
 import pytest
+from _cases import BAD_PAIRS
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
@@ -676,22 +677,7 @@ def outcome(call):
         return "error", (type(error), str(error))
 
 
-@pytest.mark.parametrize(
-    "bad",
-    [
-        [float("nan"), 1.0],
-        [0.0, float("inf")],
-        ["a", 1.0],
-        [None, 1.0],
-        [1 + 2j, 0.0],
-        [1.0, 2.0, 3.0],
-        [],
-        [True, False],
-        [10**400, 0.0],
-        np.array([np.nan, 1.0]),
-    ],
-    ids=repr,
-)
+@pytest.mark.parametrize("bad", BAD_PAIRS, ids=repr)
 def test_single_bad_target_is_refused_as_the_vectorised_path_refuses_it(bad):
     from twolink._validate import as_pairs
 

@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from _cases import BAD_PAIRS
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -258,20 +259,6 @@ def assert_same_outcome(fast, slow):
         assert fast_value == slow_value
     else:
         np.testing.assert_allclose(fast_value, slow_value, rtol=0, atol=1e-12)
-
-
-BAD_PAIRS = [
-    [float("nan"), 1.0],
-    [0.0, float("inf")],
-    ["a", 1.0],
-    [None, 1.0],
-    [1 + 2j, 0.0],
-    [1.0, 2.0, 3.0],
-    [],
-    [True, False],
-    [10**400, 0.0],
-    np.array([np.nan, 1.0]),
-]
 
 
 def refused_in_a_batch_of_one(function, bad, name):

@@ -155,25 +155,14 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
                 one_minus_c2 = 0.0
             if one_plus_c2 < 0.0:  # round-off at full fold
                 one_plus_c2 = 0.0
-            if elbow == "down" or (elbow == "auto" and arm.q_min is None):
+            if (
+                elbow == "down"
+                or elbow == "up"
+                or (elbow == "auto" and arm.q_min is None)
+            ):
+                sign = -1.0 if elbow == "up" else 1.0  # "auto" without limits: down
                 q1, q2 = _branch_angles(
-                    l1, l2, x, y, one_minus_c2, one_plus_c2, 1.0, _sqrt, _atan2
-                )
-                return one_answer_result(
-                    arm,
-                    x,
-                    y,
-                    q1,
-                    q2,
-                    0,
-                    threshold,
-                    METHOD,
-                    messages[elbow],
-                    _failure_detail,
-                )
-            if elbow == "up":
-                q1, q2 = _branch_angles(
-                    l1, l2, x, y, one_minus_c2, one_plus_c2, -1.0, _sqrt, _atan2
+                    l1, l2, x, y, one_minus_c2, one_plus_c2, sign, _sqrt, _atan2
                 )
                 return one_answer_result(
                     arm,
