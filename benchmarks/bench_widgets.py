@@ -15,7 +15,9 @@ all moves, the settle time and the Run All time, beside the targets on these
 
 Run with ``make bench-widgets`` or ``.venv/bin/python benchmarks/bench_widgets.py``
 (``--quick``: chapter 1 only, two moves per slider; ``--chapters 03 05`` for
-some).  Needs Chromium (``apt-get install -y chromium``).
+some).  The server is the course's (``make lab``: kernel messages without
+Nagle's delay, ``tools/lab_server/twolink_nodelay.py``); ``--stock-server``
+measures a plain one.  Needs Chromium (``apt-get install -y chromium``).
 """
 
 from __future__ import annotations
@@ -196,6 +198,11 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--chapters", nargs="*", help="chapter numbers, e.g. 03 05")
     parser.add_argument("--moves", type=int, default=6, help="key presses per slider")
+    parser.add_argument(
+        "--stock-server",
+        action="store_true",
+        help="without the course's server extension (Nagle's algorithm left on), for comparison",
+    )
     args = parser.parse_args(argv)
     reason = lab_browser.missing()
     if reason:
@@ -209,7 +216,7 @@ def main(argv: list[str] | None = None) -> int:
     rows = []
     with (
         tempfile.TemporaryDirectory() as home,
-        lab_browser.jupyterlab(Path(home)) as lab,
+        lab_browser.jupyterlab(Path(home), nodelay=not args.stock_server) as lab,
     ):
         with lab_browser.chromium() as browser:
             for path in notebooks:
@@ -222,7 +229,8 @@ def main(argv: list[str] | None = None) -> int:
                     lab_browser.shut_down_kernels(lab)
     print(
         f"# Explorers: key press to a changed picture, JupyterLab in headless Chromium "
-        f"({platform.machine()}, {platform.python_implementation()} {platform.python_version()})\n"
+        f"({platform.machine()}, {platform.python_implementation()} {platform.python_version()}"
+        f"{'; stock server, Nagle on' if args.stock_server else ''})\n"
     )
     table = []
     for row in rows:

@@ -374,3 +374,19 @@ def test_the_rebinding_check_follows_functions_defined_in_earlier_cells(tmp_path
     nbformat.write(notebook, path)
     with pytest.raises(AssertionError, match="read 'ax' .*which code cell 3 rebinds"):
         test_no_later_cell_rebinds_a_name_an_explorer_moves(path)
+
+
+def test_a_move_redraws_neither_the_axes_nor_the_figure_a_new_limit_does():
+    view, _, _ = _arm_explorer()
+    ax = view.figure.axes[0]
+    assert ax.get_axisbelow() is True  # ticks and grid under the moving artists
+    view.figure.canvas.draw()
+    view.set(q1=40)  # the first move after a draw by someone else redraws
+    full = view.full_redraws
+    for q1 in (50, 60, 70):
+        view.set(q1=q1)
+    assert view.full_redraws == full
+    assert not any(isinstance(a, (matplotlib.axis.Axis,)) for a in view._animated)
+    ax.set_xlim(-5.0, 5.0)
+    view.set(q1=80)
+    assert view.full_redraws == full + 1

@@ -27,6 +27,10 @@ from collections.abc import Iterator
 from typing import Any
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+#: The course's server extension (tools/lab_server/twolink_nodelay.py): kernel
+#: messages reach the browser without Nagle's delay, as in ``make lab``.
+SERVER_EXTENSION_PATH = ROOT / "tools" / "lab_server"
+SERVER_EXTENSION_ARGS = ["--ServerApp.jpserver_extensions=twolink_nodelay=True"]
 CHROMIUM = os.environ.get("TWOLINK_CHROMIUM", "/usr/bin/chromium")
 CHROMIUM_ARGS = [
     "--no-sandbox",
@@ -180,11 +184,12 @@ def chromium() -> Iterator[Any]:
 
 
 @contextlib.contextmanager
-def jupyterlab(home: pathlib.Path) -> Iterator[dict[str, Any]]:
+def jupyterlab(home: pathlib.Path, *, nodelay: bool = True) -> Iterator[dict[str, Any]]:
     """A JupyterLab server on 127.0.0.1 serving a copy of the notebooks in ``home``.
 
     Yields ``{"url", "token", "notebooks"}``; the server (and its kernels) stop
-    at the end.
+    at the end.  ``nodelay``: load the course's server extension, as ``make
+    lab`` does (``False``: a stock server, for comparison).
     """
     notebooks = home / "notebooks"
     shutil.copytree(ROOT / "notebooks", notebooks)
@@ -192,6 +197,10 @@ def jupyterlab(home: pathlib.Path) -> Iterator[dict[str, Any]]:
     port = free_port()
     env = dict(os.environ)
     env.pop("MPLBACKEND", None)
+    if nodelay:
+        env["PYTHONPATH"] = os.pathsep.join(
+            [str(SERVER_EXTENSION_PATH), *filter(None, [env.get("PYTHONPATH")])]
+        )
     for name in (
         "JUPYTER_CONFIG_DIR",
         "JUPYTER_RUNTIME_DIR",
@@ -218,6 +227,7 @@ def jupyterlab(home: pathlib.Path) -> Iterator[dict[str, Any]]:
                 f"--ServerApp.root_dir={notebooks}",
                 "--LabApp.news_url=",
                 "--LabApp.check_for_updates_class=jupyterlab.NeverCheckForUpdate",
+                *(SERVER_EXTENSION_ARGS if nodelay else []),
             ],
             env=env,
             stdout=log,

@@ -368,6 +368,12 @@ class Explorer:
     ----------
     widget : ipywidgets.VBox
         Controls, canvas and description, displayed by ``display(explorer)``.
+    updates : int
+        How many times ``update`` has run.
+    full_redraws : int
+        How many of those redrew the whole figure (the first, and any that
+        changed axis limits, labels or ticks): a slow move.  Every other
+        update draws only the artists it changed, and those above them.
     """
 
     def __init__(
@@ -407,11 +413,16 @@ class Explorer:
         self.description = ""
         self._text = widgets.HTML(layout=widgets.Layout(max_width="640px"))
         self.updates = 0
+        self.full_redraws = 0
         self._holding = False
         self._background: Any = None
         self._saving = False
         self._limits: list[tuple[float, ...]] = []
         self._animated: list[Artist] = []
+        for ax in figure.axes:
+            # ticks, tick labels and grid under every artist: a move, which
+            # redraws what lies above the artists it changes, never redraws them
+            ax.set_axisbelow(True)
         figure.canvas.mpl_connect("draw_event", self._on_draw)
         self.refresh()
         figure.tight_layout()  # once, for the first state: labels inside the canvas
@@ -505,6 +516,7 @@ class Explorer:
         if moved is None or any(artist not in self._animated for artist in moved):
             self._animate(moved or [])
             self._background = None
+            self.full_redraws += 1
             canvas.draw()  # a full draw now; _on_draw saves the new background
             return
         canvas.restore_region(self._background)
