@@ -152,6 +152,9 @@ def measure_chapter(page, lab, path: Path, moves: int) -> dict:
     for index in range(boxes.count()):
         box = boxes.nth(index)
         box.scroll_into_view_if_needed()
+        # as a reader's hand reaches the slider after the figure appears: the
+        # canvas's first picture (requested by the page when shown) is in
+        page.wait_for_timeout(500)
         sliders = box.locator(".widget-slider")
         sliders_total += sliders.count()
         for slider_index in range(sliders.count()):
@@ -197,7 +200,7 @@ def main(argv: list[str] | None = None) -> int:
         "--quick", action="store_true", help="chapter 1, two moves per slider"
     )
     parser.add_argument("--chapters", nargs="*", help="chapter numbers, e.g. 03 05")
-    parser.add_argument("--moves", type=int, default=6, help="key presses per slider")
+    parser.add_argument("--moves", type=int, default=10, help="key presses per slider")
     parser.add_argument(
         "--stock-server",
         action="store_true",

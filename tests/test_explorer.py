@@ -1,6 +1,7 @@
 """twolink.explorer: controls labelled with units on round grids, a figure drawn
 once and moved in place, and what an explorer stores for static pages."""
 
+import asyncio
 import base64
 
 import matplotlib
@@ -390,3 +391,26 @@ def test_a_move_redraws_neither_the_axes_nor_the_figure_a_new_limit_does():
     ax.set_xlim(-5.0, 5.0)
     view.set(q1=80)
     assert view.full_redraws == full + 1
+
+
+def test_while_the_hand_moves_the_sentence_waits_and_only_the_last_is_sent():
+    view, _, _ = _arm_explorer()
+    text = view.widget.children[-1]
+    assert "(30°, 45°)" in text.value  # the first sentence at once
+    sent = []
+    text.observe(lambda change: sent.append(change.new), names="value")
+
+    async def drag():
+        for q1 in (40, 50, 60):
+            view.set(q1=q1)
+            assert f"({q1}°, 45°)" in view.description  # known at once
+            await asyncio.sleep(explorer.DESCRIPTION_DELAY / 10)
+        assert sent == []  # the page is not asked to lay out a sentence per move
+        await asyncio.sleep(explorer.DESCRIPTION_DELAY * 2)
+
+    asyncio.run(drag())
+    assert len(sent) == 1 and "(60°, 45°)" in sent[0]
+    view.set(q1=70)  # no event loop (a script): at once
+    assert "(70°, 45°)" in text.value
+    view.redraw("A button's sentence.")  # a button: at once
+    assert "A button&#x27;s sentence." in text.value

@@ -20,6 +20,8 @@ the latest value once the previous one is handled, and the canvas renders
 when the browser asks for a frame, so the latest value wins and nothing is
 still drawing after the hand stops, as long as ``update`` is quick: keep heavy
 work (samples, meshes, reference curves) out of it, computed once beforehand.
+The sentence under the figure is sent once the hand has stopped for
+``DESCRIPTION_DELAY`` seconds (``Explorer.description`` is always current).
 
 Displayed in a notebook an explorer stores, besides the live widgets, a PNG of
 its first state and its description, which static renderers (nbconvert,
@@ -55,6 +57,7 @@ array([3.46, 2.  ])
 
 from __future__ import annotations
 
+import asyncio
 import base64
 import html
 import io
@@ -86,6 +89,9 @@ TRACK_MIN_PX, TRACK_MAX_PX = 280, 640
 LABEL_WIDTH = "9em"
 #: The CSS class of an explorer's box in the page.
 CSS_CLASS = "twolink-explorer"
+#: Seconds the sentence under the figure waits for the hand to stop (a drag
+#: sends only the picture; the page then lays out the new sentence once).
+DESCRIPTION_DELAY = 0.15
 #: Most steps on one slider (a finer slider cannot be aimed at one value).
 MAX_STEPS = 2000
 
@@ -419,12 +425,15 @@ class Explorer:
         self._saving = False
         self._limits: list[tuple[float, ...]] = []
         self._animated: list[Artist] = []
+        self._pending_text: asyncio.TimerHandle | None = None
         for ax in figure.axes:
             # ticks, tick labels and grid under every artist: a move, which
             # redraws what lies above the artists it changes, never redraws them
             ax.set_axisbelow(True)
         figure.canvas.mpl_connect("draw_event", self._on_draw)
         self.refresh()
+        if describe is not None:
+            self._show_description(wait=False)  # the first sentence, at once
         figure.tight_layout()  # once, for the first state: labels inside the canvas
         # what ipympl's own display would set: the first picture and the size, in
         # pixels, that the browser's canvas starts from
@@ -477,7 +486,7 @@ class Explorer:
         self._show_changes()  # the picture first: it is what the hand waits for
         if self._describe is not None:
             self.description = str(self._describe(**values))
-            self._text.value = f"<p>{html.escape(self.description)}</p>"
+            self._show_description(wait=True)
 
     def redraw(self, description: str | None = None) -> None:
         """Show artists changed outside the update (by a button's exact run, say).
@@ -487,8 +496,26 @@ class Explorer:
         """
         if description is not None:
             self.description = str(description)
-            self._text.value = f"<p>{html.escape(self.description)}</p>"
+            self._show_description(wait=False)
         self._show_changes()
+
+    def _show_description(self, *, wait: bool) -> None:
+        """Put ``description`` under the figure: at once, or once the hand has
+        stopped for ``DESCRIPTION_DELAY`` (when the kernel runs an event loop)."""
+        if self._pending_text is not None:
+            self._pending_text.cancel()
+            self._pending_text = None
+        text = f"<p>{html.escape(self.description)}</p>"
+        try:
+            loop = asyncio.get_running_loop() if wait else None
+        except RuntimeError:  # no loop (a script, a test): now
+            loop = None
+        if loop is None:
+            self._text.value = text
+        else:
+            self._pending_text = loop.call_later(
+                DESCRIPTION_DELAY, setattr, self._text, "value", text
+            )
 
     def _moved_artists(self) -> list[Artist] | None:
         """The axes' children the update changed, or None when the figure must be redrawn."""
