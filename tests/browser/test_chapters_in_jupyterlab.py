@@ -119,6 +119,11 @@ def run_chapter(jupyterlab, page, path):
             f"{path.name}: interactive widget {index} has no slider"
         )
         container.scroll_into_view_if_needed()
+        sentence = container.locator(".widget-html-content").last
+        sentence_before = sentence.inner_text()
+        assert sentence_before.strip(), (
+            f"{path.name}: explorer {index} shows no sentence under its figure"
+        )
         for slider_index in range(sliders.count()):
             slider = sliders.nth(slider_index)
             readout = slider.locator(".widget-readout")
@@ -144,6 +149,12 @@ def run_chapter(jupyterlab, page, path):
             moved.append(
                 f"{index}:{slider.locator('.widget-label').first.inner_text()}"
             )
+        # the text alternative follows the figure once the hand stops
+        page.wait_for_function(
+            "([element, value]) => element.innerText !== value",
+            arg=[sentence.element_handle(), sentence_before],
+            timeout=10_000,
+        )
     assert len(moved) >= interactive_count
 
     videos = panel.locator(".jp-OutputArea-output video")
