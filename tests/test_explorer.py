@@ -414,3 +414,28 @@ def test_while_the_hand_moves_the_sentence_waits_and_only_the_last_is_sent():
     assert "(70°, 45°)" in text.value
     view.redraw("A button's sentence.")  # a button: at once
     assert "A button&#x27;s sentence." in text.value
+
+
+def test_an_empty_title_does_not_make_every_move_redraw_the_legend():
+    figure, ax = explorer.explorer_figure(3.0, 3.0)
+    plot.setup_axes(ARM, ax=ax)
+    # the arm drawn above everything, so a move redraws the arm alone
+    line = plot.draw_arm(ARM, [0.0, 0.0], ax=ax, label="arm")
+    line.set_zorder(10)
+    legend = ax.legend(loc="lower left")
+
+    def update(q1):
+        plot.move_arm(line, ARM, np.radians([q1, 0.0]))
+
+    view = explorer.Explorer(
+        figure, update, {"q1": explorer.slider("q1", "deg", 30, 0, 90, 5)}
+    )
+    figure.canvas.draw()
+    for q1 in (35, 40, 45):
+        view.set(q1=q1)
+    assert ax.get_title() == ""
+    assert ax.title not in view._animated and legend not in view._animated
+    assert view._animated == [line]
+    ax.set_title("now with a title")  # a real change is still seen
+    view.set(q1=50)
+    assert ax.title in view._animated

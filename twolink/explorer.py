@@ -564,6 +564,13 @@ class Explorer:
         self._background = canvas.copy_from_bbox(self.figure.bbox)
         self._limits = self._axes_limits()
         self._draw_animated()
+        # The picture is now current. An artist still marked stale drew nothing
+        # (an empty title, a hidden note, which return before clearing the
+        # flag): left marked, every move would count it as moved and redraw it
+        # and everything above it (legends, notes).
+        for ax in self.figure.axes:
+            for child in ax.get_children():
+                child.stale = False
 
     def _animate(self, moved: list[Artist]) -> None:
         """Mark ``moved`` and every artist its axes draws after them as animated.
