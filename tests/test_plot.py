@@ -3,6 +3,7 @@
 import inspect
 import re
 
+import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
@@ -469,3 +470,27 @@ def test_move_ellipse_and_move_strobe_follow_draw_ellipse_and_draw_strobe():
     with pytest.raises(InputTypeError, match="draw_strobe returned"):
         plot.move_strobe([], arm, path)
     plt.close(ax.figure)
+
+
+def test_animation_html_draws_each_frame_once_and_makes_the_same_video():
+    import imageio_ffmpeg
+
+    q_path = np.linspace([0.0, 0.0], [np.pi / 2, np.pi / 2], 6)
+
+    def made():
+        anim = plot.animate_arm(arms.two_metre, q_path, t=np.linspace(0.0, 1.0, 6))
+        draws = []
+        anim._fig.canvas.mpl_connect("draw_event", lambda event: draws.append(event))
+        return anim, draws
+
+    anim, draws = made()
+    video = plot.animation_html(anim).data
+    assert "<video" in video and len(draws) == 6  # one per frame
+    assert "draw_idle" not in vars(anim._fig.canvas)  # the canvas's own method again
+    reference, reference_draws = made()  # matplotlib's own path draws twice
+    with matplotlib.rc_context(
+        {"animation.ffmpeg_path": imageio_ffmpeg.get_ffmpeg_exe()}
+    ):
+        assert reference.to_html5_video(embed_limit=5.0) in video
+    assert len(reference_draws) > len(draws)
+    plt.close("all")

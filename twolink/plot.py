@@ -483,8 +483,17 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
             {"animation.embed_limit": 5.0}
         ):  # MB, as for the video
             return html(note + anim.to_jshtml(default_mode="loop"))
-    with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg}):
-        return html(anim.to_html5_video(embed_limit=5.0))
+    figure = getattr(anim, "_fig")  # noqa: B009
+    canvas = figure.canvas
+    # matplotlib's save draws each frame twice: once on the canvas after the
+    # frame's update (draw_idle) and again for the writer (savefig); only the
+    # second one is recorded, so the first is skipped while the video is made.
+    canvas.draw_idle = lambda *args, **kwargs: None
+    try:
+        with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg}):
+            return html(anim.to_html5_video(embed_limit=5.0))
+    finally:
+        del canvas.draw_idle  # the class's method again
 
 
 def animate_simulation(
