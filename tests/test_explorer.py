@@ -61,7 +61,9 @@ def test_the_explorers_figure_stays_out_of_pyplot_and_keeps_its_backend():
     view, _, _ = _arm_explorer()
     assert plt.get_fignums() == before
     assert matplotlib.get_backend() == backend
-    assert type(view.figure.canvas).__module__ == "ipympl.backend_nbagg"
+    from ipympl.backend_nbagg import Canvas
+
+    assert isinstance(view.figure.canvas, Canvas)
     canvas = view.figure.canvas
     assert not (canvas.toolbar_visible or canvas.header_visible or canvas.resizable)
 
@@ -439,3 +441,28 @@ def test_an_empty_title_does_not_make_every_move_redraw_the_legend():
     ax.set_title("now with a title")  # a real change is still seen
     view.set(q1=50)
     assert ax.title in view._animated
+
+
+def test_the_canvas_sends_the_pixels_matplotlib_would_in_a_smaller_time():
+    from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
+
+    view, _, _ = _arm_explorer()
+    canvas = view.figure.canvas
+    canvas.draw()
+    for q1, force_full in ((40, False), (55, False), (70, True)):
+        view.set(q1=q1)
+        state = canvas._last_buff.copy()
+        canvas._png_is_old, canvas._force_full = True, force_full
+        ours = canvas.get_diff_image()
+        mode = canvas._current_image_mode
+        canvas._last_buff, canvas._png_is_old, canvas._force_full = (
+            state,
+            True,
+            force_full,
+        )
+        theirs = FigureCanvasWebAggCore.get_diff_image(canvas)
+        assert canvas._current_image_mode == mode == ("full" if force_full else "diff")
+        assert np.array_equal(
+            np.asarray(_png_pixels(ours)), np.asarray(_png_pixels(theirs))
+        )
+        assert canvas.get_diff_image() is None  # nothing new to send
