@@ -837,7 +837,7 @@ def test_largest_circle_on_grid_refuses_bad_input_and_answers_none_when_nothing_
     )
 
 
-# ---------------------------------------------------------------- the fast paths against the package's own rule (issue 23)
+# ---------------------------------------------------------------- the fast paths against the package's own rule
 
 
 @st.composite
@@ -1007,7 +1007,7 @@ def test_distance_to_arcs_refuses_bad_input_and_is_inf_without_arcs():
 
 
 def _largest_circle_on_grid_one_arc_at_a_time(arcs, candidates, spacing, tol):
-    """The reference: largest_circle_on_grid as it was before issue 23 (Arc.distance arc by arc)."""
+    """The reference: largest_circle_on_grid arc by arc with Arc.distance, as it was written first."""
     points = np.asarray(candidates, dtype=float).reshape(-1, 2)
     if not arcs or len(points) == 0:
         return None, 0.0

@@ -46,7 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
-from .arcs import Arc, circle_intersections
+from .arcs import Arc, arc_distance, circle_intersections
 from .budgets import DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
 from .conventions import check_elbow, to_absolute, to_relative, wrap_angle
 from .errors import UnreachableError
@@ -798,13 +798,13 @@ _DISTANCE_BLOCK = 1_000_000
 
 
 def _arc_arrays(arcs: list[Arc] | tuple[Arc, ...]) -> tuple[NDArray[np.float64], ...]:
-    """Centre ``(k, 1, 2)``, radius, start, sweep ``(k, 1)`` and both end points ``(k, 2, 1, 2)`` of ``k`` arcs."""
+    """Centre ``(k, 1, 2)``, radius, start, sweep ``(k, 1)`` and the end points ``(k, 1, 2)`` of ``k`` arcs."""
     centre, radius, start, sweep = (
         np.array([getattr(arc, name) for arc in arcs], dtype=float)[:, None]
         for name in ("centre", "radius", "start", "sweep")
     )
     ends = np.array([arc.end_points for arc in arcs])[:, :, None]
-    return centre, radius, start, sweep, ends
+    return centre, radius, start, sweep, ends[:, 0], ends[:, 1]
 
 
 def _nearest_arc_distance(
@@ -812,13 +812,11 @@ def _nearest_arc_distance(
 ) -> NDArray[np.float64]:
     """Distance from points ``(n, 2)`` to the nearest of the arcs of :func:`_arc_arrays`.
 
-    :meth:`twolink.arcs.Arc.distance`'s formula (radial inside the angular
-    span, else the nearer end point; a full circle, radial everywhere) on
-    arrays of arcs: all arcs in one numpy call per block of
-    ``_DISTANCE_BLOCK`` point-arc pairs (the tests hold the two equal).
+    :func:`twolink.arcs.arc_distance` (the formula of
+    :meth:`twolink.arcs.Arc.distance`) on arrays of arcs: all arcs in one
+    numpy call per block of ``_DISTANCE_BLOCK`` point-arc pairs.
     """
-    centre, radius, start, sweep, ends = arrays
-    block = max(1, _DISTANCE_BLOCK // len(radius))
+    block = max(1, _DISTANCE_BLOCK // len(arrays[1]))
     if len(points) > block:
         return np.concatenate(
             [
@@ -826,15 +824,7 @@ def _nearest_arc_distance(
                 for first in range(0, len(points), block)
             ]
         )
-    offset = points - centre  # (k, n, 2)
-    from_centre = np.hypot(offset[..., 0], offset[..., 1])
-    along = np.mod(
-        (np.arctan2(offset[..., 1], offset[..., 0]) - start) * np.sign(sweep), _TWO_PI
-    )
-    to_ends = np.hypot(*np.moveaxis(points - ends, -1, 0)).min(axis=1)  # the nearer end
-    on_span = (along <= np.abs(sweep)) | (np.abs(sweep) >= _TWO_PI)
-    # a zero radius needs no case of its own: its ends are its centre
-    return np.where(on_span, np.abs(from_centre - radius), to_ends).min(axis=0)
+    return arc_distance(points, *arrays).min(axis=0)
 
 
 def _require_arcs(arcs: object) -> None:
