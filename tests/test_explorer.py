@@ -8,6 +8,7 @@ import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+from _cases import in_fresh_thread
 
 from twolink import arms, explorer, plot
 from twolink.errors import InputTypeError
@@ -396,6 +397,10 @@ def test_a_move_redraws_neither_the_axes_nor_the_figure_a_new_limit_does():
 
 
 def test_while_the_hand_moves_the_sentence_waits_and_only_the_last_is_sent():
+    in_fresh_thread(_drag_then_stop)
+
+
+def _drag_then_stop():
     view, _, _ = _arm_explorer()
     text = view.widget.children[-1]
     assert "(30°, 45°)" in text.value  # the first sentence at once
