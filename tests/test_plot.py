@@ -494,3 +494,16 @@ def test_animation_html_draws_each_frame_once_and_makes_the_same_video():
         assert reference.to_html5_video(embed_limit=5.0) in video
     assert len(reference_draws) > len(draws)
     plt.close("all")
+
+
+def test_a_strobe_draws_the_base_once_over_its_poses():
+    ax = plot.setup_axes(arms.two_metre)
+    lines = plot.draw_strobe(
+        arms.two_metre, np.linspace([0.0, 0.0], [1.0, 1.0], 20), ax=ax, frames=5
+    )
+    bases = [line for line in ax.lines if line.get_marker() == "s"]
+    order = list(ax.lines)
+    assert len(bases) == 1  # over every pose, under the tip's path as before
+    assert all(order.index(pose) < order.index(bases[0]) for pose in lines[:-1])
+    assert len(lines) == 6 and bases[0] not in lines
+    plt.close(ax.figure)

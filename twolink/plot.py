@@ -232,7 +232,22 @@ def draw_arm(
     >>> plt.close(ax.figure)
     """
     ax = _axes(ax, "draw_arm")
-    points = arm.joint_positions(as_configuration(q))
+    line = _draw_links(arm, as_configuration(q), ax, color, label, alpha, linewidth)
+    _draw_base(ax)
+    return line
+
+
+def _draw_links(
+    arm: TwoLinkArm,
+    q: NDArray[np.float64],
+    ax: Axes,
+    color: ColorType,
+    label: str | None,
+    alpha: float,
+    linewidth: float,
+) -> Line2D:
+    """The line through base, elbow and tip, joints marked (no base square)."""
+    points = arm.joint_positions(q)
     (line,) = ax.plot(
         points[:, 0],
         points[:, 1],
@@ -246,8 +261,11 @@ def draw_arm(
         label=label,
         solid_capstyle="round",
     )
-    ax.plot([0.0], [0.0], marker="s", color="k", markersize=8)
     return line
+
+
+def _draw_base(ax: Axes) -> None:
+    ax.plot([0.0], [0.0], marker="s", color="k", markersize=8)
 
 
 def move_arm(line: Line2D, arm: TwoLinkArm, q: ArrayLike) -> Line2D:
@@ -325,10 +343,9 @@ def draw_strobe(
     for rank, index in enumerate(indices):
         alpha = 0.25 + 0.75 * rank / max(1, len(indices) - 1)
         lines.append(
-            draw_arm(
-                arm, q_samples[index], ax=ax, color=color, alpha=alpha, linewidth=3.0
-            )
+            _draw_links(arm, q_samples[index], ax, color, None, alpha, linewidth=3.0)
         )
+    _draw_base(ax)  # once, over the poses
     if path:
         p_path = arm.fk(q_samples)
         lines.extend(
