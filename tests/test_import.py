@@ -26,6 +26,7 @@ HEAVY = ("scipy", "sympy", "matplotlib", "control", "mujoco")
 HEAVY_BY_DESIGN = {
     "twolink.plot": "matplotlib",
     "twolink.explorer": "matplotlib",
+    "twolink.video": "matplotlib",
     "twolink.symbolic": "sympy",
 }
 
