@@ -545,3 +545,46 @@ def test_a_shape_mismatch_of_the_impedance_force_names_the_arguments_and_their_s
         match=r"q of shape \(3, 2\) and qd of shape \(4, 2\) do not broadcast",
     ):
         impedance.force_on_tip(np.zeros((3, 2)), np.zeros((4, 2)))
+
+
+ONE_STATE_CONTROLLERS = {
+    "spring": lambda: CartesianSpring(arms.two_metre, 600.0, [3.0, 1.0]),
+    "impedance": lambda: Impedance(arms.two_metre, 600.0, 50.0, [3.0, 1.0]),
+    "joint PD": lambda: JointPD(arms.two_metre, 100.0, 20.0, [0.3, 0.6]),
+    "computed torque": lambda: ComputedTorque(arms.two_metre, 100.0, 20.0, [0.3, 0.6]),
+    "tip force": lambda: TipForce(
+        arms.two_metre, Impedance(arms.two_metre, 600.0, 50.0, [3.0, 1.0]), [1.0, -2.0]
+    ),
+}
+
+
+@pytest.mark.parametrize(
+    "build", ONE_STATE_CONTROLLERS.values(), ids=ONE_STATE_CONTROLLERS
+)
+@given(q=configurations(), qd=configurations())
+@settings(max_examples=25, deadline=None)
+def test_one_state_as_a_simulation_passes_it_gets_the_torque_of_any_other_form(
+    build, q, qd
+):
+    control = build()
+    as_arrays = control(0.1, np.array(q, dtype=float), np.array(qd, dtype=float))
+    as_lists = control(0.1, list(map(float, q)), list(map(float, qd)))
+    assert np.array_equal(as_arrays, as_lists)
+    if isinstance(control, TipForce):  # one state only
+        return
+    as_a_batch = control(0.1, np.array([q], dtype=float), np.array([qd], dtype=float))
+    assert np.allclose(as_arrays, np.reshape(as_a_batch, 2), rtol=1e-12, atol=1e-9)
+
+
+@pytest.mark.parametrize(
+    "build", ONE_STATE_CONTROLLERS.values(), ids=ONE_STATE_CONTROLLERS
+)
+def test_a_non_finite_state_in_float_arrays_is_refused_as_in_a_list(build):
+    control = build()
+    for bad in ([np.nan, 0.2], [0.1, np.inf]):
+        with pytest.raises(ValueError) as from_array:
+            control(0.0, np.array(bad), np.zeros(2))
+        with pytest.raises(ValueError) as from_list:
+            control(0.0, bad, [0.0, 0.0])
+        assert str(from_array.value) == str(from_list.value)
+        assert "finite" in str(from_array.value)

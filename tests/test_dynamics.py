@@ -255,6 +255,13 @@ def test_vectorised_and_single_state_paths_agree():
     tau_one = np.array([arm.inverse_dynamics(*state) for state in zip(q, qd, batch)])
     assert np.allclose(tau_batch, tau_one, rtol=1e-14, atol=1e-12)
     assert np.allclose(tau_batch, tau, rtol=1e-12, atol=1e-12)
+    weight_batch = arm.gravity(q)
+    for weight_one in (
+        np.array([arm.gravity(one) for one in q]),
+        np.array([arm.gravity(list(one)) for one in q]),
+    ):
+        # the same terms; math.cos and numpy's cos may differ in the last bit
+        assert np.allclose(weight_batch, weight_one, rtol=1e-14, atol=1e-12)
 
 
 def test_leading_axes_broadcast():
@@ -637,6 +644,9 @@ def test_single_state_with_something_that_is_not_an_arm_is_refused_as_in_a_batch
         assert (
             fast[0] == slow[0] == "error" and fast[1] == slow[1] and "arm" in fast[1][1]
         )
+    fast = outcome(lambda: dynamics.gravity(not_an_arm, [0.3, 0.4]))
+    slow = outcome(lambda: dynamics.gravity(not_an_arm, np.array([[0.3, 0.4]])))
+    assert fast[0] == slow[0] == "error" and fast[1] == slow[1] and "arm" in fast[1][1]
 
 
 def test_dynamics_constants_are_cached_per_arm_and_follow_replace():

@@ -93,6 +93,44 @@ def as_pairs(values: object, name: str) -> NDArray[np.float64]:
     return array
 
 
+def plain_state(
+    q: object, qd: object
+) -> tuple[NDArray[np.float64], NDArray[np.float64]] | None:
+    """``(q, qd)`` unchanged when both are float64 arrays of shape ``(2,)`` with finite entries, else ``None``.
+
+    One state as :func:`twolink.simulate` passes it to a torque function:
+    such a pair needs no conversion or check, and a function of one state
+    may use it as it is.  For anything else the caller converts and checks
+    the values with its usual messages.
+
+    Examples
+    --------
+    >>> plain_state(np.array([0.1, 0.2]), np.zeros(2))
+    (array([0.1, 0.2]), array([0., 0.]))
+    >>> plain_state([0.1, 0.2], np.zeros(2)), plain_state(np.array([np.nan, 0.0]), np.zeros(2))
+    (None, None)
+    """
+    if not (
+        type(q) is np.ndarray
+        and type(qd) is np.ndarray
+        and q.shape == (2,)
+        and qd.shape == (2,)
+        and q.dtype == np.float64
+        and qd.dtype == np.float64
+    ):
+        return None
+    q1, q2 = q.tolist()
+    qd1, qd2 = qd.tolist()
+    if (
+        math.isfinite(q1)
+        and math.isfinite(q2)
+        and math.isfinite(qd1)
+        and math.isfinite(qd2)
+    ):
+        return q, qd
+    return None
+
+
 def pair_floats(values: object) -> tuple[float, float] | None:
     """Two finite Python floats when ``values`` is plainly one pair of real numbers, else ``None``.
 

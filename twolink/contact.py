@@ -34,7 +34,13 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import as_configuration, as_finite_scalar, as_pairs, require_arm
+from ._validate import (
+    as_configuration,
+    as_finite_scalar,
+    as_pairs,
+    plain_state,
+    require_arm,
+)
 from .kinematics import joint_torques
 from .statics import Wall, as_wall
 
@@ -225,6 +231,9 @@ class TipForce:
 def _one_state(
     q: ArrayLike, qd: ArrayLike
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    state = plain_state(q, qd)
+    if state is not None:  # one state as a simulation passes it: nothing to convert
+        return state
     return as_configuration(q), as_configuration(
         qd, "qd", what="one pair of joint rates", unit="rad/s"
     )

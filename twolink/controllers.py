@@ -54,6 +54,7 @@ from ._validate import (
     as_flag,
     as_pairs,
     broadcast_shape,
+    plain_state,
     real_array,
     require_arm,
 )
@@ -155,6 +156,9 @@ def _state(
     q: ArrayLike, qd: ArrayLike
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """``(q, qd)`` as float arrays of shape ``(..., 2)`` whose leading axes broadcast, or a message naming both."""
+    state = plain_state(q, qd)
+    if state is not None:  # one state as a simulation passes it: nothing to convert
+        return state
     q, qd = as_pairs(q, "q"), as_pairs(qd, "qd")
     if q.shape != qd.shape:
         broadcast_shape(q=q, qd=qd)
@@ -340,7 +344,7 @@ class Impedance:
     def force_on_tip(self, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
         """The force the controller makes act on the tip, ``K (x0 - x) - D xdot``, N; shape ``(..., 2)``."""
         q, qd = _state(q, qd)
-        tip_velocity = np.einsum("...ij,...j->...i", self.arm.jacobian(q), qd)
+        tip_velocity = (self.arm.jacobian(q) @ qd[..., None])[..., 0]
         return (
             self.rest_point - self.arm.fk(q)
         ) @ self.stiffness.T - tip_velocity @ self.damping.T

@@ -340,9 +340,23 @@ def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     >>> gravity(TwoLinkArm(2.0, 2.0, m1=1.0, m2=1.0, g=10.0), [0.0, 0.0]).round(12)
     array([40., 10.])
     """
+    constants = _constants(arm)
+    angles = pair_floats(q)
+    if angles is not None and math.isfinite(angles[0] + angles[1]):
+        # one pose on floats: the same terms with math
+        g1_one, g2_one = _gravity_terms(
+            constants.gamma1,
+            constants.gamma2,
+            math.cos(angles[0]),
+            math.cos(angles[0] + angles[1]),
+        )
+        torques_one = np.empty(
+            2
+        )  # then two item assignments: faster than np.array of a tuple
+        torques_one[0], torques_one[1] = g1_one, g2_one
+        return torques_one
     q = as_pairs(q, "q")
     q1, q12 = kinematics.link_angles(q)
-    constants = _constants(arm)
     g1, g2 = _gravity_terms(constants.gamma1, constants.gamma2, np.cos(q1), np.cos(q12))
     torques = np.empty(q.shape)
     torques[..., 0] = g1
