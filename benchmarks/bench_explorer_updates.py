@@ -37,7 +37,7 @@ from twolink.display import markdown_table  # noqa: E402
 MEASURE = """
 import gc as _gc, json as _json, time as _time
 from twolink.explorer import Explorer as _Explorer
-_rows = []
+_rows, _profiles = [], []
 for _index, _explorer in enumerate(o for o in _gc.get_objects() if isinstance(o, _Explorer)):
     _explorer.figure.canvas.syncing_data_url = False  # as once a browser shows it
     for _name, _control in _explorer.controls.items():
@@ -54,13 +54,23 @@ for _index, _explorer in enumerate(o for o in _gc.get_objects() if isinstance(o,
             _t0 = _time.perf_counter()
             _explorer.set(**{_name: _value})
             _times.append((_time.perf_counter() - _t0) * 1000)
+        if PROFILE:
+            import cProfile as _cProfile, io as _io, pstats as _pstats
+            _profile = _cProfile.Profile()
+            _profile.enable()
+            for _value in [_other, _start] * MOVES:
+                _explorer.set(**{_name: _value})
+            _profile.disable()
+            _text = _io.StringIO()
+            _pstats.Stats(_profile, stream=_text).sort_stats("cumulative").print_stats(30)
+            _profiles.append(f"{_explorer._update.__name__}, {_name}:\\n{_text.getvalue()}")
         _rows.append([_index, _explorer._update.__name__, _name, _times,
                       _explorer.full_redraws - _full, len(_explorer._animated)])
-print(_json.dumps(_rows))
+print(_json.dumps([_rows, _profiles]))
 """
 
 
-def measure(path: Path, moves: int) -> list[list]:
+def measure(path: Path, moves: int, profile: bool = False) -> tuple[list, list]:
     notebook = nbformat.read(path, as_version=4)
     client = NotebookClient(
         notebook,
@@ -68,7 +78,9 @@ def measure(path: Path, moves: int) -> list[list]:
         kernel_name="python3",
         resources={"metadata": {"path": str(path.parent)}},
     )
-    probe = nbformat.v4.new_code_cell(MEASURE.replace("MOVES", str(moves)))
+    probe = nbformat.v4.new_code_cell(
+        MEASURE.replace("MOVES", str(moves)).replace("PROFILE", str(profile))
+    )
     notebook.cells.append(probe)
     client.execute()
     outputs = "".join(
@@ -84,15 +96,22 @@ def main(argv: list[str] | None = None) -> int:
         "--moves", type=int, default=10, help="there-and-back moves per slider"
     )
     parser.add_argument("--quick", action="store_true", help="chapter 1, two moves")
+    parser.add_argument(
+        "--profile",
+        action="store_true",
+        help="also print cProfile's top 30 per control",
+    )
     args = parser.parse_args(argv)
     paths = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
     if args.quick:
         paths, args.moves = paths[:1], 2
     elif args.chapters:
         paths = [p for p in paths if p.name[:2] in args.chapters]
-    rows = []
+    rows, profiles = [], []
     for path in paths:
-        for index, update, name, times, full, animated in measure(path, args.moves):
+        measured, profiled = measure(path, args.moves, args.profile)
+        profiles += [f"## {path.stem}: {text}" for text in profiled]
+        for index, update, name, times, full, animated in measured:
             ordered = sorted(times)
             rows.append(
                 [
@@ -123,6 +142,8 @@ def main(argv: list[str] | None = None) -> int:
             rows,
         )
     )
+    for text in profiles:
+        print("\n" + text)
     return 0
 
 

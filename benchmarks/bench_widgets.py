@@ -23,6 +23,7 @@ measures a plain one.  Needs Chromium (``apt-get install -y chromium``).
 from __future__ import annotations
 
 import argparse
+import math
 import platform
 import re
 import statistics
@@ -175,7 +176,8 @@ def measure_chapter(page, lab, path: Path, moves: int) -> dict:
                 page.wait_for_timeout(30)
             settles.append(page.evaluate(SETTLE, [box.element_handle()]))
     ordered = sorted(latencies)
-    p95 = ordered[min(len(ordered) - 1, int(0.95 * len(ordered)))] if ordered else None
+    # nearest rank: the smallest value at or above 95 % of the moves
+    p95 = ordered[math.ceil(0.95 * len(ordered)) - 1] if ordered else None
     return {
         "chapter": path.stem,
         "explorers": boxes.count(),

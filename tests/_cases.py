@@ -6,6 +6,8 @@
 - ``limited_arms``: arms with random joint limits in either convention.
 """
 
+import threading
+
 import numpy as np
 from hypothesis import strategies as st
 
@@ -60,3 +62,28 @@ def limited_arms(draw):
         q_max=tuple(low + width),
         limit_convention=draw(st.sampled_from(["relative", "absolute"])),
     )
+
+
+def in_fresh_thread(function, *args):
+    """``function(*args)`` in a thread of its own, with no event loop running.
+
+    Some tests run in a worker where an earlier test left an event loop marked
+    as running (Playwright's sync API does): ``asyncio.run`` would refuse, and
+    code that looks for a running loop would find one that never runs.
+    """
+    result, error = [], []
+
+    def target():
+        try:
+            result.append(function(*args))
+        except BaseException as exc:  # re-raised in the caller's thread
+            error.append(exc)
+
+    thread = threading.Thread(target=target)
+    thread.start()
+    thread.join(timeout=60)
+    if thread.is_alive():
+        raise TimeoutError(f"{function.__name__} did not return within 60 s")
+    if error:
+        raise error[0]
+    return result[0]

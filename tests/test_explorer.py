@@ -8,6 +8,7 @@ import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
+from _cases import in_fresh_thread
 
 from twolink import arms, explorer, figure_style, plot
 from twolink.errors import InputTypeError
@@ -61,7 +62,9 @@ def test_the_explorers_figure_stays_out_of_pyplot_and_keeps_its_backend():
     view, _, _ = _arm_explorer()
     assert plt.get_fignums() == before
     assert matplotlib.get_backend() == backend
-    assert type(view.figure.canvas).__module__ == "ipympl.backend_nbagg"
+    from ipympl.backend_nbagg import Canvas
+
+    assert isinstance(view.figure.canvas, Canvas)
     canvas = view.figure.canvas
     assert not (canvas.toolbar_visible or canvas.header_visible or canvas.resizable)
 
@@ -411,6 +414,10 @@ def test_a_move_redraws_neither_the_axes_nor_the_figure_a_new_limit_does():
 
 
 def test_while_the_hand_moves_the_sentence_waits_and_only_the_last_is_sent():
+    in_fresh_thread(_drag_then_stop)
+
+
+def _drag_then_stop():
     view, _, _ = _arm_explorer()
     text = view.widget.children[-1]
     assert "(30°, 45°)" in text.value  # the first sentence at once
@@ -431,3 +438,53 @@ def test_while_the_hand_moves_the_sentence_waits_and_only_the_last_is_sent():
     assert "(70°, 45°)" in text.value
     view.redraw("A button's sentence.")  # a button: at once
     assert "A button&#x27;s sentence." in text.value
+
+
+def test_an_empty_title_does_not_make_every_move_redraw_the_legend():
+    figure, ax = explorer.explorer_figure(3.0, 3.0)
+    plot.setup_axes(ARM, ax=ax)
+    # the arm drawn above everything, so a move redraws the arm alone
+    line = plot.draw_arm(ARM, [0.0, 0.0], ax=ax, label="arm")
+    line.set_zorder(10)
+    legend = ax.legend(loc="lower left")
+
+    def update(q1):
+        plot.move_arm(line, ARM, np.radians([q1, 0.0]))
+
+    view = explorer.Explorer(
+        figure, update, {"q1": explorer.slider("q1", "deg", 30, 0, 90, 5)}
+    )
+    figure.canvas.draw()
+    for q1 in (35, 40, 45):
+        view.set(q1=q1)
+    assert ax.get_title() == ""
+    assert ax.title not in view._animated and legend not in view._animated
+    assert view._animated == [line]
+    ax.set_title("now with a title")  # a real change is still seen
+    view.set(q1=50)
+    assert ax.title in view._animated
+
+
+def test_the_canvas_sends_the_pixels_matplotlib_would_in_a_smaller_time():
+    from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
+
+    view, _, _ = _arm_explorer()
+    canvas = view.figure.canvas
+    canvas.draw()
+    for q1, force_full in ((40, False), (55, False), (70, True)):
+        view.set(q1=q1)
+        state = canvas._last_buff.copy()
+        canvas._png_is_old, canvas._force_full = True, force_full
+        ours = canvas.get_diff_image()
+        mode = canvas._current_image_mode
+        canvas._last_buff, canvas._png_is_old, canvas._force_full = (
+            state,
+            True,
+            force_full,
+        )
+        theirs = FigureCanvasWebAggCore.get_diff_image(canvas)
+        assert canvas._current_image_mode == mode == ("full" if force_full else "diff")
+        assert np.array_equal(
+            np.asarray(_png_pixels(ours)), np.asarray(_png_pixels(theirs))
+        )
+        assert canvas.get_diff_image() is None  # nothing new to send

@@ -29,6 +29,7 @@ HEAVY_BY_DESIGN = {
     "twolink.figure_style": "matplotlib",
     "twolink.alttext": "matplotlib",
     "twolink.inline": "matplotlib",
+    "twolink.video": "matplotlib",
     "twolink.symbolic": "sympy",
 }
 

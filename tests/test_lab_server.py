@@ -22,6 +22,7 @@ sys.path.insert(0, str(ROOT / "tools" / "lab_server"))
 
 import lab_browser  # noqa: E402
 import twolink_nodelay  # noqa: E402
+from _cases import in_fresh_thread  # noqa: E402
 from jupyter_server.services.kernels.websocket import (  # noqa: E402
     KernelWebsocketHandler,
 )
@@ -52,7 +53,7 @@ def test_open_turns_nagle_off_before_the_handler_runs():
             return "opened"
 
     Handler.open = twolink_nodelay.nodelay_open(Handler.open)
-    assert asyncio.run(Handler().open("k1")) == "opened"
+    assert in_fresh_thread(asyncio.run, Handler().open("k1")) == "opened"
     assert calls == [("set_nodelay", True), ("open", "k1")]
 
 

@@ -3,6 +3,7 @@
 import inspect
 import re
 
+import matplotlib
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
@@ -468,4 +469,51 @@ def test_move_ellipse_and_move_strobe_follow_draw_ellipse_and_draw_strobe():
     assert [line.get_visible() for line in strobe[:-1]] == [True] * 3 + [False] * 3
     with pytest.raises(InputTypeError, match="draw_strobe returned"):
         plot.move_strobe([], arm, path)
+    plt.close(ax.figure)
+
+
+def test_animation_html_draws_the_axes_once_and_makes_matplotlibs_video():
+    import imageio_ffmpeg
+    from matplotlib import animation
+
+    q_path = np.linspace([0.0, 0.0], [np.pi / 2, np.pi / 2], 6)
+
+    def made(plain):
+        anim = plot.animate_arm(arms.two_metre, q_path, t=np.linspace(0.0, 1.0, 6))
+        if plain:  # the same frames as a FuncAnimation that does not say what moves
+            anim = animation.FuncAnimation(
+                anim._fig, anim._func, frames=6, interval=100.0
+            )
+        draws = []
+        anim._fig.canvas.mpl_connect("draw_event", lambda event: draws.append(event))
+        return anim, draws
+
+    anim, draws = made(plain=False)
+    video = plot.animation_html(anim).data
+    assert "<video" in video and len(draws) == 1  # the axes once, then only what moves
+    plain, plain_draws = made(plain=True)
+    assert plot.animation_html(plain).data == video
+    assert (
+        len(plain_draws) == 6
+    )  # each frame once (matplotlib's save alone draws twice)
+    assert "draw_idle" not in vars(plain._fig.canvas)  # the canvas's own method again
+    reference, reference_draws = made(plain=False)
+    with matplotlib.rc_context(
+        {"animation.ffmpeg_path": imageio_ffmpeg.get_ffmpeg_exe()}
+    ):
+        assert reference.to_html5_video(embed_limit=5.0) in video
+    assert len(reference_draws) > len(plain_draws)
+    plt.close("all")
+
+
+def test_a_strobe_draws_the_base_once_over_its_poses():
+    ax = plot.setup_axes(arms.two_metre)
+    lines = plot.draw_strobe(
+        arms.two_metre, np.linspace([0.0, 0.0], [1.0, 1.0], 20), ax=ax, frames=5
+    )
+    bases = [line for line in ax.lines if line.get_marker() == "s"]
+    order = list(ax.lines)
+    assert len(bases) == 1  # over every pose, under the tip's path as before
+    assert all(order.index(pose) < order.index(bases[0]) for pose in lines[:-1])
+    assert len(lines) == 6 and bases[0] not in lines
     plt.close(ax.figure)

@@ -27,6 +27,7 @@ from twolink import (
     trajectory,
 )
 from twolink.errors import InputTypeError
+from twolink.simulation import simulate_quick
 
 TIGHT = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
 
@@ -695,3 +696,171 @@ def test_tracking_error_after_a_terminal_event_reads_the_path_at_the_times_reach
     assert np.allclose(
         run.tracking_error(line), np.linalg.norm(run.p_tip - line.at(run.t)[0], axis=-1)
     )
+
+
+# ------------------------------------------- the quick run: odeint for a picture
+FREE_STARTS = [
+    (arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0]),  # the benchmark's chaotic swing
+    (TwoLinkArm(1.0, 0.5, m1=3.0, m2=0.5), [-0.3, 2.0], [1.0, -2.0]),
+    (TwoLinkArm(2.0, 2.0, g=0.0), [0.0, 1.0], [1.5, -3.0]),  # horizontal, spinning
+]
+FIVE_SECONDS = np.linspace(
+    0.0, 5.0, 251
+)  # the explorers' release: a sample every 0.02 s
+
+
+@pytest.mark.parametrize("arm, q0, qd0", FREE_STARTS)
+def test_the_quick_run_follows_the_exact_run_in_free_motion(arm, q0, qd0):
+    """At its default tolerances (1e-6) the tip stays within 2 mm of the exact run over 5 s
+    (measured: at most 0.5 mm on the chaotic swing) and the energy drifts by less than 1e-4
+    (measured: at most 2e-5)."""
+    quick = simulate_quick(arm, q0, qd0, FIVE_SECONDS)
+    exact = simulate(arm, q0, qd0, 5.0, t_eval=FIVE_SECONDS, **TIGHT)
+    assert np.ptp(exact.q[:, 1]) > 0.5  # it really moved
+    assert np.array_equal(quick.t, FIVE_SECONDS) and quick.status == 0
+    assert np.max(exact.tracking_error(quick.p_tip)) < 2e-3
+    assert np.all(quick.tau == 0.0)
+    assert quick.energy_drift() < 1e-4
+    assert quick.energy_drift() == pytest.approx(
+        relative_energy_drift(quick), rel=1e-12
+    )
+    assert quick.message.startswith("odeint (LSODA) reached t = 5 s at rtol = 1e-06")
+
+
+def test_the_quick_runs_bounds_can_fail():
+    """Looser tolerances break both bounds of the test above: they measure the solver."""
+    arm, q0, qd0 = FREE_STARTS[0]
+    loose = simulate_quick(arm, q0, qd0, FIVE_SECONDS, rtol=1e-2, atol=1e-2)
+    exact = simulate(arm, q0, qd0, 5.0, t_eval=FIVE_SECONDS, **TIGHT)
+    assert np.max(exact.tracking_error(loose.p_tip)) > 2e-3
+    assert loose.energy_drift() > 1e-4
+
+
+@pytest.mark.parametrize(
+    "stiffness, damping, q0", [(600.0, 20.0, [0.3, 0.6]), (2000.0, 5.0, [0.1, 1.0])]
+)
+def test_the_quick_run_follows_the_exact_run_under_impedance_control(
+    stiffness, damping, q0
+):
+    """A controlled release (the spring pulls the tip to (3, 1)): tip within 0.1 mm over
+    5 s (measured: at most 5e-3 mm), torques reported at the output times."""
+    law = controllers.Impedance(ARM, stiffness, damping, [3.0, 1.0])
+    quick = simulate_quick(ARM, q0, [0.0, 0.0], FIVE_SECONDS, torque=law)
+    exact = simulate(ARM, q0, [0.0, 0.0], 5.0, t_eval=FIVE_SECONDS, torque=law, **TIGHT)
+    assert np.max(exact.tracking_error(quick.p_tip)) < 1e-4
+    assert np.allclose(quick.tau, law(0.0, quick.q, quick.qd), rtol=0.0, atol=1e-9)
+    assert (
+        np.max(quick.tracking_error([3.0, 1.0])[-10:]) < 1e-2
+    )  # it came to rest there
+
+
+def test_the_quick_run_reports_at_t_eval_only_and_is_read_only():
+    later = simulate_quick(ARM, [0.3, 0.4], [0.0, 0.0], [0.5, 1.0])
+    exact = simulate(ARM, [0.3, 0.4], [0.0, 0.0], 1.0, t_eval=[0.0, 0.5, 1.0], **TIGHT)
+    assert np.array_equal(later.t, [0.5, 1.0]) and later.q.shape == (2, 2)
+    assert np.allclose(later.q, exact.q[1:], atol=1e-5)  # integrated from t = 0
+    only_start = simulate_quick(ARM, [0.3, 0.4], [0.1, 0.0], [0.0])
+    assert np.array_equal(only_start.q, [[0.3, 0.4]]) and only_start.nfev == 0
+    for array in (later.t, later.q, later.qd, later.tau):
+        assert not array.flags.writeable
+
+
+def test_the_quick_run_stops_at_its_evaluation_budget_naming_it_and_the_remedies():
+    calls = []
+
+    def counted(t, q, qd):
+        calls.append(t)
+        return [0.0, 0.0]
+
+    with pytest.raises(SimulationError) as error:
+        simulate_quick(
+            ARM,
+            [np.pi / 4, 0.0],
+            [0.0, 0.0],
+            FIVE_SECONDS,
+            counted,
+            max_evaluations=100,
+        )
+    message = str(error.value)
+    assert (
+        "the quick run used up its budget of max_evaluations = 100 evaluations"
+        in message
+    )
+    assert " of 5 s (state q = (" in message
+    assert "raise max_evaluations, loosen rtol/atol, or run it with simulate" in message
+    assert len(calls) == 100  # the 101st evaluation stops it before calling the torque
+    enough = simulate_quick(
+        ARM, [np.pi / 4, 0.0], [0.0, 0.0], FIVE_SECONDS, max_evaluations=2000
+    )
+    assert enough.nfev <= 2000
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        {"q0": [0.0, 0.0, 0.0]},
+        {"q0": [[0.0, 0.0], [1.0, 1.0]]},
+        {"q0": [np.inf, 0.0]},
+        {"qd0": [[0.0, 0.0]]},
+        {"qd0": [np.nan, 0.0]},
+        {"qd0": ["a", "b"]},
+        {"t_eval": []},
+        {"t_eval": [[0.0, 0.5]]},
+        {"t_eval": [0.0, np.nan]},
+        {"t_eval": [0.0, np.inf]},
+        {"t_eval": [0.5, 0.2]},
+        {"t_eval": [0.0, 0.0, 0.5]},
+        {"t_eval": [-0.1, 0.5]},
+        {"t_eval": ["a", "b"]},
+        {"t_eval": [0.0, True]},
+        {"torque": [1.0, 2.0]},
+        {"torque": lambda t, q, qd: [np.nan, 0.0]},
+        {"torque": lambda t, q, qd: [1.0, 2.0, 3.0]},
+        {"torque": lambda t, q, qd: "strong"},
+        {"arm": TwoLinkArm(1.0, 1.0, m2=0.0)},
+        {"max_evaluations": 0},
+        {"max_evaluations": 2.5},
+        {"max_evaluations": "10"},
+    ],
+)
+def test_the_quick_run_refuses_bad_input_with_the_exact_runs_messages(kwargs):
+    """The same checks, the same messages: t_end of simulate is the last of t_eval."""
+    arguments = {"arm": ARM, "q0": [0.3, 0.4], "qd0": [0.0, 0.0], "t_eval": [0.0, 0.5]}
+    arguments.update(kwargs)
+    with pytest.raises((ValueError, TypeError)) as exact:
+        simulate(t_end=0.5, **arguments)
+    with pytest.raises((ValueError, TypeError)) as quick:
+        simulate_quick(**arguments)
+    assert type(quick.value) is type(exact.value)
+    assert str(quick.value) == str(exact.value)
+
+
+@pytest.mark.parametrize(
+    "kwargs, fragment",
+    [
+        ({"rtol": 0.0}, r"rtol must be > 0.0; got 0.0"),
+        ({"atol": np.nan}, "atol must be finite"),
+        ({"rtol": "tight"}, "rtol"),
+    ],
+)
+def test_the_quick_runs_tolerances_are_positive_numbers(kwargs, fragment):
+    with pytest.raises(ValueError, match=fragment):
+        simulate_quick(ARM, [0.3, 0.4], [0.0, 0.0], [0.0, 0.5], **kwargs)
+
+
+def test_the_quick_run_turns_a_blow_up_into_a_simulation_error_with_time_and_state():
+    with pytest.raises(
+        SimulationError,
+        match=r"blew up at t = 0\.[5-9]\d* s: torque.*non-finite torques.* q = \(",
+    ):
+        simulate_quick(ARM, [0.3, 0.2], [0.0, 0.0], [0.0, 1.0], _nan_from(0.5))
+    with pytest.raises(
+        SimulationError, match=r"at t = .* q = \(.*\) rad, qd = \(.*\) rad/s"
+    ):  # as simulate's test of overflowing torques
+        simulate_quick(
+            ARM,
+            [0.3, 0.4],
+            [0.0, 0.0],
+            [0.0, 0.5],
+            lambda t, q, qd: [1e300 * (1.0 + qd[0] ** 2), 0.0],
+        )

@@ -122,6 +122,11 @@ ELBOW_CALLS = {
     "twolink.workspace.largest_inscribed_circle": lambda elbow: (
         twolink.workspace.largest_inscribed_circle(arms.ten, starts=1, elbow=elbow)
     ),
+    "twolink.workspace.BranchTable.reachable": lambda elbow: (
+        twolink.workspace.BranchTable(arms.ten, [[10.0, 10.0]]).reachable(
+            arms.ten, elbow=elbow
+        )
+    ),
 }
 
 #: Callables whose ``elbow`` is not a branch choice but a label of a result (documented).

@@ -1,14 +1,15 @@
 """The workspace with joint limits: reachability, boundary arcs, clearance, largest circle."""
 
 import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
-from _cases import limited_arms
+from _cases import limited_arms, stable_id
 from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
-from conftest import angles, unit
+from conftest import angles, lengths, unit
 from twolink import (
     TwoLinkArm,
     UnreachableError,
@@ -17,6 +18,7 @@ from twolink import (
     kinematics,
     to_absolute,
     workspace,
+    wrap_angle,
 )
 from twolink.arcs import Arc, circle_intersections
 from twolink.errors import InputTypeError
@@ -667,6 +669,29 @@ def _points_about(arm, rng, count=300):
     return np.vstack([random, arm.fk(edge), [[0.0, 0.0]]])
 
 
+def _at_a_slack_edge(arm, points, tol=ik.LIMIT_TOL, margin=1e-12):
+    """Per point and branch, whether an angle the arm limits lies within round-off of a limit widened by
+    ``tol`` (modulo 2 pi): only there may BranchTable's comparisons of wrapped angles and the package's
+    whole turns round apart (hypothesis finds such ties: limits of one arm at another's plus LIMIT_TOL)."""
+    if not arm.has_limits:
+        return np.zeros(np.shape(points)[:-1] + (2,), dtype=bool)
+    q_both = ik.solutions_within_limits(TwoLinkArm(arm.l1, arm.l2), points)[0]
+    limited = to_absolute(q_both) if arm.limit_convention == "absolute" else q_both
+    edges = np.array([np.asarray(arm.q_min) - tol, np.asarray(arm.q_max) + tol])
+    gap = np.abs(
+        wrap_angle(limited[..., None, :] - edges)
+    )  # (..., branch, edge, joint)
+    return np.any(gap < margin, axis=(-2, -1))
+
+
+def _same_but_at_slack_edges(got, expected, arm, points, tol=ik.LIMIT_TOL):
+    """got == expected (per point and branch, or per point) everywhere but at _at_a_slack_edge."""
+    tied = _at_a_slack_edge(arm, points, tol)
+    if got.ndim < tied.ndim:
+        tied = np.any(tied, axis=-1)
+    assert np.array_equal(got[~tied], expected[~tied])
+
+
 @settings(max_examples=60)
 @given(arm=limited_arms(), other=limited_arms(), seed=st.integers(0, 2**16))
 def test_a_branch_table_answers_as_is_reachable_for_any_limits_on_its_links(
@@ -688,13 +713,20 @@ def test_a_branch_table_answers_as_is_reachable_for_any_limits_on_its_links(
         q_expected, valid_expected = ik.solutions_within_limits(limited, points)
         assert np.array_equal(valid, valid_expected)
         assert np.array_equal(q_both, q_expected)
-        assert np.array_equal(
-            table.reachable(limited), workspace.is_reachable(limited, points)
-        )
         for column, elbow in enumerate(("down", "up")):
             assert np.array_equal(
                 valid[:, column], workspace.is_reachable(limited, points, elbow=elbow)
             )
+        # the comparisons of wrapped angles: the same, but for round-off at a limit + LIMIT_TOL
+        _same_but_at_slack_edges(
+            table.within_limits(limited), valid_expected, limited, points
+        )
+        _same_but_at_slack_edges(
+            table.reachable(limited),
+            workspace.is_reachable(limited, points),
+            limited,
+            points,
+        )
 
 
 def test_a_branch_table_keeps_the_shape_of_its_points_and_refuses_other_links():
@@ -803,3 +835,258 @@ def test_largest_circle_on_grid_refuses_bad_input_and_answers_none_when_nothing_
     assert np.array_equal(centre, inside[0]) and radius == pytest.approx(
         float(workspace.clearance(arms.ten, inside[0]))
     )
+
+
+# ---------------------------------------------------------------- the fast paths against the package's own rule
+
+
+@st.composite
+def _limit_ranges(draw):
+    """A (low, high) pair of limits, radians: any interval, one reaching -+180 deg, a full turn or more, or one angle."""
+    kind = draw(
+        st.sampled_from(["any", "to 180", "from -180", "full turn", "one angle"])
+    )
+    low = draw(st.floats(-2 * np.pi, 2 * np.pi))
+    if kind == "any":
+        return low, low + draw(st.floats(0.0, 2.5 * np.pi))
+    if kind == "to 180":
+        return draw(st.floats(-np.pi, np.pi)), np.pi
+    if kind == "from -180":
+        return -np.pi, draw(st.floats(-np.pi, np.pi))
+    if kind == "full turn":
+        return low, low + draw(
+            st.sampled_from([2 * np.pi, 2 * np.pi + 1e-3, 3 * np.pi])
+        )
+    return low, low
+
+
+@st.composite
+def _slider_arms(draw):
+    """Arms with limits of every kind (_limit_ranges), either convention; equal links half the time (the base)."""
+    l1 = draw(lengths)
+    l2 = (
+        l1
+        if draw(st.booleans())
+        else draw(st.floats(max(0.05, l1 / 20), min(20.0, 20 * l1)))
+    )
+    (low_1, high_1), (low_2, high_2) = draw(_limit_ranges()), draw(_limit_ranges())
+    return TwoLinkArm(
+        l1,
+        l2,
+        q_min=(low_1, low_2),
+        q_max=(high_1, high_2),
+        limit_convention=draw(st.sampled_from(["relative", "absolute"])),
+    )
+
+
+def _points_near_the_edges(arm, rng, count=200):
+    """Random points, tips of configurations at the limit box's corners and on its edges, points a hair beside those, the base."""
+    corners = [configuration_within(arm, f) for f in ([0, 0], [0, 1], [1, 0], [1, 1])]
+    edges = [
+        configuration_within(arm, [edge, fraction] if side else [fraction, edge])
+        for edge, fraction, side in zip(
+            rng.integers(0, 2, count),
+            rng.uniform(0, 1, count),
+            rng.integers(0, 2, count),
+        )
+    ]
+    on_edges = arm.fk(np.array(corners + edges))
+    beside = on_edges + rng.normal(scale=1e-9 * arm.reach[1], size=on_edges.shape)
+    scale = 1.2 * arm.reach[1]
+    random = rng.uniform(-scale, scale, size=(count, 2))
+    return np.vstack([random, on_edges, beside, [[0.0, 0.0]]])
+
+
+@settings(max_examples=150)
+@given(arm=_slider_arms(), seed=st.integers(0, 2**16))
+@example(  # the explorer's sliders at their ends: both angles from -180 to 180 deg
+    arm=TwoLinkArm(10.0, 10.0, q_min=(-np.pi, -np.pi), q_max=(np.pi, np.pi)), seed=0
+)
+@example(  # a single link-2 angle at -180 deg, absolute
+    arm=TwoLinkArm(
+        10.0,
+        10.0,
+        q_min=(np.pi / 2, -np.pi),
+        q_max=(np.pi / 2, -np.pi),
+        limit_convention="absolute",
+    ),
+    seed=1,
+)
+def test_the_branch_tables_comparisons_decide_as_solutions_within_limits(arm, seed):
+    """BranchTable.within_limits (wrapped angles compared) = ik.solutions_within_limits (angles moved by
+    turns), on random points, on the limit box's edges and a hair beside them, and at the base."""
+    points = _points_near_the_edges(arm, np.random.default_rng(seed))
+    table = workspace.BranchTable(TwoLinkArm(arm.l1, arm.l2), points)
+    expected = ik.solutions_within_limits(arm, points)[1]
+    _same_but_at_slack_edges(table.within_limits(arm), expected, arm, points)
+    for elbow in ("auto", "down", "up", "both"):
+        _same_but_at_slack_edges(
+            table.reachable(arm, elbow=elbow),
+            workspace.is_reachable(arm, points, elbow=elbow),
+            arm,
+            points,
+        )
+    # the slack is the package's too (tol = 0 would put the points on the limits at round-off)
+    _same_but_at_slack_edges(
+        table.within_limits(arm, 1e-3),
+        ik.solutions_within_limits(arm, points, 1e-3)[1],
+        arm,
+        points,
+        1e-3,
+    )
+
+
+def test_the_branch_table_refuses_a_bad_elbow_word():
+    table = workspace.BranchTable(arms.ten, [[12.5, 12.5]])
+    with pytest.raises(ValueError, match="elbow"):
+        table.reachable(arms.ten, elbow="sideways")
+    with pytest.raises(ValueError, match="tol"):
+        table.within_limits(arms.ten, tol=np.nan)
+
+
+@st.composite
+def _arcs(draw):
+    """Arcs of every kind: any sweep of either sign, full circles, zero radius, zero sweep."""
+    centre = (draw(st.floats(-5, 5)), draw(st.floats(-5, 5)))
+    radius = draw(st.one_of(st.just(0.0), st.floats(1e-3, 5)))
+    sweep = draw(
+        st.one_of(
+            st.floats(-2 * np.pi, 2 * np.pi),
+            st.sampled_from([2 * np.pi, -2 * np.pi, 0.0, np.pi, -np.pi]),
+        )
+    )
+    return Arc(centre, radius, draw(st.floats(-4 * np.pi, 4 * np.pi)), sweep)
+
+
+@given(
+    arcs=st.lists(_arcs(), min_size=1, max_size=8),
+    seed=st.integers(0, 2**16),
+)
+def test_distance_to_arcs_is_the_nearest_arc_distance(arcs, seed):
+    """All arcs at once = the minimum of Arc.distance over the arcs, at random points, the arcs' ends and centres."""
+    rng = np.random.default_rng(seed)
+    points = np.vstack(
+        [rng.uniform(-10, 10, size=(50, 2))]
+        + [arc.end_points for arc in arcs]
+        + [arc.point_at(0.5) for arc in arcs]
+        + [arc.centre for arc in arcs]
+    )
+    expected = np.min([arc.distance(points) for arc in arcs], axis=0)
+    got = workspace.distance_to_arcs(points, arcs)
+    np.testing.assert_allclose(got, expected, rtol=0.0, atol=1e-12)
+    # any shape of points, and a single point
+    assert workspace.distance_to_arcs(points.reshape(-1, 1, 2), arcs).shape == (
+        len(points),
+        1,
+    )
+    assert float(workspace.distance_to_arcs(points[0], arcs)) == pytest.approx(
+        expected[0], abs=1e-12
+    )
+
+
+def test_distance_to_arcs_in_blocks_is_the_same(monkeypatch):
+    arcs = workspace.boundary_arcs(arms.ten)
+    points = np.random.default_rng(3).uniform(-25, 25, size=(1000, 2))
+    whole = workspace.distance_to_arcs(points, arcs)
+    monkeypatch.setattr(workspace, "_DISTANCE_BLOCK", 7 * len(arcs))
+    assert np.array_equal(workspace.distance_to_arcs(points, arcs), whole)
+
+
+def test_distance_to_arcs_refuses_bad_input_and_is_inf_without_arcs():
+    arcs = workspace.boundary_arcs(arms.ten)
+    with pytest.raises(InputTypeError, match="arcs must be a list of twolink.arcs.Arc"):
+        workspace.distance_to_arcs([0.0, 0.0], arms.ten)
+    with pytest.raises(InputTypeError, match="arcs must be a list"):
+        workspace.distance_to_arcs([0.0, 0.0], [arcs[0], "arc"])
+    with pytest.raises(ValueError, match="p"):
+        workspace.distance_to_arcs([[np.nan, 0.0]], arcs)
+    assert np.array_equal(
+        workspace.distance_to_arcs(np.zeros((3, 2)), []), np.full(3, np.inf)
+    )
+    assert workspace.distance_to_arcs(np.zeros((0, 2)), arcs).shape == (0,)
+
+
+def _largest_circle_on_grid_one_arc_at_a_time(arcs, candidates, spacing, tol):
+    """The reference: largest_circle_on_grid arc by arc with Arc.distance, as it was written first."""
+    points = np.asarray(candidates, dtype=float).reshape(-1, 2)
+    if not arcs or len(points) == 0:
+        return None, 0.0
+
+    def distance(p):
+        return np.min([arc.distance(p) for arc in arcs], axis=0)
+
+    pattern = np.stack(np.meshgrid(*[np.arange(-3.0, 4.0)] * 2), axis=-1).reshape(-1, 2)
+    room = distance(points)
+    best = int(np.argmax(room))
+    centre, radius = points[best].copy(), float(room[best])
+    step = spacing / 3.0
+    while step > tol:
+        near = centre + step * pattern
+        near = near[np.hypot(*(near - centre).T) < radius]
+        if len(near):
+            room = distance(near)
+            if room.max() > radius:
+                best = int(np.argmax(room))
+                centre, radius = near[best], float(room[best])
+        step /= 3.0
+    return centre, radius
+
+
+# chapter 7's explorer: limits (degrees) the sliders can set, its 200 x 200 grid and its circle search
+CHAPTER_7_LIMITS = [
+    ((0, 90), (-90, 90), "relative"),
+    ((35, 145), (35, 145), "absolute"),
+    ((-180, 180), (-180, 180), "relative"),
+    ((-180, 180), (-180, 180), "absolute"),
+    ((-180, -90), (90, 180), "relative"),
+    ((-45, 180), (-180, 0), "absolute"),
+    ((0, 0), (90, 90), "relative"),
+    ((90, 90), (-180, -180), "absolute"),
+    ((-180, 180), (-20, 20), "relative"),
+    ((60, 180), (-180, 180), "absolute"),
+]
+
+
+@pytest.fixture(scope="module")
+def chapter_7_grid():
+    axis = np.linspace(-20.0, 20.0, 200)
+    grid = np.stack(np.meshgrid(axis, axis), axis=-1).reshape(-1, 2)
+    on_search = np.zeros((200, 200), dtype=bool)
+    on_search[::5, ::5] = True
+    return (
+        grid,
+        on_search.ravel(),
+        5 * (axis[1] - axis[0]),
+        workspace.BranchTable(arms.ten, grid),
+    )
+
+
+@pytest.mark.parametrize("limits", CHAPTER_7_LIMITS, ids=stable_id)
+def test_chapter_7s_limit_test_and_circle_search_are_the_packages_and_as_before(
+    limits, chapter_7_grid
+):
+    grid, on_search, spacing, table = chapter_7_grid
+    (low_1, high_1), (low_2, high_2), convention = limits
+    arm = replace(
+        arms.ten,
+        q_min=tuple(np.radians([low_1, low_2])),
+        q_max=tuple(np.radians([high_1, high_2])),
+        limit_convention=convention,
+    )
+    valid = table.within_limits(arm)
+    assert np.array_equal(valid, ik.solutions_within_limits(arm, grid)[1])
+    for elbow in ("auto", "down", "up"):
+        starts = grid[table.reachable(arm, elbow=elbow) & on_search]
+        arcs = workspace.boundary_arcs(arm, elbow=elbow)
+        centre, radius = workspace.largest_circle_on_grid(arcs, starts, spacing, 0.005)
+        centre_before, radius_before = _largest_circle_on_grid_one_arc_at_a_time(
+            arcs, starts, spacing, 0.005
+        )
+        if centre_before is None:
+            assert centre is None and radius == 0.0
+            continue
+        # the same circle, to round-off (the same formula, for all arcs in one numpy call)
+        np.testing.assert_allclose(
+            centre, centre_before, rtol=0.0, atol=1e-12 * arm.reach[1]
+        )
+        assert radius == pytest.approx(radius_before, abs=1e-12 * arm.reach[1])

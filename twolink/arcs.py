@@ -19,9 +19,50 @@ from .errors import InputTypeError
 #: Most points :meth:`Arc.points` makes (memory budget: 1e7 x 2 floats, 160 MB).
 MAX_POINTS = 10_000_000
 
-__all__ = ["Arc", "circle_intersections"]
+__all__ = ["Arc", "arc_distance", "circle_intersections"]
 
 _TWO_PI = 2.0 * np.pi
+
+
+def arc_distance(
+    p: NDArray[np.float64],
+    centre: ArrayLike,
+    radius: ArrayLike,
+    start: ArrayLike,
+    sweep: ArrayLike,
+    end_a: ArrayLike,
+    end_b: ArrayLike,
+) -> NDArray[np.float64]:
+    """Distance from points ``p`` (..., 2) to arcs given by arrays, broadcast.
+
+    The formula behind :meth:`Arc.distance` (and
+    :func:`twolink.workspace.distance_to_arcs`, which passes many arcs at
+    once): inside the arc's angular span (every angle for a full circle) the
+    nearest point is the radial projection onto the circle, outside it the
+    nearer end point.  A zero radius needs no case of its own: its ends are
+    its centre.  No checks: the callers check their inputs.
+
+    Examples
+    --------
+    >>> ends = Arc((0.0, 0.0), 1.0, 0.0, np.pi / 2).end_points
+    >>> arc_distance(np.array([[2.0, 0.0], [-1.0, -1.0]]), (0.0, 0.0), 1.0, 0.0, np.pi / 2, *ends).round(12)
+    array([1.        , 2.23606798])
+    """
+    centre, radius, start, sweep, end_a, end_b = (
+        np.asarray(value, dtype=float)
+        for value in (centre, radius, start, sweep, end_a, end_b)
+    )
+    offset = p - centre
+    from_centre = np.hypot(offset[..., 0], offset[..., 1])
+    along = np.mod(
+        (np.arctan2(offset[..., 1], offset[..., 0]) - start) * np.sign(sweep), _TWO_PI
+    )
+    to_ends = np.minimum(
+        np.hypot(*np.moveaxis(p - end_a, -1, 0)),
+        np.hypot(*np.moveaxis(p - end_b, -1, 0)),
+    )
+    on_span = (along <= np.abs(sweep)) | (np.abs(sweep) >= _TWO_PI)
+    return np.where(on_span, np.abs(from_centre - radius), to_ends)
 
 
 @dataclass(frozen=True)
@@ -144,22 +185,16 @@ class Arc:
         Inside the arc's angular span the nearest point is the radial
         projection onto the circle; outside it, the nearer end point.
         """
-        p = as_pairs(p, "p")
-        offset = p - np.asarray(self.centre)
-        from_centre = np.hypot(offset[..., 0], offset[..., 1])
-        if self.radius == 0.0:
-            return from_centre
         ends = self.end_points
-        to_ends = np.minimum(
-            np.hypot(*np.moveaxis(p - ends[0], -1, 0)),
-            np.hypot(*np.moveaxis(p - ends[1], -1, 0)),
+        return arc_distance(
+            as_pairs(p, "p"),
+            np.asarray(self.centre),
+            self.radius,
+            self.start,
+            self.sweep,
+            ends[0],
+            ends[1],
         )
-        if abs(self.sweep) >= _TWO_PI:
-            return np.abs(from_centre - self.radius)
-        angle = np.arctan2(offset[..., 1], offset[..., 0])
-        along = np.mod((angle - self.start) * np.sign(self.sweep), _TWO_PI)
-        radial = np.abs(from_centre - self.radius)
-        return np.where(along <= abs(self.sweep), radial, to_ends)
 
     def split(self, fractions: ArrayLike) -> list[Arc]:
         """Cut the arc at the given fractions into consecutive pieces.

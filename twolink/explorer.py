@@ -59,21 +59,25 @@ from __future__ import annotations
 
 import asyncio
 import base64
+import functools
 import html
 import io
 import itertools
 import math
 import sys
 import warnings
+import zlib
 from collections.abc import Callable, Mapping, Sequence
 from decimal import Decimal
 from typing import Any
 
 import matplotlib
+import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.axis import Axis
 from matplotlib.figure import Figure
 from matplotlib.spines import Spine
+from PIL import Image
 
 from . import figure_style
 from ._optional import require
@@ -118,6 +122,49 @@ def _ipympl_backend() -> Any:
         else:
             dict.__setitem__(matplotlib.rcParams, "backend", saved)
     return module
+
+
+@functools.cache
+def _canvas_class(base: Any) -> Any:
+    """ipympl's canvas class ``base``, sending its changed pixels sooner.
+
+    On every move the canvas sends a PNG of the pixels that changed (the rest
+    transparent black).  Matplotlib compresses it with zlib's default
+    strategy; its run-length strategy compresses these mostly-empty images
+    as small about 30 % faster.  Everything else is matplotlib's
+    ``FigureCanvasWebAggCore.get_diff_image``, step for step.
+    """
+
+    class Canvas(base):
+        _png_is_old: bool
+        _force_full: bool
+        _last_buff: np.ndarray
+
+        def get_diff_image(self) -> bytes | None:
+            if not self._png_is_old:
+                return None
+            pixels = np.asarray(self.get_renderer().buffer_rgba())
+            buff = pixels.view(np.uint32).squeeze(2)  # a pixel compared as one number
+            if (
+                self._force_full
+                or buff.shape != self._last_buff.shape
+                or (pixels[:, :, 3] != 255).any()  # transparency cannot be overlaid
+            ):
+                self.set_image_mode("full")
+                output = buff
+            else:
+                self.set_image_mode("diff")
+                output = np.where(buff != self._last_buff, buff, 0)
+            self._last_buff = buff.copy()
+            self._force_full = False
+            self._png_is_old = False
+            data = output.view(dtype=np.uint8).reshape((*output.shape, 4))
+            with io.BytesIO() as png:
+                Image.fromarray(data).save(png, format="png", compress_type=zlib.Z_RLE)
+                return png.getvalue()
+
+    Canvas.__qualname__ = Canvas.__name__ = base.__name__
+    return Canvas
 
 
 def _widgets() -> Any:
@@ -171,7 +218,7 @@ def explorer_figure(
         warnings.filterwarnings(
             "ignore", "Passing unrecognized arguments", DeprecationWarning
         )
-        canvas = backend.Canvas(figure)
+        canvas = _canvas_class(backend.Canvas)(figure)
         backend.FigureManager(canvas, next(_figure_numbers))
     canvas.header_visible = False
     canvas.footer_visible = False
@@ -579,6 +626,13 @@ class Explorer:
         self._background = canvas.copy_from_bbox(self.figure.bbox)
         self._limits = self._axes_limits()
         self._draw_animated()
+        # The picture is now current. An artist still marked stale drew nothing
+        # (an empty title, a hidden note, which return before clearing the
+        # flag): left marked, every move would count it as moved and redraw it
+        # and everything above it (legends, notes).
+        for ax in self.figure.axes:
+            for child in ax.get_children():
+                child.stale = False
 
     def _animate(self, moved: list[Artist]) -> None:
         """Mark ``moved`` and every artist its axes draws after them as animated.

@@ -1,7 +1,10 @@
 """Simulating the arm: integrate ``M qdd + C qd + g = tau`` with scipy's ``solve_ivp``.
 
 The right-hand side comes from :func:`twolink.dynamics.state_derivative`;
-the inputs are checked once, at the entry of :func:`simulate`.  A torque
+the inputs are checked once, at the entry of :func:`simulate`.
+:func:`simulate_quick` integrates the same right-hand side with scipy's
+compiled ``odeint`` (LSODA) at looser tolerances, for a picture that must
+follow a slider (a millisecond or two for a few seconds of motion).  A torque
 callable ``(t, q, qd) -> tau`` drives the arm (a controller plugs in here);
 without one the arm moves freely under gravity.
 
@@ -16,6 +19,7 @@ from __future__ import annotations
 
 import math
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -52,6 +56,7 @@ PotentialEnergy = Callable[[NDArray[np.float64]], ArrayLike]
 
 __all__ = [
     "simulate",
+    "simulate_quick",
     "SimulationResult",
     "SimulationError",
     "DEFAULT_MAX_EVALUATIONS",
@@ -73,6 +78,15 @@ _EXPLICIT_METHODS = ("RK23", "RK45", "DOP853")
 #: length of its stability interval on the negative real axis (h |lambda| <= it).
 _EXPLICIT_COST = {"RK23": (3, 2.5), "RK45": (6, 3.3), "DOP853": (12, 6.0)}
 
+
+#: Tolerances of :func:`simulate_quick` unless the caller passes others: loose enough for
+#: about 1e3 evaluations per 5 s of free motion, tight enough for a picture (the tip of
+#: the 2 m arm within a millimetre of the exact run over 5 s of a chaotic swing).
+QUICK_TOLERANCES = MappingProxyType({"rtol": 1e-6, "atol": 1e-6})
+
+#: Right-hand-side evaluations :func:`simulate_quick` may spend unless told otherwise (5 s
+#: of free motion take about 1.1e3 at its default tolerances; 1e5 take about 0.2 s).
+QUICK_MAX_EVALUATIONS = 100_000
 
 #: Mean seconds per right-hand-side call above which a spent wall-time budget is blamed on a slow
 #: torque function (the arm's own dynamics take about 1e-5 s a call; 1e-3 s is a hundred times that).
@@ -169,7 +183,73 @@ def _budget_advice(inner, stop, evaluations, used, t_end):
     )
 
 
-def _check_t_eval(t_eval, t_end):
+def _state_text(state):
+    """``q = (..) rad, qd = (..) rad/s`` of a state ``(q1, q2, qd1, qd2)``, for a message."""
+    return f"q = ({state[0]:.6g}, {state[1]:.6g}) rad, qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
+
+
+def _start_state(q0, qd0):
+    """The checked start ``(q1, q2, qd1, qd2)`` of :func:`simulate` and :func:`simulate_quick`."""
+    q_start = as_configuration(q0, "q0")
+    qd_start = as_configuration(
+        qd0, "qd0", what="one pair of joint rates", unit="rad/s"
+    )
+    return np.concatenate([q_start, qd_start])
+
+
+def _non_finite_torque_error(exc, t, state, first):
+    """The public error for a torque that returned NaN or infinity: bad input at the first call, else a blow-up."""
+    if first:  # at the start: the torque function, not the motion
+        return ValueError(str(exc))
+    return SimulationError(
+        f"the motion blew up at t = {t:.6g} s: {exc} in the state {_state_text(state)}"
+    )
+
+
+def _overflow_error(t, state, derivative):
+    """The error for accelerations that overflow (checked on every right-hand side)."""
+    return SimulationError(
+        f"the motion blew up at t = {t:.6g} s: the accelerations overflow "
+        f"(qdd = ({derivative[2]:.6g}, {derivative[3]:.6g}) rad/s^2) in the state "
+        f"{_state_text(state)}"
+    )
+
+
+def _breakdown_error(exc, t, state, evaluations):
+    """The error for the solver's own arithmetic breaking down (overflowing rates or Jacobian)."""
+    return SimulationError(
+        f"the integration broke down at t = {t:.6g} s after {evaluations} evaluations "
+        f"({type(exc).__name__}: {exc}), last state {_state_text(state)}: the rates or the torques overflow; "
+        "check the controller's gains and the torques it returns"
+    )
+
+
+def _torques_at(torque, times, q, qd, budget=None):
+    """The torques ``torque(t, q, qd)`` at the output times, shape (n, 2) (zeros for free motion).
+
+    With a ``budget``, a slow torque function stops at its wall time.
+    """
+    if torque is None:
+        return np.zeros_like(q)
+    torques: list[tuple[float, float]] = []
+    # rows of private copies: a torque that writes into its q or qd changes neither the result nor the next call
+    for t, q_t, qd_t in zip(times, np.array(q), np.array(qd)):
+        if budget is not None and budget.out_of_time():
+            raise SimulationError(
+                f"the integration reached t = {times[-1]:.6g} s, but recomputing the torques at the {len(times)} "
+                f"output times used up the budget of max_wall_time = {budget.max_wall_time:.3g} s after "
+                f"{len(torques)} of them: torque(t, q, qd) is slow; make it faster, pass fewer t_eval times "
+                "or raise max_wall_time"
+            )
+        torques.append(public_torque_floats(torque(t, q_t, qd_t), t))
+    return np.array(torques).reshape(q.shape)
+
+
+def _check_t_eval(t_eval, t_end=None):
+    """``t_eval`` as output times: real, 1-D, non-empty, finite, strictly increasing, in ``[0, t_end]``.
+
+    ``t_end=None``: the last time is the end (:func:`simulate_quick`).
+    """
     times = real_array(t_eval, "t_eval", "times in seconds (real numbers)")
     if times.ndim != 1 or times.size == 0:
         raise ValueError(
@@ -183,6 +263,8 @@ def _check_t_eval(t_eval, t_end):
             f"t_eval must be strictly increasing; t_eval[{first + 1}] = {times[first + 1]:.6g} s follows "
             f"t_eval[{first}] = {times[first]:.6g} s"
         )
+    if t_end is None:
+        t_end = times[-1]
     if times[0] < 0.0 or times[-1] > t_end:
         raise ValueError(
             f"t_eval must lie in [0, t_end] = [0, {t_end:.6g}] s; got [{times[0]:.6g}, {times[-1]:.6g}] s"
@@ -206,9 +288,11 @@ class SimulationResult:
         Motor torques (N m) at those times (zeros for free motion).
     status : int
         ``solve_ivp``'s status: 0 reached ``t_end``, 1 stopped by a terminal
-        event (failures raise :class:`SimulationError` instead).
+        event (failures raise :class:`SimulationError` instead); always 0
+        from :func:`simulate_quick`.
     message : str
-        ``solve_ivp``'s message.
+        ``solve_ivp``'s message, or from :func:`simulate_quick` one that
+        names ``odeint`` (LSODA) and its tolerances.
     nfev : int
         Number of right-hand-side evaluations.
     t_events, y_events : list of numpy.ndarray or None
@@ -435,6 +519,11 @@ def simulate(
     -------
     SimulationResult
 
+    See Also
+    --------
+    simulate_quick : the same motion by scipy's compiled ``odeint`` at looser
+        tolerances, 10 to 20 times faster, for a picture that follows a slider.
+
     Raises
     ------
     ValueError
@@ -463,19 +552,15 @@ def simulate(
     ...
     ValueError: t_end (s) must be > 0.0; got -1.0
     """
-    q_start = as_configuration(q0, "q0")
-    qd_start = as_configuration(
-        qd0, "qd0", what="one pair of joint rates", unit="rad/s"
-    )
+    start = _start_state(q0, qd0)
     t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
     budget = EvaluationBudget(max_evaluations, max_wall_time)
-    max_evaluations, max_wall_time = budget.max_evaluations, budget.max_wall_time
+    max_evaluations = budget.max_evaluations
     inner = dynamics.solver_state_derivative(arm, torque, signal_non_finite=True)
     options: dict[str, Any] = dict(DEFAULT_SOLVER_OPTIONS)
     options.update(solver_options)
     if t_eval is not None:
         t_eval = _check_t_eval(t_eval, t_end)
-    start = np.concatenate([q_start, qd_start])
     calls = 0  # every call of the right-hand side, the stiffness estimates included
 
     def out_of_time(t, state):
@@ -513,20 +598,11 @@ def simulate(
         try:
             derivative = inner(t, state)
         except NonFiniteTorque as exc:
-            if (
-                budget.evaluations == 1
-            ):  # at the start: the torque function, not the motion
-                raise ValueError(str(exc)) from None
-            raise SimulationError(
-                f"the motion blew up at t = {t:.6g} s: {exc} in the state q = ({state[0]:.6g}, {state[1]:.6g}) rad, "
-                f"qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
+            raise _non_finite_torque_error(
+                exc, t, state, first=budget.evaluations == 1
             ) from None
         if not math.isfinite(derivative[2] + derivative[3]):
-            raise SimulationError(
-                f"the motion blew up at t = {t:.6g} s: the accelerations overflow "
-                f"(qdd = ({derivative[2]:.6g}, {derivative[3]:.6g}) rad/s^2) in the state "
-                f"q = ({state[0]:.6g}, {state[1]:.6g}) rad, qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s"
-            )
+            raise _overflow_error(t, state, derivative)
         return derivative
 
     # here, not at the top: import twolink stays light
@@ -563,12 +639,8 @@ def simulate(
         if budget.evaluations <= 1:
             raise
         # the solver's own arithmetic broke down (overflowing rates or Jacobian): a blow-up, not bad input
-        t_last, state = last[0], np.asarray(last[1], dtype=float)
-        raise SimulationError(
-            f"the integration broke down at t = {t_last:.6g} s after {budget.evaluations} evaluations "
-            f"({type(exc).__name__}: {exc}), last state q = ({state[0]:.6g}, {state[1]:.6g}) rad, "
-            f"qd = ({state[2]:.6g}, {state[3]:.6g}) rad/s: the rates or the torques overflow; "
-            "check the controller's gains and the torques it returns"
+        raise _breakdown_error(
+            exc, last[0], np.asarray(last[1], dtype=float), budget.evaluations
         ) from exc
     except _BudgetExceeded as stop:
         if (
@@ -588,8 +660,7 @@ def simulate(
             )
         raise SimulationError(
             f"the integration used up {stop.what} at t = {stop.t:.6g} s of {t_end:.6g} s "
-            f"(state q = ({stop.state[0]:.6g}, {stop.state[1]:.6g}) rad, qd = ({stop.state[2]:.6g}, "
-            f"{stop.state[3]:.6g}) rad/s); {advice}"
+            f"(state {_state_text(stop.state)}); {advice}"
         ) from None
     if solution.status < 0 or not np.all(np.isfinite(solution.y)):
         reached = solution.t[-1] if solution.t.size else 0.0
@@ -599,20 +670,7 @@ def simulate(
         )
     q = solution.y[:2].T
     qd = solution.y[2:].T
-    if torque is None:
-        tau = np.zeros_like(q)
-    else:
-        torques: list[tuple[float, float]] = []
-        for t, q_t, qd_t in zip(solution.t, q, qd):
-            if budget.out_of_time():
-                raise SimulationError(
-                    f"the integration reached t = {t_end:.6g} s, but recomputing the torques at the {len(solution.t)} "
-                    f"output times used up the budget of max_wall_time = {max_wall_time:.3g} s after "
-                    f"{len(torques)} of them: torque(t, q, qd) is slow; make it faster, pass fewer t_eval times "
-                    "or raise max_wall_time"
-                )
-            torques.append(public_torque_floats(torque(t, q_t.copy(), qd_t.copy()), t))
-        tau = np.array(torques).reshape(q.shape)
+    tau = _torques_at(torque, solution.t, q, qd, budget)
     return SimulationResult(
         arm=arm,
         t=frozen_array(solution.t),
@@ -624,4 +682,168 @@ def simulate(
         nfev=int(solution.nfev),
         t_events=solution.t_events,
         y_events=solution.y_events,
+    )
+
+
+def simulate_quick(
+    arm: TwoLinkArm,
+    q0: ArrayLike,
+    qd0: ArrayLike,
+    t_eval: ArrayLike,
+    torque: TorqueLaw | None = None,
+    *,
+    rtol: float = QUICK_TOLERANCES["rtol"],
+    atol: float = QUICK_TOLERANCES["atol"],
+    max_evaluations: int = QUICK_MAX_EVALUATIONS,
+) -> SimulationResult:
+    """The motion of :func:`simulate` by scipy's compiled ``odeint``: quick, for a picture.
+
+    Integrates the same equations, ``M(q) qdd + C(q, qd) qd + g(q) = tau``
+    on the same right-hand side (:func:`twolink.dynamics.state_derivative`),
+    with :func:`scipy.integrate.odeint`: LSODA, compiled Fortran that
+    switches between a non-stiff and a stiff method by itself and calls
+    Python only for the right-hand side.  The inputs are checked as
+    :func:`simulate` checks them, with the same messages.
+
+    Which to use: this one where a simulation must keep up with a hand on a
+    slider (5 s of free motion of the 2 m arm take about 1e3 evaluations and
+    under 2 ms here, 10 to 20 times less than :func:`simulate`; see
+    ``benchmarks/bench_dynamics.py``), and where an error of a millimetre
+    is invisible.
+    :func:`simulate` stays the exact run: tight tolerances (energy drift
+    under 1e-8), events, the solver's own steps, a wall-time budget and the
+    advice for stiff loops; use it for every number you report, and check a
+    quick run against it.
+
+    Parameters
+    ----------
+    arm : TwoLinkArm
+        Its mass matrix must be invertible (links with mass).
+    q0, qd0 : array_like, shape (2,)
+        Joint angles (rad) and rates (rad/s) at ``t = 0``.
+    t_eval : array_like, shape (n,)
+        The times to report (s), required (``odeint`` reports at given
+        times): finite, strictly increasing, from ``t = 0`` on; the motion
+        is integrated to the last.  As :func:`simulate`'s ``t_eval`` with
+        ``t_end = t_eval[-1]``.
+    torque : callable, optional
+        ``torque(t, q, qd) -> tau`` in N m, a function of its arguments only
+        (as for :func:`simulate`); ``None`` (default) is free motion.
+    rtol, atol : float
+        ``odeint``'s relative and absolute tolerances (> 0); defaults
+        ``QUICK_TOLERANCES``, 1e-6 each: fine for a picture (the energy of
+        free motion drifts by 1e-5 to 1e-4 of its scale over 5 s, against
+        under 1e-8 in :func:`simulate`), not for a reported number.
+    max_evaluations : int
+        Budget of right-hand-side evaluations (default
+        ``QUICK_MAX_EVALUATIONS`` = 1e5).  A slider's run passes a few
+        hundred: a motion that needs more (fast swings, a stiff loop) stops
+        with a :class:`SimulationError` instead of keeping the hand waiting.
+
+    Returns
+    -------
+    SimulationResult
+        At the times ``t_eval``; ``status`` 0, ``message`` naming ``odeint``
+        and its tolerances, ``nfev`` the evaluations spent, no events.
+
+    Raises
+    ------
+    ValueError
+        For a bad start, ``t_eval``, tolerance, budget or ``torque``, or a
+        singular mass matrix, with :func:`simulate`'s messages.
+    SimulationError
+        When the budget runs out (the message names it and says what to
+        change), the motion blows up, or ``odeint`` fails.
+
+    Examples
+    --------
+    A release of the 2 m arm, quick and exact:
+
+    >>> from twolink import arms
+    >>> times = np.linspace(0.0, 2.0, 101)
+    >>> quick = simulate_quick(arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0], times)
+    >>> exact = simulate(arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0], 2.0, t_eval=times)
+    >>> bool(np.max(exact.tracking_error(quick.p_tip)) < 1e-3), quick.message[:30]
+    (True, 'odeint (LSODA) reached t = 2 s')
+    >>> simulate_quick(arms.two_metre, [np.pi / 4, 0.0], [0.0, 0.0], times, max_evaluations=50)
+    ... # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    twolink.errors.SimulationError: the quick run used up its budget of max_evaluations = 50 evaluations ...
+    """
+    start = _start_state(q0, qd0)
+    times = _check_t_eval(t_eval)
+    tolerances = {
+        name: as_finite_scalar(value, name, minimum=0.0, strictly=True)
+        for name, value in (("rtol", rtol), ("atol", atol))
+    }
+    tolerance_text = f"rtol = {tolerances['rtol']:.3g}, atol = {tolerances['atol']:.3g}"
+    budget = as_count(max_evaluations, "max_evaluations", minimum=1)
+    inner = dynamics.solver_state_derivative(arm, torque, signal_non_finite=True)
+    calls = 0
+
+    def right_hand_side(t, state):
+        # lean, odeint calls it ~1e3 times a run: a blow-up shows in the next state, which inner checks
+        nonlocal calls
+        calls += 1
+        if calls > budget:
+            raise _BudgetExceeded(t, state, "max_evaluations")
+        try:
+            return inner(t, state)
+        except NonFiniteTorque as exc:
+            raise _non_finite_torque_error(exc, t, state, first=calls == 1) from None
+        except (ValueError, ArithmeticError) as exc:
+            if calls == 1:  # the torque function at the start: bad input
+                raise
+            raise _breakdown_error(exc, t, state, calls) from exc
+
+    # here, not at the top: import twolink stays light
+    from scipy.integrate import ODEintWarning, odeint
+
+    # odeint starts at its first time: t = 0, the start, then the times asked for
+    grid = times if times[0] == 0.0 else np.concatenate([[0.0], times])
+    report: dict[str, Any] = {"message": "Integration successful.", "tcur": []}
+    try:
+        if len(grid) == 1:  # only the start: nothing to integrate
+            states = start[np.newaxis, :]
+        else:
+            with warnings.catch_warnings():  # a failure raises below, with its message
+                warnings.simplefilter("ignore", ODEintWarning)
+                states, report = odeint(
+                    right_hand_side,
+                    start,
+                    grid,
+                    tfirst=True,
+                    full_output=True,
+                    mxstep=budget,  # per output interval: the budget is what stops it
+                    **tolerances,
+                )
+    except _BudgetExceeded as stop:
+        raise SimulationError(
+            f"the quick run used up its budget of max_evaluations = {budget} evaluations at "
+            f"t = {stop.t:.6g} s of {times[-1]:.6g} s (state {_state_text(stop.state)}): the motion "
+            f"needs more steps at {tolerance_text} (fast swings or a stiff loop); raise "
+            "max_evaluations, loosen rtol/atol, or run it with simulate (the exact run)"
+        ) from None
+    message = str(report["message"])
+    if message != "Integration successful." or not np.all(np.isfinite(states)):
+        reached = float(np.max(report["tcur"], initial=0.0))
+        last = max(int(np.searchsorted(grid, reached, side="right")) - 1, 0)
+        raise SimulationError(
+            f"the quick run (odeint, LSODA) failed near t = {reached:.6g} s of {times[-1]:.6g} s after {calls} "
+            f"evaluations ({message}); state at t = {grid[last]:.6g} s: {_state_text(states[last])}; the rates "
+            "or the torques may overflow (check the controller's gains and the torques it returns), else try "
+            "looser tolerances, or simulate"
+        )
+    states = states[len(grid) - len(times) :]
+    q, qd = states[:, :2], states[:, 2:]
+    return SimulationResult(
+        arm=arm,
+        t=frozen_array(times),
+        q=frozen_array(q),
+        qd=frozen_array(qd),
+        tau=frozen_array(_torques_at(torque, times, q, qd)),
+        status=0,
+        message=f"odeint (LSODA) reached t = {times[-1]:.6g} s at {tolerance_text}: {message}",
+        nfev=calls,
     )

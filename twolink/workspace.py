@@ -9,11 +9,13 @@ of :class:`~twolink.TwoLinkArm` (``limit_convention="relative"`` bounds ``(q1, q
 - :func:`sample_reachable`: random configurations within limits and their tips.
 - :func:`candidate_arcs` / :func:`boundary_arcs`: the boundary as exact arcs
   (one joint at a limit or at a singular value, the other swept).
-- :func:`clearance` and :func:`largest_inscribed_circle`: how much room there is.
+- :func:`clearance` and :func:`largest_inscribed_circle`: how much room there is,
+  measured by :func:`distance_to_arcs` (exact distances to all arcs at once).
 - :class:`BranchTable` and :func:`largest_circle_on_grid`: the same answers fast
   enough for a slider, for arms that differ only in their limits (IK solved
-  once for a fixed set of points, only the limit test redone) and a coarse-to-fine
-  search for a large circle from points known to be inside.
+  once for a fixed set of points, only the limit test redone, by comparisons of
+  angles wrapped once) and a coarse-to-fine search for a large circle from points
+  known to be inside.
 - :func:`circle_points`: equally spaced targets on a circle.
 - :func:`require_reachable`: the same test, raising a clear error naming the
   first point that is out of the workspace.
@@ -44,7 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
-from .arcs import Arc, circle_intersections
+from .arcs import Arc, arc_distance, circle_intersections
 from .budgets import DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
 from .conventions import check_elbow, to_absolute, to_relative, wrap_angle
 from .errors import UnreachableError
@@ -68,6 +70,7 @@ __all__ = [
     "sample_reachable",
     "candidate_arcs",
     "boundary_arcs",
+    "distance_to_arcs",
     "clearance",
     "largest_inscribed_circle",
     "BranchTable",
@@ -130,9 +133,9 @@ def describe_limits(arm: TwoLinkArm) -> str:
 def _on_branches(valid: NDArray[np.bool_], elbow: str) -> NDArray[np.bool_]:
     """Per point, whether the branches ``elbow`` asks for reach it (``valid``: shape (..., 2), down, up)."""
     if elbow == "auto":
-        return np.any(valid, axis=-1)
+        return valid[..., 0] | valid[..., 1]
     if elbow == "both":
-        return np.all(valid, axis=-1)
+        return valid[..., 0] & valid[..., 1]
     return valid[..., 0 if elbow == "down" else 1]
 
 
@@ -305,6 +308,29 @@ def sample_reachable(
     return arm.fk(q), q
 
 
+def _within_turns(
+    angle: NDArray[np.float64], low: float, high: float, tol: float
+) -> NDArray[np.bool_]:
+    """Whether wrapped angles (in ``[-pi, pi)``) lie in ``[low - tol, high + tol]`` modulo ``2 pi``.
+
+    The rule of :func:`twolink.ik.limits.move_into_limits` (some whole turn of the
+    angle lies in the interval), by comparisons only: the interval is moved
+    by whole turns to start in ``[-pi, pi)``, and an interval that runs past
+    ``pi`` also holds the angles a turn below its end.
+    """
+    low, high = low - tol, high + tol
+    if high - low >= _TWO_PI:  # a full turn: every angle
+        return np.ones(angle.shape, dtype=np.bool_)
+    shift = _TWO_PI * np.floor((low + np.pi) / _TWO_PI)
+    low, high = low - shift, high - shift
+    inside = (angle >= low) & (angle <= high)
+    if high >= np.pi:
+        inside |= angle <= high - _TWO_PI
+    if low < -np.pi:  # only by round-off of the shift
+        inside |= angle >= low + _TWO_PI
+    return inside
+
+
 class BranchTable:
     """Both IK branches at fixed points, solved once, for arms that differ only in their limits.
 
@@ -312,13 +338,24 @@ class BranchTable:
     the package's limit rule (:func:`twolink.ik.solutions_within_limits`:
     each angle moved by whole turns into its interval, with the slack
     ``tol``).  The solving depends on the link lengths only.  A table solves
-    it once; :meth:`solutions_within_limits` then redoes only the limit test,
-    with the same rule and the same functions
-    (:func:`twolink.ik.limits.move_into_limits`,
-    :func:`twolink.ik.turns.free_q1_at_base`), so it gives exactly what
-    :func:`twolink.ik.solutions_within_limits` gives for the same arm and
-    points (tested), at a fraction of the cost: fast enough for a slider that
-    changes the limits over a shading grid.
+    it once and stores, per branch, the angles each limit convention limits,
+    wrapped to ``[-pi, pi)``: ``(q1, q2)`` for relative limits, the link
+    angles ``(q1, q1 + q2)`` for absolute ones.  :meth:`within_limits` and
+    :meth:`reachable` then only compare those angles with the limits: each
+    in its interval modulo ``2 pi``, with the slack ``tol``, the rule of
+    :func:`twolink.ik.limits.move_into_limits`.  That is tens of times faster
+    than solving again or moving the angles by turns
+    (``benchmarks/bench_workspace.py``): fast enough for a slider that
+    changes the limits over a shading grid.  The answer is what
+    :func:`twolink.ik.solutions_within_limits` and :func:`is_reachable` give
+    for the same arm and points (tested), except for an angle within
+    round-off (about ``1e-15`` rad) of a limit widened by ``tol``, where the
+    two ways of reducing it by whole turns can round apart.  At the base of
+    an arm with ``l1 == l2``, which the folded arm reaches with any ``q1``,
+    the table applies the package's rule itself
+    (:func:`twolink.ik.turns.free_q1_at_base`).
+    :meth:`solutions_within_limits` also returns the angles moved into the
+    limits, computed as the package computes them (exactly its answer).
 
     Parameters
     ----------
@@ -338,7 +375,7 @@ class BranchTable:
     >>> from dataclasses import replace
     >>> from twolink import arms
     >>> table = BranchTable(arms.ten, [[12.5, 12.5], [15.0, 1.0], [1.0, 15.0], [0.0, 0.0]])
-    >>> table.solutions_within_limits(arms.ten)[1]
+    >>> table.within_limits(arms.ten)  # elbow down, elbow up
     array([[ True,  True],
            [False,  True],
            [ True, False],
@@ -346,6 +383,8 @@ class BranchTable:
     >>> wider = replace(arms.ten, q_min=(-np.pi / 2, -np.pi), q_max=(np.pi / 2, np.pi))
     >>> table.reachable(wider), is_reachable(wider, table.points)
     (array([ True,  True,  True,  True]), array([ True,  True,  True,  True]))
+    >>> table.reachable(arms.ten, elbow="down")
+    array([ True, False,  True, False])
     >>> table.reachable(arms.two_metre_limited)
     Traceback (most recent call last):
     ...
@@ -368,6 +407,18 @@ class BranchTable:
         # without limits nothing is moved: the closed form's two branches, and the reach test
         self._q_both, in_reach = solutions_within_limits(links, points)
         self._in_reach: NDArray[np.bool_] = in_reach[..., 0]
+        # the angles each convention limits, wrapped once, as contiguous (..., 2) arrays (down, up)
+        self._wrapped: dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]] = {}
+        for convention, limited in (
+            ("relative", self._q_both),
+            ("absolute", to_absolute(self._q_both)),
+        ):
+            angles = np.asarray(wrap_angle(limited), dtype=float)
+            self._wrapped[convention] = (angles[..., 0].copy(), angles[..., 1].copy())
+        # where any q1 reaches the point (the base of an equal-link arm): the package's own rule there
+        self._at_base: NDArray[np.bool_] = (
+            free_q1_at_base(links, points)[0] & self._in_reach
+        )
 
     def _require_links(self, arm: TwoLinkArm) -> None:
         require_arm(arm)
@@ -381,6 +432,11 @@ class BranchTable:
         self, arm: TwoLinkArm, tol: float = LIMIT_TOL
     ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         """``twolink.ik.solutions_within_limits(arm, self.points, tol)``, from the stored branches.
+
+        The angles are moved into the limits as the package moves them
+        (:func:`twolink.ik.limits.move_into_limits`), so this gives exactly
+        what the package gives; when only the answer is needed,
+        :meth:`within_limits` is faster.
 
         Parameters
         ----------
@@ -398,23 +454,86 @@ class BranchTable:
         """
         self._require_links(arm)
         tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
-        q_both = self._q_both.copy()
-        valid = np.repeat(self._in_reach[..., None], 2, axis=-1)
+        return self._moved_into(arm, self._q_both, self._in_reach, self._at_base, tol)
+
+    @staticmethod
+    def _moved_into(
+        arm: TwoLinkArm,
+        q_both: NDArray[np.float64],
+        in_reach: NDArray[np.bool_],
+        at_base: NDArray[np.bool_],
+        tol: float,
+    ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """The package's rule on stored branches: free ``q1`` at the base, then whole turns into the limits."""
+        q_both = q_both.copy()
+        valid = np.repeat(in_reach[..., None], 2, axis=-1)
         if not arm.has_limits:
             return q_both, valid
-        at_base, free_q1 = free_q1_at_base(arm, self.points)
+        free_q1 = free_q1_at_base(arm, np.zeros(2))[1]
         if free_q1 is not None:
-            q_both[at_base & self._in_reach, :, 0] = free_q1
+            q_both[at_base, :, 0] = free_q1
         q_both, inside = move_into_limits(arm, q_both, tol)
         return q_both, valid & inside
 
-    def reachable(self, arm: TwoLinkArm, tol: float = LIMIT_TOL) -> NDArray[np.bool_]:
-        """``is_reachable(arm, self.points, tol)`` (either branch), from the stored branches.
+    def within_limits(
+        self, arm: TwoLinkArm, tol: float = LIMIT_TOL
+    ) -> NDArray[np.bool_]:
+        """Whether each branch reaches its point within ``arm``'s limits: ``solutions_within_limits(arm, tol)[1]``.
 
-        For one branch, or both, read the columns of
-        ``self.solutions_within_limits(arm, tol)[1]`` (elbow down, up).
+        By comparisons of the stored wrapped angles with the limits (see the
+        class: the same answer, but for round-off at a limit plus ``tol``).
+
+        Parameters
+        ----------
+        arm : TwoLinkArm
+            Same link lengths as the table's; any limits, either convention.
+        tol : float
+            Slack in radians at each limit.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (..., 2)
+            Elbow down ``[..., 0]``, elbow up ``[..., 1]``.
         """
-        return np.any(self.solutions_within_limits(arm, tol)[1], axis=-1)
+        self._require_links(arm)
+        tol = as_finite_scalar(tol, "tol (rad)", minimum=0.0)
+        if arm.q_min is None or arm.q_max is None:
+            return np.repeat(self._in_reach[..., None], 2, axis=-1)
+        first, second = self._wrapped[arm.limit_convention]
+        (low_1, low_2), (high_1, high_2) = arm.q_min, arm.q_max
+        valid = _within_turns(first, low_1, high_1, tol)
+        valid &= _within_turns(second, low_2, high_2, tol)
+        valid &= self._in_reach[..., None]
+        if np.any(self._at_base):
+            valid[self._at_base] = self._moved_into(
+                arm,
+                self._q_both[self._at_base],
+                self._in_reach[self._at_base],
+                np.ones(np.count_nonzero(self._at_base), dtype=np.bool_),
+                tol,
+            )[1]
+        return valid
+
+    def reachable(
+        self, arm: TwoLinkArm, tol: float = LIMIT_TOL, elbow: str = "auto"
+    ) -> NDArray[np.bool_]:
+        """``is_reachable(arm, self.points, tol, elbow)``, from the stored branches.
+
+        Parameters
+        ----------
+        arm : TwoLinkArm
+            Same link lengths as the table's; any limits, either convention.
+        tol : float
+            Slack in radians at each limit.
+        elbow : {"auto", "down", "up", "both"}
+            Which branches count, as for :func:`is_reachable`.
+
+        Returns
+        -------
+        numpy.ndarray of bool, shape (...)
+        """
+        elbow = check_elbow(elbow)
+        return _on_branches(self.within_limits(arm, tol), elbow)
 
 
 def _polar_offset(arm: TwoLinkArm, q2: float) -> tuple[float, float]:
@@ -673,6 +792,96 @@ def boundary_arcs(
     return kept
 
 
+#: Most point-arc pairs :func:`distance_to_arcs` measures in one numpy call (memory: a few
+#: arrays of this many floats, 8 MB each); more points are measured in blocks.
+_DISTANCE_BLOCK = 1_000_000
+
+
+def _arc_arrays(arcs: list[Arc] | tuple[Arc, ...]) -> tuple[NDArray[np.float64], ...]:
+    """Centre ``(k, 1, 2)``, radius, start, sweep ``(k, 1)`` and the end points ``(k, 1, 2)`` of ``k`` arcs."""
+    centre, radius, start, sweep = (
+        np.array([getattr(arc, name) for arc in arcs], dtype=float)[:, None]
+        for name in ("centre", "radius", "start", "sweep")
+    )
+    ends = np.array([arc.end_points for arc in arcs])[:, :, None]
+    return centre, radius, start, sweep, ends[:, 0], ends[:, 1]
+
+
+def _nearest_arc_distance(
+    points: NDArray[np.float64], arrays: tuple[NDArray[np.float64], ...]
+) -> NDArray[np.float64]:
+    """Distance from points ``(n, 2)`` to the nearest of the arcs of :func:`_arc_arrays`.
+
+    :func:`twolink.arcs.arc_distance` (the formula of
+    :meth:`twolink.arcs.Arc.distance`) on arrays of arcs: all arcs in one
+    numpy call per block of ``_DISTANCE_BLOCK`` point-arc pairs.
+    """
+    block = max(1, _DISTANCE_BLOCK // len(arrays[1]))
+    if len(points) > block:
+        return np.concatenate(
+            [
+                _nearest_arc_distance(points[first : first + block], arrays)
+                for first in range(0, len(points), block)
+            ]
+        )
+    return arc_distance(points, *arrays).min(axis=0)
+
+
+def _require_arcs(arcs: object) -> None:
+    if not isinstance(arcs, (list, tuple)) or not all(
+        isinstance(arc, Arc) for arc in arcs
+    ):
+        raise InputTypeError(
+            f"arcs must be a list of twolink.arcs.Arc (from workspace.boundary_arcs); got {arcs!r}"
+        )
+
+
+def distance_to_arcs(p: ArrayLike, arcs: list[Arc]) -> NDArray[np.float64]:
+    """Distance from points to the nearest of some arcs, exactly, for all arcs at once.
+
+    ``min(arc.distance(p) for arc in arcs)`` (:meth:`twolink.arcs.Arc.distance`:
+    inside an arc's angular span the nearest point is the radial projection
+    onto its circle, outside it the nearer end point), in one numpy call over
+    points and arcs instead of one per arc (in blocks, for many points):
+    what :func:`clearance` and :func:`largest_circle_on_grid` measure with.
+
+    Parameters
+    ----------
+    p : array_like, shape (..., 2)
+        Points, metres.
+    arcs : list of twolink.arcs.Arc
+        For example a workspace's :func:`boundary_arcs`.
+
+    Returns
+    -------
+    numpy.ndarray, shape (...)
+        Metres; ``inf`` everywhere when there are no arcs.
+
+    Raises
+    ------
+    twolink.errors.InputTypeError
+        When ``arcs`` is not a list of arcs.
+    ValueError
+        For points that are not finite pairs.
+
+    Examples
+    --------
+    >>> from twolink.arcs import Arc
+    >>> quarter = Arc((0.0, 0.0), 2.0, 0.0, np.pi / 2)
+    >>> point = Arc((3.0, 0.0), 0.0, 0.0, 0.0)
+    >>> distance_to_arcs([[3.0, 1.0], [0.0, 0.0], [-2.0, -1.0]], [quarter, point]).round(12)
+    array([1.        , 2.        , 3.60555128])
+    >>> distance_to_arcs([0.0, 0.0], [])
+    array(inf)
+    """
+    _require_arcs(arcs)
+    points: NDArray[np.float64] = as_pairs(p, "p")
+    flat = points.reshape(-1, 2)
+    if not arcs:
+        return np.full(points.shape[:-1], np.inf)
+    return _nearest_arc_distance(flat, _arc_arrays(arcs)).reshape(points.shape[:-1])
+
+
 def clearance(
     arm: TwoLinkArm, p: ArrayLike, arcs: list[Arc] | None = None, elbow: str = "auto"
 ) -> NDArray[np.float64]:
@@ -708,7 +917,7 @@ def clearance(
     arcs = boundary_arcs(arm, elbow=elbow) if arcs is None else arcs
     if not arcs:  # nothing is reachable (one branch may be entirely outside the limits)
         return np.full(points.shape[:-1], -np.inf)
-    distance = np.min([arc.distance(points) for arc in arcs], axis=0)
+    distance = distance_to_arcs(points, arcs)
     return np.where(is_reachable(arm, points, elbow=elbow), distance, -distance)
 
 
@@ -854,8 +1063,10 @@ def largest_circle_on_grid(
     its radius: they are inside the workspace (the disc about an inside point
     with its clearance as radius holds no boundary point), so no
     reachability test is needed, and the radius is the exact distance to
-    the arcs.  For the largest circle, :func:`largest_inscribed_circle`
-    (an optimiser, about a second; this takes milliseconds).
+    the arcs (:func:`distance_to_arcs`, all arcs in one numpy call per
+    round).  For the largest circle, :func:`largest_inscribed_circle` (an
+    optimiser, about a second; this takes a fraction of a millisecond for
+    chapter 7's grid: ``benchmarks/bench_workspace.py``).
 
     Accuracy: the circle always fits (its radius is the exact clearance of
     its centre), and when the largest circle's centre lies within
@@ -910,12 +1121,7 @@ def largest_circle_on_grid(
     ...
     ValueError: tol = 1e-20 m needs 41 refinement rounds from spacing = 1 m; at most MAX_REFINEMENTS = 30 (spacing / tol up to 3**31)
     """
-    if not isinstance(arcs, (list, tuple)) or not all(
-        isinstance(arc, Arc) for arc in arcs
-    ):
-        raise InputTypeError(
-            f"arcs must be a list of twolink.arcs.Arc (from workspace.boundary_arcs); got {arcs!r}"
-        )
+    _require_arcs(arcs)
     points: NDArray[np.float64] = as_pairs(candidates, "candidates").reshape(-1, 2)
     if len(points) > MAX_SAMPLES:
         raise ValueError(
@@ -937,17 +1143,15 @@ def largest_circle_on_grid(
     if not arcs or len(points) == 0:
         return None, 0.0
 
-    def distance_to_arcs(p: NDArray[np.float64]) -> NDArray[np.float64]:
-        return np.min([arc.distance(p) for arc in arcs], axis=0)
-
-    room = distance_to_arcs(points)
+    arrays = _arc_arrays(arcs)  # once; then one numpy call per round
+    room = _nearest_arc_distance(points, arrays)
     best = int(np.argmax(room))
     centre, radius = points[best].copy(), float(room[best])
     for step in steps:  # at most MAX_REFINEMENTS rounds of 49 points
         near = centre + step * _REFINE_PATTERN
         near = near[np.hypot(*(near - centre).T) < radius]
         if len(near):
-            room = distance_to_arcs(near)
+            room = _nearest_arc_distance(near, arrays)
             if room.max() > radius:
                 best = int(np.argmax(room))
                 centre, radius = near[best], float(room[best])
