@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from _cases import in_fresh_thread
 
-from twolink import arms, explorer, plot
+from twolink import arms, explorer, figure_style, plot
 from twolink.errors import InputTypeError
 
 ARM = arms.two_metre
@@ -74,10 +74,27 @@ def test_display_stores_widgets_a_png_of_the_first_state_and_its_description():
     data, metadata = view._repr_mimebundle_()
     assert "application/vnd.jupyter.widget-view+json" in data
     png = base64.b64decode(data["image/png"])
-    assert png.startswith(b"\x89PNG") and png == view.png()
+    assert png.startswith(b"\x89PNG") and png == view.png(figure_style.PIXEL_SCALE)
     assert data["text/plain"] == view.description
     assert metadata["image/png"]["alt"] == view.description
-    assert metadata["image/png"]["width"] == 240  # 3 in at 80 dpi
+    assert metadata["image/png"]["width"] == 288  # 3 in at 96 dpi
+    # stored at twice the pixels, shown at the intended size
+    assert int.from_bytes(png[16:20], "big") == 2 * 288
+
+
+def test_without_describe_the_stored_picture_is_described_by_its_drawing():
+    figure, ax = explorer.explorer_figure(3.0, 3.0)
+    plot.setup_axes(ARM, ax=ax)
+    line = plot.draw_arm(ARM, [0.0, 0.0], ax=ax)
+    view = explorer.Explorer(
+        figure,
+        lambda q1: plot.move_arm(line, ARM, np.radians([q1, 0.0])),
+        {"q1": explorer.slider("q1", "deg", 90, -180, 180, 1)},
+    )
+    _, metadata = view._repr_mimebundle_()
+    assert metadata["image/png"]["alt"].startswith(
+        "An interactive figure with q1 [deg]. The arm at q = (90°, 0°), tip at (0.00, 4.00) m."
+    )
 
 
 def test_the_layout_holds_controls_extra_canvas_and_description():

@@ -26,6 +26,9 @@ HEAVY = ("scipy", "sympy", "matplotlib", "control", "mujoco")
 HEAVY_BY_DESIGN = {
     "twolink.plot": "matplotlib",
     "twolink.explorer": "matplotlib",
+    "twolink.figure_style": "matplotlib",
+    "twolink.alttext": "matplotlib",
+    "twolink.inline": "matplotlib",
     "twolink.video": "matplotlib",
     "twolink.symbolic": "sympy",
 }

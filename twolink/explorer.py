@@ -79,8 +79,11 @@ from matplotlib.figure import Figure
 from matplotlib.spines import Spine
 from PIL import Image
 
+from . import figure_style
 from ._optional import require
 from ._validate import InputTypeError, as_finite_scalar
+from .alttext import describe as describe_figure
+from .alttext import listed
 
 __all__ = ["Explorer", "explorer_figure", "slider", "range_slider", "choice"]
 
@@ -169,14 +172,21 @@ def _widgets() -> Any:
 
 
 def explorer_figure(
-    width: float, height: float, *, ncols: int = 1, dpi: float = 80.0, **subplot_kw: Any
+    width: float,
+    height: float,
+    *,
+    ncols: int = 1,
+    dpi: float = figure_style.DPI,
+    **subplot_kw: Any,
 ) -> tuple[Figure, Any]:
     """A figure of ``width`` x ``height`` inches on an ipympl canvas, and its axes.
 
     The figure is not registered with pyplot, so the notebook's other figures
     keep their backend (inline) and this one is shown only inside its
     :class:`Explorer`.  The canvas has no toolbar, header or footer and does
-    not resize.
+    not resize.  The figure and its axes are made with the course style
+    (:func:`twolink.figure_style.context`: font sizes, the colour and line-style
+    cycle), whether or not :func:`twolink.figure_style.use` was called.
 
     Parameters
     ----------
@@ -185,8 +195,9 @@ def explorer_figure(
     ncols : int
         Number of axes side by side (``axes`` is then an array of them).
     dpi : float
-        Pixels per inch of the figure (ipympl doubles the pixels on a
-        high-resolution screen by itself).
+        Pixels per inch of the figure at its intended size (``figure_style.DPI``,
+        the CSS inch; ipympl doubles the pixels on a high-resolution screen
+        by itself).
     **subplot_kw
         Passed to :meth:`matplotlib.figure.Figure.subplots` (e.g. ``gridspec_kw``).
 
@@ -199,7 +210,9 @@ def explorer_figure(
     if type(ncols) is not int or ncols < 1:
         raise ValueError(f"ncols must be a positive int; got {ncols!r}")
     backend = _ipympl_backend()
-    figure = Figure(figsize=(width, height), dpi=dpi)
+    with figure_style.context():
+        figure = Figure(figsize=(width, height), dpi=dpi)
+        axes = figure.subplots(1, ncols, **subplot_kw)
     with warnings.catch_warnings():
         # ipympl 0.10's toolbar passes traitlets an argument it deprecates
         warnings.filterwarnings(
@@ -212,7 +225,6 @@ def explorer_figure(
     canvas.toolbar_visible = False
     canvas.resizable = False
     canvas.capture_scroll = False
-    axes = figure.subplots(1, ncols, **subplot_kw)
     return figure, axes
 
 
@@ -414,6 +426,9 @@ class Explorer:
     describe : callable, optional
         ``describe(**values) -> str``: what the figure shows, in words (the
         text alternative, shown under the figure and stored for static pages).
+        Without it, the stored picture's text alternative is
+        :func:`twolink.alttext.describe` of the figure (what the drawing
+        functions recorded, kept true by the ``move_*`` functions).
     extra : sequence of widgets, optional
         Further widgets placed after the controls (a button, a note).
 
@@ -660,14 +675,19 @@ class Explorer:
         if not self._holding:
             self.refresh()
 
-    def png(self) -> bytes:
-        """The figure as it stands, moving artists included, as PNG bytes."""
+    def png(self, scale: float = 1.0) -> bytes:
+        """The figure as it stands, moving artists included, as PNG bytes.
+
+        ``scale`` multiplies the pixels (``figure_style.PIXEL_SCALE`` for the stored
+        picture, shown at its intended size on a high-resolution screen).
+        """
+        scale = as_finite_scalar(scale, "scale", minimum=0.0, strictly=True)
         buffer = io.BytesIO()
         self._saving = True
         for artist in self._animated:
             artist.set_animated(False)
         try:
-            self.figure.savefig(buffer, format="png", dpi=self.figure.dpi)
+            self.figure.savefig(buffer, format="png", dpi=self.figure.dpi * scale)
         finally:
             for artist in self._animated:
                 artist.set_animated(True)
@@ -677,11 +697,20 @@ class Explorer:
     def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[str, Any], dict[str, Any]]:
         data = self.widget._repr_mimebundle_(**kwargs)
         data = dict(data[0] if isinstance(data, tuple) else data)
-        text = self.description or "An interactive figure with " + ", ".join(
-            getattr(control, "description", name) or name
-            for name, control in self.controls.items()
+        text = self.description or (
+            "An interactive figure with "
+            + listed(
+                [
+                    getattr(control, "description", name) or name
+                    for name, control in self.controls.items()
+                ]
+            )
+            + ". "
+            + describe_figure(self.figure)
         )
-        data["image/png"] = base64.b64encode(self.png()).decode("ascii")
+        data["image/png"] = base64.b64encode(self.png(figure_style.PIXEL_SCALE)).decode(
+            "ascii"
+        )
         data["text/plain"] = text
         width, height = self.figure.get_size_inches() * self.figure.dpi
         metadata = {

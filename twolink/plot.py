@@ -9,11 +9,19 @@ functions that set up axes of their own (:func:`setup_axes`,
 instead.  The ``move_*`` functions move what a drawing function returned
 (:func:`move_arm`, :func:`move_strobe`, :func:`move_ellipse`): an explorer
 (:mod:`twolink.explorer`) draws once and moves its artists on every change.
+
+Colours, line styles and markers come from the roles of
+:mod:`twolink.figure_style` (the arm, the tip's path, a force, ...), never from
+colour names here.  Every drawing function records, for what it drew, a
+sentence built from the data drawn (:func:`twolink.alttext.record`), and
+every ``move_*`` function records the new one, so the figure's text
+alternative, :func:`twolink.alttext.describe`, stays true.
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Sequence
+from html import escape as html_escape
 from typing import TYPE_CHECKING, Any
 
 import matplotlib.pyplot as plt
@@ -29,6 +37,7 @@ from matplotlib.text import Text
 from matplotlib.typing import ColorType
 from numpy.typing import ArrayLike, NDArray
 
+from . import figure_style
 from ._optional import COURSE_INSTALL, HTMLDisplay, html, require
 from ._validate import (
     InputTypeError,
@@ -38,6 +47,16 @@ from ._validate import (
     real_array,
     require_arm,
 )
+from .alttext import (
+    angles_text,
+    describe,
+    listed,
+    plain_number,
+    point_text,
+    quantity_text,
+    record,
+)
+from .display import rounded
 from .velocity import Ellipse
 from .video import MovingAnimation, frames_drawn_once, html5_video
 
@@ -65,9 +84,9 @@ __all__ = [
     "draw_note",
 ]
 
-LINK_COLOR = "#1f4e79"
-JOINT_COLOR = "#f2a900"
-PATH_COLOR = "#c0392b"
+#: The colours of the roles (:mod:`twolink.figure_style`), by the names chapters use.
+LINK_COLOR = figure_style.ARM.color
+PATH_COLOR = figure_style.PATH.color
 
 
 def _axes(ax: Axes | None, who: str) -> Axes:
@@ -137,7 +156,7 @@ def setup_axes(
     >>> plt.close(ax.figure)
     """
     if ax is None:
-        _, ax = plt.subplots(figsize=size, dpi=80)
+        _, ax = plt.subplots(figsize=size, dpi=figure_style.DPI)
     else:
         ax = _axes(ax, "setup_axes")
     limit = arm.reach[1] * (1.0 + margin)
@@ -153,7 +172,7 @@ def setup_axes(
 
 
 def draw_reach(
-    arm: TwoLinkArm, *, ax: Axes | None = None, **style: Any
+    arm: TwoLinkArm, *, ax: Axes | None = None, **options: Any
 ) -> list[Circle]:
     """Draw the reach annulus' two circles (``r_min`` and ``r_max``; none of radius 0).
 
@@ -162,8 +181,9 @@ def draw_reach(
     arm : TwoLinkArm
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; the current axes (``plt.gca()``) if omitted.
-    **style
-        Options of :class:`matplotlib.patches.Circle` (dashed grey outlines by default).
+    **options
+        Options of :class:`matplotlib.patches.Circle` (the reach role of
+        :mod:`twolink.figure_style`, dashed grey outlines, by default).
 
     Returns
     -------
@@ -178,19 +198,25 @@ def draw_reach(
     >>> plt.close(ax.figure)
     """
     ax = _axes(ax, "draw_reach")
-    options: dict[str, Any] = {
+    circle_options: dict[str, Any] = {
         "fill": False,
-        "linestyle": "--",
-        "color": "0.6",
-        "linewidth": 1.0,
+        "linestyle": figure_style.REACH.linestyle,
+        "color": figure_style.REACH.color,
+        "linewidth": 1.2,
     }
-    options.update(style)
+    circle_options.update(options)
     circles = []
     for radius in arm.reach:
         if radius > 0:
-            circle = Circle((0.0, 0.0), radius, **options)
+            circle = Circle((0.0, 0.0), radius, **circle_options)
             ax.add_patch(circle)
             circles.append(circle)
+    r_min, r_max = arm.reach
+    if r_min > 0:
+        sentence = f"The reach: an annulus from {rounded(r_min, 2)} to {rounded(r_max, 2, 'm')}"
+    else:
+        sentence = f"The reach: a disc of radius {rounded(r_max, 2, 'm')}"
+    record(circles[0], sentence, parts=circles)
     return circles
 
 
@@ -199,10 +225,11 @@ def draw_arm(
     q: ArrayLike,
     *,
     ax: Axes | None = None,
-    color: ColorType = LINK_COLOR,
+    color: ColorType | None = None,
     label: str | None = None,
     alpha: float = 1.0,
     linewidth: float = 4.0,
+    role: figure_style.Role = figure_style.ARM,
 ) -> Line2D:
     """Draw the arm at one configuration: links, joints and base.
 
@@ -214,12 +241,15 @@ def draw_arm(
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; the current axes (``plt.gca()``) if omitted.
     color, label, alpha, linewidth :
-        Line style of the links.
+        Style of the links (``color=None``: the role's colour).
+    role : twolink.figure_style.Role
+        Line style, joint marker and colour: ``figure_style.ARM`` (which is
+        ``figure_style.ELBOW_DOWN``), or ``figure_style.ELBOW_UP`` for the other branch.
 
     Returns
     -------
     matplotlib.lines.Line2D
-        The line through base, elbow and tip (update it with ``set_data``).
+        The line through base, elbow and tip (move it with :func:`move_arm`).
 
     Examples
     --------
@@ -233,8 +263,10 @@ def draw_arm(
     >>> plt.close(ax.figure)
     """
     ax = _axes(ax, "draw_arm")
-    line = _draw_links(arm, as_configuration(q), ax, color, label, alpha, linewidth)
-    _draw_base(ax)
+    q_arm = as_configuration(q)
+    line = _draw_links(arm, q_arm, ax, role, color, label, alpha, linewidth)
+    base = _draw_base(ax)
+    record(line, _arm_sentence(arm, q_arm, label), parts=[base])
     return line
 
 
@@ -242,22 +274,30 @@ def _draw_links(
     arm: TwoLinkArm,
     q: NDArray[np.float64],
     ax: Axes,
-    color: ColorType,
+    role: figure_style.Role,
+    color: ColorType | None,
     label: str | None,
     alpha: float,
     linewidth: float,
 ) -> Line2D:
-    """The line through base, elbow and tip, joints marked (no base square)."""
+    """The line through base, elbow and tip, joints marked (no base square, nothing recorded)."""
+    if not isinstance(role, figure_style.Role):
+        raise InputTypeError(
+            f"role must be a twolink.figure_style.Role (figure_style.ARM, figure_style.ELBOW_UP); got {role!r}"
+        )
+    color = role.color if color is None else color
     points = arm.joint_positions(q)
     (line,) = ax.plot(
         points[:, 0],
         points[:, 1],
-        "-o",
+        linestyle=role.linestyle,
+        marker=role.marker,
         color=color,
         linewidth=linewidth,
         markersize=linewidth * 2,
-        markerfacecolor=JOINT_COLOR,
+        markerfacecolor=figure_style.BACKGROUND,
         markeredgecolor=color,
+        markeredgewidth=max(1.0, linewidth / 2),
         alpha=alpha,
         label=label,
         solid_capstyle="round",
@@ -265,8 +305,15 @@ def _draw_links(
     return line
 
 
-def _draw_base(ax: Axes) -> None:
-    ax.plot([0.0], [0.0], marker="s", color="k", markersize=8)
+def _draw_base(ax: Axes) -> Line2D:
+    """The base marker (nothing recorded)."""
+    (base,) = ax.plot([0.0], [0.0], **figure_style.BASE.line(), markersize=8)
+    return base
+
+
+def _arm_sentence(arm: TwoLinkArm, q: NDArray[np.float64], label: str | None) -> str:
+    name = f"The arm ({label})" if label and not label.startswith("_") else "The arm"
+    return f"{name} at q = {angles_text(q)}, tip at {point_text(arm.fk(q))}"
 
 
 def move_arm(line: Line2D, arm: TwoLinkArm, q: ArrayLike) -> Line2D:
@@ -288,9 +335,25 @@ def move_arm(line: Line2D, arm: TwoLinkArm, q: ArrayLike) -> Line2D:
     """
     if not isinstance(line, Line2D):
         raise InputTypeError(f"line must be the Line2D draw_arm returned; got {line!r}")
-    points = arm.joint_positions(as_configuration(q))
-    line.set_data(points[:, 0], points[:, 1])
+    q_arm = as_configuration(q)
+    _move_arm_line(line, arm, q_arm)
+    record(line, _arm_sentence(arm, q_arm, _label_of(line)))
     return line
+
+
+def _label_of(artist: Artist) -> str | None:
+    """The artist's legend label, or None (matplotlib's ``_child0`` names are not labels)."""
+    label = artist.get_label()
+    return (
+        label
+        if isinstance(label, str) and label and not label.startswith("_")
+        else None
+    )
+
+
+def _move_arm_line(line: Line2D, arm: TwoLinkArm, q: NDArray[np.float64]) -> None:
+    points = arm.joint_positions(q)
+    line.set_data(points[:, 0], points[:, 1])
 
 
 def _strobe_indices(samples: int, frames: int) -> NDArray[np.int_]:
@@ -304,8 +367,9 @@ def draw_strobe(
     *,
     ax: Axes | None = None,
     frames: int = 8,
-    color: ColorType = LINK_COLOR,
+    color: ColorType | None = None,
     path: bool = True,
+    role: figure_style.Role = figure_style.ARM,
 ) -> list[Line2D]:
     """A still of a motion: the arm at ``frames`` evenly spaced instants, fading in.
 
@@ -321,8 +385,12 @@ def draw_strobe(
         Axes to draw on; the current axes (``plt.gca()``) if omitted.
     frames : int
         How many poses to draw (first and last included).
+    color : colour, optional
+        The poses' colour (``None``: the role's).
     path : bool
         Also draw the tip's path.
+    role : twolink.figure_style.Role
+        The poses' look (``figure_style.ARM`` or ``figure_style.ELBOW_UP``).
 
     Returns
     -------
@@ -344,15 +412,40 @@ def draw_strobe(
     for rank, index in enumerate(indices):
         alpha = 0.25 + 0.75 * rank / max(1, len(indices) - 1)
         lines.append(
-            _draw_links(arm, q_samples[index], ax, color, None, alpha, linewidth=3.0)
+            _draw_links(
+                arm, q_samples[index], ax, role, color, None, alpha, linewidth=3.0
+            )
         )
-    _draw_base(ax)  # once, over the poses
+    base = _draw_base(ax)  # once, over the poses
     if path:
         p_path = arm.fk(q_samples)
         lines.extend(
-            ax.plot(p_path[:, 0], p_path[:, 1], color=PATH_COLOR, linewidth=1.5)
+            ax.plot(
+                p_path[:, 0], p_path[:, 1], **figure_style.PATH.line(), linewidth=1.5
+            )
         )
+    record(
+        lines[0],
+        _strobe_sentence(arm, q_samples, len(indices), path),
+        parts=[*lines, base],
+    )
     return lines
+
+
+def _strobe_sentence(
+    arm: TwoLinkArm, q_samples: NDArray[np.float64], poses: int, path: bool
+) -> str:
+    shown = "once" if poses == 1 else f"at {poses} instants"
+    sentence = (
+        f"The arm {shown} of a motion from q = {angles_text(q_samples[0])} "
+        f"to {angles_text(q_samples[-1])}, fading in"
+    )
+    if path:
+        p_path = arm.fk(q_samples)
+        sentence += (
+            f"; the tip's path from {point_text(p_path[0])} to {point_text(p_path[-1])}"
+        )
+    return sentence
 
 
 def move_strobe(
@@ -380,7 +473,7 @@ def move_strobe(
             "lines must be the list of Line2D that draw_strobe returned"
         )
     for line, index in zip(poses, _strobe_indices(len(q_samples), len(poses))):
-        move_arm(line, arm, q_samples[index])
+        _move_arm_line(line, arm, q_samples[index])
     if len(q_samples) < len(poses):  # fewer samples than poses: hide the rest
         for line in poses[len(q_samples) :]:
             line.set_visible(False)
@@ -389,6 +482,8 @@ def move_strobe(
     if path:
         p_path = arm.fk(q_samples)
         lines[-1].set_data(p_path[:, 0], p_path[:, 1])
+    shown = min(len(poses), len(q_samples))
+    record(lines[0], _strobe_sentence(arm, q_samples, shown, path))
     return lines
 
 
@@ -451,9 +546,24 @@ def animate_arm(
             )
     ax = setup_axes(arm, ax=ax, title=title)
     p_path = arm.fk(q_frames)
-    arm_line = draw_arm(arm, q_frames[0], ax=ax)
-    (tip_trace,) = ax.plot([], [], color=PATH_COLOR, linewidth=1.5)
-    clock = ax.text(0.02, 0.95, "", transform=ax.transAxes, fontsize=9)
+    arm_line = _draw_links(arm, q_frames[0], ax, figure_style.ARM, None, None, 1.0, 4.0)
+    base = _draw_base(ax)
+    (tip_trace,) = ax.plot([], [], **figure_style.PATH.line(), linewidth=1.5)
+    clock = ax.text(
+        0.02, 0.95, "", transform=ax.transAxes, fontsize=figure_style.SMALL_FONT_PT
+    )
+    sentence = (
+        f"An animation of the arm in {len(q_frames)} frames, from q = "
+        f"{angles_text(q_frames[0])} to {angles_text(q_frames[-1])}"
+    )
+    if times is not None:
+        sentence += f", over {plain_number(times[0])}-{plain_number(times[-1])} s"
+    if path:
+        sentence += (
+            f", tracing the tip's path from {point_text(p_path[0])} "
+            f"to {point_text(p_path[-1])}"
+        )
+    record(arm_line, sentence, parts=[base, tip_trace, clock])
 
     def update(frame: int) -> list[Artist]:
         points = arm.joint_positions(q_frames[frame])
@@ -483,6 +593,11 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
     back to matplotlib's JavaScript player (``to_jshtml``), headed by a note
     saying so and how to get the video.
 
+    The video is labelled with the animation's text alternative
+    (:func:`twolink.alttext.describe` of its figure) as the ``aria-label`` of
+    a ``<div role="figure">`` around it, so the ``<video>`` tag itself stays
+    matplotlib's.
+
     Returns
     -------
     IPython.display.HTML
@@ -491,7 +606,9 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
     import matplotlib
 
     # matplotlib keeps the figure in _fig, outside its type stubs
-    plt.close(getattr(anim, "_fig"))  # noqa: B009
+    figure = getattr(anim, "_fig")  # noqa: B009
+    label = html_escape(describe(figure), quote=True)
+    plt.close(figure)
     try:
         imageio_ffmpeg = require("imageio_ffmpeg", "twolink.plot.animation_html")
         ffmpeg = imageio_ffmpeg.get_ffmpeg_exe()
@@ -506,9 +623,14 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
             return html(note + anim.to_jshtml(default_mode="loop"))
     with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg}):
         if isinstance(anim, MovingAnimation):  # the axes drawn once, not per frame
-            return html(html5_video(anim, embed_limit=5.0))
-        with frames_drawn_once(anim):
-            return html(anim.to_html5_video(embed_limit=5.0))
+            video = html5_video(anim, embed_limit=5.0)
+        else:
+            with frames_drawn_once(anim):
+                video = anim.to_html5_video(embed_limit=5.0)
+    if video.startswith("<video"):
+        # labelled by a wrapper, so the <video> tag stays matplotlib's, byte for byte
+        video = f'<div role="figure" aria-label="{label}">\n{video}\n</div>'
+    return html(video)
 
 
 def animate_simulation(
@@ -561,9 +683,9 @@ def animate_simulation(
 
 
 # --- velocity and statics: ellipses, force arrows, torque arcs, walls
-FORCE_COLOR = "#1e8449"
-TORQUE_COLOR = "#7d3c98"
-ELLIPSE_COLOR = "#2e86c1"
+FORCE_COLOR = figure_style.FORCE.color
+TORQUE_COLOR = figure_style.TORQUE.color
+ELLIPSE_COLOR = figure_style.ELLIPSE.color
 
 
 def draw_ellipse(
@@ -613,8 +735,35 @@ def draw_ellipse(
         )
     points = ellipse.points(scale=scale, clip=clip)
     (fill,) = ax.fill(points[:, 0], points[:, 1], color=color, alpha=alpha, label=label)
-    (outline,) = ax.plot(points[:, 0], points[:, 1], color=color, linewidth=1.2)
+    (outline,) = ax.plot(
+        points[:, 0],
+        points[:, 1],
+        color=color,
+        linestyle=figure_style.ELLIPSE.linestyle,
+        linewidth=1.5,
+    )
+    record(fill, _ellipse_sentence(ellipse, scale, clip, label), parts=[outline])
     return [fill, outline]
+
+
+def _ellipse_sentence(
+    ellipse: Ellipse, scale: float, clip: float | None, label: str | None
+) -> str:
+    """Centre, drawn semi-axes (figure metres) and the major axis' direction."""
+    drawn = []
+    for semi_axis in np.asarray(ellipse.semi_axes, dtype=float) * scale:
+        if clip is not None and not semi_axis <= clip:
+            drawn.append(f"{rounded(clip, 2)} (clipped)")
+        else:
+            drawn.append(rounded(semi_axis, 2))
+    name = (
+        f"An ellipse ({label})" if label and not label.startswith("_") else "An ellipse"
+    )
+    angle = plain_number(round(float(np.degrees(ellipse.angle)), 1), 6)
+    return (
+        f"{name} centred at {point_text(ellipse.centre)}, semi-axes {listed(drawn)} m "
+        f"as drawn, the major one at {angle}° from the x-axis"
+    )
 
 
 def move_ellipse(
@@ -645,6 +794,7 @@ def move_ellipse(
     points = ellipse.points(scale=scale, clip=clip)
     fill.set_xy(points)
     outline.set_data(points[:, 0], points[:, 1])
+    record(fill, _ellipse_sentence(ellipse, scale, clip, _label_of(fill)))
     return artists
 
 
@@ -713,14 +863,29 @@ def draw_force(
     arrow = FancyArrowPatch(
         (float(tail[0]), float(tail[1])),
         (float(head[0]), float(head[1])),
-        arrowstyle="-|>",
+        arrowstyle=figure_style.FORCE.marker,
         mutation_scale=14,
         color=color,
+        linestyle=figure_style.FORCE.linestyle,
         linewidth=width,
         label=label,
         zorder=5,
     )
     ax.add_patch(arrow)
+    name = f"A force ({label})" if label and not label.startswith("_") else "A force"
+    magnitude = float(np.hypot(*f_vector))
+    if magnitude == 0.0:
+        sentence = f"{name} of 0 N at {point_text(p_point)}"
+    else:
+        angle = plain_number(
+            round(float(np.degrees(np.arctan2(f_vector[1], f_vector[0]))), 1), 6
+        )
+        where = "from" if at == "tail" else "onto"
+        sentence = (
+            f"{name} of {quantity_text(magnitude, 'N')} pointing at {angle}° from the "
+            f"x-axis, {where} {point_text(p_point)}"
+        )
+    record(arrow, sentence)
     return arrow
 
 
@@ -788,19 +953,26 @@ def draw_torque(
             linestyle=":",
         )
         ax.add_patch(circle)
+        record(circle, f"No torque about {point_text(c_point)}")
         return circle
     sweep = np.sign(tau) * np.radians(270.0)
     angle = start + np.linspace(0.0, sweep, 40)
     vertices = c_point + radius * np.stack([np.cos(angle), np.sin(angle)], axis=-1)
     arrow = FancyArrowPatch(
         path=Path(vertices),
-        arrowstyle="-|>",
+        arrowstyle=figure_style.TORQUE.marker,
         mutation_scale=12,
         color=color,
+        linestyle=figure_style.TORQUE.linestyle,
         linewidth=1.8,
         zorder=5,
     )
     ax.add_patch(arrow)
+    turning = "counter-clockwise" if tau > 0 else "clockwise"
+    record(
+        arrow,
+        f"A torque of {quantity_text(abs(tau), 'N m')}, {turning}, about {point_text(c_point)}",
+    )
     return arrow
 
 
@@ -809,7 +981,7 @@ def draw_wall(
     half_length: float,
     *,
     ax: Axes | None = None,
-    color: ColorType = "0.25",
+    color: ColorType = figure_style.WALL.color,
     hatch: float = 0.15,
 ) -> list[Line2D]:
     """Draw a :class:`twolink.statics.Wall` as a line with hatching on its far side.
@@ -850,7 +1022,13 @@ def draw_wall(
     along = np.array([-normal[1], normal[0]])
     foot = wall.point - (wall.point @ along) * along  # nearest point to the base
     ends = foot + np.outer([-half_length, half_length], along)
-    lines = ax.plot(ends[:, 0], ends[:, 1], color=color, linewidth=2.5)
+    lines = ax.plot(
+        ends[:, 0],
+        ends[:, 1],
+        color=color,
+        linestyle=figure_style.WALL.linestyle,
+        linewidth=2.5,
+    )
     for offset in np.arange(
         -half_length, half_length + 1e-12, max(hatch, half_length / 40)
     ):
@@ -859,6 +1037,13 @@ def draw_wall(
         lines += ax.plot(
             [base[0], tip[0]], [base[1], tip[1]], color=color, linewidth=0.8
         )
+    record(
+        lines[0],
+        f"A wall {rounded(wall.distance_from_base(), 2, 'm')} from the base, its point "
+        f"nearest the base at {point_text(foot)}, drawn {rounded(2 * half_length, 2, 'm')} "
+        "long and hatched on its far side",
+        parts=lines,
+    )
     return lines
 
 
@@ -873,7 +1058,7 @@ def plot_time_series(
     labels: Sequence[str] | None = None,
     *,
     ax: Axes | None = None,
-    fmt: str = "-",
+    fmt: str | None = None,
     colors: Sequence[ColorType] | None = None,
     log: bool = False,
     **line_options: Any,
@@ -901,10 +1086,13 @@ def plot_time_series(
         One legend entry per column (``["q1", "q2"]``); no legend if omitted.
     ax : matplotlib.axes.Axes, optional
         Axes to draw on; the current axes (``plt.gca()``) if omitted.
-    fmt : str
-        matplotlib format string of the lines (``"--"``, ``"o"``).
+    fmt : str, optional
+        matplotlib format string of every line (``"--"``, ``"o"``); if
+        omitted, column ``k`` takes the line style of ``figure_style.SERIES[k]``.
     colors : sequence of colours, optional
-        One colour per column; matplotlib's colour cycle if omitted.
+        One colour per column; if omitted, column ``k`` takes the colour of
+        ``figure_style.SERIES[k]`` (so joint 1 keeps its colour from run to run,
+        and a run drawn with another ``fmt`` differs in line style).
     log : bool
         Logarithmic vertical axis.
     **line_options
@@ -956,19 +1144,39 @@ def plot_time_series(
         )
     lines = []
     for column in range(columns):
-        options = dict(line_options)
+        series = figure_style.SERIES[column % len(figure_style.SERIES)]
+        options: dict[str, Any] = {"color": series.color}
+        if fmt is None:
+            options["linestyle"] = series.linestyle
+        options.update(line_options)
         if labels is not None:
             options["label"] = labels[column]
         if colors is not None:
             options["color"] = colors[column]
-        lines.extend(ax.plot(times, data[:, column], fmt, **options))
+        arguments = (
+            (times, data[:, column]) if fmt is None else (times, data[:, column], fmt)
+        )
+        lines.extend(ax.plot(*arguments, **options))
     ax.set_xlabel("t [s]")
     ax.set_ylabel(f"{quantity} [{unit}]")
     if log:
         ax.set_yscale("log")
     ax.grid(True, which="both" if log else "major", alpha=0.3)
     if labels is not None:
-        ax.legend(fontsize=8)
+        ax.legend(fontsize=figure_style.SMALL_FONT_PT)
+    shown = (
+        listed(list(labels))
+        if labels is not None
+        else ("one line" if columns == 1 else f"{columns} lines")
+    )
+    if not lines or not len(times):
+        return lines
+    record(
+        lines[0],
+        f"Time series of {quantity} [{unit}] over "
+        f"{plain_number(times[0])}-{plain_number(times[-1])} s: {shown}",
+        parts=lines,
+    )
     return lines
 
 
@@ -985,7 +1193,7 @@ def draw_note(
     *,
     ax: Axes | None = None,
     corner: str = "lower left",
-    fontsize: float = 8.0,
+    fontsize: float = figure_style.SMALL_FONT_PT,
 ) -> Text:
     """Write a boxed note in a corner of the axes (values, the drawing scale of ellipses or arrows).
 
@@ -1020,7 +1228,7 @@ def draw_note(
             f"corner must be one of {', '.join(map(repr, _NOTE_CORNERS))}; got {corner!r}"
         )
     x, y, horizontal, vertical = _NOTE_CORNERS[corner]
-    return ax.text(
+    note = ax.text(
         x,
         y,
         text,
@@ -1028,5 +1236,12 @@ def draw_note(
         fontsize=fontsize,
         ha=horizontal,
         va=vertical,
-        bbox={"facecolor": "white", "edgecolor": "0.7", "alpha": 0.9},
+        bbox={
+            "facecolor": figure_style.BACKGROUND,
+            "edgecolor": figure_style.GREY,
+            "alpha": 0.9,
+        },
     )
+    said = "; ".join(line.strip() for line in text.splitlines() if line.strip())
+    record(note, f'A note: "{said}"' if said else "An empty note")
+    return note

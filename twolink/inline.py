@@ -1,0 +1,101 @@
+"""Figures in notebook outputs: a sharp PNG, shown at its size, with its text alternative.
+
+IPython turns a figure into a notebook output through the display formatter
+registered for :class:`matplotlib.figure.Figure`.  :func:`install` registers
+:func:`png_output`: IPython's own "retina" rendering (``retina_figure``, what
+``matplotlib_inline.backend_inline.set_matplotlib_formats("retina")``
+selects: the PNG at twice the figure's dpi, and ``width`` and ``height``
+metadata of half its pixels, so it is shown at its intended size and sharp
+on a high-resolution screen), plus ``alt``: the figure's text alternative,
+:func:`twolink.alttext.describe`.  The output then reads
+
+.. code-block:: json
+
+    {"output_type": "display_data",
+     "data": {"image/png": "...", "text/plain": "<Figure size 384x384 with 1 Axes>"},
+     "metadata": {"image/png": {"width": 369, "height": 361, "alt": "The arm at ..."}}}
+
+nbconvert's templates read ``width`` and ``height`` there, and the course's
+site template (``tools/site_template/course/index.html.j2``) reads ``alt``
+into the ``<img>``.
+
+Examples
+--------
+>>> from matplotlib.figure import Figure
+>>> figure = Figure(figsize=(2.0, 1.0), dpi=96)
+>>> ax = figure.subplots()
+>>> _ = ax.set_title("Nothing yet")
+>>> png, metadata = png_output(figure)
+>>> metadata["alt"]
+'Nothing yet. Axes: horizontal axis from 0 to 1, vertical axis from 0 to 1.'
+>>> sorted(metadata)
+['alt', 'height', 'width']
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib
+from matplotlib.figure import Figure
+
+from ._optional import require
+from ._validate import InputTypeError
+from .alttext import describe
+
+__all__ = ["png_output", "install", "INLINE_BACKENDS"]
+
+#: The names under which matplotlib knows the notebook's inline backend.
+INLINE_BACKENDS = ("inline", "module://matplotlib_inline.backend_inline")
+
+
+def _print_figure_kwargs() -> dict[str, Any]:
+    """The inline backend's ``print_figure_kwargs`` (``bbox_inches="tight"`` by default)."""
+    config = require("matplotlib_inline.config", "twolink.inline.png_output")
+    return dict(config.InlineBackend.instance().print_figure_kwargs)
+
+
+def png_output(figure: Figure) -> tuple[str, dict[str, Any]] | None:
+    """The figure as a notebook output: base64 PNG at twice the pixels, and its metadata.
+
+    Returns
+    -------
+    (str, dict) or None
+        The base64 text of the PNG and ``{"width", "height", "alt"}`` (width
+        and height in displayed pixels, half the PNG's); None for a figure
+        with nothing drawn (as IPython's formatters do: no empty picture).
+    """
+    if not isinstance(figure, Figure):
+        raise InputTypeError(f"figure must be a matplotlib Figure; got {figure!r}")
+    pylabtools = require("IPython.core.pylabtools", "twolink.inline.png_output")
+    output = pylabtools.retina_figure(figure, base64=True, **_print_figure_kwargs())
+    if output is None:
+        return None
+    png, size = output
+    return png, {**size, "alt": describe(figure)}
+
+
+def install() -> bool:
+    """Make IPython show figures with :func:`png_output` (idempotent); False outside IPython.
+
+    What it changes, and only that: the ``image/png`` display formatter of
+    the running IPython shell for :class:`matplotlib.figure.Figure`, and no
+    other format for figures (as ``set_matplotlib_formats("retina")``
+    would).  When pyplot's backend is the inline one and has not been loaded
+    yet, it is loaded first (``matplotlib_inline`` sets up its own formats
+    when loaded, which would replace this formatter if it came later).
+    """
+    ipython = require("IPython", "twolink.inline.install")
+    shell = ipython.get_ipython()
+    if shell is None:
+        return False
+    # the backend as configured, without resolving an "auto" backend
+    backend = dict.__getitem__(matplotlib.rcParams, "backend")
+    if isinstance(backend, str) and backend.lower() in INLINE_BACKENDS:
+        require("matplotlib_inline.backend_inline", "twolink.inline.install")
+    formatters = shell.display_formatter.formatters
+    for mime, formatter in formatters.items():
+        if mime != "image/png":
+            formatter.pop(Figure, None)
+    formatters["image/png"].for_type(Figure, png_output)
+    return True
