@@ -179,3 +179,24 @@ def test_the_package_side_imports_no_ipython_and_no_pyplot():
     )
     assert done.returncode == 0, done.stderr[-2000:]
     assert done.stdout.strip() == "[]"
+
+
+def test_a_figure_laid_out_by_constrained_layout_is_stored_whole_not_cropped():
+    from matplotlib.figure import Figure
+
+    from twolink import figure_style
+
+    sizes = {}
+    for layout in ("constrained", "none"):
+        with figure_style.context():
+            figure = Figure(figsize=(3.0, 2.0), layout=layout)
+        ax = figure.subplots()
+        ax.plot([0.0, 1.0], [0.0, 1.0], label="a line")
+        ax.set_xlabel("x [m]")
+        ax.legend()
+        png, metadata = inline.png_output(figure)
+        sizes[layout] = (metadata["width"], metadata["height"])
+    # constrained layout fits the canvas: stored as it is, without the crop's extra pass
+    assert sizes["constrained"] == (round(3.0 * figure.dpi), round(2.0 * figure.dpi))
+    # without a layout engine the backend crops to what was drawn
+    assert sizes["none"] != sizes["constrained"]

@@ -242,6 +242,9 @@ RC: dict[str, Any] = {
     "lines.linewidth": 1.8,
     "grid.alpha": 0.3,
     "image.cmap": "cividis",
+    # every figure fits its canvas (labels, titles and legends inside), laid out
+    # at each draw; the inline output then needs no second, cropping draw
+    "figure.constrained_layout.use": True,
 }
 
 
@@ -250,7 +253,7 @@ def use() -> bool:
 
     Sets the matplotlib ``rcParams`` listed in :data:`RC` (figure resolution
     96 dpi, font sizes, the :data:`SERIES` colour and line-style cycle, a
-    colour-blind-safe colour map), and, when running in IPython, installs
+    colour-blind-safe colour map, constrained layout), and, when running in IPython, installs
     :func:`twolink.inline.install`'s figure formatter (a PNG at twice the
     pixels, shown at its intended size, with its text alternative).  Nothing
     else changes.  Calling it again changes nothing more.

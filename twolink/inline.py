@@ -38,6 +38,7 @@ from typing import Any
 
 import matplotlib
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import ConstrainedLayoutEngine
 
 from ._optional import require
 from ._validate import InputTypeError
@@ -49,10 +50,19 @@ __all__ = ["png_output", "install", "INLINE_BACKENDS"]
 INLINE_BACKENDS = ("inline", "module://matplotlib_inline.backend_inline")
 
 
-def _print_figure_kwargs() -> dict[str, Any]:
-    """The inline backend's ``print_figure_kwargs`` (``bbox_inches="tight"`` by default)."""
+def _print_figure_kwargs(figure: Figure) -> dict[str, Any]:
+    """The inline backend's ``print_figure_kwargs`` for ``figure``.
+
+    The backend crops every figure to what it drew (``bbox_inches="tight"``,
+    which draws the figure twice); a figure laid out by constrained layout
+    (the course style's default) already fits its canvas and is drawn once,
+    at its own size.
+    """
     config = require("matplotlib_inline.config", "twolink.inline.png_output")
-    return dict(config.InlineBackend.instance().print_figure_kwargs)
+    kwargs = dict(config.InlineBackend.instance().print_figure_kwargs)
+    if isinstance(figure.get_layout_engine(), ConstrainedLayoutEngine):
+        kwargs["bbox_inches"] = None
+    return kwargs
 
 
 def png_output(figure: Figure) -> tuple[str, dict[str, Any]] | None:
@@ -68,7 +78,9 @@ def png_output(figure: Figure) -> tuple[str, dict[str, Any]] | None:
     if not isinstance(figure, Figure):
         raise InputTypeError(f"figure must be a matplotlib Figure; got {figure!r}")
     pylabtools = require("IPython.core.pylabtools", "twolink.inline.png_output")
-    output = pylabtools.retina_figure(figure, base64=True, **_print_figure_kwargs())
+    output = pylabtools.retina_figure(
+        figure, base64=True, **_print_figure_kwargs(figure)
+    )
     if output is None:
         return None
     png, size = output
