@@ -211,8 +211,9 @@ def explorer_figure(
         raise ValueError(f"ncols must be a positive int; got {ncols!r}")
     backend = _ipympl_backend()
     with figure_style.context():
+        figure = Figure(figsize=(width, height), dpi=dpi)
         # no layout engine: laid out once (Explorer), so a move never shifts the axes
-        figure = Figure(figsize=(width, height), dpi=dpi, layout="none")
+        figure.set_layout_engine("none")
         axes = figure.subplots(1, ncols, **subplot_kw)
     with warnings.catch_warnings():
         # ipympl 0.10's toolbar passes traitlets an argument it deprecates
