@@ -33,7 +33,17 @@ $(STAMP): requirements.txt constraints.txt pyproject.toml
 	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
 	$(BIN)/python -m pip install --quiet -r requirements.txt -c constraints.txt
+	rm -rf $(LABEXTENSION_LINK)
+	mkdir -p $(dir $(LABEXTENSION_LINK))
+	ln -s "$(CURDIR)/labextension/twolink_figure_alt/labextension" $(LABEXTENSION_LINK)
 	@touch $(STAMP)
+
+# The prebuilt JupyterLab extension twolink-figure-alt (labextension/: figures'
+# alt text in JupyterLab).  A wheel installs it from pyproject's data-files, but
+# the editable install of requirements.txt (-e .) skips data-files, so it is
+# linked into the venv, where JupyterLab looks; the link follows a rebuild
+# (python labextension/build.py).
+LABEXTENSION_LINK := $(VENV)/share/jupyter/labextensions/twolink-figure-alt
 
 install: $(STAMP)
 

@@ -186,3 +186,122 @@ def run_chapter(jupyterlab, page, path):
     print(
         f"{path.name}: {containers.count()} explorers, sliders moved {moved}, {videos.count()} videos played"
     )
+
+
+# --- figures' text alternatives (labextension/: twolink-figure-alt) -----------------------
+
+IMAGE_TYPES = ("image/png", "image/jpeg", "image/gif")
+WIDGET_VIEW = "application/vnd.jupyter.widget-view+json"
+
+
+def image_outputs(notebook):
+    """``(mime type, alt or None)`` of each stored output JupyterLab shows as a bitmap, in order.
+
+    Outputs with one image type besides text/plain and a widget view: a
+    notebook opened from disk is untrusted, and JupyterLab then shows an
+    explorer's PNG fallback, not the (unsafe) widget renderer.  alt is the
+    output's ``metadata[mime type]["alt"]`` when that is a string.
+    """
+    found = []
+    for cell in notebook["cells"]:
+        for output in cell.get("outputs", []):
+            shown = set(output.get("data", {})) - {"text/plain", WIDGET_VIEW}
+            if len(shown) == 1 and (mime := shown.pop()) in IMAGE_TYPES:
+                alt = output.get("metadata", {}).get(mime, {}).get("alt")
+                found.append((mime, alt if isinstance(alt, str) else None))
+    return found
+
+
+def probe_notebook():
+    """Stored image outputs: with an alt, without metadata, with a non-string or empty alt."""
+    import base64
+    import io
+
+    import nbformat
+    from PIL import Image
+
+    def encoded(fmt):
+        buffer = io.BytesIO()
+        Image.new("RGB", (12, 8), "#1f77b4").save(buffer, format=fmt)
+        return base64.b64encode(buffer.getvalue()).decode()
+
+    def output(mime, metadata=None, kind="display_data"):
+        fmt = mime.split("/")[1].upper()
+        data = {mime: encoded(fmt), "text/plain": "<Figure>"}
+        if kind == "execute_result":
+            return nbformat.v4.new_output(
+                kind, data=data, metadata=metadata or {}, execution_count=1
+            )
+        return nbformat.v4.new_output(kind, data=data, metadata=metadata or {})
+
+    alt = 'The arm at q = (30°, 45°): "tip" at x < 0.12 m & y > 0.16 m.'
+    outputs = [
+        output("image/png", {"image/png": {"width": 120, "height": 80, "alt": alt}}),
+        output("image/png"),
+        output("image/png", {"image/png": {"width": 120, "height": 80}}),
+        output("image/png", {"image/png": {"alt": 3}}),
+        output("image/png", {"image/png": {"alt": ""}}),
+        output("image/jpeg", {"image/jpeg": {"alt": "A JPEG figure."}}),
+        output("image/gif", {"image/gif": {"alt": "A GIF figure."}}),
+        output("image/png", {"image/png": {"alt": "Returned."}}, "execute_result"),
+    ]
+    cells = [nbformat.v4.new_code_cell("figure", outputs=[item]) for item in outputs]
+    kernel = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    return nbformat.v4.new_notebook(cells=cells, metadata={"kernelspec": kernel})
+
+
+RENDERED_IMAGES = """() => [...document.querySelectorAll(
+    '.jp-NotebookPanel:not(.lm-mod-hidden) .jp-OutputArea-output[data-mime-type^="image/"]'
+)].filter(node => node.querySelector('img')).map(node => {
+    const img = node.querySelector('img');
+    return [node.dataset.mimeType, img.getAttribute('alt'), img.getAttribute('width')];
+})"""
+
+
+def rendered_images(jupyterlab, page, name, count):
+    """``[mime type, alt attribute or None, width attribute or None]`` of each image output of a notebook."""
+    page.goto(
+        f"{jupyterlab['url']}/lab/workspaces/alt-{name.removesuffix('.ipynb')}"
+        f"/tree/{name}?reset&token={jupyterlab['token']}"
+    )
+    panel = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden)")
+    panel.locator(".jp-Cell").first.wait_for(timeout=90_000)
+    accept_kernel_dialog(page)
+    page.wait_for_function(
+        f"() => ({RENDERED_IMAGES})().length >= {count}", timeout=60_000
+    )
+    return page.evaluate(RENDERED_IMAGES)
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_image_outputs_carry_their_alt_text_in_jupyterlab(jupyterlab, page):
+    """Stored outputs, not run: each <img> has exactly its output's metadata alt, or no alt."""
+    import nbformat
+
+    try:
+        page.goto(f"{jupyterlab['url']}/lab?token={jupyterlab['token']}")
+        config = json.loads(page.locator("#jupyter-config-data").text_content())
+        names = [ext["name"] for ext in config.get("federated_extensions", [])]
+        assert "twolink-figure-alt" in names, (
+            f"JupyterLab did not load twolink-figure-alt (run `make install`): {names}"
+        )
+
+        probe = probe_notebook()
+        nbformat.write(probe, jupyterlab["notebooks"] / "alt_probe.ipynb")
+        expected = image_outputs(probe)
+        rendered = rendered_images(jupyterlab, page, "alt_probe.ipynb", len(expected))
+        assert [(mime, alt) for mime, alt, _ in rendered] == expected
+        assert expected[0][1].startswith("The arm") and expected[1][1] is None
+        assert expected[4] == ("image/png", "")  # an empty alt (decorative) is kept
+        # width and height stay JupyterLab's: from the metadata, as before
+        assert [width for *_, width in rendered[:3]] == ["120", None, "120"]
+
+        # the server's copy of chapter 1, as it was when the server started
+        chapter = jupyterlab["notebooks"] / "01_dh_forward_kinematics.ipynb"
+        expected = image_outputs(json.loads(chapter.read_text(encoding="utf-8")))
+        assert any(alt for _, alt in expected), f"{chapter.name}: no figure has alt"
+        rendered = rendered_images(jupyterlab, page, chapter.name, len(expected))
+        assert [(mime, alt) for mime, alt, _ in rendered] == expected
+    finally:
+        lab_browser.shut_down_kernels(jupyterlab)
