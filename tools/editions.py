@@ -31,6 +31,7 @@ import re
 import shutil
 import subprocess
 import sys
+import tempfile
 from collections.abc import Sequence
 from typing import Any
 
@@ -248,6 +249,24 @@ def mathjax_source() -> pathlib.Path:
     return pathlib.Path(jupyter_server_mathjax.__file__).parent / "static"
 
 
+#: The site's name, after each page's chapter title.
+SITE_TITLE = "twolink"
+#: The Pygments style of the site's code (accessible-pygments: WCAG AA contrast).
+CODE_STYLE = "a11y-high-contrast-light"
+
+
+def _page_link(
+    notebooks: list[pathlib.Path], titles: list[str], number: int
+) -> dict[str, str] | None:
+    """The link to chapter ``number`` (None outside the list)."""
+    if not 0 <= number < len(notebooks):
+        return None
+    return {
+        "href": notebooks[number].with_suffix(".html").name,
+        "title": titles[number],
+    }
+
+
 def build_site(
     source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
 ) -> list[pathlib.Path]:
@@ -261,43 +280,73 @@ def build_site(
     local_config.parent.mkdir(parents=True, exist_ok=True)
     local_config.write_text(MATHJAX_FONT_CONFIG, encoding="utf-8")
     notebooks = sorted(source_dir.glob("*.ipynb"))
-    subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "nbconvert",
-            "--to",
-            "html",
-            "--TemplateExporter.extra_template_basedirs="
-            + str(ROOT / "tools" / "site_template"),
-            "--template",
-            "course",
-            "--HTMLExporter.mathjax_url=mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe,local/twolink",
-            "--output-dir",
-            str(out_dir),
-            *map(str, notebooks),
-        ],
-        check=True,
-    )
-    entries = []
-    for path in notebooks:
-        notebook = json.loads(path.read_text(encoding="utf-8"))
-        page = path.with_suffix(".html").name
-        entries.append(
-            f'    <li><a href="{html.escape(page)}">{html.escape(chapter_title(notebook, path.stem))}</a></li>'
+    titles = [
+        chapter_title(json.loads(path.read_text(encoding="utf-8")), path.stem)
+        for path in notebooks
+    ]
+    with tempfile.TemporaryDirectory() as scratch:
+        # copies that carry the page's title and the links to the index and the
+        # neighbouring chapters (read by tools/site_template/course/index.html.j2)
+        copies = []
+        for number, path in enumerate(notebooks):
+            notebook = json.loads(path.read_text(encoding="utf-8"))
+            notebook["metadata"]["title"] = f"{titles[number]} · {SITE_TITLE}"
+            notebook["metadata"]["twolink_site"] = {
+                "index": {
+                    "href": "index.html",
+                    "title": f"All chapters of {SITE_TITLE}",
+                },
+                "previous": _page_link(notebooks, titles, number - 1),
+                "next": _page_link(notebooks, titles, number + 1),
+            }
+            copy = pathlib.Path(scratch, path.name)
+            copy.write_text(json.dumps(notebook, ensure_ascii=False), encoding="utf-8")
+            copies.append(copy)
+        subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "nbconvert",
+                "--to",
+                "html",
+                "--TemplateExporter.extra_template_basedirs="
+                + str(ROOT / "tools" / "site_template"),
+                "--template",
+                "course",
+                "--HTMLExporter.mathjax_url=mathjax/MathJax.js?config=TeX-AMS-MML_HTMLorMML-full,Safe,local/twolink",
+                # no "In [3]:" prompts (execution counts say nothing on a page),
+                # and code highlighted with colours of at least 4.5:1 contrast
+                "--HTMLExporter.exclude_input_prompt=True",
+                "--HTMLExporter.exclude_output_prompt=True",
+                f"--CSSHTMLHeaderPreprocessor.style={CODE_STYLE}",
+                "--output-dir",
+                str(out_dir),
+                *map(str, copies),
+            ],
+            check=True,
         )
+    entries = [
+        f'    <li><a href="{html.escape(path.with_suffix(".html").name)}">{html.escape(title)}</a></li>'
+        for path, title in zip(notebooks, titles)
+    ]
     index = "\n".join(
         [
             "<!DOCTYPE html>",
             '<html lang="en">',
-            '<head><meta charset="utf-8"><title>twolink: the planar two-link arm</title>',
-            "<style>body{font-family:sans-serif;max-width:40em;margin:3em auto;line-height:1.5}</style></head>",
+            f'<head><meta charset="utf-8"><title>{SITE_TITLE}: the planar two-link arm</title>',
+            '<meta name="viewport" content="width=device-width, initial-scale=1">',
+            "<style>body{font-family:sans-serif;max-width:40em;margin:3em auto;line-height:1.5}"
+            " a{text-decoration:underline}</style></head>",
             "<body>",
-            "  <h1>twolink: the planar two-link arm</h1>",
+            "<main>",
+            f"  <h1>{SITE_TITLE}: the planar two-link arm</h1>",
             "  <p>The course's chapters, executed. Run them yourself with <code>make lab</code>.</p>",
+            '  <nav aria-label="Chapters">',
             "  <ol>",
             *entries,
             "  </ol>",
+            "  </nav>",
+            "</main>",
             "</body>",
             "</html>",
             "",

@@ -11,6 +11,7 @@ and plays.  A screenshot per chapter goes to build/screenshots/.
 import json
 import re
 
+import a11y  # tools/a11y.py: tools/ is on the path (tests/browser/conftest.py, loaded first)
 import pytest
 
 from .conftest import ROOT, SCREENSHOTS, lab_browser
@@ -178,6 +179,22 @@ def run_chapter(jupyterlab, page, path):
         assert state["error"] is None and state["duration"] > 0 and state["time"] > 0, (
             f"{path.name}: video {index} {state}"
         )
+
+    # axe-core on what the course puts in the notebook (prose and outputs): no critical
+    # or serious violation; what it finds in JupyterLab's own interface is printed
+    course_parts = [
+        f".jp-NotebookPanel:not(.lm-mod-hidden) {part}"
+        for part in (".jp-RenderedMarkdown", ".jp-OutputArea")
+    ]
+    in_course = a11y.violations(page, include=course_parts)
+    assert not a11y.blocking(in_course), (path.name, a11y.blocking(in_course))
+    course_rules = {violation["id"] for violation in in_course}
+    in_jupyterlab = [
+        f"{violation['id']} ({violation['impact']}, {len(violation['nodes'])})"
+        for violation in a11y.violations(page)
+        if violation["id"] not in course_rules
+    ]
+    print(f"{path.name}: axe in JupyterLab's own interface: {in_jupyterlab}")
 
     SCREENSHOTS.mkdir(parents=True, exist_ok=True)
     if containers.count():

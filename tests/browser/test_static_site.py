@@ -117,3 +117,49 @@ def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page
                 f"{href}: LaTeX in the notebook but no MathJax output in the page"
             )
     assert not failures, failures
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_every_page_is_accessible_titled_skippable_and_linked_in_order(site, page):
+    """axe-core finds nothing critical or serious; a page has its chapter's title, a skip
+    link to the chapter, previous/next links in order, and figures with real descriptions."""
+    import a11y
+
+    pages = ["index.html"] + [path.with_suffix(".html").name for path in NOTEBOOKS]
+    for number, name in enumerate(pages):
+        page.goto(f"{site}/{name}")
+        a11y.settle(page)
+        problems = a11y.blocking(a11y.violations(page))
+        assert not problems, (name, problems)
+        assert page.locator("main").count() == 1, f"{name}: one main landmark"
+        if name == "index.html":
+            continue
+        path = NOTEBOOKS[number - 1]
+        title = editions.chapter_title(
+            json.loads(path.read_text(encoding="utf-8")), path.stem
+        )
+        assert page.title() == f"{title} · {editions.SITE_TITLE}"
+        page.keyboard.press("Tab")  # the first stop: the skip link, shown when focused
+        skip = page.locator(":focus")
+        assert skip.inner_text() == "Skip to the chapter" and skip.is_visible()
+        page.keyboard.press("Enter")
+        assert page.evaluate("() => document.activeElement.id") == "content"
+        links = page.locator("header nav a")
+        hrefs = [
+            links.nth(index).get_attribute("href") for index in range(links.count())
+        ]
+        expected = (
+            ([pages[number - 1]] if number > 1 else [])
+            + ["index.html"]
+            + ([pages[number + 1]] if number + 1 < len(pages) else [])
+        )
+        assert hrefs == expected, (name, hrefs)
+        undescribed = page.locator(
+            ".jp-OutputArea-output img:not([alt]), "
+            ".jp-OutputArea-output img[alt^='No description'], "
+            ".jp-OutputArea-output img[alt='']"
+        )
+        assert undescribed.count() == 0, (
+            f"{name}: {undescribed.count()} figures without a description"
+        )
