@@ -247,3 +247,21 @@ def test_the_style_and_the_sentences_meet_in_the_legend():
     text = alttext.describe(figure)
     assert "The arm (elbow down) at" in text and "The arm (elbow up) at" in text
     assert text.endswith("Legend: elbow down, elbow up.")
+
+
+def test_a_colour_bar_is_its_panels_colour_scale_and_log_limits_keep_their_digits():
+    from matplotlib.colors import LogNorm
+    from matplotlib.figure import Figure
+
+    figure = Figure()
+    left, right = figure.subplots(1, 2)
+    image = left.imshow(np.logspace(-2.0, 1.5, 100).reshape(10, 10), norm=LogNorm())
+    figure.colorbar(image, ax=left, label="tip error [m]")
+    right.semilogy([0.0, 1.0], [0.012, 35.0])
+    text = alttext.describe(figure)
+    assert "Panel 3" not in text and text.count("Panel ") == 2
+    first_panel = text.split("Panel 2 of 2")[0]
+    assert "Colour scale: tip error [m] from 0.01 to 31.6 (log scale)." in first_panel
+    assert (
+        "vertical axis from 0.00805 to 52.2 (log scale)" in text
+    )  # not "from 0 to 52"

@@ -35,6 +35,7 @@ from __future__ import annotations
 import math
 import weakref
 from collections.abc import Iterable, Sequence
+from typing import Any
 
 import numpy as np
 from matplotlib.artist import Artist
@@ -225,10 +226,35 @@ def _axis_text(ax: Axes, which: str) -> str:
     name = axis_label or ("horizontal axis" if which == "x" else "vertical axis")
     low, high = ax.get_xlim() if which == "x" else ax.get_ylim()
     scale = ax.get_xscale() if which == "x" else ax.get_yscale()
-    first, last = _limit_texts(low, high)
+    if scale == "log":  # limits apart by decades: each to its own significant digits
+        first, last = plain_number(low), plain_number(high)
+    else:
+        first, last = _limit_texts(low, high)
     return f"{name} from {first} to {last}" + (
         "" if scale == "linear" else f" ({scale} scale)"
     )
+
+
+def _colorbar_of(ax: Axes) -> Any:
+    """The colour bar drawn in ``ax`` (matplotlib's Colorbar sets it, outside its stubs), or None."""
+    return getattr(ax, "_colorbar", None)
+
+
+def _scaled_axes(ax: Axes) -> Any:
+    """The axes whose colours the colour bar in ``ax`` explains (None for a mappable of no axes)."""
+    return getattr(_colorbar_of(ax).mappable, "axes", None)
+
+
+def _colour_scale(ax: Axes) -> str:
+    """The sentence of a colour bar's axes: its label, range and scale."""
+    colorbar = _colorbar_of(ax)
+    which = "y" if colorbar.orientation == "vertical" else "x"
+    text = _axis_text(ax, which)
+    if not (ax.get_ylabel() if which == "y" else ax.get_xlabel()).strip():
+        text = text.replace(
+            "vertical axis" if which == "y" else "horizontal axis", "values", 1
+        )
+    return _as_sentence("Colour scale: " + text)
 
 
 def _marker_points(line: Line2D) -> list[str]:
@@ -374,12 +400,21 @@ def describe(figure: Figure | SubFigure) -> str:
     suptitle = figure.get_suptitle().strip()
     if suptitle:
         parts.append(_as_sentence(suptitle))
-    axes = [ax for ax in figure.axes if ax.get_visible()]
+    visible = [ax for ax in figure.axes if ax.get_visible()]
+    # a colour bar is told as its panel's colour scale, not as a panel of its own
+    scales = [ax for ax in visible if _colorbar_of(ax) is not None]
+    axes = [ax for ax in visible if ax not in scales]
     for number, ax in enumerate(axes, start=1):
         text = _axes_description(ax)
+        for scale_ax in scales:
+            if _scaled_axes(scale_ax) is ax:
+                text += " " + _colour_scale(scale_ax)
         if len(axes) > 1:
             text = f"Panel {number} of {len(axes)}: {text}"
         parts.append(text)
+    for scale_ax in scales:  # a colour bar of no panel (a ScalarMappable alone)
+        if _scaled_axes(scale_ax) not in axes:
+            parts.append(_colour_scale(scale_ax))
     for legend in figure.legends:
         entries = [text.get_text() for text in legend.get_texts() if text.get_text()]
         if entries:
