@@ -265,3 +265,16 @@ def test_a_colour_bar_is_its_panels_colour_scale_and_log_limits_keep_their_digit
     assert (
         "vertical axis from 0.00805 to 52.2 (log scale)" in text
     )  # not "from 0 to 52"
+
+
+def test_an_arm_labelled_with_its_angles_is_not_told_them_twice():
+    from twolink import arms, plot
+
+    ax = plot.setup_axes(arms.ten)
+    q = np.radians([120.7, 51.3])
+    plot.draw_arm(arms.ten, q, ax=ax, label="down: (120.7°, 51.3°)")
+    plot.draw_arm(arms.ten, q, ax=ax, label="down")
+    text = alttext.describe(ax.figure)
+    assert "The arm (down: (120.7°, 51.3°)), tip at (-15.01, 9.99) m" in text
+    assert "The arm (down) at q = (120.7°, 51.3°), tip at (-15.01, 9.99) m" in text
+    plt.close(ax.figure)

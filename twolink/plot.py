@@ -312,8 +312,14 @@ def _draw_base(ax: Axes) -> Line2D:
 
 
 def _arm_sentence(arm: TwoLinkArm, q: NDArray[np.float64], label: str | None) -> str:
-    name = f"The arm ({label})" if label and not label.startswith("_") else "The arm"
-    return f"{name} at q = {angles_text(q)}, tip at {point_text(arm.fk(q))}"
+    angles = angles_text(q)
+    tip = f"tip at {point_text(arm.fk(q))}"
+    if not label or label.startswith("_"):
+        return f"The arm at q = {angles}, {tip}"
+    numbers = angles.strip("()").replace("°", "").split(", ")
+    if all(number in label for number in numbers):  # the label already gives the angles
+        return f"The arm ({label}), {tip}"
+    return f"The arm ({label}) at q = {angles}, {tip}"
 
 
 def move_arm(line: Line2D, arm: TwoLinkArm, q: ArrayLike) -> Line2D:
