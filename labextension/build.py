@@ -3,12 +3,14 @@
     .venv/bin/python labextension/build.py
 
 1. ``npm ci``: the exact packages of package-lock.json into labextension/node_modules;
-2. ``tsc``: src/index.ts to lib/index.js;
+2. ``tsc``: src/*.ts to lib/*.js (index: the image renderer, the mime
+   extension; a11y: the plugin naming slider handles and making scrolling
+   outputs focusable);
 3. ``jupyter-builder build`` (what ``jupyter labextension build`` runs since
    JupyterLab 4.6) against the core package.json of the JupyterLab installed
    in this Python, so the shared packages (@jupyterlab/rendermime ...) are
    taken from that JupyterLab, never bundled;
-4. records in the built package.json the SHA-256 of src/index.ts and the
+4. records in the built package.json the SHA-256 of the sources (src/*.ts) and the
    JupyterLab version it was built against (tests/test_labextension.py
    compares both: a stale bundle fails the tests), and writes install.json
    (``jupyter labextension list`` then names the Python package that
@@ -30,7 +32,7 @@ import sys
 import sysconfig
 
 HERE = pathlib.Path(__file__).resolve().parent
-SOURCE = HERE / "src" / "index.ts"
+SOURCES = HERE / "src"
 OUTPUT = HERE / "twolink_figure_alt" / "labextension"
 INSTALL_JSON = {
     "packageManager": "python",
@@ -40,8 +42,14 @@ INSTALL_JSON = {
 
 
 def source_sha256() -> str:
-    """The hash recorded in the built package.json (tests/test_labextension.py recomputes it)."""
-    return hashlib.sha256(SOURCE.read_bytes()).hexdigest()
+    """The hash recorded in the built package.json (tests/test_labextension.py recomputes it).
+
+    Over every src/*.ts in name order, each as its name, NUL, its bytes, NUL.
+    """
+    digest = hashlib.sha256()
+    for path in sorted(SOURCES.glob("*.ts")):
+        digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()
 
 
 def core_package_file() -> tuple[pathlib.Path, str]:

@@ -1,10 +1,12 @@
 """The prebuilt JupyterLab extension twolink-figure-alt (labextension/): built from
 its source, shipped by the wheel and installed in this venv.
 
-It sets a figure's ``<img alt>`` from the output metadata in JupyterLab (see
-labextension/src/index.ts); the browser test that it does is
-tests/browser/test_chapters_in_jupyterlab.py -k alt.  Its build output is
-committed, so a change of the source without a rebuild
+It sets a figure's ``<img alt>`` from the output metadata in JupyterLab (the
+mime extension, labextension/src/index.ts), and (the plugin,
+labextension/src/a11y.ts) names ipywidgets' slider handles by their widget's
+description and makes outputs that scroll focusable; the browser tests that
+it does are tests/browser/test_chapters_in_jupyterlab.py -k "alt or slider".
+Its build output is committed, so a change of the source without a rebuild
 (``.venv/bin/python labextension/build.py``, needs Node.js) must fail here.
 """
 
@@ -37,6 +39,14 @@ def built_scripts():
     }
 
 
+def sources_sha256():
+    """labextension/build.py's hash: every src/*.ts in name order, as name, NUL, bytes, NUL."""
+    digest = hashlib.sha256()
+    for path in sorted((SOURCE_DIR / "src").glob("*.ts")):
+        digest.update(path.name.encode() + b"\0" + path.read_bytes() + b"\0")
+    return digest.hexdigest()
+
+
 def test_the_built_bundle_is_the_build_of_the_source():
     source, built = (
         read_json(SOURCE_DIR / "package.json"),
@@ -44,15 +54,24 @@ def test_the_built_bundle_is_the_build_of_the_source():
     )
     assert built["name"] == source["name"] == NAME
     assert built["version"] == source["version"], REBUILD
-    digest = hashlib.sha256((SOURCE_DIR / "src" / "index.ts").read_bytes()).hexdigest()
-    assert built["twolink"]["source_sha256"] == digest, (
-        f"src/index.ts changed: {REBUILD}"
+    assert {path.name for path in (SOURCE_DIR / "src").glob("*.ts")} == {
+        "index.ts",
+        "a11y.ts",
+    }
+    assert built["twolink"]["source_sha256"] == sources_sha256(), (
+        f"labextension/src/ changed: {REBUILD}"
     )
-    # JupyterLab loads the entry point named here and asks it for the mime extension.
+    for key in ("description", "dependencies", "jupyterlab"):
+        expected = source[key]
+        if key == "jupyterlab":
+            expected = {**expected, "_build": built[key]["_build"]}
+        assert built[key] == expected, f"package.json's {key} changed: {REBUILD}"
+    # JupyterLab loads the entry point named here and asks it for the mime
+    # extension (src/index.ts) and the plugin (src/a11y.ts).
     build = built["jupyterlab"]["_build"]
-    assert (BUILT / build["load"]).is_file() and build[
-        "mimeExtension"
-    ] == "./mimeExtension"
+    assert (BUILT / build["load"]).is_file()
+    assert build["mimeExtension"] == "./mimeExtension"
+    assert build["extension"] == "./extension"
 
 
 def test_the_built_code_reads_alt_from_the_metadata_of_the_image_types():
@@ -66,6 +85,25 @@ def test_the_built_code_reads_alt_from_the_metadata_of_the_image_types():
         assert f'"{mime_type}"' in scripts
     # @jupyterlab/rendermime is JupyterLab's own (a shared singleton), never bundled.
     assert "renderImage" not in scripts and "lodash" not in scripts
+
+
+def test_the_built_code_names_slider_handles_and_makes_scrolling_outputs_focusable():
+    scripts = "\n".join(built_scripts().values())
+    assert '"twolink-figure-alt:a11y"' in scripts and "autoStart:!0" in scripts
+    # the handles of ipywidgets' sliders, labelled by the widget's description
+    for fragment in (
+        "new MutationObserver",
+        '".widget-slider"',
+        "noUi-handle[role=",
+        '"widget-label"',
+        '"aria-labelledby"',
+    ):
+        assert fragment in scripts, fragment
+    # outputs that overflow, measured after layout, get a tab stop
+    for fragment in ("new ResizeObserver", '".jp-OutputArea-output"', ".tabIndex=0"):
+        assert fragment in scripts, fragment
+    # nothing of JupyterLab's or Lumino's bundled (the plugin imports types only)
+    assert "CommandRegistry" not in scripts and "PromiseDelegate" not in scripts
 
 
 def test_built_against_the_installed_jupyterlab():

@@ -322,3 +322,106 @@ def test_image_outputs_carry_their_alt_text_in_jupyterlab(jupyterlab, page):
         assert [(mime, alt) for mime, alt, _ in rendered] == expected
     finally:
         lab_browser.shut_down_kernels(jupyterlab)
+
+
+# --- slider handles named by their description (labextension/: src/a11y.ts) ---------------
+
+
+def slider_probe_notebook():
+    """A slider with a description, a range slider (two handles), a slider without one, a wide and a narrow LaTeX output."""
+    import nbformat
+
+    sources = [
+        'import ipywidgets\nq1 = ipywidgets.IntSlider(description="q1 [deg]")\nq1',
+        'span = ipywidgets.FloatRangeSlider(description="span [m]")\nspan',
+        "bare = ipywidgets.IntSlider()\nbare",
+        'from IPython.display import Latex\nLatex("$$" + " + ".join(f"x_{{{i}}}" for i in range(120)) + "$$")',
+        'Latex("$$a + b$$")',
+    ]
+    kernel = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    return nbformat.v4.new_notebook(
+        cells=[nbformat.v4.new_code_cell(source) for source in sources],
+        metadata={"kernelspec": kernel},
+    )
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_slider_handles_are_named_by_their_description_in_jupyterlab(jupyterlab, page):
+    """ipywidgets' noUiSlider handles (role=slider) take the widget's description as their name.
+
+    A slider without a description stays unnamed (nothing is invented); a
+    LaTeX output wider than the notebook is a tab stop whose arrow keys
+    scroll it, a narrow one is not.
+    """
+    import nbformat
+
+    try:
+        nbformat.write(
+            slider_probe_notebook(), jupyterlab["notebooks"] / "slider_probe.ipynb"
+        )
+        page.goto(
+            f"{jupyterlab['url']}/lab/workspaces/slider-probe/tree/slider_probe.ipynb"
+            f"?reset&token={jupyterlab['token']}"
+        )
+        panel = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden)")
+        panel.locator(".jp-Cell").first.wait_for(timeout=90_000)
+        accept_kernel_dialog(page)
+        wait_until_idle(page, 90_000)
+        run_all_cells(page)
+        wait_for_all_cells(page, 120_000)
+        wait_until_idle(page, 120_000)
+        panel.locator(".noUi-handle").nth(3).wait_for(timeout=30_000)
+
+        q1 = page.get_by_role("slider", name="q1 [deg]", exact=True)
+        assert q1.count() == 1
+        label = panel.locator(".widget-label", has_text="q1 [deg]")
+        assert q1.get_attribute("aria-labelledby") == label.get_attribute("id")
+        assert page.get_by_role("slider", name="span [m]", exact=True).count() == 2
+        handles = panel.locator(".noUi-handle")
+        assert handles.count() == 4
+        unnamed = handles.nth(3)
+        assert [
+            unnamed.get_attribute(name) for name in ("aria-labelledby", "aria-label")
+        ] == [None, None]
+        # the handle still works as before: the keyboard moves it
+        q1.focus()
+        page.keyboard.press("ArrowRight")
+        assert q1.get_attribute("aria-valuenow") == "1.0"
+
+        wide, narrow = panel.locator("[data-mime-type='text/latex']").all()
+        page.wait_for_function(
+            "e => e.getAttribute('tabindex') === '0'",
+            arg=wide.element_handle(),
+            timeout=10_000,
+        )
+        assert narrow.get_attribute("tabindex") is None
+        wide.focus()
+        page.keyboard.press("ArrowRight")
+        page.wait_for_function(
+            "e => e.scrollLeft > 0", arg=wide.element_handle(), timeout=5_000
+        )
+
+        # the name follows the description; an emptied description (ipywidgets
+        # hides the label, keeping its old text) names nothing
+        panel.locator(".jp-Cell").last.click()
+        page.keyboard.press("Escape")
+        page.keyboard.press("b")
+        page.keyboard.press("Enter")
+        page.keyboard.type('q1.description = ""; bare.description = "q2 [deg]"')
+        page.keyboard.press("Shift+Enter")
+        page.get_by_role("slider", name="q2 [deg]", exact=True).wait_for(timeout=30_000)
+        page.wait_for_function(
+            "e => !e.hasAttribute('aria-labelledby')",
+            arg=handles.first.element_handle(),
+            timeout=10_000,
+        )
+        parts = [".jp-NotebookPanel:not(.lm-mod-hidden) .jp-OutputArea"]
+        found = [
+            v
+            for v in a11y.violations(page, include=parts)
+            if v["id"] == "aria-input-field-name"
+        ]
+        assert [len(v["nodes"]) for v in found] == [1]  # q1, now without a description
+    finally:
+        lab_browser.shut_down_kernels(jupyterlab)
