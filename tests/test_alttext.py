@@ -278,3 +278,16 @@ def test_an_arm_labelled_with_its_angles_is_not_told_them_twice():
     assert "The arm (down: (120.7°, 51.3°)), tip at (-15.01, 9.99) m" in text
     assert "The arm (down) at q = (120.7°, 51.3°), tip at (-15.01, 9.99) m" in text
     plt.close(ax.figure)
+
+
+def test_an_arm_label_with_other_numbers_keeps_the_angles():
+    from twolink import arms, plot
+
+    ax = plot.setup_axes(arms.ten)
+    plot.draw_arm(
+        arms.ten, np.radians([0.0, 90.0]), ax=ax, label="q2 = 90°: 1/σ2 = 0.81"
+    )
+    assert "at q = (0°, 90°)" in alttext.describe(
+        ax.figure
+    )  # "0" is not a number of the label
+    plt.close(ax.figure)

@@ -147,3 +147,21 @@ def test_an_artist_marked_animated_takes_the_full_draw_and_stays_marked():
 
     fast_video, full_video, fast_draws, _ = _both_videos(make)
     assert fast_video == full_video and fast_draws == 3
+
+
+def test_an_artist_that_shows_itself_later_needs_no_full_draw_per_frame():
+    def make():
+        anim = plot.animate_arm(arms.two_metre, np.linspace([0.0, 0.0], [1.5, 1.5], 5))
+        ax = anim._fig.axes[0]
+        (flag,) = ax.plot([1.0], [1.0], "s", visible=False)
+        update = anim._func
+
+        def showing(frame):
+            flag.set_visible(frame >= 3)
+            return [*update(frame), flag]
+
+        anim._func = showing
+        return anim
+
+    fast_video, full_video, fast_draws, _ = _both_videos(make)
+    assert fast_video == full_video and fast_draws == 1

@@ -20,6 +20,7 @@ alternative, :func:`twolink.alttext.describe`, stays true.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Iterable, Sequence
 from html import escape as html_escape
 from typing import TYPE_CHECKING, Any
@@ -317,7 +318,10 @@ def _arm_sentence(arm: TwoLinkArm, q: NDArray[np.float64], label: str | None) ->
     if not label or label.startswith("_"):
         return f"The arm at q = {angles}, {tip}"
     numbers = angles.strip("()").replace("°", "").split(", ")
-    if all(number in label for number in numbers):  # the label already gives the angles
+    in_label = set(re.findall(r"-?\d+(?:\.\d+)?", label))
+    if all(
+        number in in_label for number in numbers
+    ):  # the label already gives the angles
         return f"The arm ({label}), {tip}"
     return f"The arm ({label}) at q = {angles}, {tip}"
 

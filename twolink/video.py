@@ -174,11 +174,9 @@ class BlittingFFMpegWriter(animation.FFMpegWriter):
             children = [child for child in ax.get_children() if child is not ax.patch]
             # a full draw draws an axes' children sorted by zorder (a stable sort)
             children.sort(key=lambda child: child.get_zorder())
-            front += [
-                child
-                for child in children
-                if child.get_zorder() >= lowest and child.get_visible()
-            ]
+            # hidden ones too: a moving artist may show itself later (drawing a
+            # hidden artist draws nothing)
+            front += [child for child in children if child.get_zorder() >= lowest]
         # marked animated, which a figure's draw leaves out, except while it is saved: so the
         # background is drawn as a figure not being saved (hidden artists would not do: a
         # hidden title is moved by the axes' title layout)
