@@ -291,3 +291,12 @@ def test_an_arm_label_with_other_numbers_keeps_the_angles():
         ax.figure
     )  # "0" is not a number of the label
     plt.close(ax.figure)
+
+
+def test_legend_entries_with_commas_are_told_apart_by_semicolons():
+    figure = Figure()
+    ax = figure.subplots()
+    ax.plot([0, 1], [0, 1], label="q1, linear law")
+    ax.plot([0, 1], [1, 0], label="q2")
+    ax.legend()
+    assert "Legend: q1, linear law; q2." in alttext.describe(figure)

@@ -319,6 +319,11 @@ def _unrecorded(ax: Axes, children: Iterable[Artist]) -> str:
     return _as_sentence("It shows " + listed(found)) if found else ""
 
 
+def _entries(entries: list[str]) -> str:
+    """Legend entries in a sentence: by commas, or by semicolons when an entry holds a comma."""
+    return ("; " if any("," in entry for entry in entries) else ", ").join(entries)
+
+
 def _axes_description(ax: Axes) -> str:
     sentences = []
     title = " ".join(
@@ -358,7 +363,7 @@ def _axes_description(ax: Axes) -> str:
     if legend is not None and legend.get_visible():
         entries = [text.get_text() for text in legend.get_texts() if text.get_text()]
         if entries:
-            sentences.append(_as_sentence("Legend: " + ", ".join(entries)))
+            sentences.append(_as_sentence("Legend: " + _entries(entries)))
     return " ".join(sentences)
 
 
@@ -418,5 +423,5 @@ def describe(figure: Figure | SubFigure) -> str:
     for legend in figure.legends:
         entries = [text.get_text() for text in legend.get_texts() if text.get_text()]
         if entries:
-            parts.append(_as_sentence("Legend: " + ", ".join(entries)))
+            parts.append(_as_sentence("Legend: " + _entries(entries)))
     return " ".join(part for part in parts if part) or "An empty figure."
