@@ -33,6 +33,7 @@ Examples
 
 from __future__ import annotations
 
+from bisect import bisect_right
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal, overload
 
@@ -461,15 +462,20 @@ def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointRefe
         t, dtype=float
     )  # copies: the reference does not change with the trajectory's arrays
     q, qd, qdd = (np.array(values, dtype=float) for values in (q, qd, qdd))
-    steps = np.diff(times)
-    changes = np.diff(q, axis=0)
     start, end = float(times[0]), float(times[-1])
     held_start, held_end, zeros = q[0].copy(), q[-1].copy(), np.zeros(2)
     last = (qd[-1].copy(), qdd[-1].copy())
+    # Python floats: a reference is called once per step of an ODE solver, and on two
+    # numbers each operation of numpy costs more than the arithmetic (the same IEEE
+    # operations in the same order: the same values)
+    time_list = times.tolist()
+    steps = np.diff(times).tolist()
+    changes = np.diff(q, axis=0).tolist()
+    q_rows, qd_rows, qdd_rows = q.tolist(), qd.tolist(), qdd.tolist()
 
     def locate(time: float) -> tuple[int, float, float]:
-        k = min(int(np.searchsorted(times, time, side="right")) - 1, len(steps) - 1)
-        return k, (time - times[k]) / steps[k], float(steps[k])
+        k = min(bisect_right(time_list, time) - 1, len(steps) - 1)
+        return k, (time - time_list[k]) / steps[k], steps[k]
 
     def position(time: float) -> NDArray[np.float64]:
         time = float(time)
@@ -484,12 +490,16 @@ def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointRefe
         h2 = 0.5 * s2 * (1.0 - s) ** 3
         h3 = 0.5 * s3 * (1.0 - s) ** 2
         h4 = s3 * (-4.0 + 7.0 * s - 3.0 * s2)
-        return (
-            q[k]
-            + h5 * changes[k]
-            + h * (h1 * qd[k] + h4 * qd[k + 1])
-            + h * h * (h2 * qdd[k] + h3 * qdd[k + 1])
-        )
+
+        def joint(j: int) -> float:
+            return (
+                q_rows[k][j]
+                + h5 * changes[k][j]
+                + h * (h1 * qd_rows[k][j] + h4 * qd_rows[k + 1][j])
+                + h * h * (h2 * qdd_rows[k][j] + h3 * qdd_rows[k + 1][j])
+            )
+
+        return np.array((joint(0), joint(1)))
 
     def velocity(time: float) -> NDArray[np.float64]:
         time = float(time)
@@ -504,12 +514,16 @@ def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointRefe
         d2 = 0.5 * s * (1.0 - s) ** 2 * (2.0 - 5.0 * s)
         d3 = 0.5 * s2 * (1.0 - s) * (3.0 - 5.0 * s)
         d4 = s2 * (-12.0 + 28.0 * s - 15.0 * s2)
-        return (
-            d5 / h * changes[k]
-            + d1 * qd[k]
-            + d4 * qd[k + 1]
-            + h * (d2 * qdd[k] + d3 * qdd[k + 1])
-        )
+
+        def joint(j: int) -> float:
+            return (
+                d5 / h * changes[k][j]
+                + d1 * qd_rows[k][j]
+                + d4 * qd_rows[k + 1][j]
+                + h * (d2 * qdd_rows[k][j] + d3 * qdd_rows[k + 1][j])
+            )
+
+        return np.array((joint(0), joint(1)))
 
     def acceleration(time: float) -> NDArray[np.float64]:
         time = float(time)
@@ -524,12 +538,16 @@ def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointRefe
         c2 = (1.0 - s) * (1.0 - 8.0 * s + 10.0 * s2)
         c3 = s * (3.0 - 12.0 * s + 10.0 * s2)
         c4 = s * (-24.0 + 84.0 * s - 60.0 * s2)
-        return (
-            c5 / (h * h) * changes[k]
-            + (c1 * qd[k] + c4 * qd[k + 1]) / h
-            + c2 * qdd[k]
-            + c3 * qdd[k + 1]
-        )
+
+        def joint(j: int) -> float:
+            return (
+                c5 / (h * h) * changes[k][j]
+                + (c1 * qd_rows[k][j] + c4 * qd_rows[k + 1][j]) / h
+                + c2 * qdd_rows[k][j]
+                + c3 * qdd_rows[k + 1][j]
+            )
+
+        return np.array((joint(0), joint(1)))
 
     return JointReference(position, velocity, acceleration)
 
