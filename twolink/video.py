@@ -53,7 +53,7 @@ class MovingAnimation(animation.FuncAnimation):
     Examples
     --------
     >>> import matplotlib.pyplot as plt
-    >>> fig, ax = plt.subplots()
+    >>> fig, ax = plt.subplots(figsize=(4.0, 3.0), dpi=80)
     >>> (line,) = ax.plot([0.0, 1.0], [0.0, 0.0])
     >>> def update(frame):
     ...     line.set_ydata([0.0, frame])
@@ -63,7 +63,7 @@ class MovingAnimation(animation.FuncAnimation):
     >>> with matplotlib.rc_context({"animation.ffmpeg_path": imageio_ffmpeg.get_ffmpeg_exe()}):
     ...     tag = html5_video(anim, embed_limit=5.0)
     >>> tag.splitlines()[0], anim.moved == [line]
-    ('<video width="640" height="480" controls autoplay loop>', True)
+    ('<video width="320" height="240" controls autoplay loop>', True)
     >>> plt.close(fig)
     """
 
