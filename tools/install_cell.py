@@ -31,7 +31,7 @@ ROOT = links.ROOT
 #: The environment variable that overrides where the cell installs twolink from.
 SOURCE_VARIABLE = "TWOLINK_SOURCE"
 #: The cell's first line, which also marks a cell as the install cell.
-MARKER = "# Setup: installs twolink only where `import twolink` fails (Colab, a bare Jupyter); in a clone it does nothing."
+MARKER = "# Setup: installs twolink only where `import twolink` fails (Colab, a bare Jupyter)."
 
 
 def install_cell_source(default_requirement: str | None = None) -> str:
@@ -40,7 +40,8 @@ def install_cell_source(default_requirement: str | None = None) -> str:
     Examples
     --------
     >>> print(install_cell_source("twolink[course]"))  # doctest: +ELLIPSIS
-    # Setup: installs twolink only where `import twolink` fails (Colab, a bare Jupyter); in a clone it does nothing.
+    # Setup: installs twolink only where `import twolink` fails (Colab, a bare Jupyter).
+    # In a clone it does nothing.
     try:
         import twolink  # noqa: F401
     except ImportError:
@@ -48,7 +49,8 @@ def install_cell_source(default_requirement: str | None = None) -> str:
     <BLANKLINE>
         source = os.environ.get("TWOLINK_SOURCE", "twolink[course]")
         print(
-            f"twolink is not installed here: installing {source} (set TWOLINK_SOURCE to install from elsewhere)"
+            f"twolink is not installed here: installing {source} "
+            "(set TWOLINK_SOURCE to install from elsewhere)"
         )
         %pip install --quiet "{source}"
         import twolink  # noqa: F401
@@ -58,6 +60,7 @@ def install_cell_source(default_requirement: str | None = None) -> str:
     return "\n".join(
         [
             MARKER,
+            "# In a clone it does nothing.",
             "try:",
             "    import twolink  # noqa: F401",
             "except ImportError:",
@@ -67,7 +70,8 @@ def install_cell_source(default_requirement: str | None = None) -> str:
                 "'", '"'
             ),
             "    print(",
-            f'        f"twolink is not installed here: installing {{source}} (set {SOURCE_VARIABLE} to install from elsewhere)"',
+            '        f"twolink is not installed here: installing {source} "',
+            f'        "(set {SOURCE_VARIABLE} to install from elsewhere)"',
             "    )",
             '    %pip install --quiet "{source}"',
             "    import twolink  # noqa: F401",
