@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from matplotlib.patches import Circle
 
-from twolink import arms, plot, video
+from twolink import arms, figure_style, plot, video
 
 
 @pytest.fixture(autouse=True)
@@ -163,5 +163,25 @@ def test_an_artist_that_shows_itself_later_needs_no_full_draw_per_frame():
         anim._func = showing
         return anim
 
+    fast_video, full_video, fast_draws, _ = _both_videos(make)
+    assert fast_video == full_video and fast_draws == 1
+
+
+def test_under_the_course_style_an_animations_own_figure_is_laid_out_once():
+    """Constrained layout lays a figure out again at every draw (not always to the same
+    place): an animation's own figure is laid out for its first frame and held, so its
+    video is matplotlib's, drawn once."""
+
+    def make():
+        with figure_style.context():
+            return plot.animate_arm(
+                arms.two_metre, np.linspace([0.0, 0.0], [1.5, 1.5], 5), title="held"
+            )
+
+    from matplotlib.layout_engine import PlaceHolderLayoutEngine
+
+    anim = make()
+    assert isinstance(anim._fig.get_layout_engine(), PlaceHolderLayoutEngine)
+    video.html5_video(anim, embed_limit=5.0)
     fast_video, full_video, fast_draws, _ = _both_videos(make)
     assert fast_video == full_video and fast_draws == 1

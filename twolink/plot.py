@@ -554,6 +554,7 @@ def animate_arm(
             raise ValueError(
                 f"t must have shape ({len(q_frames)},), one time per frame of q_path; got {times.shape}"
             )
+    own_figure = ax is None
     ax = setup_axes(arm, ax=ax, title=title)
     p_path = arm.fk(q_frames)
     arm_line = _draw_links(arm, q_frames[0], ax, figure_style.ARM, None, None, 1.0, 4.0)
@@ -587,9 +588,15 @@ def animate_arm(
             artists.extend(extra(frame))
         return artists
 
-    return MovingAnimation(
-        _figure_of(ax), update, frames=len(q_frames), interval=interval
-    )
+    figure = _figure_of(ax)
+    if own_figure and figure.get_layout_engine() is not None:
+        # laid out once, for the first frame, then held: a layout engine would lay the
+        # figure out again at every frame, and the video could not redraw only what moves
+        engine = figure.get_layout_engine()
+        assert engine is not None
+        engine.execute(figure)
+        figure.set_layout_engine("none")
+    return MovingAnimation(figure, update, frames=len(q_frames), interval=interval)
 
 
 def animation_html(anim: animation.Animation) -> HTMLDisplay:

@@ -29,6 +29,7 @@ from matplotlib.artist import Artist
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.colors import to_rgba
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import PlaceHolderLayoutEngine
 
 __all__ = [
     "MovingAnimation",
@@ -142,6 +143,9 @@ class BlittingFFMpegWriter(animation.FFMpegWriter):
         """Whether the frame can be drawn over a background with the same pixels as a full draw."""
         if not moved or self.dpi != figure.dpi or self.frame_format != "rgba":
             return False
+        engine = figure.get_layout_engine()
+        if engine is not None and not isinstance(engine, PlaceHolderLayoutEngine):
+            return False  # laid out again at every draw: only a full draw is that draw
         if set(savefig_kwargs) - {"facecolor", "transparent"} or savefig_kwargs.get(
             "transparent"
         ):
@@ -168,6 +172,7 @@ class BlittingFFMpegWriter(animation.FFMpegWriter):
     ) -> None:
         """Draw the figure without the front artists and keep the picture."""
         self._release()
+
         lowest = min(artist.get_zorder() for artist in moved)
         front = []
         for ax in axes_moved:
