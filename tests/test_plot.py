@@ -473,6 +473,14 @@ def test_move_ellipse_and_move_strobe_follow_draw_ellipse_and_draw_strobe():
 
 
 def test_animation_html_draws_the_axes_once_and_makes_matplotlibs_video():
+    # matplotlib's layout, whatever an earlier test left in rcParams
+    with matplotlib.rc_context(
+        {"figure.constrained_layout.use": False, "figure.autolayout": False}
+    ):
+        _check_animation_html_against_matplotlib()
+
+
+def _check_animation_html_against_matplotlib():
     import imageio_ffmpeg
     from matplotlib import animation
 

@@ -12,8 +12,14 @@ from twolink import arms, figure_style, plot, video
 
 @pytest.fixture(autouse=True)
 def ffmpeg_and_closed_figures():
+    # matplotlib's layout, whatever an earlier test left in rcParams (the course
+    # style's constrained layout is checked by its own test below)
     with matplotlib.rc_context(
-        {"animation.ffmpeg_path": imageio_ffmpeg.get_ffmpeg_exe()}
+        {
+            "animation.ffmpeg_path": imageio_ffmpeg.get_ffmpeg_exe(),
+            "figure.constrained_layout.use": False,
+            "figure.autolayout": False,
+        }
     ):
         yield
     plt.close("all")
