@@ -5,6 +5,8 @@ asserts that the reproduction of the source's method yields them, and compares w
 package's correct answer.
 """
 
+from decimal import ROUND_HALF_UP, Decimal
+
 import numpy as np
 import pytest
 from hypothesis import given
@@ -121,8 +123,13 @@ def test_spring_reproduces_the_motor_1_torques():
     t = me639.source_spring_torques(p_line)
     assert round(float(t[0, 0])) == 2381
     assert round(float(t[1, 0])) == 2324
-    # printed 1874: the reproduction gives 1873.4994, i.e. 1873.5 to one decimal (rounded up once more when printed)
+    # H4.3's 1874: the reproduction gives 1873.4994, 1873.5 to one decimal, 1874 rounded half up
     assert round(float(t[2, 0]), 1) == 1873.5
+    assert (
+        int(Decimal(f"{float(t[2, 0]):.1f}").quantize(Decimal(1), ROUND_HALF_UP))
+        == 1874
+    )
+    assert np.all(t[:, 0] > 0)  # every motor-1 torque positive, none zero
     # in DH the same torques have tau1 = 0: F = k x is radial, no moment about the shoulder
     tau_dh = me639.motor_to_dh_torques(t)
     assert np.allclose(tau_dh[:, 0], 0.0, atol=1e-9)
@@ -139,3 +146,26 @@ def test_correct_spring_in_both_conventions():
         u[:, 0], tau_dh[:, 0] - tau_dh[:, 1]
     )
     assert np.allclose(u[0], [900.0, 900.0], atol=1e-9)
+
+
+# --- H4.5: the workspace plot's range --------------------------------------------------------------------------------
+
+
+def test_workspace_plot_samples_range_35_145_and_leaves_out_145():
+    assert me639.WORKSPACE_PLOT_DEGREES == range(35, 145, 1)
+    assert 145 not in me639.WORKSPACE_PLOT_DEGREES
+    p = me639.source_workspace_points()
+    assert p.shape == (110 * 110, 2)
+    # the corner at 145 deg, both links, is missing: the leftmost tip is at 144 deg
+    assert round(float(p[:, 0].min()), 3) == -3.236
+    corner_145 = me639.source_fk(np.radians([145.0, 145.0]))
+    assert round(float(corner_145[0]), 3) == -3.277
+    assert round(float(p[:, 0].max()), 3) == 3.277  # the 35 deg corner is there
+
+
+def test_the_projects_own_tasks_use_angles_outside_35_145_deg():
+    # a plot range, not stated joint limits: the wall contact, the spring's rest point
+    # and the line's start need absolute angles outside [35, 145] deg
+    for p_tip in ([3.2872, 0.7128], [3.0, 1.0], [-3.5, 1.0]):
+        q_deg = np.degrees(me639.source_ik(p_tip))
+        assert np.any((q_deg < 35.0) | (q_deg > 145.0)), p_tip

@@ -14,6 +14,12 @@ and the tests can show its printed numbers coming out of its own formulas:
   origin), torques in its own convention (H4.3).
 - :func:`correct_spring_torques_dh` and :func:`dh_to_motor_torques`: the correct
   law ``tau = J^T k (x0 - x)`` and the conversion to the source's convention.
+- :func:`source_workspace_points`: the tips its workspace plot draws, both
+  absolute angles over ``range(35, 145, 1)`` degrees (H4.5).  That is a plot
+  range, not joint limits: the project states no joint limits anywhere, and its
+  own wall, spring and line tasks use angles outside [35, 145] deg.  The course
+  takes [35, 145] deg as example limits (``twolink.arms.two_metre_limited``), its
+  own choice suggested by that plot range.
 
 The package itself works in relative (DH) angles; convert the absolute angles
 returned here with :func:`twolink.to_relative`.
@@ -50,6 +56,8 @@ __all__ = [
     "correct_spring_torques_dh",
     "dh_to_motor_torques",
     "motor_to_dh_torques",
+    "WORKSPACE_PLOT_DEGREES",
+    "source_workspace_points",
 ]
 
 #: The two readings of the transcribed IK line for q1 (COURSE.md H4.1).
@@ -349,10 +357,13 @@ def source_spring_torques(
     Along x = 3 at y = 0, 1, 2 (motor 1 is not zero in this convention):
 
     >>> p = [[3.0, 0.0], [3.0, 1.0], [3.0, 2.0]]
-    >>> source_spring_torques(p).round(0)
-    array([[ 2381., -2381.],
-           [ 2324., -2324.],
-           [ 1873., -1873.]])
+    >>> source_spring_torques(p).round(1)
+    array([[ 2381.2, -2381.2],
+           [ 2323.8, -2323.8],
+           [ 1873.5, -1873.5]])
+
+    COURSE.md H4.3 gives the motor-1 torques as +2381, +2324, +1874 N m: the third
+    is 1873.4994 N m, 1873.5 to one decimal, which rounds half up to 1874.
     """
     k = as_finite_scalar(k, "k")
     points = as_pairs(p_tip, "p_tip")
@@ -434,3 +445,42 @@ def motor_to_dh_torques(u_motor: ArrayLike) -> NDArray[np.float64]:
     tau = u.copy()
     tau[..., 0] = u[..., 0] + u[..., 1]
     return tau
+
+
+#: The whole degrees the project's workspace plot samples for both absolute link
+#: angles, ``range(35, 145, 1)`` (COURSE.md H4.5): a plot range, which leaves out
+#: 145 deg; the project states no joint limits.
+WORKSPACE_PLOT_DEGREES = range(35, 145, 1)
+
+
+def source_workspace_points(*, l1: float = 2.0, l2: float = 2.0) -> NDArray[np.float64]:
+    """The tips the project's workspace plot draws: both absolute angles over ``range(35, 145, 1)`` deg.
+
+    Every pair ``(q1, q2_abs)`` of whole degrees from :data:`WORKSPACE_PLOT_DEGREES`
+    (``q1`` in the outer loop), through :func:`source_fk`.  Python's ``range``
+    stops before its end, so 145 deg is never used.  The range belongs to the
+    plot: the project states no joint limits, and its own wall, spring and line
+    tasks use angles outside [35, 145] deg (COURSE.md H4.5).
+
+    Parameters
+    ----------
+    l1, l2 : float
+        Link lengths, metres (> 0).
+
+    Returns
+    -------
+    numpy.ndarray, shape (12100, 2)
+        The tips ``(x, y)``, metres, 110 x 110 configurations.
+
+    Examples
+    --------
+    >>> p = source_workspace_points()
+    >>> p.shape, WORKSPACE_PLOT_DEGREES[-1]
+    ((12100, 2), 144)
+    >>> p[:, 0].min().round(3), p[:, 0].max().round(3)
+    (np.float64(-3.236), np.float64(3.277))
+    """
+    degrees = np.radians(np.array(WORKSPACE_PLOT_DEGREES, dtype=float))
+    q1_abs, q2_abs = np.meshgrid(degrees, degrees, indexing="ij")
+    angles = np.column_stack([q1_abs.ravel(), q2_abs.ravel()])
+    return source_fk(angles, l1=l1, l2=l2)
