@@ -25,6 +25,7 @@ HEAVY = ("scipy", "sympy", "matplotlib", "control", "mujoco")
 # The modules that exist to use a heavy library, and the one they load: chapters import them by name.
 HEAVY_BY_DESIGN = {
     "twolink.plot": "matplotlib",
+    "twolink.diagrams": "matplotlib",
     "twolink.explorer": "matplotlib",
     "twolink.figure_style": "matplotlib",
     "twolink.alttext": "matplotlib",

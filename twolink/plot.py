@@ -90,7 +90,7 @@ LINK_COLOR = figure_style.ARM.color
 PATH_COLOR = figure_style.PATH.color
 
 
-def _axes(ax: Axes | None, who: str) -> Axes:
+def axes_or_current(ax: Axes | None, who: str) -> Axes:
     """``ax``, or the current axes when it is None; anything else is refused naming ``ax``."""
     if ax is None:
         return plt.gca()
@@ -159,7 +159,7 @@ def setup_axes(
     if ax is None:
         _, ax = plt.subplots(figsize=size, dpi=figure_style.DPI)
     else:
-        ax = _axes(ax, "setup_axes")
+        ax = axes_or_current(ax, "setup_axes")
     limit = arm.reach[1] * (1.0 + margin)
     ax.set_xlim(-limit, limit)
     ax.set_ylim(-limit, limit)
@@ -198,7 +198,7 @@ def draw_reach(
     [1.0, 3.0]
     >>> plt.close(ax.figure)
     """
-    ax = _axes(ax, "draw_reach")
+    ax = axes_or_current(ax, "draw_reach")
     circle_options: dict[str, Any] = {
         "fill": False,
         "linestyle": figure_style.REACH.linestyle,
@@ -263,7 +263,7 @@ def draw_arm(
            [2., 2.]])
     >>> plt.close(ax.figure)
     """
-    ax = _axes(ax, "draw_arm")
+    ax = axes_or_current(ax, "draw_arm")
     q_arm = as_configuration(q)
     line = _draw_links(arm, q_arm, ax, role, color, label, alpha, linewidth)
     base = _draw_base(ax)
@@ -415,7 +415,7 @@ def draw_strobe(
     6
     >>> plt.close(ax.figure)
     """
-    ax = _axes(ax, "draw_strobe")
+    ax = axes_or_current(ax, "draw_strobe")
     q_samples = _path(q_path)
     indices = _strobe_indices(len(q_samples), frames)
     lines = []
@@ -745,7 +745,7 @@ def draw_ellipse(
     ['Polygon', 'Line2D']
     >>> plt.close(ax.figure)
     """
-    ax = _axes(ax, "draw_ellipse")
+    ax = axes_or_current(ax, "draw_ellipse")
     if np.ndim(ellipse.centre) != 1:
         raise ValueError(
             f"draw_ellipse draws one ellipse (centre of shape (2,)); got {np.shape(ellipse.centre)}"
@@ -861,7 +861,7 @@ def draw_force(
     [(1.0, 0.0), (2.0, 0.0)]
     >>> plt.close(ax.figure)
     """
-    ax = _axes(ax, "draw_force")
+    ax = axes_or_current(ax, "draw_force")
     p_point: NDArray[np.float64] = as_configuration(
         point, "point", "one (x, y) point", "metres"
     )
@@ -952,7 +952,7 @@ def draw_torque(
     'Circle'
     >>> plt.close(ax.figure)
     """
-    ax = _axes(ax, "draw_torque")
+    ax = axes_or_current(ax, "draw_torque")
     c_point: NDArray[np.float64] = as_configuration(
         centre, "centre", "one (x, y) point", "metres"
     )
@@ -1031,7 +1031,7 @@ def draw_wall(
     array([4., 4.])
     >>> plt.close(ax.figure)
     """
-    ax = _axes(ax, "draw_wall")
+    ax = axes_or_current(ax, "draw_wall")
     half_length = as_finite_scalar(
         half_length, "half_length (m)", minimum=0.0, strictly=True
     )
@@ -1132,7 +1132,7 @@ def plot_time_series(
     ['q1', 'q2']
     >>> plt.close(fig)
     """
-    ax = _axes(ax, "plot_time_series")
+    ax = axes_or_current(ax, "plot_time_series")
     times = real_array(t, "t (s)")
     if times.ndim != 1 or not np.all(np.isfinite(times)):
         raise ValueError(
@@ -1235,7 +1235,7 @@ def draw_note(
     ('ellipse drawn at 0.4 m per m/s', (0.03, 0.03))
     >>> plt.close(fig)
     """
-    ax = _axes(ax, "draw_note")
+    ax = axes_or_current(ax, "draw_note")
     if not isinstance(text, str):
         raise InputTypeError(
             f"text must be a string; got {text!r} ({type(text).__name__})"
