@@ -495,17 +495,25 @@ class Explorer:
             # redraws what lies above the artists it changes, never redraws them
             ax.set_axisbelow(True)
         figure.canvas.mpl_connect("draw_event", self._on_draw)
-        self.refresh()
-        if describe is not None:
-            self._show_description(wait=False)  # the first sentence, at once
+        values = self.values
+        update(**values)
+        self.updates += 1
         figure.tight_layout()  # once, for the first state: labels inside the canvas
-        # what ipympl's own display would set: the first picture and the size, in
-        # pixels, that the browser's canvas starts from
+        self._show_changes()  # the one full draw of the first state
+        if describe is not None:
+            self.description = str(describe(**values))
+            self._show_description(wait=False)  # the first sentence, at once
+        # what ipympl's own display would set: the first picture (the canvas as
+        # just drawn) and the size, in pixels, that the browser's canvas starts from
         canvas: Any = figure.canvas
         width, height = figure.get_size_inches() * figure.dpi
         canvas._size = (width, height)
+        first_picture = io.BytesIO()
+        Image.fromarray(np.asarray(canvas.buffer_rgba())).save(
+            first_picture, format="png", compress_type=zlib.Z_RLE
+        )
         canvas._data_url = "data:image/png;base64," + base64.b64encode(
-            self.png()
+            first_picture.getvalue()
         ).decode("ascii")
         for control in self.controls.values():
             control.observe(self._changed, names="value")
