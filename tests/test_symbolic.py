@@ -7,6 +7,7 @@ import pytest
 import sympy as sp
 
 from twolink.errors import InputTypeError
+from twolink import symbolic
 from twolink.symbolic import dh_matrix
 
 
@@ -44,3 +45,19 @@ def test_other_values_are_refused_naming_the_parameter(bad):
 def test_nan_and_infinity_are_refused(bad):
     with pytest.raises(ValueError, match=r"^d must be finite; got "):
         dh_matrix(0.0, bad, 1, 0)
+
+
+def test_planar_fk_hands_out_fresh_matrices_from_one_simplification():
+    A1, _, T_02, p_tip = symbolic.planar_fk()
+    A1[0, 0] = 0
+    T_02[0, 3] = 0
+    again = symbolic.planar_fk()
+    assert again[0][0, 0] == sp.cos(symbolic.planar_symbols()["q1"])
+    assert again[2][:2, 3] == again[3]
+    assert again[3][0] != 0 and again[3] == p_tip
+
+
+@pytest.mark.parametrize("junk", ["False", 1, None, [True]])
+def test_planar_fk_takes_only_a_bool_offset_flag(junk):
+    with pytest.raises(InputTypeError, match="with_offset must be True or False"):
+        symbolic.planar_fk(with_offset=junk)

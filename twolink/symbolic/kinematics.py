@@ -7,6 +7,7 @@ what is meant.
 
 from __future__ import annotations
 
+import functools
 import math
 import numbers
 
@@ -149,9 +150,23 @@ def planar_fk(
     [l1*cos(q1) + l2*cos(q1 + q2)],
     [l1*sin(q1) + l2*sin(q1 + q2)]])
     """
+    if not isinstance(with_offset, (bool, np.bool_)):
+        raise InputTypeError(
+            f"with_offset must be True or False; got {with_offset!r} "
+            f"({type(with_offset).__name__})"
+        )
+    A1, A2, T_02 = (sp.Matrix(m) for m in _simplified_fk(bool(with_offset)))
+    return A1, A2, T_02, T_02[:2, 3]
+
+
+@functools.cache
+def _simplified_fk(with_offset: bool) -> tuple[sp.ImmutableMatrix, ...]:
+    """``A1, A2, T_02`` once per process: simplifying the product is the slow part.
+
+    Kept immutable; :func:`planar_fk` hands out fresh mutable copies.
+    """
     symbols = planar_symbols()
     d = symbols["d"] if with_offset else 0
     A1 = dh_matrix(symbols["q1"], d, symbols["l1"], 0)
     A2 = dh_matrix(symbols["q2"], 0, symbols["l2"], 0)
-    T_02 = sp.simplify(A1 * A2)
-    return A1, A2, T_02, T_02[:2, 3]
+    return tuple(sp.ImmutableMatrix(m) for m in (A1, A2, sp.simplify(A1 * A2)))
