@@ -67,6 +67,25 @@ def test_expanded_h02_at_30_45_degrees():
     )  # the height row and the last row are right
 
 
+def test_expanded_h02_numbers_at_30_45_degrees():
+    # cos q1 cos q2 for cos(q1 + q2), sin q1 cos q2 for sin(q1 + q2), l1 and l2 swapped
+    H_wrong = osake.h02_as_expanded(q_example)
+    assert np.allclose(
+        H_wrong,
+        [
+            [0.6124, -0.3536, 0.0, 16.0830],
+            [0.3536, 0.6124, 0.0, 9.2855],
+            [0.0, 0.0, 1.0, 6.5],
+            [0.0, 0.0, 0.0, 1.0],
+        ],
+        atol=5e-5,
+        rtol=0.0,
+    )
+    assert np.allclose(
+        right_h02_cm(q_example)[:3, 3], [11.6367, 16.1081, 6.5], atol=5e-5, rtol=0.0
+    )
+
+
 # --- H3.2: the Jacobian printed under the derivation carries the expanded H_0^2's product error
 def right_jacobian_cm(q):
     return arms.osake.geometric_jacobian(q) * np.array(
@@ -190,6 +209,16 @@ def test_cpp_fk_int_lengths_cost_5_mm_and_the_dropped_offset_6_5_cm(q):
     assert np.isclose(
         np.linalg.norm(p_source - p_right), np.hypot(osake.L2_CM - 11.0, osake.D_CM)
     )
+
+
+def test_cpp_fk_tip_at_30_45_degrees():
+    # 10 and 11.5 typed, stored as int 10 and 11; H01's z-offset 0
+    p_source = osake.cpp_fk_tip(q_example)
+    p_right = right_h02_cm(q_example)[:3, 3]
+    assert np.allclose(p_source, [11.5073, 15.6252, 0.0], atol=5e-5, rtol=0.0)
+    assert np.allclose(p_right, [11.6367, 16.1081, 6.5], atol=5e-5, rtol=0.0)
+    assert round(10.0 * np.linalg.norm(p_source - p_right), 1) == 65.2  # mm
+    assert [osake.cpp_read_int(typed) for typed in ("10", "11.5")] == [10, 11]
 
 
 @given(

@@ -13,10 +13,17 @@ source's method before correcting it:
   ``l2`` swapped in the position column);
 - :func:`jacobian_as_printed`: the 6x2 Jacobian the derivation prints under
   its recipe (column 1 with the lever from the base, column 2 from the
-  elbow, both with the expanded ``H_0^2``'s ``sin q1 cos q2`` and
-  ``cos q1 cos q2`` where ``sin(q1+q2)`` and ``cos(q1+q2)`` belong);
+  elbow, both carrying the expanded ``H_0^2``'s product error: products of
+  single-angle terms where ``sin(q1+q2)`` and ``cos(q1+q2)`` belong); it
+  gives the printed ``[[-9.07, -4.07], [15.70, 7.04]]`` cm at
+  ``q = (30, 45)`` deg, where the right block is
+  ``[[-16.11, -11.11], [11.64, 2.98]]``.  (The vector ``d_0^2`` written under
+  the expanded ``H_0^2`` is wrong as well, with ``l1``, ``l2`` and sine,
+  cosine swapped, e.g. ``l2 cos q1 sin q2 + l1 sin q1``; nothing here
+  reproduces it.)
 - :func:`cpp_fk_tip`: the C++ forward-kinematics program (link lengths read
-  into ``int``, no z-offset in ``H01``, triple-loop matrix product);
+  into ``int``, so 11.5 becomes 11, a 5 mm error; no z-offset in ``H01``, so
+  the 6.5 cm height is dropped; a triple-loop matrix product, which is right);
 - :func:`velocity_program_speed`: the C++ velocity program (angles meant in
   degrees passed to ``cos``/``sin``, 3 deg/s used as 3 rad/s, the linear angle
   functions differentiated by a forward difference, the tip's linear speed
@@ -134,16 +141,18 @@ def jacobian_as_printed(
     that recipe: column 1 does contain the ``l1`` terms (the lever from the
     base, as ``z_0 x (o_2 - o_0)`` needs) and column 2 does not (the lever from
     the elbow, as ``z_1 x (o_2 - o_1)`` needs), but both columns carry the
-    product error of the source's expanded ``H_0^2`` (:func:`h02_as_expanded`),
-    ``sin q1 cos q2`` and ``cos q1 cos q2`` where ``sin(q1 + q2)`` and
-    ``cos(q1 + q2)`` belong::
+    product error of the source's expanded ``H_0^2`` (:func:`h02_as_expanded`):
+    its entries have ``sin q1 cos q2``, ``cos q1 cos q2`` and ``cos q1 sin q2``
+    where ``sin(q1 + q2)`` and ``cos(q1 + q2)`` belong.  This reproduction
+    writes every such entry with the expanded ``H_0^2``'s terms::
 
         column 1 = (-l1 s1 - l2 s1 c2,  l1 c1 + l2 c1 c2)
         column 2 = (        -l2 s1 c2,          l2 c1 c2)
 
-    (This gives the printed numbers at ``q = (30, 45)`` deg, below.  There
-    ``cos q2 = sin q2``, so those numbers alone cannot tell ``cos q1 cos q2``
-    from ``cos q1 sin q2`` in an entry.)
+    which gives the printed numbers at ``q = (30, 45)`` deg, below.  There
+    ``cos q2 = sin q2``, so those numbers cannot tell ``cos q1 cos q2`` from
+    ``cos q1 sin q2`` in an entry; away from ``q2 = 45`` deg the two readings
+    differ, and neither is the right Jacobian there.
 
     In each position column, printed minus right is ``l2 sin q2 (c1, s1)``
     (the dropped ``cos q1 sin q2`` and ``sin q1 sin q2`` terms): a vector along
@@ -352,8 +361,10 @@ def velocity_program_speed(
     differentiates the two angle functions numerically by a **forward**
     difference with ``delta_t = 1e-6`` s; for these linear functions that only
     returns their slopes ``(3, 0)`` (to round-off), which it uses as joint
-    rates in rad/s, although 3 was meant as 3 deg/s.  It evaluates the tip
-    velocity ``(vx, vy) = J(theta) theta_dot`` and prints
+    rates in rad/s, although 3 was meant as 3 deg/s.  From those angles and
+    rates it forms the tip velocity ``(vx, vy)`` (this reproduction does so
+    with the planar Jacobian, ``J(theta) theta_dot``, which gives the printed
+    number) and prints
     ``sqrt(vx^2 + vy^2)``, the tip's **linear** speed in cm/s, as the "end-tip
     angular velocity": 10.8975 (:data:`PRINTED_SPEED_CM_S`), which this
     reproduction gives.  (Its comment "relation for theta2" stands above
