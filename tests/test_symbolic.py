@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 import sympy as sp
 
-from twolink.errors import InputTypeError
 from twolink import symbolic
+from twolink.errors import InputTypeError
 from twolink.symbolic import dh_matrix
 
 
