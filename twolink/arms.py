@@ -6,8 +6,10 @@ The presets are frozen :class:`~twolink.TwoLinkArm` instances: use
 ``two_metre``
     l1 = l2 = 2 m, no joint limits (the wall, spring and line-tracking exercises).
 ``two_metre_limited``
-    The same arm with both absolute link angles limited to [35, 145] deg
-    (the workspace exercise of one source).
+    The same arm with both absolute link angles limited to [35, 145] deg:
+    example limits of the course's choosing, suggested by the angle range of
+    one source's workspace plot (``range(35, 145)`` deg, a plot range; that
+    project states no joint limits).
 ``ten``
     a1 = a2 = 10 (units as in the source; read as metres here) with
     q1 in [0, 90] deg and q2 in [-90, 90] deg (the IK and circle exercises).
