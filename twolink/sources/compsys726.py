@@ -248,14 +248,22 @@ def rate_as_printed(
     Returns
     -------
     numpy.ndarray, shape (...)
-        The printed column's values (rad/s per the unstated velocity).
+        The column as the source computed it (rad/s per the unstated
+        velocity); at the printed angles, the printed column to within 0.16 %.
 
     Examples
     --------
-    >>> rate_as_printed(PRINTED_ANGLES_DEG).round(4)   # the printed column, at the printed angles
+    At the printed angles (the source record finds these within 0.16 % of the
+    printed column, 0.6132 at ``x = 10`` as printed):
+
+    >>> rate_as_printed(PRINTED_ANGLES_DEG).round(4)
     array([0.6132, 0.3781, 0.2734, 0.1884, 0.1957, 0.2007, 0.1364, 0.2022,
            0.1594, 0.0883])
-    >>> rate_as_printed(ik_as_written(X_LINE)).round(4)   # at the unrounded angles: not the printed column
+
+    At the unrounded angles (up to 1.24 % off the printed column; 0.6066 at
+    ``x = 10``):
+
+    >>> rate_as_printed(ik_as_written(X_LINE)).round(4)
     array([0.6066, 0.3734, 0.2697, 0.1881, 0.1954, 0.2007, 0.1358, 0.2022,
            0.1596, 0.088 ])
     """
