@@ -1,11 +1,17 @@
 """MAE 6245 assignment 5, reproduced: inverse kinematics three ways on a1 = a2 = 10.
 
-The assignment solved the IK of the planar 2R arm with a1 = a2 = 10 (no units)
-for the target (10 sqrt 2, 10 sqrt 2) three ways (a closed form, MATLAB's
-``fminunc`` on one equation in q1, and a brute-force grid), checked an answer
-with forward kinematics, and drew the arm on a circle of targets.  This module
-reruns what it did, step by step, so that chapters 2 and 7 (and the tests)
-show its printed numbers coming out of its own formulas:
+The assignment asks for the IK of the planar 2R arm with a1 = a2 = 10 (no
+units) three ways (a closed form, MATLAB's ``fminunc``, and a brute-force
+function over q1 in [0, 90] deg, q2 in [-90, 90] deg), each timed with
+``tic``/``toc`` on a circle of targets.  Its worked solution contains the
+closed form and the ``fminunc`` objective for the target (10 sqrt 2,
+10 sqrt 2), an ``fmincon`` feasibility formulation, a forward-kinematics check,
+a workspace scatter and the circle's points.  It has no brute-force IK
+function, no measured times and no arm drawn on the circle: for the timing it
+says only that the time "would typically be" closed form, numerical, brute
+force "in increasing order".  This module reruns what the solution did, step
+by step, so that chapters 2 and 7 (and the tests) show its printed numbers
+coming out of its own formulas:
 
 - :func:`x_equation_roots`: its closed form, the ``a cos t + b sin t = c``
   solution applied to the x-equation alone; printed "theta1 = +-0.7854,
@@ -51,7 +57,7 @@ __all__ = [
 #: The assignment's link lengths (no units; the course reads them as metres).
 A1 = 10.0
 A2 = 10.0
-#: The assignment's IK target, at full stretch: (10 sqrt 2, 10 sqrt 2).
+#: The IK target of the assignment and its solution, at full stretch: (10 sqrt 2, 10 sqrt 2).
 TARGET = (10.0 * np.sqrt(2.0), 10.0 * np.sqrt(2.0))
 #: Where its ``fminunc`` run started, rad.
 Q1_START = 0.4
@@ -74,7 +80,7 @@ def _check_acos(acos: str) -> Callable[[Any], Any]:
 def x_equation_roots(
     p: ArrayLike, theta2: float, a1: float = A1, a2: float = A2
 ) -> NDArray[np.float64]:
-    """Both roots of the assignment's closed form: the x-equation solved for theta1.
+    """Both roots of the solution's closed form: the x-equation solved for theta1.
 
     With theta2 known, ``x = (a1 + a2 cos theta2) cos theta1 - a2 sin theta2 sin theta1``
     has the form ``a cos t + b sin t = c`` (``a = a1 + a2 c2``, ``b = -a2 s2``,
@@ -89,7 +95,7 @@ def x_equation_roots(
     p : pair of float
         The target (x, y); only x enters.
     theta2 : float
-        The elbow angle, radians (the assignment used theta2 = 0 for its target).
+        The elbow angle, radians (its solution printed theta2 = 0 for its target).
     a1, a2 : float
         Link lengths.
 
@@ -100,7 +106,7 @@ def x_equation_roots(
 
     Examples
     --------
-    The assignment's printed "theta1 = +-0.7854" for its target:
+    The solution's printed "theta1 = +-0.7854" for its target:
 
     >>> roots = x_equation_roots(TARGET, theta2=0.0)
     >>> roots.round(4)
@@ -131,7 +137,7 @@ def y_residual(
     a1: float = A1,
     a2: float = A2,
 ) -> NDArray[np.float64] | np.float64:
-    """The assignment's objective: ``abs(a1 sin q1 + a2 sin(acos((x - a1 cos q1)/a2)) - y)``.
+    """The solution's objective: ``abs(a1 sin q1 + a2 sin(acos((x - a1 cos q1)/a2)) - y)``.
 
     q1 + q2 is taken from ``acos`` of the x-equation and put into the
     y-equation; the absolute value (not a square) of what is left is the
@@ -179,7 +185,7 @@ def y_residual(
 
 @dataclass(frozen=True)
 class NumericalRun:
-    """One run of the assignment's numerical IK (see :func:`numerical_ik`).
+    """One run of the solution's numerical IK (see :func:`numerical_ik`).
 
     Attributes
     ----------
@@ -219,7 +225,7 @@ def numerical_ik(
     a1: float = A1,
     a2: float = A2,
 ) -> NumericalRun:
-    """The assignment's numerical IK, translated: minimise :func:`y_residual` over q1, then q2.
+    """The solution's numerical IK, translated: minimise :func:`y_residual` over q1, then q2.
 
     MATLAB's ``fminunc`` (a quasi-Newton method) becomes scipy's BFGS from the
     same start; then ``q2 = acos((x - a1 cos q1)/a2) - q1``.
@@ -229,7 +235,7 @@ def numerical_ik(
     p : pair of float
         The target (x, y).
     q1_start : float
-        Start of the minimisation, radians (the assignment's 0.4).
+        Start of the minimisation, radians (the solution's 0.4).
     acos : {"matlab", "numpy"}
         Which ``acos`` the translation uses (see :func:`y_residual`).
     a1, a2 : float
@@ -241,7 +247,7 @@ def numerical_ik(
 
     Examples
     --------
-    With MATLAB's ``acos`` the method reaches the assignment's printed 0.7854, 0:
+    With MATLAB's ``acos`` the method reaches the solution's printed 0.7854, 0:
 
     >>> run = numerical_ik(acos="matlab")
     >>> round(float(run.q[0]), 4), bool(abs(run.q[1]) < 1e-6), run.success
@@ -286,7 +292,7 @@ def numerical_ik(
 def fk_check(
     theta1: float = FK_CHECK_THETA1, theta2: float = 0.0, a1: float = A1, a2: float = A2
 ) -> NDArray[np.float64]:
-    """The assignment's FK check: ``x = a1 cos t1 + a2 cos(t1 + t2)``, ``y`` likewise.
+    """The solution's FK check: ``x = a1 cos t1 + a2 cos(t1 + t2)``, ``y`` likewise.
 
     It was typed with theta1 = 0.7845 instead of the 0.7854 its IK had printed.
 
@@ -318,7 +324,7 @@ def fk_check(
 
 
 def circle_angles(step: float = CIRCLE_STEP) -> NDArray[np.float64]:
-    """The assignment's circle parameter ``phi = 0:step:2*pi`` (MATLAB's colon operator).
+    """The solution's circle parameter ``phi = 0:step:2*pi`` (MATLAB's colon operator).
 
     The colon operator stops at the last multiple of the step not beyond
     2 pi, so with step 0.5 there are 13 angles, 0 to 6, and the gap from the
