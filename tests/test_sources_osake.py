@@ -94,55 +94,49 @@ def right_jacobian_cm(q):
 
 
 @given(q=configurations())
-def test_printed_jacobian_misses_l2_sin_q2_along_link_1_in_both_columns(q):
+def test_printed_jacobian_has_the_expanded_products_where_the_angle_sums_belong(q):
+    # right: l2 (-s12, c12) in both columns, plus the l1 lever in column 1; printed:
+    # s12 -> s1 c2 in both v_x entries, c12 -> c1 c2 in column 1, c1 s2 in column 2
     J_printed, J_right = osake.jacobian_as_printed(q), right_jacobian_cm(q)
-    # -l2 s12 -> -l2 s1 c2 drops -l2 c1 s2; l2 c12 -> l2 c1 c2 drops -l2 s1 s2: printed - right = l2 s2 (c1, s1)
-    error_along_link_1 = (
-        osake.L2_CM * np.sin(q[1]) * np.array([np.cos(q[0]), np.sin(q[0])])
-    )
-    for column in range(2):
-        assert np.allclose(
-            J_printed[:2, column] - J_right[:2, column], error_along_link_1, atol=1e-12
-        )
-        assert np.isclose(
-            np.linalg.norm(J_printed[:2, column] - J_right[:2, column]),
-            osake.L2_CM * abs(np.sin(q[1])),
-            atol=1e-12,
-        )
+    (c1, c2), (s1, s2) = np.cos(q), np.sin(q)
+    l2 = osake.L2_CM
     assert np.allclose(
-        J_printed[2:], J_right[2:], atol=0.0
-    )  # v_z = 0, omega = (0, 0, 1): as in the right Jacobian
-
-
-@given(q1=angles, stretched=st.booleans())
-def test_printed_jacobian_is_right_where_the_product_error_vanishes(q1, stretched):
-    q = [
-        q1,
-        0.0 if stretched else np.pi,
-    ]  # sin q2 = 0: cos q1 cos q2 = cos(q1 + q2), sin q1 cos q2 = sin(q1 + q2)
-    assert np.allclose(osake.jacobian_as_printed(q), right_jacobian_cm(q), atol=1e-12)
-
-
-@given(q=configurations())
-def test_printed_jacobian_is_wrong_wherever_the_elbow_is_bent(q):
-    assume(0.05 < abs(q[1]) < np.pi - 0.05)
-    errors_cm = np.linalg.norm(
-        osake.jacobian_as_printed(q)[:2] - right_jacobian_cm(q)[:2], axis=0
-    )
-    assert np.all(errors_cm > osake.L2_CM * np.sin(0.05) * 0.99)
-
-
-@given(q=configurations())
-def test_printed_jacobian_columns_differ_by_the_l1_lever(q):
-    # what the source got right: column 1 has the lever from the base, column 2 the one from the elbow
-    J_printed = osake.jacobian_as_printed(q)
-    lever_l1 = osake.L1_CM * np.array([-np.sin(q[0]), np.cos(q[0])])
-    assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], lever_l1, atol=1e-12)
-    assert np.allclose(
-        J_printed[:2, 0] - J_printed[:2, 1],
-        right_jacobian_cm(q)[:2, 0] - right_jacobian_cm(q)[:2, 1],
+        J_printed[:2] - J_right[:2],
+        l2
+        * np.array(
+            [
+                [np.sin(q.sum()) - s1 * c2] * 2,
+                [c1 * c2 - np.cos(q.sum()), c1 * s2 - np.cos(q.sum())],
+            ]
+        ),
         atol=1e-12,
     )
+    assert np.allclose(
+        J_printed[2:], J_right[2:], atol=0.0
+    )  # v_z = 0, omega = (0, 0, 1)
+
+
+@given(q=configurations())
+def test_printed_jacobian_is_not_singular_everywhere(q):
+    (c1, c2), (s1, s2) = np.cos(q), np.sin(q)
+    det = np.linalg.det(osake.jacobian_as_printed(q)[:2])
+    expected = osake.L2_CM * s1 * c1 * (c2 - s2) * (osake.L1_CM + osake.L2_CM * c2)
+    assert np.isclose(det, expected, atol=1e-9)
+    assert (
+        abs(np.linalg.det(osake.jacobian_as_printed(np.radians([30.0, 60.0]))[:2])) > 20
+    )
+
+
+@given(q1=angles, branch=st.sampled_from([np.pi / 4, -3 * np.pi / 4]))
+def test_printed_jacobian_columns_differ_by_the_l1_lever_where_cos_q2_is_sin_q2(
+    q1, branch
+):
+    # what the source got right, as far as its printed pose shows: column 1 has the
+    # lever from the base, column 2 the one from the elbow
+    q = np.array([q1, branch])
+    J_printed = osake.jacobian_as_printed(q)
+    lever_l1 = osake.L1_CM * np.array([-np.sin(q1), np.cos(q1)])
+    assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], lever_l1, atol=1e-12)
 
 
 def test_printed_jacobian_at_30_45_degrees():

@@ -144,21 +144,24 @@ def jacobian_as_printed(
     product error of the source's expanded ``H_0^2`` (:func:`h02_as_expanded`):
     its entries have ``sin q1 cos q2``, ``cos q1 cos q2`` and ``cos q1 sin q2``
     where ``sin(q1 + q2)`` and ``cos(q1 + q2)`` belong.  This reproduction
-    writes every such entry with the expanded ``H_0^2``'s terms::
+    reads them as::
 
         column 1 = (-l1 s1 - l2 s1 c2,  l1 c1 + l2 c1 c2)
-        column 2 = (        -l2 s1 c2,          l2 c1 c2)
+        column 2 = (        -l2 s1 c2,          l2 c1 s2)
 
     which gives the printed numbers at ``q = (30, 45)`` deg, below.  There
-    ``cos q2 = sin q2``, so those numbers cannot tell ``cos q1 cos q2`` from
-    ``cos q1 sin q2`` in an entry; away from ``q2 = 45`` deg the two readings
-    differ, and neither is the right Jacobian there.
+    ``cos q2 = sin q2``, so those numbers cannot tell which ``v_y`` entry has
+    ``cos q1 cos q2`` and which ``cos q1 sin q2``; either reading gives them,
+    and neither is the right Jacobian away from ``q2 = 0``.
 
-    In each position column, printed minus right is ``l2 sin q2 (c1, s1)``
-    (the dropped ``cos q1 sin q2`` and ``sin q1 sin q2`` terms): a vector along
-    link 1 of length ``l2 |sin q2|``, zero only where ``sin q2 = 0`` (arm
-    stretched or folded).  Column 1 minus column 2 is the ``l1`` lever
-    ``(-l1 s1, l1 c1)``, as it should be.
+    The printed matrix is not singular everywhere: in this reading its
+    determinant is ``l2 s1 c1 (c2 - s2) (l1 + l2 c2)``, zero only where one
+    of those factors is (at ``q = (30, 45)`` deg, where ``c2 = s2``, it is;
+    at ``q = (30, 60)`` deg it is not).  Nor are its two columns equal: at
+    ``q = (30, 45)`` deg both position columns miss the right ones by the
+    same vector, ``l2 sin q2 (c1, s1)`` along link 1 (the dropped ``cos q1
+    sin q2`` and ``sin q1 sin q2`` terms), so their difference is the
+    ``l1`` lever ``(-l1 s1, l1 c1)``, as it should be.
 
     Rows: the ``v_x`` and ``v_y`` rows are the reproduction of the printed
     matrix (they give its printed numbers, below); the ``v_z`` row (0) and
@@ -194,17 +197,23 @@ def jacobian_as_printed(
     (array([0., 0., 0., 1.]), (6, 2))
     >>> bool(np.allclose(J[:2, 0] - J[:2, 1], [-L1_CM * np.sin(np.pi / 6), L1_CM * np.cos(np.pi / 6)]))
     True
+
+    Not singular everywhere (at ``q2 = 45`` deg it is):
+
+    >>> [round(float(np.linalg.det(jacobian_as_printed(np.radians(q))[:2])), 2) for q in ([30.0, 45.0], [30.0, 60.0])]
+    [0.0, -28.71]
     """
     q = as_pairs(q, "q (rad)")
     l1, l2 = _lengths(l1, l2)
-    c1, s1, c2 = np.cos(q[..., 0]), np.sin(q[..., 0]), np.cos(q[..., 1])
+    c1, s1 = np.cos(q[..., 0]), np.sin(q[..., 0])
+    c2, s2 = np.cos(q[..., 1]), np.sin(q[..., 1])
     J = np.zeros(q.shape[:-1] + (6, 2))
-    J[..., 0, 1], J[..., 1, 1] = (
-        -l2 * s1 * c2,
-        l2 * c1 * c2,
-    )  # l2 (-s12, c12) with s12 -> s1 c2, c12 -> c1 c2
-    J[..., 0, 0] = -l1 * s1 + J[..., 0, 1]  # plus the l1 lever from the base
-    J[..., 1, 0] = l1 * c1 + J[..., 1, 1]
+    # l2 (-s12, c12) with the products of the expanded H_0^2 in their place,
+    # plus, in column 1, the l1 lever from the base
+    J[..., 0, 0] = -l1 * s1 - l2 * s1 * c2
+    J[..., 1, 0] = l1 * c1 + l2 * c1 * c2
+    J[..., 0, 1] = -l2 * s1 * c2
+    J[..., 1, 1] = l2 * c1 * s2
     J[..., 5, :] = 1.0
     return J
 
