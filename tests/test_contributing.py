@@ -10,7 +10,7 @@ import pytest
 
 from twolink import _validate as validate
 from twolink import arms, budgets, ik
-from twolink.exercises import ch1, registry
+from twolink.exercises import ch1, judging, registry, spec
 from twolink.ik import result, targets
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -28,6 +28,8 @@ def _section(title: str) -> str:
     [
         (registry, ["reference", "Wrong", "numbers", "scalar", "boolean", "matches"]),
         (registry, ["close", "angles_close", "register", "Part"]),
+        (spec, ["ExerciseSpec", "PartSpec", "Mistake", "Tolerance"]),
+        (judging, ["judge"]),
         (targets, ["reachable_targets"]),
         (result, ["assemble_result", "one_answer_result", "IKResult"]),
         (validate, ["as_finite_scalar", "as_count", "as_flag"]),

@@ -340,10 +340,16 @@ def draw_free_bodies(
             markerfacecolor=figure_style.BACKGROUND,
         )
         extent = list(ends)
-        for name, point, force in forces:
+        along_link = _unit(ends[1] - ends[0])
+        across = np.array([-along_link[1], along_link[0]])  # the link's left normal
+        for number, (name, point, force) in enumerate(forces):
             drawn.append(draw_force(point, force, scale, ax=ax))
             head = point + scale * force
-            label_at = head + 0.25 * length * _unit(force)
+            # beside the arrow's middle, on one side of the link, the sides
+            # alternating: two forces on one line (a link pushed along its length)
+            # keep their labels apart
+            side = 1.0 if number % 2 == 0 else -1.0
+            label_at = (point + head) / 2 + side * 0.4 * length * across
             extent += [head, label_at]
             drawn.append(
                 _label(
@@ -353,9 +359,10 @@ def draw_free_bodies(
                     figure_style.FORCE.color,
                 )
             )
-        for name, point, tau in torques:
+        for number, (name, point, tau) in enumerate(torques):
             drawn.append(draw_torque(point, tau, radius, ax=ax, zero_tol=zero_tol))
-            label_at = point + np.array([0.0, -1.9 * radius])
+            # the first torque's label below its joint, the second's above
+            label_at = point + np.array([0.0, (-1.9 if number == 0 else 1.9) * radius])
             extent.append(label_at)
             drawn.append(
                 _label(

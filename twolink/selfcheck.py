@@ -12,10 +12,12 @@ exercises), or ``wrong:`` with the reason and the hint.
 
 from __future__ import annotations
 
+import collections
 import re
 from typing import NamedTuple
 
 from . import exercises
+from .exercises import judging, spec
 
 __all__ = ["check", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
 
@@ -108,6 +110,15 @@ convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with si
                 NOT_SOLVED,
                 f"{label}: {NOT_SOLVED} (replace the ... in {part.name} with your answer).",
             )
+        elif isinstance(part, spec.PartSpec):
+            verdict = judging.judge(part, solved[part.name])
+            if verdict.right:
+                status, line = CORRECT, f"{label}: {CORRECT}."
+            else:
+                status = WRONG
+                line = (
+                    f"{label}: {WRONG}: {verdict.message}.{_hint(entry.number, part)}"
+                )
         else:
             siblings = {
                 name: value for name, value in solved.items() if name != part.name
@@ -125,6 +136,19 @@ convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with si
         print(line)
         results.append(PartResult(entry.number, part.label, status, line))
     return CheckReport(results)
+
+
+#: Wrong tries so far, per (exercise, part): the hint's tier follows it.
+_WRONG_TRIES: collections.Counter[tuple[str, str]] = collections.Counter()
+
+
+def _hint(number: str, part: spec.PartSpec) -> str:
+    """The next hint for a wrong try of ``part``: the first try a nudge, later ones more specific."""
+    if not part.hints:
+        return ""
+    _WRONG_TRIES[number, part.name] += 1
+    tier = min(_WRONG_TRIES[number, part.name], len(part.hints))
+    return f" Hint {tier} of {len(part.hints)}: {part.hints[tier - 1]}"
 
 
 def parse_line(line: str) -> tuple[str, str, str] | None:

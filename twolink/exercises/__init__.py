@@ -1,8 +1,10 @@
-"""The course's exercises: each part's expected value, tolerance, comparison and hint.
+"""The course's exercises: each part's expected value, tolerance, typical mistakes and hints.
 
-One module per chapter (``ch1`` ... ``ch7``) registers its exercises; the
-expected values are computed by the package from each exercise's data, on
-first use, so a notebook's check cell holds no reference at all:
+Exercises are specified in the repository's ``answers/`` folder and shipped
+encoded in :mod:`twolink.exercises.store` (decoded by
+:mod:`twolink.exercises.stored`, judged by :mod:`twolink.exercises.judging`).
+Chapters not yet moved there register judges in a module of their own
+(``ch1`` ... ``ch7``).  Either way a notebook's check cell holds no reference:
 ``selfcheck.check("2.1", q_elbow_up, up_within_limits)``.
 
 >>> from twolink import exercises
@@ -12,27 +14,31 @@ first use, so a notebook's check cell holds no reference at all:
 21
 """
 
-from . import ch1, ch2, ch3, ch4, ch5, ch6, ch7  # noqa: F401  (each registers its chapter's exercises)
+from . import ch1, ch2, ch3, ch5, ch6, ch7, spec, stored  # noqa: F401  (each registers its chapter's exercises)
 from .registry import REGISTRY, Exercise, Part, Wrong, is_unsolved
 
 __all__ = ["Exercise", "Part", "Wrong", "get", "all_exercises", "is_unsolved"]
 
 
-def get(number: str) -> Exercise:
+def _key(number: str) -> tuple[int, ...]:
+    return tuple(int(x) for x in number.split("."))
+
+
+def get(number: str) -> Exercise | spec.ExerciseSpec:
     """The exercise numbered ``number`` (e.g. ``"2.1"``); a clear error for an unknown number."""
     key = str(number).removeprefix("Exercise").strip()
+    specification = stored.specification(key)
+    if specification is not None:
+        return specification
     if key not in REGISTRY:
-        raise KeyError(
-            f"no exercise {number!r}; the exercises are {', '.join(REGISTRY)}"
-        )
+        known = sorted({*REGISTRY, *stored.exercise_numbers()}, key=_key)
+        raise KeyError(f"no exercise {number!r}; the exercises are {', '.join(known)}")
     return REGISTRY[key]
 
 
-def all_exercises() -> list[Exercise]:
-    """Every registered exercise, in chapter order."""
+def all_exercises() -> list[Exercise | spec.ExerciseSpec]:
+    """Every exercise, in chapter order."""
     return [
-        REGISTRY[number]
-        for number in sorted(
-            REGISTRY, key=lambda n: tuple(int(x) for x in n.split("."))
-        )
+        get(number)
+        for number in sorted({*REGISTRY, *stored.exercise_numbers()}, key=_key)
     ]

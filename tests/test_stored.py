@@ -1,0 +1,130 @@
+"""The shipped exercise store: current with answers/, and every stored part judged fairly.
+
+For every part of every stored exercise: the right value passes in each
+equivalent form; each registered typical mistake gets its own diagnosis,
+differs from the right answer and from the other mistakes by more than the
+tolerance (the exercise's data can tell them apart); the hints come in at
+least two tiers and none states the answer's value.
+"""
+
+import math
+import pathlib
+import re
+import sys
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from twolink.exercises import judging, stored
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "tools"))
+import build_answers  # noqa: E402
+
+PARTS = [
+    (number, part)
+    for number in stored.exercise_numbers()
+    for part in stored.specification(number).parts
+]
+IDS = [f"{number}-{part.name}" for number, part in PARTS]
+
+
+def test_the_store_holds_what_answers_computes():
+    assert build_answers.current(), "run python tools/build_answers.py"
+
+
+def test_no_module_of_the_package_holds_a_readable_reference():
+    # the store is encoded: the expected values do not appear as text in the package
+    text = "\n".join(
+        path.read_text(encoding="utf-8") for path in (ROOT / "twolink").rglob("*.py")
+    )
+    for _, part in PARTS:
+        if part.kind in ("number", "vector", "matrix", "angles"):
+            for value in np.ravel(part.expected):
+                assert f"{value:.6g}" not in text or abs(value) < 10, (part.name, value)
+
+
+def equivalent_forms(part):
+    expected = part.expected
+    if part.kind == "number":
+        forms = [
+            expected,
+            np.float64(expected),
+            np.array([expected]),
+            sp.Float(expected),
+        ]
+    elif part.kind in ("vector", "matrix", "angles"):
+        array = np.array(expected)
+        forms = [
+            array,
+            array.tolist(),
+            tuple(map(tuple, array)) if array.ndim == 2 else tuple(array),
+            sp.Matrix(array),
+        ]
+        if part.kind == "angles":
+            forms.append(
+                array + 2 * np.pi * np.array([1, -2])[: array.size].reshape(array.shape)
+            )
+    elif part.kind == "bool":
+        forms = [expected, np.bool_(expected)]
+    else:
+        forms = [expected, f"  {expected}\n"] if part.kind == "text" else []
+    if part.tolerance.significant and part.kind == "number":
+        digits = part.tolerance.significant
+        forms.append(float(f"{expected:.{digits}g}"))
+    return forms
+
+
+@pytest.mark.parametrize("number, part", PARTS, ids=IDS)
+def test_the_right_answer_passes_in_every_equivalent_form(number, part):
+    for form in equivalent_forms(part):
+        verdict = judging.judge(part, form)
+        assert verdict.right, (
+            f"{number} {part.name}: {type(form).__name__} refused: {verdict.message}"
+        )
+
+
+@pytest.mark.parametrize("number, part", PARTS, ids=IDS)
+def test_each_typical_mistake_is_told_apart_and_named(number, part):
+    for index, mistake in enumerate(part.mistakes):
+        verdict = judging.judge(part, mistake.value)
+        assert not verdict.right, (
+            f"{number} {part.name}: the mistake {mistake.diagnosis!r} equals the right answer "
+            "within the tolerance: change the exercise's data"
+        )
+        assert verdict.message == mistake.diagnosis, (
+            f"{number} {part.name}: the mistake {mistake.diagnosis!r} is diagnosed as "
+            f"{verdict.message!r} (an earlier mistake gives the same value on this data)"
+        )
+        del index
+
+
+def value_texts(value):
+    """How a value could be written in a hint: 3 to 6 significant digits, degrees too."""
+    texts = set()
+    for number in np.ravel(value):
+        if (
+            not isinstance(number, (int, float))
+            or number == 0
+            or math.isclose(abs(number), 1.0)
+        ):
+            continue
+        for candidate in (number, math.degrees(number)):
+            for digits in (3, 4, 5, 6):
+                texts.add(f"{candidate:.{digits}g}")
+    return {text for text in texts if len(text.strip("-0.")) >= 2}
+
+
+@pytest.mark.parametrize("number, part", PARTS, ids=IDS)
+def test_hints_come_in_tiers_and_never_state_the_value(number, part):
+    assert len(part.hints) >= 2, (
+        f"{number} {part.name}: at least a nudge and a more specific hint"
+    )
+    assert len(set(part.hints)) == len(part.hints)
+    for hint in part.hints:
+        numbers_in_hint = set(re.findall(r"-?\d+(?:\.\d+)?", hint))
+        leaked = numbers_in_hint & value_texts(part.expected)
+        assert not leaked, (
+            f"{number} {part.name}: a hint states the value: {leaked} in {hint!r}"
+        )

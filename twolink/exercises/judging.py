@@ -1,0 +1,324 @@
+"""Judging one answer against its part's specification: right, a named mistake, or the size of the miss.
+
+:func:`judge` reads the learner's value as the part's kind asks (any
+equivalent form: a list, a tuple, an array, numpy or sympy numbers; angles up
+to whole turns), compares it with the expected value within the part's
+tolerance, then with each typical mistake the part registers (the first that
+matches gives its diagnosis in words), and otherwise says which quantity
+misses, in which direction and by how much, in the part's unit.  It never
+prints a bare tolerance.
+
+Examples
+--------
+>>> from twolink.exercises.spec import Mistake, PartSpec
+>>> part = PartSpec("tau", "torques", "vector", expected=[10.0, -4.0], shape=(2,),
+...             unit="N m", components=("tau1", "tau2"),
+...             mistakes=(Mistake([-10.0, 4.0], "the sign is reversed"),))
+>>> judge(part, (10.0, -4.0))
+Verdict(right=True, message='')
+>>> judge(part, [-10, 4]).message
+'the sign is reversed'
+>>> judge(part, [12.5, -4.0]).message
+'tau1 is 2.5 N m too large'
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import numbers as abstract_numbers
+from collections.abc import Callable, Mapping, Sequence
+from typing import Any, NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..arm import TwoLinkArm
+from ..conventions import wrap_angle
+from ..display import significant
+from .spec import Case, PartSpec
+
+__all__ = ["Verdict", "Unusable", "judge", "judge_function", "read_answer"]
+
+
+class Verdict(NamedTuple):
+    """Whether an answer is right, and if not, what is wrong with it, in words."""
+
+    right: bool
+    message: str
+
+
+class Unusable(Exception):
+    """An answer of the wrong type or shape: the message says what was expected."""
+
+
+_KIND_WORDS = {
+    "number": "one number",
+    "vector": "numbers",
+    "matrix": "a matrix of numbers",
+    "angles": "angles in radians",
+}
+
+
+def _in_unit(part: PartSpec) -> str:
+    return f" in {part.unit}" if part.unit else ""
+
+
+def _float(value: Any, part: PartSpec) -> float:
+    """One element as a float: Python, numpy and sympy real numbers; nothing else."""
+    if isinstance(value, (bool, np.bool_)):
+        raise Unusable(f"expected a number{_in_unit(part)}, got {value!r} (a bool)")
+    if isinstance(value, abstract_numbers.Real):
+        return float(value)
+    if isinstance(value, abstract_numbers.Complex) or np.iscomplexobj(value):
+        number = complex(value)
+        if abs(number.imag) > 1e-9 * max(1.0, abs(number.real)):
+            raise Unusable("expected real numbers, got a complex one")
+        return number.real
+    if getattr(value, "is_number", False):  # a sympy number: sqrt(2), pi/4, Float
+        try:
+            number = complex(value)
+        except (TypeError, ValueError):
+            raise Unusable(f"could not evaluate {value} to a number") from None
+        if abs(number.imag) > 1e-9 * max(1.0, abs(number.real)):
+            raise Unusable(f"expected real numbers, got {value} (complex)")
+        return number.real
+    if getattr(value, "free_symbols", None):
+        names = ", ".join(sorted(str(s) for s in value.free_symbols))
+        raise Unusable(
+            f"expected a number{_in_unit(part)}, got an expression in {names}: "
+            "substitute the values (.subs) first"
+        )
+    raise Unusable(
+        f"expected {_KIND_WORDS.get(part.kind, 'numbers')}{_in_unit(part)}, "
+        f"got a {type(value).__name__}"
+    )
+
+
+def _array(answer: Any, part: PartSpec) -> NDArray[np.float64]:
+    """The answer as a float array of the part's shape (size-one axes may differ)."""
+    if isinstance(answer, (str, bytes, Mapping, set)) or callable(answer):
+        raise Unusable(
+            f"expected {_KIND_WORDS.get(part.kind, 'numbers')}{_in_unit(part)}, "
+            f"got a {type(answer).__name__}"
+        )
+    if hasattr(answer, "tolist") and not isinstance(answer, np.ndarray):
+        answer = answer.tolist()  # a sympy Matrix
+    try:
+        raw = np.array(answer, dtype=object)
+    except Exception as error:  # ragged lists and the like
+        raise Unusable(
+            f"could not read your numbers ({type(error).__name__})"
+        ) from None
+    if any(isinstance(v, (list, tuple, np.ndarray)) for v in raw.ravel()):
+        raise Unusable("could not read your numbers: its rows have different lengths")
+    values = np.array([_float(v, part) for v in raw.ravel()], dtype=float).reshape(
+        raw.shape
+    )
+    shape = tuple(part.shape)
+    if values.shape != shape:
+        if values.size == math.prod(shape) and values.squeeze().shape == tuple(
+            n for n in shape if n != 1
+        ):
+            values = values.reshape(shape)
+        else:
+            count = math.prod(shape)
+            raise Unusable(
+                f"expected {count} number{'s' if count != 1 else ''} (shape {shape})"
+                f"{_in_unit(part)}, got shape {values.shape}"
+            )
+    if not np.all(np.isfinite(values)):
+        raise Unusable("your answer contains nan or inf")
+    return values
+
+
+def read_answer(part: PartSpec, answer: Any) -> Any:
+    """The answer in the form the part compares: a float, a float array, a bool or a str.
+
+    Raises :class:`Unusable` with what was expected.
+
+    >>> from twolink.exercises.spec import PartSpec
+    >>> read_answer(PartSpec("ok", "reachable", "bool", expected=True), 0)
+    Traceback (most recent call last):
+    ...
+    twolink.exercises.judging.Unusable: a yes/no answer is True or False; got 0 (a int)
+    """
+    if part.kind == "bool":
+        if isinstance(answer, (bool, np.bool_)):
+            return bool(answer)
+        if (
+            isinstance(answer, np.ndarray)
+            and answer.shape == ()
+            and answer.dtype == bool
+        ):
+            return bool(answer)
+        raise Unusable(
+            f"a yes/no answer is True or False; got {answer!r} (a {type(answer).__name__})"
+        )
+    if part.kind == "text":
+        if not isinstance(answer, str):
+            raise Unusable(f"expected a str, got a {type(answer).__name__}")
+        return answer.strip()
+    if part.kind == "number":
+        if isinstance(answer, (list, tuple, np.ndarray)) or hasattr(answer, "tolist"):
+            return float(_array(answer, dataclasses.replace(part, shape=())))
+        return _float(answer, part)
+    return _array(answer, part)
+
+
+def _misses(part: PartSpec, value: Any, target: Any) -> NDArray[np.float64] | bool:
+    """``value - target`` where it exceeds the tolerance (0 elsewhere), or whether bool/text differ."""
+    if part.kind in ("bool", "text"):
+        return bool(value != target)
+    expected = np.asarray(target, dtype=float)
+    difference = np.asarray(value, dtype=float) - expected
+    if part.kind == "angles":
+        difference = wrap_angle(difference)
+    allowed = np.vectorize(part.tolerance.allowed, otypes=[float])(expected)
+    return np.where(np.abs(difference) > allowed, difference, 0.0)
+
+
+def _matches(part: PartSpec, value: Any, target: Any) -> bool:
+    miss = _misses(part, value, target)
+    return not miss if isinstance(miss, bool) else not np.any(miss)
+
+
+def _size(part: PartSpec, amount: float) -> str:
+    """A miss's size in the part's unit (angles in degrees), to two significant digits."""
+    if part.kind == "angles" or part.unit == "rad":
+        return significant(math.degrees(abs(amount)), 2, "°")
+    if part.unit == "m" and abs(amount) < 0.1:
+        return significant(100 * abs(amount), 2, "cm")
+    return significant(abs(amount), 2, part.unit)
+
+
+def _name(part: PartSpec, index: tuple[int, ...]) -> str:
+    if part.components and len(index) == 1 and index[0] < len(part.components):
+        return part.components[index[0]]
+    if len(index) == 2:
+        return f"entry (row {index[0] + 1}, column {index[1] + 1}) of your {part.label}"
+    return (
+        f"entry {index[0] + 1} of your {part.label}" if index else f"your {part.label}"
+    )
+
+
+def _describe_miss(part: PartSpec, miss: NDArray[np.float64] | bool) -> str:
+    if isinstance(miss, bool):
+        return f"this is not the {part.label} asked for"
+    if part.components == ("x", "y") and part.unit == "m" and miss.shape == (2,):
+        across = (
+            ("to the right of" if miss[0] > 0 else "to the left of") if miss[0] else ""
+        )
+        up = ("above" if miss[1] > 0 else "below") if miss[1] else ""
+        parts = [
+            f"{_size(part, m)} {where}" for m, where in zip(miss, (across, up)) if m
+        ]
+        return (
+            f"your {part.label} is {_size(part, float(np.hypot(*miss)))} from the right "
+            f"point: {' and '.join(parts)} it"
+        )
+    if miss.ndim == 0:
+        return f"your {part.label} is {_size(part, float(miss))} too {'large' if miss > 0 else 'small'}"
+    wrong = [index for index in np.ndindex(miss.shape) if miss[index]]
+    said = [
+        f"{_name(part, index)} is {_size(part, float(miss[index]))} too "
+        f"{'large' if miss[index] > 0 else 'small'}"
+        for index in wrong[:3]
+    ]
+    more = f" ({len(wrong) - 3} more entries miss)" if len(wrong) > 3 else ""
+    return ", ".join(said[:-1]) + (" and " if len(said) > 1 else "") + said[-1] + more
+
+
+def judge(part: PartSpec, answer: Any) -> Verdict:
+    """Judge ``answer`` for ``part``: right, a typical mistake named, or the miss described.
+
+    For a ``"function"`` part, see :func:`judge_function` (called with the
+    part's visible cases).
+    """
+    if part.kind == "function":
+        if not callable(answer):
+            return Verdict(
+                False, f"expected a function (def ...), got a {type(answer).__name__}"
+            )
+        return judge_function(part, answer, part.cases)
+    try:
+        value = read_answer(part, answer)
+    except Unusable as error:
+        return Verdict(False, str(error))
+    if _matches(part, value, part.expected):
+        return Verdict(True, "")
+    for mistake in part.mistakes:
+        if _matches(part, value, mistake.value):
+            return Verdict(False, mistake.diagnosis)
+    return Verdict(False, _describe_miss(part, _misses(part, value, part.expected)))
+
+
+def _arguments(case: Case, make_arm: Callable[..., Any]) -> dict[str, Any]:
+    arguments = {}
+    for name, value in case.arguments.items():
+        if isinstance(value, Mapping) and set(value) == {"arm"}:
+            arguments[name] = make_arm(**value["arm"])
+        elif isinstance(value, list):
+            arguments[name] = np.array(value, dtype=float)
+        else:
+            arguments[name] = value
+    return arguments
+
+
+def _shown(arguments: Mapping[str, Any]) -> str:
+    def text(value: Any) -> str:
+        if hasattr(value, "l1") and hasattr(value, "l2"):
+            return f"TwoLinkArm(l1={value.l1:g}, l2={value.l2:g})"
+        if isinstance(value, np.ndarray):
+            return "[" + ", ".join(f"{v:.6g}" for v in value.ravel()) + "]"
+        return repr(value)
+
+    return ", ".join(f"{name}={text(value)}" for name, value in arguments.items())
+
+
+def judge_function(
+    part: PartSpec, function: Callable[..., Any], cases: Sequence[Case]
+) -> Verdict:
+    """Call ``function`` on each case and judge what it returns as ``part.output``.
+
+    A typical mistake of a function part is recognised when the function
+    returns the mistake's value on every case; otherwise the first case
+    that misses is shown with the miss described.
+    """
+    if part.output is None:
+        raise ValueError(
+            f"part {part.name!r} is not a function part (it has no output)"
+        )
+    returned = []
+    first_miss: str | None = None
+    for case in cases:
+        arguments = _arguments(case, TwoLinkArm)
+        try:
+            result = function(**arguments)
+        except Exception as error:  # the learner's function may raise anything
+            return Verdict(
+                False,
+                f"your function raised {type(error).__name__}: {error} "
+                f"when called with {_shown(arguments)}",
+            )
+        try:
+            value = read_answer(part.output, result)
+        except Unusable as error:
+            return Verdict(
+                False, f"called with {_shown(arguments)}, it returned: {error}"
+            )
+        returned.append(value)
+        if first_miss is None and not _matches(part.output, value, case.expected):
+            miss = _describe_miss(
+                part.output, _misses(part.output, value, case.expected)
+            )
+            first_miss = f"called with {_shown(arguments)}, {miss}"
+    if first_miss is None:
+        return Verdict(True, "")
+    for mistake in part.mistakes:
+        if len(mistake.value) == len(returned) and all(
+            _matches(part.output, value, target)
+            for value, target in zip(returned, mistake.value)
+        ):
+            return Verdict(False, mistake.diagnosis)
+    return Verdict(False, first_miss)
