@@ -1,4 +1,4 @@
-"""The exercises' specifications as shipped: decoded from :mod:`twolink.exercises.store`.
+"""The exercises' specifications as shipped: decoded from :mod:`twolink.exercises._store`.
 
 The store is written by ``tools/build_answers.py`` from the repository's
 ``answers/`` folder (the readable references, for teachers and the grader):
@@ -18,7 +18,7 @@ import json
 import zlib
 from typing import Any
 
-from . import store
+from . import _store as store
 from .spec import ExerciseSpec
 
 __all__ = ["encode", "decode", "specification", "exercise_numbers"]
