@@ -6,7 +6,7 @@ of its chapter, computed by the package from each exercise's data, and, for
 an exercise that asks for a function, ``hidden_cases(number, part, seed)``:
 inputs the student never saw, drawn from a seed only the grader holds.
 ``python tools/build_answers.py`` encodes them into
-``twolink/exercises/store.py``, what the self-checks compare with.
+``twolink/exercises/_store.py``, what the self-checks compare with.
 """
 
 from __future__ import annotations
