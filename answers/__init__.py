@@ -11,7 +11,11 @@ inputs the student never saw, drawn from a seed only the grader holds.
 
 from __future__ import annotations
 
-from twolink.exercises.spec import ExerciseSpec
+from collections.abc import Callable
+
+import numpy as np
+
+from twolink.exercises.spec import Case, ExerciseSpec
 
 from . import ch4
 
@@ -21,3 +25,29 @@ CHAPTERS = (ch4,)
 def all_exercises() -> list[ExerciseSpec]:
     """Every exercise of every chapter module, in order."""
     return [exercise for chapter in CHAPTERS for exercise in chapter.exercises()]
+
+
+HiddenCases = Callable[[np.random.Generator, int], list[Case]]
+
+
+def hidden_generators() -> dict[tuple[str, str], HiddenCases]:
+    """Every chapter's hidden-case generators, by ``(exercise number, part name)``."""
+    found: dict[tuple[str, str], HiddenCases] = {}
+    for chapter in CHAPTERS:
+        found.update(getattr(chapter, "HIDDEN", {}))
+    return found
+
+
+def hidden_cases(number: str, part: str, seed: int, count: int = 20) -> list[Case]:
+    """``count`` hidden cases of a function part, drawn from ``seed`` (the grader's).
+
+    The notebook never holds the seed, so no probing of its self-check (which
+    calls the function on the visible cases only) can fit these.
+    """
+    generators = hidden_generators()
+    if (number, part) not in generators:
+        raise KeyError(
+            f"exercise {number} has no function part {part!r} with hidden cases; "
+            f"those with hidden cases: {sorted(generators)}"
+        )
+    return generators[number, part](np.random.default_rng(seed), count)

@@ -128,3 +128,50 @@ def test_hints_come_in_tiers_and_never_state_the_value(number, part):
         assert not leaked, (
             f"{number} {part.name}: a hint states the value: {leaked} in {hint!r}"
         )
+
+
+FUNCTION_PARTS = [(number, part) for number, part in PARTS if part.kind == "function"]
+
+
+@pytest.mark.parametrize(
+    "number, part", FUNCTION_PARTS, ids=[f"{n}-{p.name}" for n, p in FUNCTION_PARTS]
+)
+def test_a_function_fitted_to_the_visible_cases_fails_on_hidden_ones(number, part):
+    sys.path.insert(0, str(ROOT))
+    import answers
+
+    visible = {
+        repr(sorted(case.arguments.items(), key=str)): case.expected
+        for case in part.cases
+    }
+
+    def probe_fitted(**arguments):
+        # what probing the self-check can learn: the visible cases' answers
+        key = repr(
+            sorted(
+                (
+                    (
+                        name,
+                        {"arm": {"l1": v.l1, "l2": v.l2}}
+                        if hasattr(v, "l1")
+                        else np.asarray(v).tolist(),
+                    )
+                    for name, v in arguments.items()
+                ),
+                key=str,
+            )
+        )
+        return visible.get(key, part.cases[0].expected)
+
+    assert judging.judge(part, probe_fitted).right, (
+        "the probe should pass the visible cases"
+    )
+    hidden = answers.hidden_cases(number, part.name, seed=20261124)
+    assert len(hidden) >= 10
+    assert not {repr(c.arguments) for c in hidden} & {
+        repr(c.arguments) for c in part.cases
+    }
+    assert not judging.judge_function(part, probe_fitted, hidden).right
+    # and the seed decides the cases: another seed, other cases
+    other = answers.hidden_cases(number, part.name, seed=7)
+    assert [repr(c.arguments) for c in other] != [repr(c.arguments) for c in hidden]
