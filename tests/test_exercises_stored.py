@@ -16,11 +16,15 @@ import numpy as np
 import pytest
 import sympy as sp
 
+from twolink import TwoLinkArm
 from twolink.exercises import judging, stored
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
+sys.path.insert(0, str(ROOT))
 import build_answers  # noqa: E402
+
+import answers  # noqa: E402
 
 PARTS = [
     (number, part)
@@ -137,31 +141,26 @@ FUNCTION_PARTS = [(number, part) for number, part in PARTS if part.kind == "func
     "number, part", FUNCTION_PARTS, ids=[f"{n}-{p.name}" for n, p in FUNCTION_PARTS]
 )
 def test_a_function_fitted_to_the_visible_cases_fails_on_hidden_ones(number, part):
-    sys.path.insert(0, str(ROOT))
-    import answers
+    def same(a, b):
+        if isinstance(a, TwoLinkArm) or isinstance(b, TwoLinkArm):
+            return a == b
+        try:
+            return bool(np.allclose(a, b))
+        except (TypeError, ValueError):
+            return a == b
 
-    visible = {
-        repr(sorted(case.arguments.items(), key=str)): case.expected
-        for case in part.cases
-    }
+    visible = [
+        (judging._arguments(case, TwoLinkArm), case.expected) for case in part.cases
+    ]
 
     def probe_fitted(**arguments):
         # what probing the self-check can learn: the visible cases' answers
-        key = repr(
-            sorted(
-                (
-                    (
-                        name,
-                        {"arm": {"l1": v.l1, "l2": v.l2}}
-                        if hasattr(v, "l1")
-                        else np.asarray(v).tolist(),
-                    )
-                    for name, v in arguments.items()
-                ),
-                key=str,
-            )
-        )
-        return visible.get(key, part.cases[0].expected)
+        for known, expected in visible:
+            if known.keys() == arguments.keys() and all(
+                same(known[name], arguments[name]) for name in known
+            ):
+                return expected
+        return part.cases[0].expected
 
     assert judging.judge(part, probe_fitted).right, (
         "the probe should pass the visible cases"
