@@ -6,25 +6,42 @@ of its chapter, computed by the package from each exercise's data, and, for
 an exercise that asks for a function, ``hidden_cases(number, part, seed)``:
 inputs the student never saw, drawn from a seed only the grader holds.
 ``python tools/build_answers.py`` encodes them into
-``twolink/exercises/_store.py``, what the self-checks compare with.
+``twolink/exercises/store/chN.txt``, what the self-checks compare with.
 """
 
 from __future__ import annotations
 
+import importlib
+import pkgutil
 from collections.abc import Callable
+from types import ModuleType
 
 import numpy as np
 
 from twolink.exercises.spec import Case, ExerciseSpec
 
-from . import ch4
 
-CHAPTERS = (ch4,)
+def chapter_names() -> list[str]:
+    """The chapter modules of this folder, in order: ``["ch1", ..., "ch7"]``."""
+    return sorted(
+        module.name
+        for module in pkgutil.iter_modules(__path__)
+        if module.name.startswith("ch") and module.name[2:].isdigit()
+    )
+
+
+def chapter(name: str) -> ModuleType:
+    """The chapter module ``name`` (``"ch4"``)."""
+    if name not in chapter_names():
+        raise KeyError(f"no answers/{name}.py; the chapters are {chapter_names()}")
+    return importlib.import_module(f"{__name__}.{name}")
 
 
 def all_exercises() -> list[ExerciseSpec]:
     """Every exercise of every chapter module, in order."""
-    return [exercise for chapter in CHAPTERS for exercise in chapter.exercises()]
+    return [
+        exercise for name in chapter_names() for exercise in chapter(name).exercises()
+    ]
 
 
 HiddenCases = Callable[[np.random.Generator, int], list[Case]]
@@ -33,8 +50,8 @@ HiddenCases = Callable[[np.random.Generator, int], list[Case]]
 def hidden_generators() -> dict[tuple[str, str], HiddenCases]:
     """Every chapter's hidden-case generators, by ``(exercise number, part name)``."""
     found: dict[tuple[str, str], HiddenCases] = {}
-    for chapter in CHAPTERS:
-        found.update(getattr(chapter, "HIDDEN", {}))
+    for name in chapter_names():
+        found.update(getattr(chapter(name), "HIDDEN", {}))
     return found
 
 

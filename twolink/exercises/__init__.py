@@ -1,7 +1,7 @@
 """The course's exercises: each part's expected value, tolerance, typical mistakes and hints.
 
 Exercises are specified in the repository's ``answers/`` folder and shipped
-encoded in :mod:`twolink.exercises._store` (decoded by
+encoded in the package's ``store/chN.txt`` files (decoded by
 :mod:`twolink.exercises.stored`, judged by :mod:`twolink.exercises.judging`).
 Chapters not yet moved there register judges in a module of their own
 (``ch1`` ... ``ch7``).  Either way a notebook's check cell holds no reference:

@@ -1,9 +1,10 @@
-"""The exercises' specifications as shipped: decoded from :mod:`twolink.exercises._store`.
+"""The exercises' specifications as shipped: decoded from the package's ``store/chN.txt`` files.
 
 The store is written by ``tools/build_answers.py`` from the repository's
-``answers/`` folder (the readable references, for teachers and the grader):
-JSON, compressed and base64-encoded, so that no module of the installed
-package reads as a list of answers and no function computes one.
+``answers/`` folder (the readable references, for teachers and the grader),
+one file per chapter: JSON, compressed and base64-encoded, so that no module
+of the installed package reads as a list of answers and no function computes
+one.
 
 >>> exercise = specification("4.1")
 >>> exercise.parts[0].name, exercise.parts[0].unit
@@ -14,11 +15,11 @@ from __future__ import annotations
 
 import base64
 import functools
+import importlib.resources
 import json
 import zlib
 from typing import Any
 
-from . import _store as store
 from .spec import ExerciseSpec
 
 __all__ = ["encode", "decode", "specification", "exercise_numbers"]
@@ -37,12 +38,18 @@ def decode(text: str) -> dict[str, Any]:
     return data
 
 
+#: The folder of the encoded chapters, inside the package.
+STORE = importlib.resources.files(__package__).joinpath("store")
+
+
 @functools.cache
 def _exercises() -> dict[str, ExerciseSpec]:
-    return {
-        number: ExerciseSpec.from_json(data)
-        for number, data in decode("".join(store.DATA)).items()
-    }
+    found: dict[str, ExerciseSpec] = {}
+    for item in sorted(STORE.iterdir(), key=lambda entry: entry.name):
+        if item.name.endswith(".txt"):
+            for number, data in decode(item.read_text(encoding="ascii")).items():
+                found[number] = ExerciseSpec.from_json(data)
+    return found
 
 
 def exercise_numbers() -> list[str]:
