@@ -38,12 +38,18 @@ from twolink import (
     trajectory,
     workspace,
 )
-from twolink.exercises import ch3, ch5, ch6, ch7
+from twolink.exercises import ch3, ch5, ch6, ch7, judging
 from twolink.sources import compsys726
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
+sys.path.insert(0, str(ROOT))
 import editions  # noqa: E402
+
+import answers  # noqa: E402
+
+#: A seed the notebooks never hold (the grader has its own).
+HIDDEN_TEST_SEED = 5_318_008
 
 NUMBERS = [exercise.number for exercise in exercises.all_exercises()]
 
@@ -1031,6 +1037,29 @@ def test_notebook_solution_passes_and_its_stub_is_not_solved(number):
     _run([stub], student)
     status, lines = statuses(number, {name: student.get(name, ...) for name in parts})
     assert set(status.values()) == {"not solved yet"}, lines
+
+
+FUNCTION_PARTS = [
+    (number, part.name)
+    for number in NUMBERS
+    for part in exercises.get(number).parts
+    if getattr(part, "kind", None) == "function"
+]
+
+
+@pytest.mark.parametrize(
+    "number, name", FUNCTION_PARTS, ids=[f"{n}-{p}" for n, p in FUNCTION_PARTS]
+)
+def test_the_notebook_solution_function_passes_hidden_cases(number, name):
+    # graded on inputs the notebook never holds: a seed only the grader (here, the test) has
+    path, cells, index = _exercise_cells(number)
+    namespace = {}
+    _run(_backward_slice(cells, index), namespace)
+    _run(["".join(cells[index]["source"])], namespace)
+    part = next(part for part in exercises.get(number).parts if part.name == name)
+    hidden = answers.hidden_cases(number, name, seed=HIDDEN_TEST_SEED)
+    verdict = judging.judge_function(part, namespace[name], hidden)
+    assert verdict.right, f"{path.name} exercise {number}: {verdict.message}"
 
 
 def _check_cells(cells):
