@@ -6,6 +6,7 @@ an exercise solved and one answered wrongly, and one broken (a cell raises).
 
 import csv
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -54,7 +55,7 @@ def graded(tmp_path_factory, student_edition):
     )
     (submissions / "cy_broken.ipynb").write_text(json.dumps(broken), encoding="utf-8")
     out = tmp_path / "grades.csv"
-    lines = grade.grade_folder(submissions, out, timeout=120)
+    lines = grade.grade_folder(submissions, out, timeout=120, jobs=2)
     with out.open(encoding="utf-8") as handle:
         rows = list(csv.DictReader(handle))
     return lines, rows
@@ -123,3 +124,70 @@ def test_make_grade_needs_a_folder():
     assert result.returncode != 0 and "usage: make grade SUBMISSIONS=" in result.stdout
     with pytest.raises(SystemExit, match="not a folder"):
         grade.grade_folder(ROOT / "no-such-folder", ROOT / "build" / "unused.csv")
+
+
+def test_paths_that_are_not_regular_files_are_refused_unread(tmp_path):
+    submissions = tmp_path / "submissions"
+    submissions.mkdir()
+    os.mkfifo(submissions / "fifo.ipynb")  # opening it would wait for a writer forever
+    (submissions / "zeros.ipynb").symlink_to("/dev/zero")  # reading it never ends
+    (submissions / "secret.ipynb").symlink_to(ROOT / "README.md")
+    big = submissions / "big.ipynb"
+    with big.open("wb") as handle:
+        handle.truncate(grade.MAX_NOTEBOOK_BYTES + 1)
+    out = tmp_path / "grades.csv"
+    lines = grade.grade_folder(submissions, out, timeout=5, jobs=2)
+    with out.open(encoding="utf-8") as handle:
+        rows = {row["student file"]: row["result"] for row in csv.DictReader(handle)}
+    assert (
+        rows["fifo.ipynb"]
+        == "refused: not a regular file (a FIFO, a device or a socket)"
+    )
+    assert (
+        rows["zeros.ipynb"]
+        == rows["secret.ipynb"]
+        == "refused: a symbolic link, not a regular file"
+    )
+    assert (
+        rows["big.ipynb"].startswith("refused: ")
+        and "bytes, more than" in rows["big.ipynb"]
+    )
+    assert "#" not in out.read_text(encoding="utf-8")  # nothing of README.md copied
+    assert len(lines) == 4 and all(": REFUSED: " in line for line in lines)
+    assert not list(
+        tmp_path.glob(".grades-*")
+    )  # the atomic write left no temporary file
+
+
+def test_names_cannot_forge_a_formula_or_a_summary_line(tmp_path):
+    submissions = tmp_path / "submissions"
+    submissions.mkdir()
+    forged = "=HYPERLINK(1)\nmallory.ipynb: 9 passed, 0 not solved, 0 wrong.ipynb"
+    (submissions / forged).write_text("not json", encoding="utf-8")
+    out = tmp_path / "grades.csv"
+    lines = grade.grade_folder(submissions, out, timeout=5, jobs=1)
+    assert (
+        len(lines) == 1
+        and "\n" not in lines[0]
+        and lines[0].startswith("=HYPERLINK(1)\\n")
+    )
+    with out.open(encoding="utf-8") as handle:
+        rows = list(csv.DictReader(handle))
+    assert rows[0]["student file"].startswith("'=HYPERLINK(1)")
+    assert rows[0]["result"].startswith("failed to run: unreadable")
+
+
+@pytest.mark.parametrize(
+    "value, written",
+    [
+        ("=1+1", "'=1+1"),
+        ("+1", "'+1"),
+        ("-1", "'-1"),
+        ("@SUM(A1)", "'@SUM(A1)"),
+        ("\tx", "'\tx"),
+        ("passed", "passed"),
+        ("1.1", "1.1"),
+    ],
+)
+def test_csv_cells_never_start_a_formula(value, written):
+    assert grade.csv_cell(value) == written

@@ -6,18 +6,32 @@ clean kernel, with a time limit; the lines the self-checks print
 (``student file, exercise, part, result`` with result ``passed``, ``not
 solved`` or ``wrong``) and prints a one-line summary per notebook.  A notebook
 that fails to run (an error in a cell, a timeout, invalid JSON) is reported on
-its own CSV row (exercise ``-``, result ``failed to run: ...``), never skipped;
-the checks it printed before failing still count.
+its own CSV row (exercise ``(none)``, result ``failed to run: ...``), never
+skipped; the checks it printed before failing still count.  A path that is not
+a regular file (a symlink, a FIFO, a device) or is larger than
+``MAX_NOTEBOOK_BYTES`` is not opened: its row says ``refused: ...``.
 
-Usage: ``python tools/grade.py FOLDER [--out grades.csv] [--timeout 300]``.
+The CSV is rewritten whole after each notebook, atomically (a temporary file
+renamed over it), so an interrupted run keeps everything graded so far; a cell
+that a spreadsheet would read as a formula (starting with ``=``, ``+``, ``-``,
+``@``, a tab or a carriage return) is written with a leading ``'``; names are
+printed with control characters escaped.  Notebooks are graded ``JOBS`` at a
+time (one per core by default).
+
+Usage: ``python tools/grade.py FOLDER [--out grades.csv] [--timeout 300] [--jobs N]``.
 """
 
 from __future__ import annotations
 
 import argparse
+import concurrent.futures
 import csv
+import io
+import os
 import pathlib
+import stat
 import sys
+import tempfile
 from collections.abc import Iterator, Sequence
 from typing import Any
 
@@ -30,6 +44,47 @@ sys.path.insert(0, str(ROOT))
 from twolink.selfcheck import parse_line  # noqa: E402
 
 RESULTS = {"correct": "passed", "not solved yet": "not solved", "wrong": "wrong"}
+#: Larger files are refused unread (a chapter notebook with its outputs is ~1 MB).
+MAX_NOTEBOOK_BYTES = 50_000_000
+#: What a spreadsheet reads as the start of a formula.
+FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
+HEADER = ["student file", "exercise", "part", "result"]
+
+
+def csv_cell(value: str) -> str:
+    """``value`` safe in a spreadsheet: a leading ``'`` when it would start a formula.
+
+    >>> csv_cell("=SUM(A1)"), csv_cell("passed"), csv_cell("-1+2")
+    ("'=SUM(A1)", 'passed', "'-1+2")
+    """
+    return "'" + value if value.startswith(FORMULA_STARTS) else value
+
+
+def shown(name: str) -> str:
+    r"""``name`` for the terminal: control characters (a newline, an escape) written as escapes.
+
+    >>> print(shown("ada" + chr(10) + "bob: 9 passed"))
+    ada\nbob: 9 passed
+    """
+    return "".join(
+        character if character.isprintable() else repr(character)[1:-1]
+        for character in name
+    )
+
+
+def refusal(path: pathlib.Path) -> str | None:
+    """Why ``path`` is not opened (not a regular file, too large), or None."""
+    try:
+        info = os.lstat(path)
+    except OSError as error:
+        return f"refused: cannot stat it ({error.strerror})"
+    if stat.S_ISLNK(info.st_mode):
+        return "refused: a symbolic link, not a regular file"
+    if not stat.S_ISREG(info.st_mode):
+        return "refused: not a regular file (a FIFO, a device or a socket)"
+    if info.st_size > MAX_NOTEBOOK_BYTES:
+        return f"refused: {info.st_size} bytes, more than {MAX_NOTEBOOK_BYTES}"
+    return None
 
 
 class HeadlessClient(NotebookClient):
@@ -94,13 +149,45 @@ def summary_line(
         for result in RESULTS.values()
     }
     text = f"{name}: {counts['passed']} passed, {counts['not solved']} not solved, {counts['wrong']} wrong"
+    if failure and failure.startswith("refused:"):
+        return f"{name}: {failure.upper()[:7]}{failure[7:]}"
     return text + (f"; FAILED TO RUN: {failure}" if failure else "")
 
 
+def _grade_one(
+    path: pathlib.Path, timeout: float
+) -> tuple[list[tuple[str, str, str]], str | None]:
+    reason = refusal(path)
+    if reason is not None:
+        return [], reason
+    return grade_notebook(path, timeout=timeout)
+
+
+def write_csv(out: pathlib.Path, rows: Sequence[Sequence[str]]) -> None:
+    """Write the whole CSV atomically: a temporary file in the same folder, renamed over ``out``."""
+    text = io.StringIO(newline="")
+    writer = csv.writer(text)
+    writer.writerow(HEADER)
+    writer.writerows([csv_cell(str(cell)) for cell in row] for row in rows)
+    descriptor, temporary = tempfile.mkstemp(
+        dir=out.parent, prefix=".grades-", suffix=".csv"
+    )
+    try:
+        with os.fdopen(descriptor, "w", encoding="utf-8", newline="") as handle:
+            handle.write(text.getvalue())
+        os.replace(temporary, out)
+    except BaseException:
+        pathlib.Path(temporary).unlink(missing_ok=True)
+        raise
+
+
 def grade_folder(
-    folder: str | pathlib.Path, out: str | pathlib.Path, timeout: float = 300
+    folder: str | pathlib.Path,
+    out: str | pathlib.Path,
+    timeout: float = 300,
+    jobs: int | None = None,
 ) -> list[str]:
-    """Grade every notebook under ``folder``; write the CSV ``out``; return the summary lines."""
+    """Grade every notebook under ``folder``, ``jobs`` at a time; write the CSV ``out``; return the summary lines."""
     folder = pathlib.Path(folder)
     if not folder.is_dir():
         raise SystemExit(
@@ -113,23 +200,33 @@ def grade_folder(
     )
     if not paths:
         raise SystemExit(f"SUBMISSIONS={folder}: no .ipynb files in it")
-    lines: list[str] = []
+    jobs = jobs or os.cpu_count() or 1
+    if jobs < 1:
+        raise SystemExit(f"JOBS={jobs}: give at least 1 notebook at a time")
     out = pathlib.Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
-    with out.open("w", newline="", encoding="utf-8") as handle:
-        writer = csv.writer(handle)
-        writer.writerow(["student file", "exercise", "part", "result"])
-        for path in paths:
+    graded: dict[pathlib.Path, list[list[str]]] = {}
+    lines: list[str] = []
+    with concurrent.futures.ProcessPoolExecutor(max_workers=jobs) as pool:
+        futures = {pool.submit(_grade_one, path, timeout): path for path in paths}
+        for future in concurrent.futures.as_completed(futures):
+            path = futures[future]
             name = str(path.relative_to(folder))
-            rows, failure = grade_notebook(path, timeout=timeout)
-            for number, part, result in rows:
-                writer.writerow([name, number, part, result])
+            rows, failure = future.result()
+            table = [[name, number, part, result] for number, part, result in rows]
             if failure:
-                writer.writerow([name, "-", "-", f"failed to run: {failure}"])
-            line = summary_line(name, rows, failure)
+                result = (
+                    failure
+                    if failure.startswith("refused:")
+                    else f"failed to run: {failure}"
+                )
+                table.append([name, "(none)", "(none)", result])
+            graded[path] = table
+            write_csv(out, [row for p in paths if p in graded for row in graded[p]])
+            line = summary_line(shown(name), rows, failure)
             print(line, flush=True)
             lines.append(line)
-    print(f"wrote {out}")
+    print(f"wrote {shown(str(out))}")
     return lines
 
 
@@ -141,11 +238,18 @@ def main(argv: Sequence[str] | None = None) -> None:
         "--out", default=None, help="CSV to write (default: SUBMISSIONS/grades.csv)"
     )
     parser.add_argument("--timeout", type=float, default=300.0, help="seconds per cell")
+    parser.add_argument(
+        "--jobs",
+        type=int,
+        default=None,
+        help="notebooks graded at a time (default: one per core)",
+    )
     args = parser.parse_args(argv)
     grade_folder(
         args.submissions,
         args.out or str(pathlib.Path(args.submissions) / "grades.csv"),
         args.timeout,
+        args.jobs,
     )
 
 
