@@ -169,3 +169,29 @@ def test_the_projects_own_tasks_use_angles_outside_35_145_deg():
     for p_tip in ([3.2872, 0.7128], [3.0, 1.0], [-3.5, 1.0]):
         q_deg = np.degrees(me639.source_ik(p_tip))
         assert np.any((q_deg < 35.0) | (q_deg > 145.0)), p_tip
+
+
+# --- the reproduced IK's branch: elbow down is the one that gives H4.2's and H4.3's numbers --------------------------
+
+
+def test_only_the_elbow_down_branch_gives_the_records_numbers():
+    # H4.1 gives only the second term of the source's q1 line; the reproduction takes
+    # theta = acos(...) in [0, pi] (elbow down), the branch that gives H4.2 and H4.3
+    from twolink import ik, to_absolute
+
+    s = np.linspace(0.0, 1.0, 100_000)
+    p_wall = np.stack([4.0 - 4.0 * s, 4.0 * s], axis=-1)
+    for elbow, contact in (("down", (3.2872, 0.7128)), ("up", None)):
+        q_abs = to_absolute(ik.closed_form(arm, p_wall, elbow=elbow).q)
+        hits = np.flatnonzero(np.round(q_abs[:, 1], 4) == round(np.pi / 4, 4))
+        found = tuple(p_wall[hits[0]].round(4)) if hits.size else None
+        assert (found == contact) if contact else (found != (3.2872, 0.7128))
+    p_spring = np.array([[3.0, 0.0], [3.0, 1.0], [3.0, 2.0]])
+    for elbow in ("down", "up"):
+        q_abs = to_absolute(ik.closed_form(arm, p_spring, elbow=elbow).q)
+        t1 = me639.source_link_torques(q_abs, 600.0 * p_spring)[:, 0]
+        record = np.allclose(t1, [2381.0, 2324.0, 1874.0], atol=0.6)
+        assert record == (elbow == "down"), (elbow, t1)
+    assert np.allclose(
+        me639.source_ik(p_spring), to_absolute(ik.closed_form(arm, p_spring).q)
+    )

@@ -2,11 +2,13 @@
 
 The project measures **both** link angles from the x-axis (``q1`` and
 ``q2_abs = q1 + q2``), as for a belt drive with motor 2 on the ground.  This
-module reproduces its methods as they were, so that the course (chapters 4-7)
-and the tests can show its printed numbers coming out of its own formulas:
+module reproduces its methods as the source record (COURSE.md H4) gives them,
+so that the course (chapters 4-7) and the tests can show its numbers coming out
+of its own formulas:
 
-- :func:`source_ik`: its inverse kinematics, in both readings of the transcribed
-  line (``l1 + l2 sin(theta)`` or ``l1 + l2 cos(theta)``; COURSE.md H4.1).
+- :func:`source_ik`: its inverse kinematics as reproduced here (H4.1 gives only
+  the second term of its ``q1`` line), in both readings of that transcribed
+  term (``l1 + l2 sin(theta)`` or ``l1 + l2 cos(theta)``).
 - :func:`source_wall_search`: its wall search, 100,000 points from (4, 0) to
   (0, 4), stopped at the first point whose rounded absolute link-2 angle equals
   ``round(pi/4, 4)``; with its torque formulas (H4.2).
@@ -76,17 +78,19 @@ def _check_reading(reading: str) -> None:
 def source_ik(
     p_tip: ArrayLike, *, reading: str = "cos", l1: float = 2.0, l2: float = 2.0
 ) -> NDArray[np.float64]:
-    """The source's inverse kinematics: absolute link angles ``(q1, q2_abs)`` for a tip point.
+    """The source's inverse kinematics as reproduced: absolute link angles ``(q1, q2_abs)`` for a tip point.
 
-    The source computes the elbow angle (link 2 relative to link 1) with
-    ``theta = acos((x^2 + y^2 - l1^2 - l2^2) / (2 l1 l2))`` (so ``theta`` is
-    in ``[0, pi]``: the package's ``elbow="down"`` branch), then
+    This reproduction computes the elbow angle (link 2 relative to link 1) with
+    ``theta = acos((x^2 + y^2 - l1^2 - l2^2) / (2 l1 l2))`` (``theta`` in
+    ``[0, pi]``, the package's ``elbow="down"`` branch: the branch that gives
+    COURSE.md H4.2's and H4.3's numbers), then
     ``q1 = atan2(y, x) - atan2(l2 sin(theta), l1 + l2 cos(theta))`` and
-    ``q2_abs = q1 + theta``.  In the transcription of the wall, trajectory and
-    workspace programs the second ``atan2`` reads ``l1 + l2 sin(theta)``
-    (``reading="sin"``); the spring program has ``cos`` (``reading="cos"``, the
-    correct formula).  The transcription breaks that line, so the ``sin`` may not
-    be the author's (COURSE.md H4.1).
+    ``q2_abs = q1 + theta``.  COURSE.md H4.1 gives only the second term of the
+    source's ``q1`` line: in the transcription of the wall, trajectory and
+    workspace programs it reads ``l1 + l2 sin(theta)`` (``reading="sin"``), in the
+    spring program ``l1 + l2 cos(theta)`` (``reading="cos"``, the correct
+    formula).  The transcription breaks that line, so the ``sin`` may be a
+    transcription artifact, not the author's (H4.1).
 
     Parameters
     ----------
@@ -108,12 +112,12 @@ def source_ik(
     ValueError
         For NaN/inf or badly shaped targets, non-positive lengths or an unknown reading.
     twolink.UnreachableError
-        For targets outside the annulus ``|l1 - l2| <= r <= l1 + l2`` (the source's
-        ``acos`` would have returned a complex or NaN angle there).
+        For targets outside the annulus ``|l1 - l2| <= r <= l1 + l2`` (this
+        reproduction's ``acos`` has no real angle there).
 
     Examples
     --------
-    The source's spring program, at its rest point (3, 1), in degrees:
+    The reproduced IK at the spring task's rest point (3, 1), in degrees:
 
     >>> np.degrees(source_ik([3.0, 1.0])).round(2)
     array([-19.33,  56.2 ])
@@ -234,7 +238,7 @@ class WallSearchResult:
     p_contact : numpy.ndarray, shape (2,)
         The wall point the search stopped at, metres.
     q_abs : numpy.ndarray, shape (2,)
-        The source's absolute angles for it, radians.
+        The reproduced IK's absolute angles for it, radians.
     torques : numpy.ndarray, shape (2,)
         ``(T1, T2)`` from :func:`source_link_torques`, N m.
     p_tip_fk : numpy.ndarray, shape (2,)
@@ -259,7 +263,8 @@ def source_wall_search(
     """The source's wall search, vectorised: the first point with ``round(q2_abs, 4) == round(pi/4, 4)``.
 
     The source walks ``n_points`` equally spaced points from (4, 0) to (0, 4)
-    (the wall ``x + y = 4``), runs its IK (:func:`source_ik`) on each and stops at
+    (the wall ``x + y = 4``), solves its IK at each (here the reproduced
+    :func:`source_ik`) and stops at
     the **first** one whose absolute link-2 angle, rounded to four decimals in
     radians, equals ``round(pi/4, 4) = 0.7854`` (link 2 perpendicular to the
     wall, to about +-0.003 deg).  The torques use the normal force
@@ -333,10 +338,12 @@ def source_spring_torques(
     """The source's spring torques: ``F = k (x, y)`` and ``t_i = k y l_i cos q_i - k x l_i sin q_i``.
 
     The spring is anchored at the origin (``x`` where ``x0 - x`` belongs), the
-    angles are the source's absolute angles from :func:`source_ik` with the
-    ``cos`` reading (the spring program's), elbow branch ``theta >= 0`` (the
-    package's ``elbow="down"``), and the torques are in the source's convention
-    (motor 2 on the ground, :func:`source_link_torques`).
+    angles are absolute angles from the reproduced IK, :func:`source_ik`, with
+    the ``cos`` reading (the spring program's), reproduced on the elbow-down
+    branch (the package's ``elbow="down"``), which gives COURSE.md H4.3's motor-1
+    torques; H4.1 gives only the second term of the source's ``q1`` line.  The
+    torques are in the source's convention (motor 2 on the ground,
+    :func:`source_link_torques`).
 
     Parameters
     ----------
