@@ -6,11 +6,11 @@ Each module here reproduces one of them, method by method, so that a chapter
 own formula before the course corrects it.  Nothing here is meant for use in
 new code: the rest of :mod:`twolink` holds the correct versions.
 
-- :mod:`twolink.sources.mae6245`: MAE 6245 assignment 5 (inverse kinematics three
+- :mod:`twolink.sources.mae6245`: MAE 6245 (inverse kinematics three
   ways, a1 = a2 = 10).
-- :mod:`twolink.sources.compsys726`: COMPSYS726 assignments 3-4 (DH, Jacobian, the
+- :mod:`twolink.sources.compsys726`: COMPSYS726 (DH, Jacobian, the
   velocity table along y = 50).
-- :mod:`twolink.sources.osake`: the ME 639 OSAKE mini-project (L1 = 10 cm,
+- :mod:`twolink.sources.osake`: the OSAKE mini-project (L1 = 10 cm,
   L2 = 11.5 cm, base offset 6.5 cm).
 - :mod:`twolink.sources.me639`: the ME 639 2R mini-project (l1 = l2 = 2 m, absolute
   angles, motor 2 on the ground).

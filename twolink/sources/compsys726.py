@@ -1,6 +1,6 @@
-"""COMPSYS726 assignments 3-4, reproduced: the velocity table along the line y = 50.
+"""COMPSYS726, reproduced: the velocity table along the line y = 50.
 
-The assignments derived the planar arm's DH table, ``A1``, ``A2``,
+The coursework derived the planar arm's DH table, ``A1``, ``A2``,
 ``T = A1 A2`` and its Jacobian (all correct), and the joint rates for a tip
 moving only vertically (``xdot = 0``) or only horizontally (``ydot = 0``),
 also correct:
@@ -9,12 +9,12 @@ also correct:
   (:func:`q2_rate_vertical`);
 - horizontal: ``q1dot = a2 c12 / (a1 a2 s2) * xdot`` (:func:`q1_rate_horizontal`).
 
-Then they tabulated joint angles and a joint rate for the tip on the line
+Then it tabulated joint angles and a joint rate for the tip on the line
 ``y = 50`` at ``x = 10, 20, ..., 100`` (bare numbers; the arm is not stated).
 The arm ``a1 = 100``, ``a2 = 50`` reproduces both printed angle columns to their
 printed rounding (:data:`PRINTED_ANGLES_DEG`: whole degrees, e.g. 49, 172 at
 ``x = 10``), except the last q1, where the method gives -3.38 deg and the
-printed value is -3.3 (a cut value, or a slip in the transcription).
+printed value is -3.3.
 The rate column is reproduced from the **printed**, rounded angles:
 :func:`rate_as_printed` of :data:`PRINTED_ANGLES_DEG` gives 0.6132 at ``x = 10``
 (:data:`PRINTED_RATE_FIRST_ROW`) and is within 0.16 % of every printed row.  At
@@ -24,8 +24,9 @@ table.
 The table has three faults, reproduced here:
 
 1. :func:`ik_as_written`: ``q2 = acosd(...)`` (degrees, right), then
-   ``sin(q2)``, ``cos(q2)`` of that degree value (radians expected) inside
-   ``q1 = atand(y/x) - atand(a2 sin q2 / (a1 + a2 cos q2))``: the q1 column is
+   ``sin(q2)``, ``cos(q2)`` of that degree value (radians expected) in
+   ``q1 = atand(y/x)`` minus the elbow term in ``sin(q2)``, ``cos(q2)``
+   (reproduced as ``atand(a2 sin q2 / (a1 + a2 cos q2))``): the q1 column is
    wrong.  (``atand(y/x)`` does no harm on this line, where ``x > 0``.)
 2. and 3. :func:`rate_as_printed`: the rate column is the **vertical**
    formula, where horizontal motion was asked, evaluated at the printed
@@ -88,7 +89,8 @@ Derived, not transcribed: the reproduction :func:`ik_as_written` at
 :data:`X_LINE` rounded as the source printed it, to whole degrees, except the
 last row's q1, printed -3.3 (the reproduction gives -3.38, which rounds to
 -3.4).  The source's first and last rows, (49, 172) and (-3.3, 90), are of
-this form.  :func:`rate_as_printed` of this table is the printed rate column.
+this form.  :func:`rate_as_printed` of this table reproduces the printed rate
+column to within 0.16 % in every row (0.6132 at ``x = 10``).
 """
 PRINTED_RATE_FIRST_ROW = 0.6132
 """The printed rate at ``x = 10``: :func:`rate_as_printed` of the printed angles (49, 172), to 4 decimals."""
@@ -114,7 +116,8 @@ def ik_as_written(
     """Joint angles ``(q1, q2)`` in degrees, as the source's IK function computed them.
 
     ``q2 = acosd((x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2))`` is right (degrees,
-    elbow with ``q2 > 0``).  Then ``q1 = atand(y/x) - atand(a2 sin(q2) / (a1 + a2 cos(q2)))``
+    elbow with ``q2 > 0``).  Then ``q1 = atand(y/x)`` minus the elbow term in
+    ``sin(q2)``, ``cos(q2)`` (reproduced as ``atand(a2 sin(q2) / (a1 + a2 cos(q2)))``),
     with ``sin``/``cos`` applied to the degree value of ``q2``, as if it were
     radians: that makes ``q1`` wrong.  ``atand(y/x)`` would also be wrong for
     ``x < 0`` (it cannot tell ``(x, y)`` from ``(-x, -y)``), but every point of
