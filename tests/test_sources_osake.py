@@ -1,4 +1,4 @@
-"""The ME 639 OSAKE mini-project reproduced (twolink.sources.osake), and the course's corrections.
+"""The OSAKE mini-project reproduced (twolink.sources.osake), and the course's corrections.
 
 Lengths in the source module are in its unit, centimetres; the package's arm
 ``arms.osake`` is in metres, hence the factor 100 below.
@@ -131,7 +131,7 @@ def test_printed_jacobian_is_not_singular_everywhere(q):
 def test_printed_jacobian_columns_differ_by_the_l1_lever_where_cos_q2_is_sin_q2(
     q1, branch
 ):
-    # what the source got right, as far as its printed pose shows: column 1 has the
+    # what the source got right, as far as the record's pose shows: column 1 has the
     # lever from the base, column 2 the one from the elbow
     q = np.array([q1, branch])
     J_printed = osake.jacobian_as_printed(q)
@@ -139,14 +139,14 @@ def test_printed_jacobian_columns_differ_by_the_l1_lever_where_cos_q2_is_sin_q2(
     assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], lever_l1, atol=1e-12)
 
 
-def test_printed_jacobian_at_30_45_degrees():
-    printed_cm = np.array(
+def test_printed_jacobian_at_30_45_degrees_gives_the_record_numbers():
+    record_cm = np.array(
         [[-9.07, -4.07], [15.70, 7.04]]
-    )  # the source's numbers, cm per rad
+    )  # the source record's numbers (H3.2), cm per rad
     right_cm = np.array([[-16.11, -11.11], [11.64, 2.98]])
     J_printed = osake.jacobian_as_printed(q_example)
     assert J_printed.shape == (6, 2)
-    assert np.allclose(J_printed[:2], printed_cm, atol=0.005, rtol=0.0)
+    assert np.allclose(J_printed[:2], record_cm, atol=0.005, rtol=0.0)
     assert np.allclose(right_jacobian_cm(q_example)[:2], right_cm, atol=0.005, rtol=0.0)
 
 

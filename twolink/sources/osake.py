@@ -1,12 +1,13 @@
-"""The ME 639 OSAKE mini-project, reproduced: a desk arm's DH transform, Jacobian and C++ programs.
+"""The OSAKE mini-project, reproduced: a desk arm's DH transform, Jacobian and C++ programs.
 
 The mini-project studied a small desk arm, "OSAKE": link lengths
 ``L1 = 10 cm``, ``L2 = 11.5 cm`` and its plane of motion ``d = 6.5 cm`` above
-the base frame.  Its final ``H_0^2`` and 6x2 geometric Jacobian were right;
-the steps and programs below them were not.  Each function here reproduces
-one of those steps as the source did it, so that chapter 1 and chapter 3 of
-the course (and the tests) can show the source's result coming out of the
-source's method before correcting it:
+the base frame.  Its final ``H_0^2`` and 6x2 geometric Jacobian, at the top
+of its work, were right; the step-by-step derivation below them was not, and
+its two C++ programs have mistakes of their own.  Each function here
+reproduces one of those steps or programs as the source did it, so that
+chapter 1 and chapter 3 of the course (and the tests) can show the source's
+result coming out of the source's method before correcting it:
 
 - :func:`h02_as_expanded`: the hand-expanded ``H_0^2`` (``cos q1 cos q2`` and
   ``sin q1 cos q2`` where ``cos(q1+q2)`` and ``sin(q1+q2)`` belong, ``l1`` and
@@ -15,8 +16,8 @@ source's method before correcting it:
   its recipe (column 1 with the lever from the base, column 2 from the
   elbow, both carrying the expanded ``H_0^2``'s product error: products of
   single-angle terms where ``sin(q1+q2)`` and ``cos(q1+q2)`` belong); it
-  gives the printed ``[[-9.07, -4.07], [15.70, 7.04]]`` cm at
-  ``q = (30, 45)`` deg, where the right block is
+  gives ``[[-9.07, -4.07], [15.70, 7.04]]`` cm at ``q = (30, 45)`` deg (the
+  source record's numbers, H3.2), where the right block is
   ``[[-16.11, -11.11], [11.64, 2.98]]``.  (The vector ``d_0^2`` written under
   the expanded ``H_0^2`` is wrong as well, with ``l1``, ``l2`` and sine,
   cosine swapped, e.g. ``l2 cos q1 sin q2 + l1 sin q1``; nothing here
@@ -149,10 +150,11 @@ def jacobian_as_printed(
         column 1 = (-l1 s1 - l2 s1 c2,  l1 c1 + l2 c1 c2)
         column 2 = (        -l2 s1 c2,          l2 c1 s2)
 
-    which gives the printed numbers at ``q = (30, 45)`` deg, below.  There
-    ``cos q2 = sin q2``, so those numbers cannot tell which ``v_y`` entry has
-    ``cos q1 cos q2`` and which ``cos q1 sin q2``; either reading gives them,
-    and neither is the right Jacobian away from ``q2 = 0``.
+    which gives the source record's numbers (H3.2) at ``q = (30, 45)`` deg,
+    below.  There ``cos q2 = sin q2``, so those numbers cannot tell which
+    ``v_y`` entry has ``cos q1 cos q2`` and which ``cos q1 sin q2``; either
+    reading gives them, and neither is the right Jacobian away from
+    ``q2 = 0``.
 
     The printed matrix is not singular everywhere: in this reading its
     determinant is ``l2 s1 c1 (c2 - s2) (l1 + l2 c2)``, zero only where one
@@ -164,9 +166,9 @@ def jacobian_as_printed(
     ``l1`` lever ``(-l1 s1, l1 c1)``, as it should be.
 
     Rows: the ``v_x`` and ``v_y`` rows are the reproduction of the printed
-    matrix (they give its printed numbers, below); the ``v_z`` row (0) and
-    the ``omega`` rows (``(0, 0, 1)`` for both joints) are set as in the
-    correct Jacobian, so that the shape matches
+    matrix (at ``q = (30, 45)`` deg they give the source record's numbers,
+    below); the ``v_z`` row (0) and the ``omega`` rows (``(0, 0, 1)`` for
+    both joints) are set as in the correct Jacobian, so that the shape matches
     :meth:`twolink.TwoLinkArm.geometric_jacobian`.  The course compares the
     source with the correct Jacobian on the 2x2 position block only.
 
@@ -185,8 +187,8 @@ def jacobian_as_printed(
 
     Examples
     --------
-    The printed numbers at ``q = (30, 45)`` deg, cm per rad, to the two
-    decimals the source printed (the right block is
+    The printed matrix at ``q = (30, 45)`` deg, cm per rad, to two decimals,
+    as the source record (H3.2) gives them (the right block is
     ``[[-16.11, -11.11], [11.64, 2.98]]``):
 
     >>> from twolink.display import rounded
