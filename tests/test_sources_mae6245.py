@@ -1,6 +1,6 @@
-"""MAE 6245 assignment 5, reproduced (twolink.sources.mae6245).
+"""MAE 6245, reproduced (twolink.sources.mae6245).
 
-For every number the assignment printed (COURSE.md H1), the reproduction of its
+For every number its solution printed (COURSE.md H1), the reproduction of its
 method must give it to the printed rounding; beside it, the corrected value
 computed by the package.
 """

@@ -1,4 +1,4 @@
-"""MAE 6245 assignment 5, reproduced: inverse kinematics three ways on a1 = a2 = 10.
+"""MAE 6245, reproduced: inverse kinematics three ways on a1 = a2 = 10.
 
 The assignment asks for the IK of the planar 2R arm with a1 = a2 = 10 (no
 units) three ways (a closed form, MATLAB's ``fminunc``, and a brute-force
@@ -57,13 +57,13 @@ __all__ = [
 #: The assignment's link lengths (no units; the course reads them as metres).
 A1 = 10.0
 A2 = 10.0
-#: The IK target of the assignment and its solution, at full stretch: (10 sqrt 2, 10 sqrt 2).
+#: The IK target its solution solved, at full stretch: (10 sqrt 2, 10 sqrt 2).
 TARGET = (10.0 * np.sqrt(2.0), 10.0 * np.sqrt(2.0))
-#: Where its ``fminunc`` run started, rad.
+#: Where its solution's ``fminunc`` run started, rad.
 Q1_START = 0.4
-#: The theta1 its FK check was typed with: 0.7845, a digit swap of 0.7854.
+#: The theta1 its solution's FK check was typed with: 0.7845, a digit swap of 0.7854.
 FK_CHECK_THETA1 = 0.7845
-#: Its circle of targets: centre, radius and the step of ``phi = 0:0.5:2*pi`` (rad).
+#: Its solution's circle of targets: centre, radius and the step of ``phi = 0:0.5:2*pi`` (rad).
 CIRCLE_CENTRE = (12.5, 12.5)
 CIRCLE_RADIUS = 2.0
 CIRCLE_STEP = 0.5
