@@ -46,7 +46,11 @@ def test_no_module_of_the_package_holds_a_readable_reference():
     for _, part in PARTS:
         if part.kind in ("number", "vector", "matrix", "angles"):
             for value in np.ravel(part.expected):
-                assert f"{value:.6g}" not in text or abs(value) < 10, (part.name, value)
+                shown = f"{value:.6g}"
+                if (
+                    len(shown.strip("-0.").replace(".", "")) >= 4
+                ):  # round numbers are everywhere
+                    assert shown not in text, (part.name, value)
 
 
 def equivalent_forms(part):
@@ -89,10 +93,36 @@ def test_the_right_answer_passes_in_every_equivalent_form(number, part):
         )
 
 
+def replaying(part, values):
+    """A function that returns ``values[i]`` when called with visible case ``i``'s arguments."""
+    cases = [judging._arguments(case, TwoLinkArm) for case in part.cases]
+
+    def same(a, b):
+        if isinstance(a, TwoLinkArm) or isinstance(b, TwoLinkArm):
+            return a == b
+        try:
+            return bool(np.allclose(a, b))
+        except (TypeError, ValueError):
+            return a == b
+
+    def function(**arguments):
+        for known, value in zip(cases, values):
+            if known.keys() == arguments.keys() and all(
+                same(known[name], arguments[name]) for name in known
+            ):
+                return value
+        raise AssertionError("called with arguments of no visible case")
+
+    return function
+
+
 @pytest.mark.parametrize("number, part", PARTS, ids=IDS)
 def test_each_typical_mistake_is_told_apart_and_named(number, part):
-    for index, mistake in enumerate(part.mistakes):
-        verdict = judging.judge(part, mistake.value)
+    for mistake in part.mistakes:
+        answer = (
+            replaying(part, mistake.value) if part.kind == "function" else mistake.value
+        )
+        verdict = judging.judge(part, answer)
         assert not verdict.right, (
             f"{number} {part.name}: the mistake {mistake.diagnosis!r} equals the right answer "
             "within the tolerance: change the exercise's data"
@@ -101,7 +131,6 @@ def test_each_typical_mistake_is_told_apart_and_named(number, part):
             f"{number} {part.name}: the mistake {mistake.diagnosis!r} is diagnosed as "
             f"{verdict.message!r} (an earlier mistake gives the same value on this data)"
         )
-        del index
 
 
 def value_texts(value):
