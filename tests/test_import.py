@@ -153,13 +153,6 @@ LATE_SCIPY_CALLS = {
         run = mae6245.numerical_ik(acos="matlab")
         assert run.success and abs(run.q[0] - np.pi / 4) < 1e-4, run
     """,
-    "exercises.ch7 peak rate of exercise 7.3 (scipy.optimize)": """
-        from twolink.exercises import ch7
-        refined = ch7.peak_rate_7_3()
-        line = twolink.trajectory.LinePath(*ch7.LINE_7_3, duration=ch7.DURATION_7_3, law="quintic")
-        coarse = np.abs(twolink.trajectory.ik_trajectory(arms.two_metre, line, n=201).qd).max()
-        assert np.isfinite(refined) and coarse * (1 - 1e-9) <= refined < 1.01 * coarse, (refined, coarse)
-    """,
 }
 
 

@@ -1,12 +1,14 @@
-"""Self-checks for the course's exercises: right or wrong, with a hint.
+"""Self-checks for the course's exercises: right or wrong, what is wrong, and a hint.
 
 An exercise cell assigns the learner's answers to named variables; the next
 cell calls ``selfcheck.check("2.1", q_elbow_up, up_within_limits)``.  The
-expected values, tolerances, comparisons and hints live in
-:mod:`twolink.exercises`, out of the learner's sight.  Each part prints one
-line: ``correct.``, ``not solved yet`` (an answer left as ``...``, the stub of
-the student edition, so a notebook runs top to bottom with unsolved
-exercises), or ``wrong:`` with the reason and the hint.
+expected values, tolerances, typical mistakes and hints come from
+:mod:`twolink.exercises` (stored encoded), out of the learner's sight.  Each
+part prints one line: ``correct.``, ``not solved yet`` (an answer left as
+``...``, the stub of the student edition, so a notebook runs top to bottom
+with unsolved exercises), or ``wrong:`` with what is wrong (a typical mistake
+named, or the quantity that misses, by how much and which way) and the next
+hint (the first wrong try a nudge, later ones more specific).
 
 """
 
@@ -76,8 +78,9 @@ def check(exercise: str, *answers: object, **named_answers: object) -> CheckRepo
     >>> report = check("1.1", ...)
     Exercise 1.1 (tip position): not solved yet (replace the ... in p_tip_ex1 with your answer).
     >>> report = check("1.1", arms.osake.fk([45.0, -30.0]))
-    Exercise 1.1 (tip position): wrong: this is the tip for the angles read as radians (45 rad, -30 rad): \
-convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with sin; angles in radians
+    Exercise 1.1 (tip position): wrong: this is the tip for the angles read as radians: \
+cos and sin take radians, so convert the degrees first. Hint 1 of 2: Reread 'A1, A2 and \
+T_0^2 = A1 A2 with sympy': the last column of T_0^2 holds the tip's x and y.
     >>> report.passed
     False
     """
@@ -110,29 +113,13 @@ convert degrees first. Hint: x = l1 cos q1 + l2 cos(q1 + q2), y likewise with si
                 NOT_SOLVED,
                 f"{label}: {NOT_SOLVED} (replace the ... in {part.name} with your answer).",
             )
-        elif isinstance(part, spec.PartSpec):
+        else:
             verdict = judging.judge(part, solved[part.name])
             if verdict.right:
                 status, line = CORRECT, f"{label}: {CORRECT}."
             else:
                 status = WRONG
-                line = (
-                    f"{label}: {WRONG}: {verdict.message}.{_hint(entry.number, part)}"
-                )
-        else:
-            siblings = {
-                name: value for name, value in solved.items() if name != part.name
-            }
-            try:
-                reason = part.judge(solved[part.name], siblings)
-            except exercises.Wrong as wrong:
-                reason = str(wrong)
-            except Exception as exc:  # the learner's value may be of any type
-                reason = f"could not use your {part.name} ({type(exc).__name__}: {exc})"
-            if reason is None:
-                status, line = CORRECT, f"{label}: {CORRECT}."
-            else:
-                status, line = WRONG, f"{label}: {WRONG}: {reason}. Hint: {part.hint}"
+                line = f"{label}: {WRONG}: {verdict.message}.{_hint(entry.number, part)}"
         print(line)
         results.append(PartResult(entry.number, part.label, status, line))
     return CheckReport(results)

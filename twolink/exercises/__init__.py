@@ -2,43 +2,53 @@
 
 Exercises are specified in the repository's ``answers/`` folder and shipped
 encoded in the package's ``store/chN.txt`` files (decoded by
-:mod:`twolink.exercises.stored`, judged by :mod:`twolink.exercises.judging`).
-Chapters not yet moved there register judges in a module of their own
-(``ch1`` ... ``ch7``).  Either way a notebook's check cell holds no reference:
-``selfcheck.check("2.1", q_elbow_up, up_within_limits)``.
+:mod:`twolink.exercises.stored`, described by :mod:`twolink.exercises.spec`,
+judged by :mod:`twolink.exercises.judging`).  A notebook's check cell holds
+no reference: ``selfcheck.check("2.1", q_elbow_up, up_within_limits)``.
 
 >>> from twolink import exercises
 >>> exercises.get("2.1").parts[0].name
 'q_elbow_up'
->>> len(exercises.all_exercises())
-21
+>>> [exercise.number for exercise in exercises.all_exercises()][:5]
+['1.1', '1.2', '1.3', '1.4', '2.1']
 """
 
-from . import ch1, ch2, ch3, ch5, ch6, ch7, spec, stored  # noqa: F401  (each registers its chapter's exercises)
-from .registry import REGISTRY, Exercise, Part, Wrong, is_unsolved
+from . import judging, spec, stored
+from .spec import ExerciseSpec, PartSpec
 
-__all__ = ["Exercise", "Part", "Wrong", "get", "all_exercises", "is_unsolved"]
+__all__ = [
+    "ExerciseSpec",
+    "PartSpec",
+    "get",
+    "all_exercises",
+    "is_unsolved",
+    "judging",
+    "spec",
+    "stored",
+]
 
 
-def _key(number: str) -> tuple[int, ...]:
-    return tuple(int(x) for x in number.split("."))
+def is_unsolved(answer: object) -> bool:
+    """True for the student edition's stub ``...`` and for ``None``.
+
+    >>> is_unsolved(...), is_unsolved(None), is_unsolved(0.0)
+    (True, True, False)
+    """
+    return answer is ... or answer is None
 
 
-def get(number: str) -> Exercise | spec.ExerciseSpec:
+def get(number: str) -> ExerciseSpec:
     """The exercise numbered ``number`` (e.g. ``"2.1"``); a clear error for an unknown number."""
     key = str(number).removeprefix("Exercise").strip()
     specification = stored.specification(key)
-    if specification is not None:
-        return specification
-    if key not in REGISTRY:
-        known = sorted({*REGISTRY, *stored.exercise_numbers()}, key=_key)
-        raise KeyError(f"no exercise {number!r}; the exercises are {', '.join(known)}")
-    return REGISTRY[key]
+    if specification is None:
+        raise KeyError(
+            f"no exercise {number!r}; the exercises are "
+            f"{', '.join(stored.exercise_numbers())}"
+        )
+    return specification
 
 
-def all_exercises() -> list[Exercise | spec.ExerciseSpec]:
+def all_exercises() -> list[ExerciseSpec]:
     """Every exercise, in chapter order."""
-    return [
-        get(number)
-        for number in sorted({*REGISTRY, *stored.exercise_numbers()}, key=_key)
-    ]
+    return [get(number) for number in stored.exercise_numbers()]
