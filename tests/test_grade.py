@@ -126,6 +126,7 @@ def test_make_grade_needs_a_folder():
         grade.grade_folder(ROOT / "no-such-folder", ROOT / "build" / "unused.csv")
 
 
+@pytest.mark.infrastructure
 def test_paths_that_are_not_regular_files_are_refused_unread(tmp_path):
     submissions = tmp_path / "submissions"
     submissions.mkdir()
@@ -159,6 +160,7 @@ def test_paths_that_are_not_regular_files_are_refused_unread(tmp_path):
     )  # the atomic write left no temporary file
 
 
+@pytest.mark.infrastructure
 def test_names_cannot_forge_a_formula_or_a_summary_line(tmp_path):
     submissions = tmp_path / "submissions"
     submissions.mkdir()

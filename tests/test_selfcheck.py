@@ -25,7 +25,9 @@ def test_check_arguments_and_messages():
         selfcheck.parse_line(line) == ("2.1", "elbow-up angles", "wrong")
         and not report.passed
     )
-    assert "this is the elbow-down" not in line and re.search(r" Hint 1 of \d+: ", line)
+    assert "this is the elbow-down" not in line and re.search(
+        r" Hint \d+ of \d+: ", line
+    )
 
 
 # ---------------------------------------------------------------- verdicts

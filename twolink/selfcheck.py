@@ -21,7 +21,7 @@ from typing import NamedTuple
 from . import exercises
 from .exercises import judging, spec
 
-__all__ = ["check", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
+__all__ = ["check", "reset_hints", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
 
 NOT_SOLVED = "not solved yet"
 CORRECT = "correct"
@@ -77,6 +77,7 @@ def check(exercise: str, *answers: object, **named_answers: object) -> CheckRepo
     Exercise 1.1 (tip position): correct.
     >>> report = check("1.1", ...)
     Exercise 1.1 (tip position): not solved yet (replace the ... in p_tip_ex1 with your answer).
+    >>> reset_hints()          # hints start again from the first tier
     >>> report = check("1.1", arms.osake.fk([45.0, -30.0]))
     Exercise 1.1 (tip position): wrong: this is the tip for the angles read as radians: \
 cos and sin take radians, so convert the degrees first. Hint 1 of 2: Reread 'A1, A2 and \
@@ -119,7 +120,9 @@ T_0^2 = A1 A2 with sympy': the last column of T_0^2 holds the tip's x and y.
                 status, line = CORRECT, f"{label}: {CORRECT}."
             else:
                 status = WRONG
-                line = f"{label}: {WRONG}: {verdict.message}.{_hint(entry.number, part)}"
+                line = (
+                    f"{label}: {WRONG}: {verdict.message}.{_hint(entry.number, part)}"
+                )
         print(line)
         results.append(PartResult(entry.number, part.label, status, line))
     return CheckReport(results)
@@ -127,6 +130,14 @@ T_0^2 = A1 A2 with sympy': the last column of T_0^2 holds the tip's x and y.
 
 #: Wrong tries so far, per (exercise, part): the hint's tier follows it.
 _WRONG_TRIES: collections.Counter[tuple[str, str]] = collections.Counter()
+
+
+def reset_hints() -> None:
+    """Forget the wrong tries so far: every part's next hint is its first again.
+
+    >>> reset_hints()
+    """
+    _WRONG_TRIES.clear()
 
 
 def _hint(number: str, part: spec.PartSpec) -> str:

@@ -183,13 +183,19 @@ def _matches(part: PartSpec, value: Any, target: Any) -> bool:
     return not miss if isinstance(miss, bool) else not np.any(miss)
 
 
+def _digits(value: float) -> int:
+    """Two significant digits, or as many as the integer part has (``120``, not ``1.2e2``)."""
+    return max(2, min(6, math.floor(math.log10(value)) + 1)) if value > 0 else 2
+
+
 def _size(part: PartSpec, amount: float) -> str:
     """A miss's size in the part's unit (angles in degrees), to two significant digits."""
     if part.kind == "angles" or part.unit == "rad":
-        return significant(math.degrees(abs(amount)), 2, "°")
+        degrees = math.degrees(abs(amount))
+        return significant(degrees, _digits(degrees), "°")
     if part.unit == "m" and abs(amount) < 0.1:
         return significant(100 * abs(amount), 2, "cm")
-    return significant(abs(amount), 2, part.unit)
+    return significant(abs(amount), _digits(abs(amount)), part.unit)
 
 
 def _name(part: PartSpec, index: tuple[int, ...]) -> str:
