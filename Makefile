@@ -21,7 +21,8 @@ help:
 	@echo "make bench-widgets  key press to a changed picture for every explorer, in JupyterLab in Chromium"
 	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"
 	@echo "make student    write the student edition (solutions stubbed) to build/student/"
-	@echo "make grade SUBMISSIONS=folder [JOBS=n]  run returned notebooks headless, n at a time; CSV + one line per notebook"
+	@echo "make grade SUBMISSIONS=folder [JOBS=n] [UNSAFE=1]  grade returned notebooks, each in a sandbox, n at a time;"
+	@echo "                verdicts from the answers; CSV + one line per notebook (UNSAFE=1: no sandbox, trusted notebooks only)"
 	@echo "make site       render the executed chapters to static HTML in build/site/"
 	@echo "make browser-test  run only the browser suite (JupyterLab and the site in Chromium)"
 	@echo "make lock       regenerate constraints.txt (every package's exact version) from a clean venv"
@@ -121,7 +122,7 @@ student: $(STAMP)
 SUBMISSIONS ?=
 grade: $(STAMP)
 	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=folder-of-returned-notebooks"; exit 2; }
-	$(BIN)/python tools/grade.py "$(SUBMISSIONS)" $(if $(JOBS),--jobs $(JOBS),)
+	$(BIN)/python tools/grade.py "$(SUBMISSIONS)" $(if $(JOBS),--jobs $(JOBS),) $(if $(UNSAFE),--unsafe,)
 
 site: $(STAMP)
 	$(BIN)/python tools/editions.py site --out build/site

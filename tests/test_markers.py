@@ -31,6 +31,9 @@ BROWSER_FIXTURES = {"page", "browser", "jupyterlab"}
 #: Tests that call such a function but stop before anything slow runs.
 NOT_INFRASTRUCTURE = {
     "tests/test_grade.py::test_make_grade_needs_a_folder": "refused: not a folder",
+    "tests/test_grade.py::test_grading_refuses_without_a_sandbox_unless_told": "refused: no sandbox",
+    "tests/test_grade.py::test_names_cannot_forge_a_formula_or_a_summary_line": "an unreadable file: nothing runs",
+    "tests/test_grade.py::test_a_notebook_of_no_chapter_says_so": "no chapter: nothing runs",
     "tests/test_portable.py::test_an_unknown_notebook_is_refused_by_name": "refused: no such notebook",
     "tests/test_portable.py::test_a_kernel_that_did_not_start_is_run_again_once": "run_nbval replaced",
     "tests/test_portable.py::test_a_mismatch_is_never_run_again": "run_nbval replaced",
@@ -170,7 +173,9 @@ def test_the_check_finds_each_kind_of_infrastructure():
     # through a fixture of the module (test_grade's `graded`) and a helper (`pytest_in`)
     assert (
         "runs a whole edition (grading)"
-        in found["tests/test_grade.py::test_untouched_notebook_is_all_not_solved"]
+        in found[
+            "tests/test_grade.py::test_an_untouched_notebook_is_not_solved_in_every_part"
+        ]
     )
     assert (
         "runs nested pytest"

@@ -1,24 +1,47 @@
-"""Grade returned student notebooks: ``make grade SUBMISSIONS=folder``.
+"""Grade returned student notebooks: ``make grade SUBMISSIONS=folder [JOBS=n]``.
 
-Each ``*.ipynb`` in the folder (and its subfolders) is executed headless, in a
-clean kernel, with a time limit; the lines the self-checks print
-(``Exercise 2.1 (angles): correct.``) are read from its outputs.  Writes a CSV
-(``student file, exercise, part, result`` with result ``passed``, ``not
-solved`` or ``wrong``) and prints a one-line summary per notebook.  A notebook
-that fails to run (an error in a cell, a timeout, invalid JSON) is reported on
-its own CSV row (exercise ``(none)``, result ``failed to run: ...``), never
-skipped; the checks it printed before failing still count.  A path that is not
-a regular file (a symlink, a FIFO, a device) or is larger than
-``MAX_NOTEBOOK_BYTES`` is not opened: its row says ``refused: ...``.
+Verdicts come from answers, never from text.  For each ``*.ipynb`` under the
+folder (subfolders too):
 
-The CSV is rewritten whole after each notebook, atomically (a temporary file
-renamed over it), so an interrupted run keeps everything graded so far; a cell
-that a spreadsheet would read as a formula (starting with ``=``, ``+``, ``-``,
-``@``, a tab or a carriage return) is written with a leading ``'``; names are
-printed with control characters escaped.  Notebooks are graded ``JOBS`` at a
-time (one per core by default).
+1. Its chapter is found by its exercise check cells (their cell ids and
+   exercise numbers; the file name only breaks a tie).
+2. Every output is cleared; each check cell is restored from the course's
+   own copy of the chapter (matched by cell id), so an edited check cell
+   runs as released and a deleted one leaves its exercise "not solved";
+   after each check cell the grader adds a probe cell
+   (``tools/grading_probe.py``) that takes the answers out of the kernel as
+   data (a function part: its return values on the exercise's visible calls
+   and on hidden ones drawn from a seed the kernel never holds).  Cells after
+   the last check cell (summary, casebook) are not run.
+3. The notebook runs in a sandbox (``tools/sandbox.py``: bubblewrap, a user
+   of its own, limits on memory, CPU time, processes, file size; no network;
+   only its own temporary folder writable; the submissions, the grades and
+   the instructor's files invisible), with a time limit per cell and for the
+   whole notebook, a limit on the size of its outputs, and everything it
+   started killed at its end.  Each notebook is run by a grader process of
+   its own, ``JOBS`` at a time (one per core by default).  Where no sandbox
+   can be had, grading refuses and says why, unless ``--unsafe``
+   (``make grade UNSAFE=1``).
+4. Outside the kernel, each part is judged against the exercise's
+   specification (:func:`twolink.exercises.judging.judge`): ``passed``,
+   ``wrong`` or ``not solved``; every part of a notebook whose probe finds
+   the self-check, the judging or store modules, the serializer or a builtin
+   replaced, or whose probe cell publishes nothing, is ``tampered``; parts
+   a notebook that stopped (its kernel died, a limit) never reached are
+   ``failed to run``.
 
-Usage: ``python tools/grade.py FOLDER [--out grades.csv] [--timeout 300] [--jobs N]``.
+``SUBMISSIONS/grades.csv`` (``student file, exercise, part, result``) is
+rewritten whole after each notebook, atomically, so an interrupted run keeps
+everything graded so far.  A notebook that stopped early gets a row with
+exercise ``(none)`` and result ``failed to run: why``; a path that is not a
+regular file (a symlink, a FIFO) or is larger than ``MAX_NOTEBOOK_BYTES``
+is not opened: its row says ``refused: why``.  A cell that a spreadsheet
+would read as a formula gets a leading ``'``; names are printed with
+control characters escaped.  Heavy cells that no answer depends on are
+skipped by the package while ``TWOLINK_GRADING=1`` (set in the sandbox).
+
+Usage: ``python tools/grade.py FOLDER [--out grades.csv] [--timeout 120]
+[--max-wall 600] [--jobs N] [--seed S] [--unsafe]``.
 """
 
 from __future__ import annotations
@@ -26,29 +49,63 @@ from __future__ import annotations
 import argparse
 import concurrent.futures
 import csv
+import dataclasses
 import io
+import json
 import os
 import pathlib
+import re
+import secrets
+import shutil
+import signal
 import stat
+import subprocess
 import sys
 import tempfile
-from collections.abc import Iterator, Sequence
+import threading
+from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import nbformat
+import numpy as np
+from jupyter_client.manager import KernelManager
 from nbclient import NotebookClient
-from nbclient.exceptions import CellExecutionError, CellTimeoutError, DeadKernelError
+from nbclient.exceptions import CellTimeoutError, DeadKernelError
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT))
-from twolink.selfcheck import parse_line  # noqa: E402
+TOOLS = pathlib.Path(__file__).resolve().parent
+sys.path[:0] = [str(ROOT), str(TOOLS)]
+import grading_probe  # noqa: E402  (tools/grading_probe.py)
+import sandbox  # noqa: E402  (tools/sandbox.py)
 
-RESULTS = {"correct": "passed", "not solved yet": "not solved", "wrong": "wrong"}
+import answers  # noqa: E402  (the repository's readable references)
+from twolink import exercises  # noqa: E402
+from twolink.exercises import judging  # noqa: E402
+from twolink.exercises.spec import Case, ExerciseSpec, PartSpec  # noqa: E402
+
+PASSED, WRONG, NOT_SOLVED, TAMPERED, FAILED = (
+    "passed",
+    "wrong",
+    "not solved",
+    "tampered",
+    "failed to run",
+)
+RESULTS = (PASSED, NOT_SOLVED, WRONG, TAMPERED, FAILED)
 #: Larger files are refused unread (a chapter notebook with its outputs is ~1 MB).
 MAX_NOTEBOOK_BYTES = 50_000_000
 #: What a spreadsheet reads as the start of a formula.
 FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
 HEADER = ["student file", "exercise", "part", "result"]
+#: A check cell: ``... selfcheck.check("2.1", ...)``.
+CHECK_CALL = re.compile(r"""selfcheck\.check\(\s*["'](\d+\.\d+)["']""")
+#: Hidden calls per function part.
+HIDDEN_CALLS = 20
+#: What the submissions' sandboxes must not see, besides the submissions and the grades.
+INSTRUCTOR_ONLY = [
+    ROOT / name for name in ("notebooks", "build", "answers", "tests", ".git")
+]
+#: Set in every sandbox: the package skips heavy cells that no answer needs.
+ENVIRONMENT = {"TWOLINK_GRADING": "1"}
 
 
 def csv_cell(value: str) -> str:
@@ -87,80 +144,575 @@ def refusal(path: pathlib.Path) -> str | None:
     return None
 
 
+# ------------------------------------------------------------------ the release
+
+
+@dataclasses.dataclass(frozen=True)
+class Chapter:
+    """A chapter as released: its check cells by cell id, and its exercises' specifications."""
+
+    stem: str
+    check_cells: Mapping[str, tuple[str, Any]]  # cell id -> (exercise number, cell)
+    exercises: tuple[ExerciseSpec, ...]
+
+
+def check_number(cell: Any) -> str | None:
+    """The exercise a code cell checks (``"2.1"``), or None if it is no check cell.
+
+    >>> check_number(nbformat.v4.new_code_cell('correct_ex1 = selfcheck.check("2.1", q)'))
+    '2.1'
+    """
+    if cell.get("cell_type") != "code":
+        return None
+    match = CHECK_CALL.search("".join(cell.get("source", "")))
+    return match[1] if match else None
+
+
+def release_chapters(folder: pathlib.Path = ROOT / "notebooks") -> dict[str, Chapter]:
+    """The course's chapters, read from the instructor's copies in ``folder``."""
+    every = exercises.all_exercises()
+    chapters = {}
+    for path in sorted(folder.glob("[0-9][0-9]_*.ipynb")):
+        notebook = nbformat.read(path, as_version=4)
+        checks = {
+            cell.id: (number, cell)
+            for cell in notebook.cells
+            if (number := check_number(cell)) is not None
+        }
+        specs = tuple(e for e in every if e.chapter == path.stem)
+        if checks and specs:
+            chapters[path.stem] = Chapter(path.stem, checks, specs)
+    return chapters
+
+
+def match_chapter(
+    notebook: Any, name: str, chapters: Mapping[str, Chapter]
+) -> Chapter | None:
+    """The chapter whose check cells ``notebook`` keeps most of (by id and exercise number); the file name breaks a tie."""
+
+    def score(chapter: Chapter) -> tuple[int, bool]:
+        kept = sum(
+            1
+            for cell in notebook.cells
+            if cell.get("id") in chapter.check_cells
+            and check_number(cell) == chapter.check_cells[cell.id][0]
+        )
+        return kept, pathlib.Path(name).name.startswith(chapter.stem[:3])
+
+    best = max(chapters.values(), key=score, default=None)
+    if best is None or score(best) == (0, False):
+        return None
+    return best
+
+
+# ------------------------------------------------------------------ the plan
+
+
+@dataclasses.dataclass(frozen=True)
+class Plan:
+    """What every notebook is asked: each function part's calls (visible then hidden cases)."""
+
+    calls: Mapping[tuple[str, str], tuple[Case, ...]]
+
+    @classmethod
+    def drawn(cls, seed: int, count: int = HIDDEN_CALLS) -> Plan:
+        """The visible cases of every function part, then ``count`` hidden ones from ``seed``."""
+        calls = {}
+        for exercise in exercises.all_exercises():
+            for part in exercise.parts:
+                if part.kind == "function":
+                    hidden = answers.hidden_cases(
+                        exercise.number, part.name, seed, count
+                    )
+                    calls[exercise.number, part.name] = (*part.cases, *hidden)
+        return cls(calls)
+
+    def request(self, exercise: ExerciseSpec) -> dict[str, Any]:
+        """What the probe after ``exercise``'s check cell is asked (plain data)."""
+        return {
+            "exercise": exercise.number,
+            "names": [part.name for part in exercise.parts],
+            "calls": {
+                part.name: [dict(case.arguments) for case in self.calls[key]]
+                for part in exercise.parts
+                if (key := (exercise.number, part.name)) in self.calls
+            },
+        }
+
+
+PROBE_TAG = "grader-probe"
+
+
+def probe_cell(request: Mapping[str, Any]) -> Any:
+    """The cell that publishes the answers of ``request["exercise"]`` (the probe's source, run in a namespace of its own)."""
+    source = (
+        f"# Added by the grader: the answers of exercise {request['exercise']}, as data.\n"
+        f"_grader_probe = {{'__name__': 'grader_probe'}}\n"
+        f"exec(compile({grading_probe_source()!r}, '<grader probe>', 'exec'), _grader_probe)\n"
+        f"_grader_probe['report']({dict(request)!r}, get_ipython().user_ns)\n"
+        "del _grader_probe\n"
+    )
+    cell = nbformat.v4.new_code_cell(source, metadata={"tags": [PROBE_TAG]})
+    cell.id = f"grader-probe-{request['exercise'].replace('.', '-')}"
+    return cell
+
+
+def grading_probe_source() -> str:
+    """The probe's source text (``tools/grading_probe.py``)."""
+    return pathlib.Path(grading_probe.__file__).read_text(encoding="utf-8")
+
+
+def graded_notebook(
+    submission: Any, chapter: Chapter, plan: Plan
+) -> tuple[Any, list[str]]:
+    """``submission`` made ready to run: outputs cleared, check cells restored, a probe after each; the exercises probed.
+
+    Cells after the last check cell are dropped; a check cell the submission
+    deleted (no cell with its id) is not put back: its exercise is not probed.
+    """
+    specs = {exercise.number: exercise for exercise in chapter.exercises}
+    cells = []
+    probed: list[str] = []
+    for cell in submission.cells:
+        cell = nbformat.from_dict(dict(cell))
+        if cell.cell_type == "code":
+            cell.outputs = []
+            cell.execution_count = None
+        release = chapter.check_cells.get(cell.get("id"))
+        if release is None:
+            cells.append(cell)
+            continue
+        number, released = release
+        cells.append(
+            nbformat.from_dict(dict(released, outputs=[], execution_count=None))
+        )
+        if number in specs and number not in probed:
+            cells.append(probe_cell(plan.request(specs[number])))
+            probed.append(number)
+    last_probe = max(
+        (
+            i
+            for i, cell in enumerate(cells)
+            if PROBE_TAG in cell.metadata.get("tags", [])
+        ),
+        default=-1,
+    )
+    notebook = nbformat.from_dict(dict(submission))
+    notebook.cells = cells[: last_probe + 1]
+    return notebook, probed
+
+
+# ------------------------------------------------------------------ running
+
+
+class OutputFlood(Exception):
+    """A notebook's outputs grew past the limit."""
+
+
 class HeadlessClient(NotebookClient):
-    """Runs a notebook without emulating a widget front end (jupyter/nbclient#312: the emulation can block)."""
+    """Runs a notebook without a widget front end, counting the bytes of its outputs.
+
+    Widget messages are ignored (jupyter/nbclient#312: emulating a front end
+    can block); past ``max_output_bytes`` of outputs the run stops
+    (:class:`OutputFlood`), so a flood of prints cannot fill the grader's memory.
+    """
+
+    max_output_bytes = 20_000_000
 
     def handle_comm_msg(self, outs: Any, msg: dict[str, Any], cell_index: int) -> None:
         return None
 
+    def output(
+        self, outs: Any, msg: dict[str, Any], display_id: Any, cell_index: int
+    ) -> Any:
+        self._output_bytes = getattr(self, "_output_bytes", 0) + len(
+            json.dumps(msg.get("content", {}), default=str)
+        )
+        if self._output_bytes > self.max_output_bytes:
+            raise OutputFlood(
+                f"its outputs passed {self.max_output_bytes} bytes (the output limit)"
+            )
+        return super().output(outs, msg, display_id, cell_index)
 
-def _output_lines(notebook: Any) -> Iterator[str]:
+
+@dataclasses.dataclass(frozen=True)
+class Limits:
+    """The time limits of one notebook (the sandbox's own limits are in ``sandbox.Limits``)."""
+
+    cell_seconds: float = 120.0
+    notebook_seconds: float = 600.0
+
+
+def execute(
+    notebook: Any,
+    workdir: pathlib.Path,
+    *,
+    unsafe: bool,
+    hidden: Sequence[pathlib.Path],
+    limits: Limits,
+) -> str | None:
+    """Run ``notebook`` in place, in ``workdir`` (in the sandbox unless ``unsafe``); why it stopped early, or None."""
+    if unsafe:
+        manager: KernelManager = KernelManager(kernel_name="python3")
+    else:
+        manager = sandbox.SandboxKernelManager(
+            workdir,
+            hidden=hidden,
+            limits=sandbox.Limits(cpu_seconds=int(limits.notebook_seconds)),
+            user=sandbox.user_for(os.getpid()),  # one user per notebook running at once
+            environment=ENVIRONMENT,
+        )
+    client = HeadlessClient(
+        notebook,
+        km=manager,
+        timeout=limits.cell_seconds,
+        allow_errors=True,
+        interrupt_on_timeout=True,
+        resources={"metadata": {"path": str(workdir)}},
+    )
+    stopped = threading.Event()
+
+    def stop() -> None:  # the whole notebook's budget
+        stopped.set()
+        process = getattr(manager.provisioner, "process", None)
+        if process is not None:
+            process.kill()
+
+    watchdog = threading.Timer(limits.notebook_seconds, stop)
+    watchdog.start()
+    failure: str | None = None
+    environment_before = dict(os.environ)
+    if unsafe:
+        os.environ.update(ENVIRONMENT)
+    try:
+        client.execute(cwd=str(workdir))
+    except DeadKernelError:
+        failure = (
+            f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
+            if stopped.is_set()
+            else "the kernel died"
+        )
+    except CellTimeoutError:
+        failure = f"a cell ran longer than {limits.cell_seconds:g} s and could not be interrupted"
+    except OutputFlood as error:
+        failure = str(error)
+    except Exception as error:  # the kernel could not start, and the like
+        failure = (
+            f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
+            if stopped.is_set()
+            else f"{type(error).__name__}: {error}"[:300]
+        )
+    finally:
+        watchdog.cancel()
+        os.environ.clear()
+        os.environ.update(environment_before)
+        # a kernel manager handed to nbclient is ours to stop: the kernel and,
+        # in the sandbox, everything it started
+        try:
+            if manager.has_kernel:
+                manager.shutdown_kernel(now=True)
+        finally:
+            if isinstance(manager, sandbox.SandboxKernelManager):
+                manager.cleanup_runtime()
+    return failure
+
+
+def probe_reports(notebook: Any) -> dict[str, Any]:
+    """Each probe cell's report (a dict), or ``"silent"`` (it ran, published nothing) or ``"not run"``, by exercise."""
+    reports: dict[str, Any] = {}
     for cell in notebook.cells:
-        if cell.cell_type != "code":
+        if PROBE_TAG not in cell.metadata.get("tags", []):
             continue
+        number = cell.id.removeprefix("grader-probe-").replace("-", ".")
+        found: Any = (
+            "not run"
+            if cell.get("execution_count") is None and not cell.outputs
+            else "silent"
+        )
+        for output in cell.outputs:
+            data = output.get("data", {}).get(grading_probe.MIME)
+            if isinstance(data, dict) and data.get("exercise") == number:
+                found = data
+        reports[number] = found
+    return reports
+
+
+def cell_errors(notebook: Any) -> list[str]:
+    """``cell N: Name: value`` for each of the submission's cells that raised (N counted from 1, the probes not counted)."""
+    errors = []
+    position = 0
+    for cell in notebook.cells:
+        if PROBE_TAG in cell.metadata.get("tags", []):
+            continue
+        position += 1
         for output in cell.get("outputs", []):
-            if output.get("output_type") == "stream":
-                yield from "".join(output.get("text", "")).splitlines()
+            if output.get("output_type") == "error":
+                errors.append(
+                    f"cell {position}: {output.get('ename', '?')}: {output.get('evalue', '')}"[
+                        :200
+                    ]
+                )
+    return errors
+
+
+def run_one(
+    notebook: Any, hidden: Sequence[pathlib.Path], unsafe: bool, limits: Limits
+) -> dict[str, Any]:
+    """Run the graded ``notebook`` in a temporary folder of its own: its probes' reports, its cells' errors, why it stopped."""
+    workdir = pathlib.Path(tempfile.mkdtemp(prefix="twolink-grade-"))
+    try:
+        copy = workdir / "submission.ipynb"
+        copy.write_text(nbformat.writes(notebook), encoding="utf-8")
+        failure = execute(
+            notebook, workdir, unsafe=unsafe, hidden=hidden, limits=limits
+        )
+        return {
+            "reports": probe_reports(notebook),
+            "errors": cell_errors(notebook),
+            "failure": failure,
+        }
+    finally:
+        shutil.rmtree(workdir, ignore_errors=True)
+
+
+# ------------------------------------------------------------------ verdicts
+
+
+def decoded(data: Any) -> Any:
+    """An answer as the probe encoded it, back as a value :func:`judging.judge` reads (untrusted data: never evaluated).
+
+    >>> decoded({"numbers": [1.0, 2.0]}), decoded({"unsolved": True}), decoded({"bool": False})
+    (array([1., 2.]), Ellipsis, False)
+    >>> type(decoded({"unreadable": "DataFrame"})).__name__
+    'DataFrame'
+    """
+    if not isinstance(data, dict):
+        return _unreadable("object")
+    try:
+        if data.get("unsolved") is True or data.get("missing") is True:
+            return ...
+        if "bool" in data and isinstance(data["bool"], bool):
+            return data["bool"]
+        if "text" in data and isinstance(data["text"], str):
+            return data["text"]
+        if "numbers" in data:
+            numbers = np.asarray(data["numbers"], dtype=float)
+            return float(numbers) if numbers.ndim == 0 else numbers
+        if "complex" in data:
+            real, imaginary = data["complex"]
+            return np.asarray(real, dtype=float) + 1j * np.asarray(
+                imaginary, dtype=float
+            )
+        if "unreadable" in data:
+            return _unreadable(str(data["unreadable"]))
+    except (TypeError, ValueError, OverflowError):
+        pass
+    return _unreadable("object")
+
+
+def _unreadable(name: str) -> Any:
+    """An object whose type carries ``name``, so that the judge's message names what was given."""
+    name = name if name.isidentifier() else "object"
+    return type(name, (), {"__repr__": lambda self: f"<a {name}>"})()
+
+
+def _replay(results: Sequence[Any]) -> Callable[..., Any]:
+    """A function returning ``results`` one call after another (a raised error raised again, by name)."""
+    remaining = list(results)
+
+    def replayed(**arguments: Any) -> Any:
+        result = remaining.pop(0) if remaining else {"unreadable": "nothing"}
+        if isinstance(result, dict) and "raised" in result:
+            name = str(result["raised"])
+            error = type(name if name.isidentifier() else "Exception", (Exception,), {})
+            raise error(str(result.get("message", "")))
+        return decoded(result)
+
+    return replayed
+
+
+def judge_part(part: PartSpec, data: Any, cases: Sequence[Case]) -> str:
+    """``passed``, ``wrong`` or ``not solved`` for the encoded answer ``data`` of ``part``."""
+    if (
+        not isinstance(data, dict)
+        or data.get("missing") is True
+        or data.get("unsolved") is True
+    ):
+        return NOT_SOLVED
+    if part.kind == "function":
+        calls = data.get("calls")
+        if not isinstance(calls, list):
+            return WRONG
+        if len(calls) == 1 and isinstance(calls[0], dict) and calls[0].get("unsolved"):
+            return NOT_SOLVED
+        verdict = judging.judge_function(part, _replay(calls), cases)
+    else:
+        verdict = judging.judge(part, decoded(data))
+    return PASSED if verdict.right else WRONG
+
+
+def expected_fingerprints() -> dict[str, str]:
+    """The probe's fingerprints of the genuine modules (as this grader imports them)."""
+    import IPython.display  # noqa: F401  (watched: imported so that it is fingerprinted)
+
+    from twolink import selfcheck
+
+    return grading_probe.fingerprints({"selfcheck": selfcheck})
+
+
+def verdicts(
+    chapter: Chapter,
+    probed: Sequence[str],
+    ran: Mapping[str, Any],
+    plan: Plan,
+    genuine: Mapping[str, str],
+) -> tuple[list[tuple[str, str, str]], list[str]]:
+    """One row ``(exercise, part, result)`` per part of the chapter, and the signs of tampering found."""
+    reports = ran.get("reports", {})
+    if not isinstance(reports, dict):
+        reports = {}
+    tampering: list[str] = []
+    for number in probed:
+        report = reports.get(number, "not run")
+        if report == "silent" or (report != "not run" and not isinstance(report, dict)):
+            tampering.append(f"the probe after check {number} published nothing")
+        elif isinstance(report, dict):
+            found = report.get("fingerprints")
+            if not isinstance(found, dict):
+                tampering.append(f"the probe after check {number} sent no fingerprints")
+                continue
+            changed = sorted(k for k, v in genuine.items() if found.get(k) != v)
+            if changed:
+                tampering.append(
+                    f"replaced before check {number}: {', '.join(changed[:4])}"
+                )
+    rows = []
+    for exercise in chapter.exercises:
+        report = reports.get(exercise.number, "not run")
+        for part in exercise.parts:
+            if tampering:
+                result = TAMPERED
+            elif exercise.number not in probed:
+                result = NOT_SOLVED  # its check cell was deleted
+            elif not isinstance(report, dict):
+                result = FAILED
+            else:
+                answers_ = report.get("answers")
+                data = answers_.get(part.name) if isinstance(answers_, dict) else None
+                cases = plan.calls.get((exercise.number, part.name), ())
+                result = judge_part(part, data, cases)
+            rows.append((exercise.number, part.label, result))
+    return rows, tampering
+
+
+# ------------------------------------------------------------------ one notebook, many
+
+
+@dataclasses.dataclass(frozen=True)
+class Graded:
+    """One notebook's rows ``(exercise, part, result)``, why it stopped early (or None), and notes for the summary."""
+
+    rows: list[tuple[str, str, str]]
+    failure: str | None
+    notes: list[str]
 
 
 def grade_notebook(
-    path: str | pathlib.Path, timeout: float = 300, kernel_name: str = "python3"
-) -> tuple[list[tuple[str, str, str]], str | None]:
-    """Run one notebook; return ``(rows, failure)``: rows ``(exercise, part, result)``, failure a str or None."""
-    try:
-        notebook = nbformat.read(path, as_version=4)
-    except Exception as error:  # invalid JSON, not a notebook
-        return (
-            [],
-            f"unreadable ({type(error).__name__}: {str(error).splitlines()[0] if str(error) else ''})",
-        )
-    failure: str | None = None
-    client = HeadlessClient(
-        notebook,
-        timeout=timeout,
-        kernel_name=kernel_name,
-        resources={"metadata": {"path": str(ROOT / "notebooks")}},
-    )
-    try:
-        client.execute()
-    except CellTimeoutError:
-        failure = f"timeout (a cell ran longer than {timeout} s)"
-    except CellExecutionError as error:
-        failure = f"error: {error.ename}: {error.evalue}"[:200]
-    except DeadKernelError:
-        failure = "the kernel died"
-    except Exception as error:  # the kernel could not start, and the like
-        failure = f"{type(error).__name__}: {error}"[:200]
-    rows: list[tuple[str, str, str]] = []
-    for line in _output_lines(notebook):
-        parsed = parse_line(line)
-        if parsed:
-            number, part, status = parsed
-            rows.append((number, part, RESULTS[status]))
-    return rows, failure
-
-
-def summary_line(
-    name: str, rows: Sequence[tuple[str, str, str]], failure: str | None
-) -> str:
-    """One line: the file, how many parts passed / not solved / wrong, and any failure."""
-    counts = {
-        result: sum(1 for row in rows if row[2] == result)
-        for result in RESULTS.values()
-    }
-    text = f"{name}: {counts['passed']} passed, {counts['not solved']} not solved, {counts['wrong']} wrong"
-    if failure and failure.startswith("refused:"):
-        return f"{name}: {failure.upper()[:7]}{failure[7:]}"
-    return text + (f"; FAILED TO RUN: {failure}" if failure else "")
-
-
-def _grade_one(
-    path: pathlib.Path, timeout: float
-) -> tuple[list[tuple[str, str, str]], str | None]:
+    path: pathlib.Path,
+    chapters: Mapping[str, Chapter],
+    plan: Plan,
+    genuine: Mapping[str, str],
+    *,
+    hidden: Sequence[pathlib.Path] = (),
+    unsafe: bool = False,
+    limits: Limits = Limits(),
+) -> Graded:
+    """Grade one returned notebook (refused, unreadable, not a chapter: a failure saying so)."""
     reason = refusal(path)
     if reason is not None:
-        return [], reason
-    return grade_notebook(path, timeout=timeout)
+        return Graded([], reason, [])
+    try:
+        submission = nbformat.read(path, as_version=4)
+    except Exception as error:  # invalid JSON, not a notebook
+        first = str(error).splitlines()[0] if str(error) else ""
+        return Graded([], f"unreadable ({type(error).__name__}: {first})"[:300], [])
+    chapter = match_chapter(submission, path.name, chapters)
+    if chapter is None:
+        return Graded([], "not a chapter of the course (none of its check cells)", [])
+    notebook, probed = graded_notebook(submission, chapter, plan)
+    ran = run_isolated(notebook, hidden=hidden, unsafe=unsafe, limits=limits)
+    rows, tampering = verdicts(chapter, probed, ran, plan, genuine)
+    notes = [f"TAMPERED: {sign}" for sign in tampering[:1]]
+    deleted = [e.number for e in chapter.exercises if e.number not in probed]
+    if deleted:
+        notes.append(f"check cell deleted: {', '.join(deleted)}")
+    errors = ran.get("errors") or []
+    if errors:
+        notes.append(f"{len(errors)} cell(s) raised; the first: {errors[0]}")
+    return Graded(rows, ran.get("failure"), notes)
+
+
+def run_isolated(
+    notebook: Any,
+    *,
+    hidden: Sequence[pathlib.Path],
+    unsafe: bool,
+    limits: Limits,
+) -> dict[str, Any]:
+    """:func:`run_one` in a grader process of its own, killed with everything it started past the time limit."""
+    with tempfile.TemporaryDirectory(prefix="twolink-graded-") as folder:
+        path = pathlib.Path(folder) / "graded.ipynb"
+        path.write_text(nbformat.writes(notebook), encoding="utf-8")
+        command = [
+            sys.executable, str(pathlib.Path(__file__).resolve()), "--run-one", str(path),
+            "--timeout", str(limits.cell_seconds), "--max-wall", str(limits.notebook_seconds),
+            *(["--unsafe"] if unsafe else []),
+            *[f"--hidden={folder}" for folder in hidden],
+        ]  # fmt: skip
+        process = subprocess.Popen(
+            command,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.DEVNULL,
+            start_new_session=True,
+            text=True,
+        )
+        try:
+            output, _ = process.communicate(timeout=limits.notebook_seconds + 60)
+        except subprocess.TimeoutExpired:
+            os.killpg(process.pid, signal.SIGKILL)
+            process.communicate()
+            return {
+                "failure": f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
+            }
+        lines = output.strip().splitlines()
+        try:
+            ran = json.loads(lines[-1]) if lines else None
+        except json.JSONDecodeError:
+            ran = None
+        if not isinstance(ran, dict):
+            return {
+                "failure": f"the grader's process for it ended with code {process.returncode}"
+            }
+        return ran
+
+
+def summary_line(name: str, graded: Graded) -> str:
+    """One line: the file, how many parts passed / not solved / wrong / ..., any failure and notes."""
+    if graded.failure and graded.failure.startswith("refused:"):
+        return f"{name}: REFUSED{graded.failure[7:]}"
+    counts = {
+        result: sum(1 for row in graded.rows if row[2] == result) for result in RESULTS
+    }
+    text = f"{name}: " + ", ".join(
+        f"{count} {result}"
+        for result, count in counts.items()
+        if count or result in (PASSED, NOT_SOLVED, WRONG)
+    )
+    if graded.failure:
+        text += f"; FAILED TO RUN: {shown(graded.failure)}"
+    for note in graded.notes:
+        text += f"; {shown(note)}"
+    return text
 
 
 def write_csv(out: pathlib.Path, rows: Sequence[Sequence[str]]) -> None:
@@ -181,11 +733,27 @@ def write_csv(out: pathlib.Path, rows: Sequence[Sequence[str]]) -> None:
         raise
 
 
+def table_rows(name: str, graded: Graded) -> list[list[str]]:
+    """The CSV rows of one notebook."""
+    table = [[name, number, part, result] for number, part, result in graded.rows]
+    if graded.failure:
+        result = (
+            graded.failure
+            if graded.failure.startswith("refused:")
+            else f"{FAILED}: {graded.failure}"
+        )
+        table.append([name, "(none)", "(none)", result])
+    return table
+
+
 def grade_folder(
     folder: str | pathlib.Path,
     out: str | pathlib.Path,
-    timeout: float = 300,
+    *,
     jobs: int | None = None,
+    unsafe: bool = False,
+    limits: Limits = Limits(),
+    seed: int | None = None,
 ) -> list[str]:
     """Grade every notebook under ``folder``, ``jobs`` at a time; write the CSV ``out``; return the summary lines."""
     folder = pathlib.Path(folder)
@@ -203,27 +771,37 @@ def grade_folder(
     jobs = jobs or os.cpu_count() or 1
     if jobs < 1:
         raise SystemExit(f"JOBS={jobs}: give at least 1 notebook at a time")
+    if not unsafe:
+        reason = sandbox.unavailable()
+        if reason is not None:
+            raise SystemExit(
+                f"cannot sandbox the notebooks: {reason}. Grading untrusted notebooks "
+                "without a sandbox lets them read and change your files and the grades; "
+                "if you accept that, pass --unsafe (make grade UNSAFE=1)"
+            )
     out = pathlib.Path(out)
     out.parent.mkdir(parents=True, exist_ok=True)
+    chapters = release_chapters()
+    plan = Plan.drawn(secrets.randbits(32) if seed is None else seed)
+    genuine = expected_fingerprints()
+    hidden = [folder.resolve(), out.parent.resolve(), *INSTRUCTOR_ONLY]
     graded: dict[pathlib.Path, list[list[str]]] = {}
     lines: list[str] = []
-    with concurrent.futures.ProcessPoolExecutor(max_workers=jobs) as pool:
-        futures = {pool.submit(_grade_one, path, timeout): path for path in paths}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+        futures = {
+            pool.submit(
+                grade_notebook, path, chapters, plan, genuine,
+                hidden=hidden, unsafe=unsafe, limits=limits,
+            ): path
+            for path in paths
+        }  # fmt: skip
         for future in concurrent.futures.as_completed(futures):
             path = futures[future]
             name = str(path.relative_to(folder))
-            rows, failure = future.result()
-            table = [[name, number, part, result] for number, part, result in rows]
-            if failure:
-                result = (
-                    failure
-                    if failure.startswith("refused:")
-                    else f"failed to run: {failure}"
-                )
-                table.append([name, "(none)", "(none)", result])
-            graded[path] = table
+            result = future.result()
+            graded[path] = table_rows(name, result)
             write_csv(out, [row for p in paths if p in graded for row in graded[p]])
-            line = summary_line(shown(name), rows, failure)
+            line = summary_line(shown(name), result)
             print(line, flush=True)
             lines.append(line)
     print(f"wrote {shown(str(out))}")
@@ -233,23 +811,56 @@ def grade_folder(
 def main(argv: Sequence[str] | None = None) -> None:
     """Grade the folder named on the command line."""
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    parser.add_argument("submissions", help="folder of returned notebooks")
+    parser.add_argument("submissions", nargs="?", help="folder of returned notebooks")
     parser.add_argument(
         "--out", default=None, help="CSV to write (default: SUBMISSIONS/grades.csv)"
     )
-    parser.add_argument("--timeout", type=float, default=300.0, help="seconds per cell")
+    parser.add_argument(
+        "--timeout", type=float, default=Limits.cell_seconds, help="seconds per cell"
+    )
+    parser.add_argument(
+        "--max-wall",
+        type=float,
+        default=Limits.notebook_seconds,
+        help="seconds per notebook, all cells",
+    )
     parser.add_argument(
         "--jobs",
         type=int,
         default=None,
         help="notebooks graded at a time (default: one per core)",
     )
+    parser.add_argument(
+        "--seed",
+        type=int,
+        default=None,
+        help="the hidden calls' seed (default: a random one)",
+    )
+    parser.add_argument(
+        "--unsafe",
+        action="store_true",
+        help="run the notebooks without a sandbox (only for notebooks you trust)",
+    )
+    parser.add_argument("--run-one", default=None, help=argparse.SUPPRESS)
+    parser.add_argument("--hidden", action="append", default=[], help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
+    limits = Limits(args.timeout, args.max_wall)
+    if args.run_one:  # the grader's process for one notebook (see run_isolated)
+        notebook = nbformat.read(args.run_one, as_version=4)
+        ran = run_one(
+            notebook, [pathlib.Path(h) for h in args.hidden], args.unsafe, limits
+        )
+        print(json.dumps(ran, allow_nan=True))
+        return
+    if not args.submissions:
+        parser.error("give the folder of returned notebooks")
     grade_folder(
         args.submissions,
         args.out or str(pathlib.Path(args.submissions) / "grades.csv"),
-        args.timeout,
-        args.jobs,
+        jobs=args.jobs,
+        unsafe=args.unsafe,
+        limits=limits,
+        seed=args.seed,
     )
 
 
