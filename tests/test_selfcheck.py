@@ -122,3 +122,17 @@ def test_parse_line_reads_back_every_line_check_prints(answer, status):
 )
 def test_parse_line_gives_none_for_other_lines(line):
     assert selfcheck.parse_line(line) is None
+
+
+# ---------------------------------------------------------------- the score nbgrader reads
+def test_score_counts_the_correct_parts_only():
+    q_rel = np.radians([60.0, 90.0])  # exercise 1.3: absolute (60, 150) deg, relative
+    p_tip = arms.two_metre.fk(q_rel)
+    right, _ = checked("1.3", q_rel, p_tip)
+    half, _ = checked("1.3", q_rel, 2 * p_tip)
+    unsolved, _ = checked("1.3", ..., ...)
+    wrong, _ = checked("1.3", q_rel + 1.0, 2 * p_tip)
+    assert [result.status for result in half] == [selfcheck.CORRECT, selfcheck.WRONG]
+    assert (right.score, half.score, unsolved.score, wrong.score) == (2, 1, 0, 0)
+    assert all(type(report.score) is int for report in (right, half, wrong))
+    assert right.passed and not half.passed

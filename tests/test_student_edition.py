@@ -126,6 +126,80 @@ def test_indented_blocks_and_errors():
         editions.stub_source("### BEGIN SOLUTION\nprint(1)\n### END SOLUTION\n")
 
 
+def test_hidden_tests_are_removed_and_the_check_reads_as_before():
+    check = 'correct_ex1 = selfcheck.check("9.1", radius_ex)'
+    notebook = {
+        "cells": [
+            {
+                "cell_type": "code",
+                "source": "### BEGIN SOLUTION\nradius_ex = 2.0\n### END SOLUTION\n",
+                "outputs": [],
+                "execution_count": 1,
+            },
+            {
+                "cell_type": "code",
+                "source": check
+                + "\n### BEGIN HIDDEN TESTS\ncorrect_ex1.score  # points\n### END HIDDEN TESTS",
+                "outputs": [{"output_type": "execute_result", "data": {}}],
+                "execution_count": 2,
+            },
+            {
+                "cell_type": "code",
+                "source": "x = 1\n### BEGIN HIDDEN TESTS\nassert x == 1\n### END HIDDEN TESTS\ny = 2\n",
+                "outputs": [{"output_type": "stream", "name": "stdout", "text": "1"}],
+                "execution_count": 3,
+            },
+        ]
+    }
+    student = editions.student_notebook(notebook)
+    assert student["cells"][1]["source"] == check
+    assert student["cells"][1]["outputs"] == []
+    assert student["cells"][2]["source"] == "x = 1\ny = 2\n"
+    assert student["cells"][2]["outputs"] == []  # its output may show what was hidden
+    assert "HIDDEN" in notebook["cells"][1]["source"]  # the original is untouched
+    with pytest.raises(ValueError, match="unbalanced hidden-test markers"):
+        editions.strip_hidden_tests("x = 1\n### BEGIN HIDDEN TESTS\nx\n")
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
+def test_no_hidden_test_reaches_the_student_edition(path, student_edition):
+    instructor = json.loads(path.read_text(encoding="utf-8"))
+    student = json.loads((student_edition / path.name).read_text(encoding="utf-8"))
+    hidden = [
+        "".join(cell["source"])
+        for cell in instructor["cells"]
+        if "### BEGIN HIDDEN TESTS" in "".join(cell["source"])
+    ]
+    assert len(hidden) == len(selfcheck_cells(instructor)), (
+        f"{path.name}: every check cell ends with its hidden tests (tools/nbgrader_cells.py)"
+    )
+    hidden_lines = {
+        line
+        for source in hidden
+        for line in editions.HIDDEN_BLOCK.search(source)[0].splitlines()
+    }
+    for cell in student["cells"]:
+        source = "".join(cell["source"])
+        assert "HIDDEN TESTS" not in source, source
+        assert not hidden_lines & set(source.splitlines()), source
+    checks = ["".join(cell["source"]).splitlines() for cell in selfcheck_cells(student)]
+    assert all(len(lines) == 1 for lines in checks), checks
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
+def test_the_site_shows_check_cells_without_the_score_line(path):
+    instructor = json.loads(path.read_text(encoding="utf-8"))
+    shown = editions.without_hidden_tests(instructor)
+    for before, after in zip(instructor["cells"], shown["cells"]):
+        if "### BEGIN HIDDEN TESTS" not in "".join(before["source"]):
+            assert after == before
+            continue
+        assert after["source"] == editions.strip_hidden_tests("".join(before["source"]))
+        kinds = [output["output_type"] for output in before["outputs"]]
+        assert kinds == ["stream", "execute_result"], kinds  # the verdicts, the score
+        assert after["outputs"] == before["outputs"][:1]
+
+
 @pytest.mark.parametrize("path", NOTEBOOKS, ids=[path.name for path in NOTEBOOKS])
 def test_committed_solutions_pass_their_self_checks(path):
     notebook = json.loads(path.read_text(encoding="utf-8"))

@@ -11,8 +11,12 @@
   ``<!-- STUDENT: text -->`` comment becomes visible text, and the chapters'
   "Each exercise cell holds a worked solution ..." paragraph is replaced by
   the student's instructions.
+  A ``### BEGIN HIDDEN TESTS`` ... ``### END HIDDEN TESTS`` block (the score
+  line nbgrader reads at the end of each check cell, ``tools/nbgrader_cells.py``)
+  is removed, as ``nbgrader generate_assignment`` removes it.
 - Static edition (``make site`` -> ``build/site/``): every executed chapter
-  rendered to HTML by nbconvert, with an index page linking them in order.
+  rendered to HTML by nbconvert, with an index page linking them in order;
+  hidden-test blocks and the score they print are left out.
   MathJax is served from the ``jupyter-server-mathjax`` package's copy, so the
   pages load nothing from the network.
 
@@ -48,6 +52,46 @@ SOLUTION_BLOCK = re.compile(
     + r"[^\n]*(\n|$)",
     re.MULTILINE | re.DOTALL,
 )
+
+
+BEGIN_HIDDEN = "### BEGIN HIDDEN TESTS"
+END_HIDDEN = "### END HIDDEN TESTS"
+
+#: A hidden-test block: from its BEGIN line to its END line, and the line break after it.
+HIDDEN_BLOCK = re.compile(
+    r"^[ \t]*"
+    + re.escape(BEGIN_HIDDEN)
+    + r"[^\n]*\n.*?^[ \t]*"
+    + re.escape(END_HIDDEN)
+    + r"[^\n]*(\n|$)",
+    re.MULTILINE | re.DOTALL,
+)
+
+
+def strip_hidden_tests(source: str) -> str:
+    r"""``source`` without its ``### BEGIN HIDDEN TESTS`` ... ``### END HIDDEN TESTS`` blocks.
+
+    The line break before a block that ends the cell goes with it, so a check
+    cell reads as it did before the block was added.
+
+    >>> strip_hidden_tests("x = 1\n### BEGIN HIDDEN TESTS\nassert x\n### END HIDDEN TESTS\ny = x\n")
+    'x = 1\ny = x\n'
+
+    >>> strip_hidden_tests("r = check()\n### BEGIN HIDDEN TESTS\nr.score\n### END HIDDEN TESTS")
+    'r = check()'
+    >>> strip_hidden_tests("x = 1\n")
+    'x = 1\n'
+    """
+    if source.count(BEGIN_HIDDEN) != source.count(END_HIDDEN):
+        raise ValueError(f"unbalanced hidden-test markers in cell:\n{source[:200]}")
+    kept, start = [], 0
+    for match in HIDDEN_BLOCK.finditer(source):
+        before = source[start : match.start()]
+        if match.end() == len(source) and not match[0].endswith("\n"):
+            before = before.removesuffix("\n")  # the block ended the cell
+        kept.append(before)
+        start = match.end()
+    return "".join(kept) + source[start:]
 
 
 def assigned_names(code: str) -> list[str]:
@@ -184,7 +228,8 @@ def student_notebook(notebook: dict[str, Any]) -> dict[str, Any]:
     Each solution block becomes ``name = ...`` stubs for the names the next
     self-check reads (all names the block assigns if it reads none of them),
     so the stub asks for the answers, not for the worked solution's steps.
-    The self-check cells' outputs are cleared and the Markdown is made
+    Hidden-test blocks are removed (:func:`strip_hidden_tests`), the
+    self-check cells' outputs are cleared and the Markdown is made
     student-facing (:func:`student_markdown`).
     """
     student = copy.deepcopy(notebook)
@@ -198,10 +243,36 @@ def student_notebook(notebook: dict[str, Any]) -> dict[str, Any]:
             continue
         if BEGIN in source:
             cell["source"] = stub_source(source, next_selfcheck_names(cells, index))
-        if BEGIN in source or is_selfcheck_cell(cell):
+        if BEGIN_HIDDEN in source:
+            cell["source"] = strip_hidden_tests(source)
+        if BEGIN in source or BEGIN_HIDDEN in source or is_selfcheck_cell(cell):
             cell["outputs"] = []
             cell["execution_count"] = None
     return student
+
+
+def without_hidden_tests(notebook: dict[str, Any]) -> dict[str, Any]:
+    r"""``notebook`` with each hidden-test block removed, and the result it showed.
+
+    For the static site: a check cell shows its verdicts, not the score line
+    nbgrader reads (``correct_ex1.score``) nor its value.
+
+    >>> cell = {"cell_type": "code", "source": "r = check()\n### BEGIN HIDDEN TESTS\nr.score\n### END HIDDEN TESTS",
+    ...         "outputs": [{"output_type": "stream", "text": "correct."}, {"output_type": "execute_result"}]}
+    >>> without_hidden_tests({"cells": [cell]})["cells"][0]
+    {'cell_type': 'code', 'source': 'r = check()', 'outputs': [{'output_type': 'stream', 'text': 'correct.'}]}
+    """
+    shown = copy.deepcopy(notebook)
+    for cell in shown["cells"]:
+        source = "".join(cell["source"])
+        if cell["cell_type"] == "code" and BEGIN_HIDDEN in source:
+            cell["source"] = strip_hidden_tests(source)
+            cell["outputs"] = [
+                output
+                for output in cell.get("outputs", [])
+                if output["output_type"] != "execute_result"
+            ]
+    return shown
 
 
 def build_student(
@@ -289,7 +360,9 @@ def build_site(
         # neighbouring chapters (read by tools/site_template/course/index.html.j2)
         copies = []
         for number, path in enumerate(notebooks):
-            notebook = json.loads(path.read_text(encoding="utf-8"))
+            notebook = without_hidden_tests(
+                json.loads(path.read_text(encoding="utf-8"))
+            )
             notebook["metadata"]["title"] = f"{titles[number]} · {SITE_TITLE}"
             notebook["metadata"]["twolink_site"] = {
                 "index": {

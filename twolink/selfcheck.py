@@ -50,6 +50,24 @@ class CheckReport(tuple[PartResult, ...]):
         """True when every part is correct."""
         return all(result.status == CORRECT for result in self)
 
+    @property
+    def score(self) -> int:
+        """The number of parts answered correctly (a part not solved yet or wrong counts 0).
+
+        nbgrader gives a check cell this many of its points: the chapters' check
+        cells end with ``report.score`` in a hidden-test block, and nbgrader reads
+        a grade cell's result as its partial credit.
+
+        >>> import numpy as np
+        >>> from twolink import arms
+        >>> report = check("1.3", np.radians([60.0, 90.0]), ...)
+        Exercise 1.3 (relative angles): correct.
+        Exercise 1.3 (tip): not solved yet (replace the ... in p_tip_ex3 with your answer).
+        >>> report.score, len(report)
+        (1, 2)
+        """
+        return sum(1 for result in self if result.status == CORRECT)
+
 
 def check(exercise: str, *answers: object, **named_answers: object) -> CheckReport:
     """Check a learner's answers to an exercise and print one line per part.
