@@ -112,6 +112,8 @@ SLOW_FILES_SECONDS = {
     "tests/test_student_edition.py": 110,
     "tests/browser/test_static_site.py": 80,
     "tests/test_pytest_anywhere.py": 70,
+    "tests/test_grade_attacks.py": 150,
+    "tests/test_nbgrader.py": 50,
     "tests/test_grade.py": 45,
     "tests/test_import.py": 38,
     "tests/test_figures.py": 34,

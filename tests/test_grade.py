@@ -291,7 +291,7 @@ def test_a_notebook_of_no_chapter_says_so(tmp_path):
     (tmp_path / "essay.ipynb").write_text(nbformat.writes(notebook), encoding="utf-8")
     lines = grade.grade_folder(tmp_path, tmp_path / "out" / "grades.csv", unsafe=True)
     assert lines == [
-        "essay.ipynb: 0 passed, 0 not solved, 0 wrong; FAILED TO RUN: not a chapter of the course (none of its check cells)"
+        "essay.ipynb: 0 passed, 0 not solved, 0 wrong; FAILED TO RUN: not a chapter of the course (no cell of any chapter in it)"
     ]
 
 

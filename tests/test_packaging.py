@@ -244,7 +244,7 @@ def test_make_install_uses_the_lock_and_make_lock_regenerates_it():
     lock = make_dry_run("lock")
     assert (
         "-m venv build/lock-venv" in lock
-        and "pip freeze --exclude-editable" in lock
+        and "pip freeze --all --exclude-editable" in lock
         and "> constraints.txt.new" in lock
     )
 

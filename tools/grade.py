@@ -68,7 +68,8 @@ from typing import Any
 
 import nbformat
 import numpy as np
-from jupyter_client.manager import KernelManager
+from jupyter_client.manager import AsyncKernelManager
+from jupyter_core.utils import run_sync
 from nbclient import NotebookClient
 from nbclient.exceptions import CellTimeoutError, DeadKernelError
 
@@ -154,6 +155,7 @@ class Chapter:
     stem: str
     check_cells: Mapping[str, tuple[str, Any]]  # cell id -> (exercise number, cell)
     exercises: tuple[ExerciseSpec, ...]
+    sources: frozenset[str]  # every cell's source, to recognise the chapter
 
 
 def check_number(cell: Any) -> str | None:
@@ -181,23 +183,27 @@ def release_chapters(folder: pathlib.Path = ROOT / "notebooks") -> dict[str, Cha
         }
         specs = tuple(e for e in every if e.chapter == path.stem)
         if checks and specs:
-            chapters[path.stem] = Chapter(path.stem, checks, specs)
+            sources = frozenset(
+                cell.source for cell in notebook.cells if cell.source.strip()
+            )
+            chapters[path.stem] = Chapter(path.stem, checks, specs, sources)
     return chapters
 
 
 def match_chapter(
     notebook: Any, name: str, chapters: Mapping[str, Chapter]
 ) -> Chapter | None:
-    """The chapter whose check cells ``notebook`` keeps most of (by id and exercise number); the file name breaks a tie."""
+    """The chapter ``notebook`` shares most cells with (same source); the file name breaks a tie.
+
+    Cell ids cannot tell the chapters apart (each chapter numbers its cells
+    from 0), and a student may rename the file, edit or delete check cells.
+    """
 
     def score(chapter: Chapter) -> tuple[int, bool]:
-        kept = sum(
-            1
-            for cell in notebook.cells
-            if cell.get("id") in chapter.check_cells
-            and check_number(cell) == chapter.check_cells[cell.id][0]
+        shared = sum(
+            1 for cell in notebook.cells if cell.get("source") in chapter.sources
         )
-        return kept, pathlib.Path(name).name.startswith(chapter.stem[:3])
+        return shared, pathlib.Path(name).name.startswith(chapter.stem[:3])
 
     best = max(chapters.values(), key=score, default=None)
     if best is None or score(best) == (0, False):
@@ -353,7 +359,7 @@ def execute(
 ) -> str | None:
     """Run ``notebook`` in place, in ``workdir`` (in the sandbox unless ``unsafe``); why it stopped early, or None."""
     if unsafe:
-        manager: KernelManager = KernelManager(kernel_name="python3")
+        manager: AsyncKernelManager = AsyncKernelManager(kernel_name="python3")
     else:
         manager = sandbox.SandboxKernelManager(
             workdir,
@@ -410,7 +416,7 @@ def execute(
         # in the sandbox, everything it started
         try:
             if manager.has_kernel:
-                manager.shutdown_kernel(now=True)
+                run_sync(manager.shutdown_kernel)(now=True)
         finally:
             if isinstance(manager, sandbox.SandboxKernelManager):
                 manager.cleanup_runtime()
@@ -638,7 +644,9 @@ def grade_notebook(
         return Graded([], f"unreadable ({type(error).__name__}: {first})"[:300], [])
     chapter = match_chapter(submission, path.name, chapters)
     if chapter is None:
-        return Graded([], "not a chapter of the course (none of its check cells)", [])
+        return Graded(
+            [], "not a chapter of the course (no cell of any chapter in it)", []
+        )
     notebook, probed = graded_notebook(submission, chapter, plan)
     ran = run_isolated(notebook, hidden=hidden, unsafe=unsafe, limits=limits)
     rows, tampering = verdicts(chapter, probed, ran, plan, genuine)

@@ -114,7 +114,10 @@ def encode(value: Any) -> dict[str, Any]:
     try:
         if hasattr(value, "evalf"):  # sympy numbers and matrices
             value = value.evalf()
-            value = value.tolist() if hasattr(value, "tolist") else complex(value)
+            if hasattr(value, "tolist"):
+                value = value.tolist()
+            else:
+                value = float(value) if value.is_real else complex(value)
         array = np.asarray(value)
         if array.size > MAX_NUMBERS:
             return {"unreadable": f"array of {array.size} numbers"}

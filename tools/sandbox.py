@@ -34,7 +34,7 @@ import tempfile
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from jupyter_client.manager import KernelManager
+from jupyter_client.manager import AsyncKernelManager
 
 #: The unprivileged user (and group) a kernel runs as by default.  Kernels that
 #: run at the same time need users of their own: a process limit counts every
@@ -173,7 +173,7 @@ def command_prefix(
     return prefix
 
 
-class SandboxKernelManager(KernelManager):
+class SandboxKernelManager(AsyncKernelManager):
     """An IPython kernel started in the sandbox of :func:`command_prefix`, over Unix sockets."""
 
     def __init__(
@@ -197,6 +197,14 @@ class SandboxKernelManager(KernelManager):
         for folder in (self._runtime, workdir, workdir / "home"):
             # the kernel's user reads the connection file and makes its sockets here
             folder.chmod(0o777)
+
+    @property
+    def kernel_spec(self) -> Any:
+        """The kernel's spec, interrupted by a message: a signal would reach ``bwrap``, not the kernel."""
+        spec = super().kernel_spec
+        if spec is not None:
+            spec.interrupt_mode = "message"
+        return spec
 
     def format_kernel_cmd(self, extra_arguments: list[str] | None = None) -> list[str]:
         command = super().format_kernel_cmd(extra_arguments)
