@@ -488,3 +488,53 @@ def test_the_canvas_sends_the_pixels_matplotlib_would_in_a_smaller_time():
             np.asarray(_png_pixels(ours)), np.asarray(_png_pixels(theirs))
         )
         assert canvas.get_diff_image() is None  # nothing new to send
+
+
+def test_while_grading_an_explorer_updates_and_describes_but_draws_nothing(
+    monkeypatch,
+):
+    import ipywidgets as widgets
+
+    taught, taught_line, taught_calls = _arm_explorer()
+    monkeypatch.setenv("TWOLINK_GRADING", "1")
+    graded, graded_line, graded_calls = _arm_explorer()
+    assert taught.drawn and not graded.drawn
+    assert not isinstance(graded.figure.canvas, widgets.DOMWidget)  # no ipympl canvas
+    draws = []
+    graded.figure.canvas.mpl_connect("draw_event", draws.append)
+    for view in (taught, graded):
+        view.set(q1=90, q2=0)
+        view.controls["q2"].value = 90
+        view.redraw()
+    # the same updates, descriptions and artists as the drawn explorer
+    assert graded_calls == taught_calls == [(30, 45), (90, 0), (90, 90)]
+    assert graded.updates == taught.updates == 3
+    assert graded.values == taught.values
+    assert graded.description == taught.description
+    assert graded.description in graded.widget.children[-1].value
+    np.testing.assert_array_equal(graded_line.get_xydata(), taught_line.get_xydata())
+    assert draws == [] and graded.full_redraws == 0 < taught.full_redraws
+    # shown as its description and a note: no widget view, no picture
+    data, metadata = graded._repr_mimebundle_()
+    assert set(data) == {"text/plain", "text/html"} and metadata == {}
+    assert data["text/plain"] == (
+        f"{graded.description}\n"
+        "(interactive figure skipped while grading (TWOLINK_GRADING=1))"
+    )
+    assert graded.figure.canvas not in graded.widget.children
+    # a picture asked for explicitly is still drawn
+    assert graded.png().startswith(b"\x89PNG")
+
+
+def test_while_grading_an_explorer_still_refuses_what_it_cannot_use(monkeypatch):
+    monkeypatch.setenv("TWOLINK_GRADING", "1")
+    figure, _ = explorer.explorer_figure(3.0, 3.0)
+    with pytest.raises(InputTypeError, match="controls must be a non-empty mapping"):
+        explorer.Explorer(figure, lambda: None, {})
+    with pytest.raises(InputTypeError, match="figure must be a matplotlib Figure"):
+        explorer.Explorer(
+            None, lambda q1: None, {"q1": explorer.slider("q1", "deg", 0, 0, 9, 1)}
+        )
+    monkeypatch.setenv("TWOLINK_GRADING", "yes")
+    with pytest.raises(ValueError, match="TWOLINK_GRADING must be"):
+        explorer.explorer_figure(3.0, 3.0)

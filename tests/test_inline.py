@@ -200,3 +200,19 @@ def test_a_figure_laid_out_by_constrained_layout_is_stored_whole_not_cropped():
     assert sizes["constrained"] == (round(3.0 * figure.dpi), round(2.0 * figure.dpi))
     # without a layout engine the backend crops to what was drawn
     assert sizes["none"] != sizes["constrained"]
+
+
+def test_while_grading_a_figure_is_neither_drawn_nor_encoded(monkeypatch):
+    with figure_style.context():
+        ax = plot.setup_axes(arms.two_metre)
+        plot.draw_arm(arms.two_metre, [0.5, 0.5], ax=ax)
+    draws = []
+    ax.figure.canvas.mpl_connect("draw_event", draws.append)
+    monkeypatch.setenv("TWOLINK_GRADING", "1")
+    assert inline.png_output(ax.figure) is None
+    assert draws == []
+    with pytest.raises(InputTypeError, match="figure must be a matplotlib Figure"):
+        inline.png_output(plt.gca())
+    monkeypatch.delenv("TWOLINK_GRADING")
+    png, _ = inline.png_output(ax.figure)
+    assert png and draws  # drawn without the switch

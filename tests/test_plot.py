@@ -1,7 +1,9 @@
 """twolink.plot: every drawing function takes ``ax`` the same way, labels its axes "quantity [unit]", draws what it says."""
 
+import gc
 import inspect
 import re
+import warnings
 
 import matplotlib
 import matplotlib.pyplot as plt
@@ -525,3 +527,32 @@ def test_a_strobe_draws_the_base_once_over_its_poses():
     assert all(order.index(pose) < order.index(bases[0]) for pose in lines[:-1])
     assert len(lines) == 6 and bases[0] not in lines
     plt.close(ax.figure)
+
+
+def test_while_grading_animation_html_draws_no_frame_and_closes_the_figure(
+    monkeypatch,
+):
+    anim = plot.animate_arm(ARM, Q_PATH, t=T_PATH)
+    draws = []
+    anim._fig.canvas.mpl_connect("draw_event", draws.append)
+
+    def no_video(*args, **kwargs):
+        raise AssertionError("a video was encoded while grading")
+
+    monkeypatch.setattr(plot, "html5_video", no_video)
+    monkeypatch.setenv("TWOLINK_GRADING", "1")
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        html = plot.animation_html(anim)._repr_html_()
+        del anim
+        gc.collect()
+    # matplotlib warns of an animation deleted unrendered: not of this one
+    assert [str(warning.message) for warning in caught] == []
+    assert html == (
+        "<p><em>twolink.plot.animation_html: animation skipped while grading "
+        "(TWOLINK_GRADING=1).</em></p>"
+    )
+    assert draws == [] and plt.get_fignums() == []
+    monkeypatch.setenv("TWOLINK_GRADING", "on")
+    with pytest.raises(ValueError, match="TWOLINK_GRADING must be"):
+        plot.animation_html(plot.animate_arm(ARM, Q_PATH))

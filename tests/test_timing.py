@@ -51,3 +51,18 @@ def test_timing_an_empty_batch_is_refused_clearly():
 def test_timing_helpers_refuse_infinite_budgets(seconds):
     with pytest.raises(ValueError, match="min_seconds"):
         timing.median_time(lambda: None, min_seconds=seconds)
+
+
+def test_while_grading_a_timing_is_one_call_timed_once(monkeypatch):
+    calls = []
+    seconds_taught = timing.median_time(lambda: calls.append(1), repeat=3)
+    assert len(calls) > 3 and seconds_taught > 0  # calibrated batches
+    monkeypatch.setenv("TWOLINK_GRADING", "1")
+    calls.clear()
+    assert timing.median_time(lambda: calls.append(1), repeat=3) > 0
+    assert calls == [1]
+    # bad input is refused as without the switch
+    with pytest.raises(ValueError, match="min_seconds"):
+        timing.median_time(lambda: None, min_seconds=np.inf)
+    rows = timing.compare_ik_methods(arms.ten, circle(), repeat=3)
+    assert all(row["seconds_per_target"] > 0 and row["solved"] == 1.0 for row in rows)

@@ -27,6 +27,13 @@ Displayed in a notebook an explorer stores, besides the live widgets, a PNG of
 its first state and its description, which static renderers (nbconvert,
 GitHub) show instead of the widgets.
 
+While grading (``TWOLINK_GRADING=1``, :mod:`twolink.runmode`) nothing is drawn:
+:func:`explorer_figure` makes a plain figure (no ipympl canvas, no widget), and
+an :class:`Explorer` runs ``update`` and ``describe`` as always (its
+``description``, ``values``, ``set``, ``refresh``, ``redraw``, ``updates`` and
+controls behave the same) but renders no picture, and displays as its
+description with a note that the interactive figure was skipped.
+
 Examples
 --------
 >>> import numpy as np
@@ -75,6 +82,7 @@ import matplotlib
 import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.axis import Axis
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.spines import Spine
 from PIL import Image
@@ -84,6 +92,7 @@ from ._optional import require
 from ._validate import InputTypeError, as_finite_scalar
 from .alttext import describe as describe_figure
 from .alttext import listed
+from .runmode import grading, skipped_note
 
 __all__ = ["Explorer", "explorer_figure", "slider", "range_slider", "choice"]
 
@@ -188,6 +197,9 @@ def explorer_figure(
     (:func:`twolink.figure_style.context`: font sizes, the colour and line-style
     cycle), whether or not :func:`twolink.figure_style.use` was called.
 
+    While grading (:func:`twolink.runmode.grading`) the figure is on a plain
+    Agg canvas instead: no widget, no ipympl, nothing sent to a browser.
+
     Parameters
     ----------
     width, height : float
@@ -209,12 +221,15 @@ def explorer_figure(
     height = as_finite_scalar(height, "height (inches)", minimum=0.0, strictly=True)
     if type(ncols) is not int or ncols < 1:
         raise ValueError(f"ncols must be a positive int; got {ncols!r}")
-    backend = _ipympl_backend()
+    backend = None if grading() else _ipympl_backend()
     with figure_style.context():
         figure = Figure(figsize=(width, height), dpi=dpi)
         # no layout engine: laid out once (Explorer), so a move never shifts the axes
         figure.set_layout_engine("none")
         axes = figure.subplots(1, ncols, **subplot_kw)
+    if backend is None:
+        FigureCanvasAgg(figure)  # drawn only if asked (Explorer.png)
+        return figure, axes
     with warnings.catch_warnings():
         # ipympl 0.10's toolbar passes traitlets an argument it deprecates
         warnings.filterwarnings(
@@ -437,13 +452,19 @@ class Explorer:
     Attributes
     ----------
     widget : ipywidgets.VBox
-        Controls, canvas and description, displayed by ``display(explorer)``.
+        Controls, canvas and description, displayed by ``display(explorer)``
+        (no canvas while grading).
     updates : int
         How many times ``update`` has run.
     full_redraws : int
         How many of those redrew the whole figure (the first, and any that
         changed axis limits, labels or ticks): a slow move.  Every other
         update draws only the artists it changed, and those above them.
+    drawn : bool
+        Whether the explorer draws its figure: False while grading
+        (:func:`twolink.runmode.grading` when it was made), when ``update``
+        and ``describe`` still run but nothing is rendered (``full_redraws``
+        stays 0) and it displays as its description.
     """
 
     def __init__(
@@ -456,8 +477,9 @@ class Explorer:
         extra: Sequence[Any] = (),
     ) -> None:
         widgets = _widgets()
-        if not isinstance(figure, Figure) or not isinstance(
-            figure.canvas, widgets.DOMWidget
+        self.drawn = not grading()
+        if not isinstance(figure, Figure) or (
+            self.drawn and not isinstance(figure.canvas, widgets.DOMWidget)
         ):
             raise InputTypeError(
                 "figure must be a matplotlib Figure from twolink.explorer.explorer_figure "
@@ -498,6 +520,15 @@ class Explorer:
         values = self.values
         update(**values)
         self.updates += 1
+        if not self.drawn:  # grading: no layout, no picture, no canvas in the page
+            if describe is not None:
+                self.description = str(describe(**values))
+                self._show_description(wait=False)
+            for control in self.controls.values():
+                control.observe(self._changed, names="value")
+            self.widget = widgets.VBox([*self.controls.values(), *extra, self._text])
+            self.widget.add_class(CSS_CLASS)
+            return
         figure.tight_layout()  # once, for the first state: labels inside the canvas
         self._show_changes()  # the one full draw of the first state
         if describe is not None:
@@ -610,6 +641,8 @@ class Explorer:
         return [(*ax.get_xlim(), *ax.get_ylim()) for ax in self.figure.axes]
 
     def _show_changes(self) -> None:
+        if not self.drawn:
+            return
         canvas: Any = self.figure.canvas
         moved = self._moved_artists()
         if moved is None or any(artist not in self._animated for artist in moved):
@@ -705,8 +738,6 @@ class Explorer:
         return buffer.getvalue()
 
     def _repr_mimebundle_(self, **kwargs: Any) -> tuple[dict[str, Any], dict[str, Any]]:
-        data = self.widget._repr_mimebundle_(**kwargs)
-        data = dict(data[0] if isinstance(data, tuple) else data)
         text = self.description or (
             "An interactive figure with "
             + listed(
@@ -718,6 +749,15 @@ class Explorer:
             + ". "
             + describe_figure(self.figure)
         )
+        if not self.drawn:  # grading: the words only, no widget and no picture
+            note = skipped_note("interactive figure")
+            return {
+                "text/plain": f"{text}\n({note})",
+                "text/html": f"<p>{html.escape(text)}</p>\n"
+                f"<p><em>{html.escape(note)}</em></p>",
+            }, {}
+        data = self.widget._repr_mimebundle_(**kwargs)
+        data = dict(data[0] if isinstance(data, tuple) else data)
         data["image/png"] = base64.b64encode(self.png(figure_style.PIXEL_SCALE)).decode(
             "ascii"
         )

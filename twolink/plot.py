@@ -58,6 +58,7 @@ from .alttext import (
     record,
 )
 from .display import rounded
+from .runmode import grading, skipped_note
 from .velocity import Ellipse
 from .video import MovingAnimation, frames_drawn_once, html5_video
 
@@ -615,15 +616,40 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
     a ``<div role="figure">`` around it, so the ``<video>`` tag itself stays
     matplotlib's.
 
+    While grading (``TWOLINK_GRADING=1``, :mod:`twolink.runmode`) no frame is
+    drawn and no video encoded: the figure is closed and a one-line note
+    stands in for the video (no answer depends on a video).
+
     Returns
     -------
     IPython.display.HTML
         (or an object with the same ``_repr_html_`` when IPython is absent)
+
+    Examples
+    --------
+    >>> import os
+    >>> from twolink import arms, runmode
+    >>> anim = animate_arm(arms.two_metre, np.linspace([0.0, 0.0], [1.0, 1.0], 5))
+    >>> saved = os.environ.get(runmode.VARIABLE)
+    >>> os.environ[runmode.VARIABLE] = "1"
+    >>> animation_html(anim)._repr_html_()
+    '<p><em>twolink.plot.animation_html: animation skipped while grading (TWOLINK_GRADING=1).</em></p>'
+    >>> _ = os.environ.pop(runmode.VARIABLE) if saved is None else os.environ.update({runmode.VARIABLE: saved})
+    >>> plt.fignum_exists(anim._fig.number)
+    False
     """
     import matplotlib
 
     # matplotlib keeps the figure in _fig, outside its type stubs
     figure = getattr(anim, "_fig")  # noqa: B009
+    if grading():  # no frame drawn, no video encoded: nothing an answer reads
+        plt.close(figure)
+        # as a save would mark it: matplotlib warns of an animation deleted unrendered
+        setattr(anim, "_draw_was_started", True)  # noqa: B010
+        return html(
+            "<p><em>twolink.plot.animation_html: "
+            f"{html_escape(skipped_note('animation'))}.</em></p>"
+        )
     label = html_escape(describe(figure), quote=True)
     plt.close(figure)
     try:
