@@ -13,9 +13,11 @@ process floods) is asserted from the attacks' own words in
 
 import csv
 import json
+import os
 import pathlib
 import subprocess
 import sys
+import tempfile
 import time
 
 import pytest
@@ -128,6 +130,11 @@ ATTACK_CELLS = {
         "        (folder / '00-pass.py').write_text({solved_lines!r})\n"
         "    except OSError:\n"
         "        pass"
+    ),
+    "forge_a_summary_line": (
+        "import os\n"
+        "forged = b'\\nzz_mallory.ipynb: 7 passed, 0 not solved, 0 wrong\\n'\n"
+        "os.write(1, forged)\nos.write(2, forged)"
     ),
     "rewrite_the_grades_later": (
         "import subprocess\n"
@@ -257,12 +264,26 @@ def attacked(tmp_path_factory, student_edition):
         "startup": sorted((pathlib.Path.home() / ".ipython").rglob("*")),
     }
     started = time.monotonic()
-    lines = grade.grade_folder(submissions, out, jobs=2, limits=limits, seed=5)
+    with tempfile.TemporaryFile() as terminal:  # what the grader's terminal would show
+        saved = os.dup(1), os.dup(2)
+        os.dup2(terminal.fileno(), 1)
+        os.dup2(terminal.fileno(), 2)
+        try:
+            os.write(2, b"the capture works\n")
+            lines = grade.grade_folder(submissions, out, jobs=2, limits=limits, seed=5)
+        finally:
+            os.dup2(saved[0], 1)
+            os.dup2(saved[1], 2)
+            os.close(saved[0])
+            os.close(saved[1])
+        terminal.seek(0)
+        shown = terminal.read().decode(errors="replace")
     seconds = time.monotonic() - started
     grades_then = out.read_text(encoding="utf-8")
     time.sleep(5)  # longer than the detached writer waits
     return {
         "lines": lines,
+        "terminal": shown,
         "rows": list(csv.DictReader(out.open(encoding="utf-8"))),
         "alone": list(csv.DictReader((tmp_path / "alone.csv").open(encoding="utf-8"))),
         "seconds": seconds,
@@ -299,6 +320,7 @@ EXPECTED = {
     "stored_outputs_of_skipped_cells": "not solved",
     "run_the_instructor_solutions": "not solved",
     "copy_a_classmate": "not solved",
+    "forge_a_summary_line": "not solved",
 }
 
 
@@ -324,6 +346,10 @@ def test_nothing_outside_the_sandbox_changed(attacked):
         "a file appeared in the grader's ~/.ipython"
     )
     assert not attacked["grades_changed_later"]
+    assert "zz_mallory" not in attacked["terminal"], (
+        "a kernel wrote to the grader's terminal"
+    )
+    assert "the capture works" in attacked["terminal"]
 
 
 def test_the_run_ends_within_its_limits_and_leaves_no_process(attacked):

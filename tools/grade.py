@@ -51,33 +51,25 @@ import concurrent.futures
 import csv
 import dataclasses
 import io
-import json
 import os
 import pathlib
 import re
 import secrets
-import shutil
-import signal
 import stat
-import subprocess
 import sys
 import tempfile
-import threading
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
 import nbformat
 import numpy as np
-from jupyter_client.manager import AsyncKernelManager
-from jupyter_core.utils import run_sync
-from nbclient import NotebookClient
-from nbclient.exceptions import CellTimeoutError, DeadKernelError
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 TOOLS = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(ROOT), str(TOOLS)]
 import grading_probe  # noqa: E402  (tools/grading_probe.py)
 import sandbox  # noqa: E402  (tools/sandbox.py)
+from grade_run import DEFAULT_LIMITS, PROBE_TAG, Limits, Runner  # noqa: E402  (tools/grade_run.py)
 
 import answers  # noqa: E402  (the repository's readable references)
 from twolink import exercises  # noqa: E402
@@ -105,8 +97,6 @@ HIDDEN_CALLS = 20
 INSTRUCTOR_ONLY = [
     ROOT / name for name in ("notebooks", "build", "answers", "tests", ".git")
 ]
-#: Set in every sandbox: the package skips heavy cells that no answer needs.
-ENVIRONMENT = {"TWOLINK_GRADING": "1"}
 
 
 def csv_cell(value: str) -> str:
@@ -246,9 +236,6 @@ class Plan:
         }
 
 
-PROBE_TAG = "grader-probe"
-
-
 def probe_cell(request: Mapping[str, Any]) -> Any:
     """The cell that publishes the answers of ``request["exercise"]`` (the probe's source, run in a namespace of its own)."""
     source = (
@@ -306,179 +293,6 @@ def graded_notebook(
     notebook = nbformat.from_dict(dict(submission))
     notebook.cells = cells[: last_probe + 1]
     return notebook, probed
-
-
-# ------------------------------------------------------------------ running
-
-
-class OutputFlood(Exception):
-    """A notebook's outputs grew past the limit."""
-
-
-class HeadlessClient(NotebookClient):
-    """Runs a notebook without a widget front end, counting the bytes of its outputs.
-
-    Widget messages are ignored (jupyter/nbclient#312: emulating a front end
-    can block); past ``max_output_bytes`` of outputs the run stops
-    (:class:`OutputFlood`), so a flood of prints cannot fill the grader's memory.
-    """
-
-    max_output_bytes = 20_000_000
-
-    def handle_comm_msg(self, outs: Any, msg: dict[str, Any], cell_index: int) -> None:
-        return None
-
-    def output(
-        self, outs: Any, msg: dict[str, Any], display_id: Any, cell_index: int
-    ) -> Any:
-        self._output_bytes = getattr(self, "_output_bytes", 0) + len(
-            json.dumps(msg.get("content", {}), default=str)
-        )
-        if self._output_bytes > self.max_output_bytes:
-            raise OutputFlood(
-                f"its outputs passed {self.max_output_bytes} bytes (the output limit)"
-            )
-        return super().output(outs, msg, display_id, cell_index)
-
-
-@dataclasses.dataclass(frozen=True)
-class Limits:
-    """The time limits of one notebook (the sandbox's own limits are in ``sandbox.Limits``)."""
-
-    cell_seconds: float = 120.0
-    notebook_seconds: float = 600.0
-
-
-def execute(
-    notebook: Any,
-    workdir: pathlib.Path,
-    *,
-    unsafe: bool,
-    hidden: Sequence[pathlib.Path],
-    limits: Limits,
-) -> str | None:
-    """Run ``notebook`` in place, in ``workdir`` (in the sandbox unless ``unsafe``); why it stopped early, or None."""
-    if unsafe:
-        manager: AsyncKernelManager = AsyncKernelManager(kernel_name="python3")
-    else:
-        manager = sandbox.SandboxKernelManager(
-            workdir,
-            hidden=hidden,
-            limits=sandbox.Limits(cpu_seconds=int(limits.notebook_seconds)),
-            user=sandbox.user_for(os.getpid()),  # one user per notebook running at once
-            environment=ENVIRONMENT,
-        )
-    client = HeadlessClient(
-        notebook,
-        km=manager,
-        timeout=limits.cell_seconds,
-        allow_errors=True,
-        interrupt_on_timeout=True,
-        resources={"metadata": {"path": str(workdir)}},
-    )
-    stopped = threading.Event()
-
-    def stop() -> None:  # the whole notebook's budget
-        stopped.set()
-        process = getattr(manager.provisioner, "process", None)
-        if process is not None:
-            process.kill()
-
-    watchdog = threading.Timer(limits.notebook_seconds, stop)
-    watchdog.start()
-    failure: str | None = None
-    environment_before = dict(os.environ)
-    if unsafe:
-        os.environ.update(ENVIRONMENT)
-    try:
-        client.execute(cwd=str(workdir))
-    except DeadKernelError:
-        failure = (
-            f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
-            if stopped.is_set()
-            else "the kernel died"
-        )
-    except CellTimeoutError:
-        failure = f"a cell ran longer than {limits.cell_seconds:g} s and could not be interrupted"
-    except OutputFlood as error:
-        failure = str(error)
-    except Exception as error:  # the kernel could not start, and the like
-        failure = (
-            f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
-            if stopped.is_set()
-            else f"{type(error).__name__}: {error}"[:300]
-        )
-    finally:
-        watchdog.cancel()
-        os.environ.clear()
-        os.environ.update(environment_before)
-        # a kernel manager handed to nbclient is ours to stop: the kernel and,
-        # in the sandbox, everything it started
-        try:
-            if manager.has_kernel:
-                run_sync(manager.shutdown_kernel)(now=True)
-        finally:
-            if isinstance(manager, sandbox.SandboxKernelManager):
-                manager.cleanup_runtime()
-    return failure
-
-
-def probe_reports(notebook: Any) -> dict[str, Any]:
-    """Each probe cell's report (a dict), or ``"silent"`` (it ran, published nothing) or ``"not run"``, by exercise."""
-    reports: dict[str, Any] = {}
-    for cell in notebook.cells:
-        if PROBE_TAG not in cell.metadata.get("tags", []):
-            continue
-        number = cell.id.removeprefix("grader-probe-").replace("-", ".")
-        found: Any = (
-            "not run"
-            if cell.get("execution_count") is None and not cell.outputs
-            else "silent"
-        )
-        for output in cell.outputs:
-            data = output.get("data", {}).get(grading_probe.MIME)
-            if isinstance(data, dict) and data.get("exercise") == number:
-                found = data
-        reports[number] = found
-    return reports
-
-
-def cell_errors(notebook: Any) -> list[str]:
-    """``cell N: Name: value`` for each of the submission's cells that raised (N counted from 1, the probes not counted)."""
-    errors = []
-    position = 0
-    for cell in notebook.cells:
-        if PROBE_TAG in cell.metadata.get("tags", []):
-            continue
-        position += 1
-        for output in cell.get("outputs", []):
-            if output.get("output_type") == "error":
-                errors.append(
-                    f"cell {position}: {output.get('ename', '?')}: {output.get('evalue', '')}"[
-                        :200
-                    ]
-                )
-    return errors
-
-
-def run_one(
-    notebook: Any, hidden: Sequence[pathlib.Path], unsafe: bool, limits: Limits
-) -> dict[str, Any]:
-    """Run the graded ``notebook`` in a temporary folder of its own: its probes' reports, its cells' errors, why it stopped."""
-    workdir = pathlib.Path(tempfile.mkdtemp(prefix="twolink-grade-"))
-    try:
-        copy = workdir / "submission.ipynb"
-        copy.write_text(nbformat.writes(notebook), encoding="utf-8")
-        failure = execute(
-            notebook, workdir, unsafe=unsafe, hidden=hidden, limits=limits
-        )
-        return {
-            "reports": probe_reports(notebook),
-            "errors": cell_errors(notebook),
-            "failure": failure,
-        }
-    finally:
-        shutil.rmtree(workdir, ignore_errors=True)
 
 
 # ------------------------------------------------------------------ verdicts
@@ -628,10 +442,11 @@ def grade_notebook(
     chapters: Mapping[str, Chapter],
     plan: Plan,
     genuine: Mapping[str, str],
+    runner: Runner,
     *,
     hidden: Sequence[pathlib.Path] = (),
     unsafe: bool = False,
-    limits: Limits = Limits(),
+    limits: Limits = DEFAULT_LIMITS,
 ) -> Graded:
     """Grade one returned notebook (refused, unreadable, not a chapter: a failure saying so)."""
     reason = refusal(path)
@@ -648,7 +463,7 @@ def grade_notebook(
             [], "not a chapter of the course (no cell of any chapter in it)", []
         )
     notebook, probed = graded_notebook(submission, chapter, plan)
-    ran = run_isolated(notebook, hidden=hidden, unsafe=unsafe, limits=limits)
+    ran = runner.run(notebook, hidden=hidden, unsafe=unsafe, limits=limits)
     rows, tampering = verdicts(chapter, probed, ran, plan, genuine)
     notes = [f"TAMPERED: {sign}" for sign in tampering[:1]]
     deleted = [e.number for e in chapter.exercises if e.number not in probed]
@@ -658,50 +473,6 @@ def grade_notebook(
     if errors:
         notes.append(f"{len(errors)} cell(s) raised; the first: {errors[0]}")
     return Graded(rows, ran.get("failure"), notes)
-
-
-def run_isolated(
-    notebook: Any,
-    *,
-    hidden: Sequence[pathlib.Path],
-    unsafe: bool,
-    limits: Limits,
-) -> dict[str, Any]:
-    """:func:`run_one` in a grader process of its own, killed with everything it started past the time limit."""
-    with tempfile.TemporaryDirectory(prefix="twolink-graded-") as folder:
-        path = pathlib.Path(folder) / "graded.ipynb"
-        path.write_text(nbformat.writes(notebook), encoding="utf-8")
-        command = [
-            sys.executable, str(pathlib.Path(__file__).resolve()), "--run-one", str(path),
-            "--timeout", str(limits.cell_seconds), "--max-wall", str(limits.notebook_seconds),
-            *(["--unsafe"] if unsafe else []),
-            *[f"--hidden={folder}" for folder in hidden],
-        ]  # fmt: skip
-        process = subprocess.Popen(
-            command,
-            stdout=subprocess.PIPE,
-            stderr=subprocess.DEVNULL,
-            start_new_session=True,
-            text=True,
-        )
-        try:
-            output, _ = process.communicate(timeout=limits.notebook_seconds + 60)
-        except subprocess.TimeoutExpired:
-            os.killpg(process.pid, signal.SIGKILL)
-            process.communicate()
-            return {
-                "failure": f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
-            }
-        lines = output.strip().splitlines()
-        try:
-            ran = json.loads(lines[-1]) if lines else None
-        except json.JSONDecodeError:
-            ran = None
-        if not isinstance(ran, dict):
-            return {
-                "failure": f"the grader's process for it ended with code {process.returncode}"
-            }
-        return ran
 
 
 def summary_line(name: str, graded: Graded) -> str:
@@ -760,7 +531,7 @@ def grade_folder(
     *,
     jobs: int | None = None,
     unsafe: bool = False,
-    limits: Limits = Limits(),
+    limits: Limits = DEFAULT_LIMITS,
     seed: int | None = None,
 ) -> list[str]:
     """Grade every notebook under ``folder``, ``jobs`` at a time; write the CSV ``out``; return the summary lines."""
@@ -795,23 +566,27 @@ def grade_folder(
     hidden = [folder.resolve(), out.parent.resolve(), *INSTRUCTOR_ONLY]
     graded: dict[pathlib.Path, list[list[str]]] = {}
     lines: list[str] = []
-    with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
-        futures = {
-            pool.submit(
-                grade_notebook, path, chapters, plan, genuine,
-                hidden=hidden, unsafe=unsafe, limits=limits,
-            ): path
-            for path in paths
-        }  # fmt: skip
-        for future in concurrent.futures.as_completed(futures):
-            path = futures[future]
-            name = str(path.relative_to(folder))
-            result = future.result()
-            graded[path] = table_rows(name, result)
-            write_csv(out, [row for p in paths if p in graded for row in graded[p]])
-            line = summary_line(shown(name), result)
-            print(line, flush=True)
-            lines.append(line)
+    runner = Runner()
+    try:
+        with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as pool:
+            futures = {
+                pool.submit(
+                    grade_notebook, path, chapters, plan, genuine, runner,
+                    hidden=hidden, unsafe=unsafe, limits=limits,
+                ): path
+                for path in paths
+            }  # fmt: skip
+            for future in concurrent.futures.as_completed(futures):
+                path = futures[future]
+                name = str(path.relative_to(folder))
+                result = future.result()
+                graded[path] = table_rows(name, result)
+                write_csv(out, [row for p in paths if p in graded for row in graded[p]])
+                line = summary_line(shown(name), result)
+                print(line, flush=True)
+                lines.append(line)
+    finally:
+        runner.close()
     print(f"wrote {shown(str(out))}")
     return lines
 
@@ -849,17 +624,8 @@ def main(argv: Sequence[str] | None = None) -> None:
         action="store_true",
         help="run the notebooks without a sandbox (only for notebooks you trust)",
     )
-    parser.add_argument("--run-one", default=None, help=argparse.SUPPRESS)
-    parser.add_argument("--hidden", action="append", default=[], help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     limits = Limits(args.timeout, args.max_wall)
-    if args.run_one:  # the grader's process for one notebook (see run_isolated)
-        notebook = nbformat.read(args.run_one, as_version=4)
-        ran = run_one(
-            notebook, [pathlib.Path(h) for h in args.hidden], args.unsafe, limits
-        )
-        print(json.dumps(ran, allow_nan=True))
-        return
     if not args.submissions:
         parser.error("give the folder of returned notebooks")
     grade_folder(
