@@ -3,8 +3,8 @@
 Verdicts come from answers, never from text.  For each ``*.ipynb`` under the
 folder (subfolders too):
 
-1. Its chapter is found by its exercise check cells (their cell ids and
-   exercise numbers; the file name only breaks a tie).
+1. Its chapter is the one it shares most cells with (same source; cell ids
+   repeat across chapters); the file name only breaks a tie.
 2. Every output is cleared; each check cell is restored from the course's
    own copy of the chapter (matched by cell id), so an edited check cell
    runs as released and a deleted one leaves its exercise "not solved";
@@ -18,8 +18,9 @@ folder (subfolders too):
    only its own temporary folder writable; the submissions, the grades and
    the instructor's files invisible), with a time limit per cell and for the
    whole notebook, a limit on the size of its outputs, and everything it
-   started killed at its end.  Each notebook is run by a grader process of
-   its own, ``JOBS`` at a time (one per core by default).  Where no sandbox
+   started killed at its end (``tools/grade_run.py``: worker processes,
+   one per notebook graded at a time, ``JOBS``, one per core by default; a
+   worker that overruns is killed with its sandbox and replaced).  Where no sandbox
    can be had, grading refuses and says why, unless ``--unsafe``
    (``make grade UNSAFE=1``).
 4. Outside the kernel, each part is judged against the exercise's
