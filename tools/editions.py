@@ -293,13 +293,86 @@ def build_student(
     return written
 
 
-def chapter_title(notebook: dict[str, Any], fallback: str) -> str:
-    """The first Markdown heading of a notebook, without the leading #."""
+#: An ATX heading: up to three spaces, 1-6 ``#``, then a space (or nothing), the text
+#: and an optional closing run of ``#``.
+ATX_HEADING = re.compile(
+    r"^ {0,3}(?P<level>#{1,6})(?:[ \t]+(?P<text>.*?))?(?:[ \t]+#+)?[ \t]*$"
+)
+#: A fenced code block's opening or closing line (a ``# comment`` inside is no heading).
+FENCE = re.compile(r"^ {0,3}(```|~~~)")
+#: Inline Markdown a page title shows as plain text: images and links (their text),
+#: code spans, emphasis markers and HTML tags.
+_INLINE_MARKUP = [
+    (re.compile(r"!?\[([^\]]*)\]\([^)]*\)"), r"\1"),
+    (re.compile(r"`+([^`]*)`+"), r"\1"),
+    (re.compile(r"(\*{1,3})(\S(?:.*?\S)?)\1"), r"\2"),
+    (re.compile(r"</?[A-Za-z][^>]*>"), ""),
+]
+
+
+def markdown_headings(notebook: dict[str, Any]) -> list[tuple[int, str]]:
+    """``(level, text)`` of every ATX heading in the notebook's Markdown cells, in order.
+
+    Lines inside fenced code blocks are skipped.
+
+    >>> markdown_headings({"cells": [
+    ...     {"cell_type": "code", "source": "# a comment"},
+    ...     {"cell_type": "markdown", "source": ["## Setup\\n", "```\\n# code\\n```\\n# Title #"]},
+    ... ]})
+    [(2, 'Setup'), (1, 'Title')]
+    """
+    found = []
     for cell in notebook["cells"]:
-        if cell["cell_type"] == "markdown":
-            for line in "".join(cell["source"]).splitlines():
-                if line.startswith("#"):
-                    return line.lstrip("#").strip()
+        if cell["cell_type"] != "markdown":
+            continue
+        source = cell["source"]
+        fenced = False
+        for line in (
+            "".join(source) if isinstance(source, list) else source
+        ).splitlines():
+            if FENCE.match(line):
+                fenced = not fenced
+                continue
+            match = None if fenced else ATX_HEADING.match(line)
+            if match and match["text"]:
+                found.append((len(match["level"]), match["text"].strip()))
+    return found
+
+
+def plain_text(markdown: str) -> str:
+    """A line of Markdown as plain text: link and image text kept, code and emphasis marks dropped.
+
+    >>> plain_text("Chapter 9: **Fast** `ik` with [SciPy](https://scipy.org)")
+    'Chapter 9: Fast ik with SciPy'
+    """
+    for pattern, replacement in _INLINE_MARKUP:
+        markdown = pattern.sub(replacement, markdown)
+    return " ".join(markdown.split())
+
+
+def chapter_title(notebook: dict[str, Any], fallback: str) -> str:
+    """A notebook's title: its first level-1 heading (``# Title``), as plain text.
+
+    Without a level-1 heading the first heading of any level is taken, and
+    without any heading ``fallback`` (the file name, say).
+
+    >>> cells = [
+    ...     {"cell_type": "markdown", "source": "## Before the title\\n"},
+    ...     {"cell_type": "markdown", "source": "# Chapter 9: *fast* IK\\n\\nText."},
+    ... ]
+    >>> chapter_title({"cells": cells}, "09_fast_ik")
+    'Chapter 9: fast IK'
+    >>> chapter_title({"cells": cells[:1]}, "09_fast_ik")
+    'Before the title'
+    >>> chapter_title({"cells": []}, "09_fast_ik")
+    '09_fast_ik'
+    """
+    headings = markdown_headings(notebook)
+    # level-1 headings first (sorted is stable: each level keeps its order)
+    for _level, text in sorted(headings, key=lambda heading: heading[0] != 1):
+        title = plain_text(text)
+        if title:
+            return title
     return fallback
 
 
@@ -326,16 +399,48 @@ SITE_TITLE = "twolink"
 CODE_STYLE = "a11y-high-contrast-light"
 
 
-def _page_link(
-    notebooks: list[pathlib.Path], titles: list[str], number: int
-) -> dict[str, str] | None:
-    """The link to chapter ``number`` (None outside the list)."""
-    if not 0 <= number < len(notebooks):
-        return None
-    return {
-        "href": notebooks[number].with_suffix(".html").name,
-        "title": titles[number],
-    }
+#: The index page's file and the text of the links to it.
+INDEX_PAGE = "index.html"
+INDEX_LINK_TEXT = f"All chapters of {SITE_TITLE}"
+
+
+def page_name(notebook: pathlib.Path) -> str:
+    """The file name of a notebook's page on the site."""
+    return notebook.with_suffix(".html").name
+
+
+def navigation(pages: Sequence[str], titles: Sequence[str]) -> list[dict[str, Any]]:
+    """Each page's links: ``{"index", "previous", "next"}``, each ``{"href", "title"}`` or None.
+
+    ``pages`` are the pages' file names in chapter order, ``titles`` their
+    titles; the first page has no previous one and the last no next one.
+    (The site template reads this from the notebook's metadata
+    ``twolink_site``.)
+
+    >>> links = navigation(["a.html", "b.html"], ["A", "B"])
+    >>> links[0]["previous"], links[0]["next"], links[1]["next"]
+    (None, {'href': 'b.html', 'title': 'B'}, None)
+    >>> links[1]["index"]
+    {'href': 'index.html', 'title': 'All chapters of twolink'}
+    """
+    if len(pages) != len(titles):
+        raise ValueError(
+            f"navigation needs one title per page: {len(pages)} pages, {len(titles)} titles"
+        )
+
+    def link(number: int) -> dict[str, str] | None:
+        if not 0 <= number < len(pages):
+            return None
+        return {"href": pages[number], "title": titles[number]}
+
+    return [
+        {
+            "index": {"href": INDEX_PAGE, "title": INDEX_LINK_TEXT},
+            "previous": link(number - 1),
+            "next": link(number + 1),
+        }
+        for number in range(len(pages))
+    ]
 
 
 def build_site(
@@ -355,6 +460,7 @@ def build_site(
         chapter_title(json.loads(path.read_text(encoding="utf-8")), path.stem)
         for path in notebooks
     ]
+    links = navigation([page_name(path) for path in notebooks], titles)
     with tempfile.TemporaryDirectory() as scratch:
         # copies that carry the page's title and the links to the index and the
         # neighbouring chapters (read by tools/site_template/course/index.html.j2)
@@ -364,14 +470,7 @@ def build_site(
                 json.loads(path.read_text(encoding="utf-8"))
             )
             notebook["metadata"]["title"] = f"{titles[number]} · {SITE_TITLE}"
-            notebook["metadata"]["twolink_site"] = {
-                "index": {
-                    "href": "index.html",
-                    "title": f"All chapters of {SITE_TITLE}",
-                },
-                "previous": _page_link(notebooks, titles, number - 1),
-                "next": _page_link(notebooks, titles, number + 1),
-            }
+            notebook["metadata"]["twolink_site"] = links[number]
             copy = pathlib.Path(scratch, path.name)
             copy.write_text(json.dumps(notebook, ensure_ascii=False), encoding="utf-8")
             copies.append(copy)
@@ -399,7 +498,7 @@ def build_site(
             check=True,
         )
     entries = [
-        f'    <li><a href="{html.escape(path.with_suffix(".html").name)}">{html.escape(title)}</a></li>'
+        f'    <li><a href="{html.escape(page_name(path))}">{html.escape(title)}</a></li>'
         for path, title in zip(notebooks, titles)
     ]
     index = "\n".join(
@@ -425,10 +524,8 @@ def build_site(
             "",
         ]
     )
-    (out_dir / "index.html").write_text(index, encoding="utf-8")
-    return [out_dir / "index.html"] + [
-        out_dir / path.with_suffix(".html").name for path in notebooks
-    ]
+    (out_dir / INDEX_PAGE).write_text(index, encoding="utf-8")
+    return [out_dir / INDEX_PAGE] + [out_dir / page_name(path) for path in notebooks]
 
 
 def main(argv: Sequence[str] | None = None) -> None:

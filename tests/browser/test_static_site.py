@@ -163,3 +163,40 @@ def test_every_page_is_accessible_titled_skippable_and_linked_in_order(site, pag
         assert undescribed.count() == 0, (
             f"{name}: {undescribed.count()} figures without a description"
         )
+
+
+def _tab_stops(page, count):
+    """The hrefs of the first ``count`` elements Tab reaches from the top of the page."""
+    stops = []
+    for _ in range(count):
+        page.keyboard.press("Tab")
+        stops.append(page.evaluate("() => document.activeElement.getAttribute('href')"))
+    return stops
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_the_chapters_are_walked_by_keyboard_from_the_index_and_back(site, page):
+    """Tab and Enter alone: the index's first link opens the first chapter; on each
+    chapter Tab reaches the skip link, then previous, index and next in that order;
+    Enter on next opens the next chapter, and the last chapter's index link returns."""
+    pages = [path.with_suffix(".html").name for path in NOTEBOOKS]
+    page.goto(f"{site}/index.html")
+    page.wait_for_load_state("load")
+    assert _tab_stops(page, 1) == [pages[0]]
+    page.keyboard.press("Enter")
+    for number, name in enumerate(pages):
+        page.wait_for_url(f"{site}/{name}")
+        page.wait_for_load_state("load")
+        expected = (
+            ["#content"]
+            + ([pages[number - 1]] if number > 0 else [])
+            + ["index.html"]
+            + ([pages[number + 1]] if number + 1 < len(pages) else [])
+        )
+        assert _tab_stops(page, len(expected)) == expected, name
+        page.keyboard.press(
+            "Enter"
+        )  # on the last stop: next, or the index after the last chapter
+    page.wait_for_url(f"{site}/index.html")
+    assert page.title() == f"{editions.SITE_TITLE}: the planar two-link arm"
