@@ -7,7 +7,7 @@ BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed-stamp
 NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
 
-.PHONY: help install lock lab test portable notebooks bench bench-widgets bench-peers student grade site browser-test clean
+.PHONY: help install lock lab test portable notebooks bench bench-widgets bench-peers student grade site dist browser-test clean
 
 help:
 	@echo "make lab        open the course in JupyterLab (creates .venv on first use);"
@@ -24,6 +24,7 @@ help:
 	@echo "make grade SUBMISSIONS=folder [JOBS=n] [UNSAFE=1]  grade returned notebooks, each in a sandbox, n at a time;"
 	@echo "                verdicts from the answers; CSV + one line per notebook (UNSAFE=1: no sandbox, trusted notebooks only)"
 	@echo "make site       render the executed chapters to static HTML in build/site/"
+	@echo "make dist       build the sdist and the wheel into dist/ and check them with twine (DIST=folder elsewhere)"
 	@echo "make browser-test  run only the browser suite (JupyterLab and the site in Chromium)"
 	@echo "make lock       regenerate constraints.txt (every package's exact version) from a clean venv"
 
@@ -127,6 +128,17 @@ grade: $(STAMP)
 
 site: $(STAMP)
 	$(BIN)/python tools/editions.py site --out build/site
+
+# The sdist and the wheel, ready to upload: `python -m build` makes the sdist, then
+# the wheel from it (so a file missing from the sdist is missing from the wheel
+# too), each in an isolated environment with the build backend pyproject.toml
+# names; `twine check --strict` reads their metadata and README as PyPI would.
+# tests/test_dist.py checks what they hold.
+DIST ?= dist
+dist: $(STAMP)
+	rm -f $(DIST)/twolink-*.tar.gz $(DIST)/twolink-*.whl
+	$(BIN)/python -m build --outdir $(DIST) .
+	$(BIN)/python -m twine check --strict $(DIST)/twolink-*
 
 browser-test: $(STAMP)
 	$(BIN)/python -m pytest -m browser tests/browser -n 0 -s
