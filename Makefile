@@ -144,4 +144,4 @@ browser-test: $(STAMP)
 	$(BIN)/python -m pytest -m browser tests/browser -n 0 -s
 
 clean:
-	rm -rf build .pytest_cache
+	rm -rf build dist .pytest_cache
