@@ -478,3 +478,17 @@ def test_the_genuine_fingerprints_cover_what_a_submission_could_replace():
         assert key in genuine
     assert genuine["the notebook's selfcheck"] == "the module"
     assert not any(value.endswith("(replaced)") for value in genuine.values())
+
+
+def test_a_notebook_that_is_not_valid_nbformat_is_reported_unread(tmp_path):
+    broken = {
+        "nbformat": 4,
+        "nbformat_minor": 5,
+        "metadata": {},
+        "cells": [{"cell_type": "code"}],
+    }
+    (tmp_path / "broken.ipynb").write_text(json.dumps(broken), encoding="utf-8")
+    lines = grade.grade_folder(tmp_path, tmp_path / "out" / "grades.csv", unsafe=True)
+    assert (
+        len(lines) == 1 and "FAILED TO RUN: unreadable (ValidationError: " in lines[0]
+    )

@@ -34,6 +34,7 @@ NOT_INFRASTRUCTURE = {
     "tests/test_grade.py::test_grading_refuses_without_a_sandbox_unless_told": "refused: no sandbox",
     "tests/test_grade.py::test_names_cannot_forge_a_formula_or_a_summary_line": "an unreadable file: nothing runs",
     "tests/test_grade.py::test_a_notebook_of_no_chapter_says_so": "no chapter: nothing runs",
+    "tests/test_grade.py::test_a_notebook_that_is_not_valid_nbformat_is_reported_unread": "refused unread",
     "tests/test_portable.py::test_an_unknown_notebook_is_refused_by_name": "refused: no such notebook",
     "tests/test_portable.py::test_a_kernel_that_did_not_start_is_run_again_once": "run_nbval replaced",
     "tests/test_portable.py::test_a_mismatch_is_never_run_again": "run_nbval replaced",

@@ -54,7 +54,6 @@ import dataclasses
 import io
 import os
 import pathlib
-import re
 import secrets
 import stat
 import sys
@@ -71,6 +70,7 @@ sys.path[:0] = [str(ROOT), str(TOOLS)]
 import grading_probe  # noqa: E402  (tools/grading_probe.py)
 import sandbox  # noqa: E402  (tools/sandbox.py)
 from grade_run import DEFAULT_LIMITS, PROBE_TAG, Limits, Runner  # noqa: E402  (tools/grade_run.py)
+from nbgrader_cells import check_call  # noqa: E402  (tools/nbgrader_cells.py)
 
 import answers  # noqa: E402  (the repository's readable references)
 from twolink import exercises  # noqa: E402
@@ -90,8 +90,6 @@ MAX_NOTEBOOK_BYTES = 50_000_000
 #: What a spreadsheet reads as the start of a formula.
 FORMULA_STARTS = ("=", "+", "-", "@", "\t", "\r")
 HEADER = ["student file", "exercise", "part", "result"]
-#: A check cell: ``... selfcheck.check("2.1", ...)``.
-CHECK_CALL = re.compile(r"""selfcheck\.check\(\s*["'](\d+\.\d+)["']""")
 #: Hidden calls per function part.
 HIDDEN_CALLS = 20
 #: What the submissions' sandboxes must not see, besides the submissions and the grades.
@@ -150,15 +148,21 @@ class Chapter:
 
 
 def check_number(cell: Any) -> str | None:
-    """The exercise a code cell checks (``"2.1"``), or None if it is no check cell.
+    """The exercise a code cell checks (``"2.1"``), or None if it is no check cell as the chapters write them.
 
     >>> check_number(nbformat.v4.new_code_cell('correct_ex1 = selfcheck.check("2.1", q)'))
     '2.1'
+    >>> check_number(nbformat.v4.new_code_cell('print("selfcheck.check")')) is None
+    True
     """
-    if cell.get("cell_type") != "code":
+    if cell.get("cell_type") != "code" or "selfcheck.check" not in "".join(
+        cell.get("source", "")
+    ):
         return None
-    match = CHECK_CALL.search("".join(cell.get("source", "")))
-    return match[1] if match else None
+    try:
+        return check_call("".join(cell.get("source", "")))[0]
+    except (ValueError, SyntaxError):
+        return None
 
 
 def release_chapters(folder: pathlib.Path = ROOT / "notebooks") -> dict[str, Chapter]:
@@ -455,6 +459,7 @@ def grade_notebook(
         return Graded([], reason, [])
     try:
         submission = nbformat.read(path, as_version=4)
+        nbformat.validate(submission)  # every cell as nbformat 4 says
     except Exception as error:  # invalid JSON, not a notebook
         first = str(error).splitlines()[0] if str(error) else ""
         return Graded([], f"unreadable ({type(error).__name__}: {first})"[:300], [])

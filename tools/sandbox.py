@@ -24,6 +24,7 @@ Usage (a kernel manager for nbclient)::
 from __future__ import annotations
 
 import dataclasses
+import importlib.util
 import os
 import pathlib
 import shutil
@@ -122,18 +123,23 @@ def command_prefix(
         "--perms", "1777", "--tmpfs", "/tmp",
         "--perms", "1777", "--tmpfs", "/dev/shm",
     ]  # fmt: skip
+    # the grader's home is private too
+    grader_home = pathlib.Path.home().resolve()
+    prefix += ["--perms", "0755", "--tmpfs", str(grader_home)]
+    # what the kernel runs on is bound back read-only wherever it lives (pyenv
+    # in the home, a clone and its venv in /tmp)
+    masked = [pathlib.Path("/tmp"), grader_home]
+    for path in needed_paths():
+        below = next((root for root in masked if path.is_relative_to(root)), None)
+        if below is None or path == below:
+            continue
+        for parent in reversed(path.relative_to(below).parents[:-1]):
+            prefix += ["--perms", "0755", "--dir", str(below / parent)]
+        prefix += ["--ro-bind", str(path), str(path)]
+    # last, so that a hidden folder inside a bound-back one stays hidden
     for path in hidden:
         if path.exists():
             prefix += ["--tmpfs", str(path.resolve())]
-    # the grader's home is private; the Python installation, if it lives there
-    # (pyenv), is bound back read-only
-    grader_home = pathlib.Path.home().resolve()
-    prefix += ["--perms", "0755", "--tmpfs", str(grader_home)]
-    python_home = pathlib.Path(sys.base_prefix).resolve()
-    if python_home.is_relative_to(grader_home):
-        for parent in reversed(python_home.relative_to(grader_home).parents[:-1]):
-            prefix += ["--perms", "0755", "--dir", str(grader_home / parent)]
-        prefix += ["--ro-bind", str(python_home), str(python_home)]
     prefix += [
         "--bind", str(workdir), str(workdir),
         "--bind", str(runtime), str(runtime),
@@ -171,6 +177,19 @@ def command_prefix(
         "--",
     ]  # fmt: skip
     return prefix
+
+
+def needed_paths() -> list[pathlib.Path]:
+    """What a kernel needs to read: the Python installation, the environment and the twolink package.
+
+    >>> pathlib.Path(sys.prefix).resolve() in needed_paths()
+    True
+    """
+    paths = [pathlib.Path(sys.base_prefix), pathlib.Path(sys.prefix)]
+    spec = importlib.util.find_spec("twolink")  # finds it without importing it
+    if spec is not None and spec.origin is not None:
+        paths.append(pathlib.Path(spec.origin).parent)
+    return sorted({path.resolve() for path in paths})
 
 
 class SandboxKernelManager(AsyncKernelManager):
