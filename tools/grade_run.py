@@ -85,6 +85,15 @@ class Limits:
     cell_seconds: float = 120.0
     notebook_seconds: float = 600.0
 
+    @property
+    def overrun(self) -> str:
+        """Why a notebook stopped at its time limit.
+
+        >>> Limits(10, 60).overrun
+        "stopped after 60 s (the notebook's time limit)"
+        """
+        return f"stopped after {self.notebook_seconds:g} s (the notebook's time limit)"
+
 
 #: The time limits of ``make grade``.
 DEFAULT_LIMITS = Limits()
@@ -137,18 +146,14 @@ def execute(
             cwd=str(workdir), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
         )
     except DeadKernelError:
-        failure = (
-            f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
-            if stopped.is_set()
-            else "the kernel died"
-        )
+        failure = limits.overrun if stopped.is_set() else "the kernel died"
     except CellTimeoutError:
         failure = f"a cell ran longer than {limits.cell_seconds:g} s and could not be interrupted"
     except OutputFlood as error:
         failure = str(error)
     except Exception as error:  # the kernel could not start, and the like
         failure = (
-            f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
+            limits.overrun
             if stopped.is_set()
             else f"{type(error).__name__}: {error}"[:300]
         )
@@ -265,9 +270,7 @@ class Worker:
             )
             if not self.connection.poll(limits.notebook_seconds + 60):
                 self.stop()
-                return {
-                    "failure": f"stopped after {limits.notebook_seconds:g} s (the notebook's time limit)"
-                }
+                return {"failure": limits.overrun}
             ran = self.connection.recv()
             if isinstance(ran, dict):
                 return ran
