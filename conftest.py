@@ -1,7 +1,7 @@
 """Make pytest work the same from any folder of the repository.
 
 pyproject.toml's options name the nbval sanitize file relative to the
-repository root (``notebooks/sanitize.cfg``); pytest would read that path
+repository root (``tests/nbval_sanitize.cfg``); pytest would read that path
 relative to the current folder, so ``cd notebooks && pytest --nbval
 01_dh_forward_kinematics.ipynb`` would not find it.  A relative path that does
 not exist from the current folder is taken from the root instead.

@@ -18,7 +18,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 NOTEBOOK_DIR = ROOT / "notebooks"
 NOTEBOOKS = sorted(NOTEBOOK_DIR.glob("*.ipynb"))
-SANITIZE = NOTEBOOK_DIR / "sanitize.cfg"
+SANITIZE = ROOT / "tests" / "nbval_sanitize.cfg"
 
 # f"{x:.1e}", f"{x:e}", f"{x:10.3E}"; "%.2e" % x; format(x, ".2e"); np.format_float_scientific.
 SCIENTIFIC_FORMATS = [
@@ -159,7 +159,7 @@ def test_round_off_sized_numbers_are_shown_as_bounds(notebook):
 def test_the_sanitize_file_masks_only_what_is_random_and_says_why():
     lines = SANITIZE.read_text(encoding="utf-8").splitlines()
     pairs = [index for index, line in enumerate(lines) if line.startswith("regex: ")]
-    assert pairs, "sanitize.cfg has no patterns"
+    assert pairs, "nbval_sanitize.cfg has no patterns"
     for index in pairs:
         assert index + 1 < len(lines) and lines[index + 1].startswith("replace: "), (
             f"line {index + 1}: a regex without its replace"
@@ -169,12 +169,12 @@ def test_the_sanitize_file_masks_only_what_is_random_and_says_why():
             and lines[index - 1].startswith("#")
             and len(lines[index - 1]) > 20
         ), (
-            f"sanitize.cfg line {index + 1}: say in a comment line above it why this output is truly random"
+            f"nbval_sanitize.cfg line {index + 1}: say in a comment line above it why this output is truly random"
         )
     for line in lines:
         assert line == line.rstrip(), (
-            f"trailing space in sanitize.cfg (nbval would keep it): {line!r}"
+            f"trailing space in nbval_sanitize.cfg (nbval would keep it): {line!r}"
         )
         assert line.startswith(("regex: ", "replace: ", "#")) or not line.strip(), (
-            f"stray line in sanitize.cfg: {line!r}"
+            f"stray line in nbval_sanitize.cfg: {line!r}"
         )

@@ -1,7 +1,7 @@
 """`pytest --nbval` works from the root and from inside notebooks/ (the sanitize file is found from the root).
 
 The runs use a copy of the repository's pytest set-up (pyproject.toml,
-conftest.py, notebooks/sanitize.cfg) with one tiny notebook whose stored
+conftest.py, tests/nbval_sanitize.cfg) with one tiny notebook whose stored
 output only matches after sanitising (a random video payload, what the
 sanitize file masks), so each run
 fails unless the sanitize file is found, and does not depend on chapters
@@ -25,7 +25,8 @@ def repository(tmp_path):
     shutil.copy(ROOT / "pyproject.toml", tmp_path)
     shutil.copy(ROOT / "conftest.py", tmp_path)
     (tmp_path / "notebooks").mkdir()
-    shutil.copy(ROOT / "notebooks" / "sanitize.cfg", tmp_path / "notebooks")
+    (tmp_path / "tests").mkdir()
+    shutil.copy(ROOT / "tests" / "nbval_sanitize.cfg", tmp_path / "tests")
     cell = nbformat.v4.new_code_cell(
         "import base64, os\nprint('data:video/mp4;base64,' + base64.b64encode(os.urandom(24)).decode())"
     )
