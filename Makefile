@@ -1,17 +1,41 @@
 # twolink: the two commands a learner needs are `make lab` and `make test`.
-# Both create the virtual environment .venv on first use.
+# Both create the virtual environment .venv on first use: `make lab` installs
+# what the course needs (requirements.txt), `make test` and the other
+# developers' targets add the developers' tools (requirements-dev.txt).
 
 PYTHON ?= python3
 VENV ?= .venv
 BIN := $(VENV)/bin
+# Two install stamps: the course's (make lab) and the developers' (make test,
+# ...), which includes the course's.
+COURSE_STAMP := $(VENV)/.course-stamp
 STAMP := $(VENV)/.installed-stamp
 NOTEBOOKS := $(sort $(wildcard notebooks/*.ipynb))
+# The notebook JupyterLab opens first (make lab).
+START_PAGE ?= 00_start_here.ipynb
 
-.PHONY: help install lock lab test portable notebooks bench bench-widgets bench-peers student grade site dist browser-test clean
+# The installer: uv when it is on the PATH (several times faster), pip otherwise.
+# Both compile the packages' bytecode in parallel after installing (pip itself
+# compiles file by file, 26 of its 38 s here), so that the first imports are quick.
+UV := $(shell command -v uv 2>/dev/null)
+ifneq ($(UV),)
+INSTALLER := uv
+INSTALL := $(UV) pip install --quiet --compile-bytecode --python $(BIN)/python
+COMPILE :=
+else
+INSTALLER := pip
+INSTALL := $(BIN)/python -m pip install --quiet --no-compile
+COMPILE := $(BIN)/python -m compileall -q -j 0 "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_path("purelib"))')" >/dev/null || echo "make: some files did not compile (Python compiles them when imported)"
+endif
+
+.PHONY: help install install-dev lock lab test portable notebooks bench bench-widgets bench-peers bench-first-lab student grade site dist browser-test clean
 
 help:
-	@echo "make lab        open the course in JupyterLab (creates .venv on first use);"
+	@echo "make lab        open the course in JupyterLab, on the start page notebooks/$(START_PAGE);"
+	@echo "                the first time, creates .venv and installs the course (requirements.txt, with $(INSTALLER));"
 	@echo "                extra JupyterLab options: make lab LAB_ARGS=\"--no-browser --port 8890\""
+	@echo "make install    install (or, after git pull, update) what make lab needs, without starting JupyterLab"
+	@echo "make install-dev  that and the developers' tools (requirements-dev.txt); every target below does it first"
 	@echo "make test       unit tests, doctests, notebook hygiene, every notebook under strict nbval and the"
 	@echo "                infrastructure tests (venvs, wheels, nested pytest, browser, whole editions); the quick part:"
 	@echo "                .venv/bin/python -m pytest -m \"not infrastructure and not browser\""
@@ -19,6 +43,7 @@ help:
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables (bench-widgets included)"
 	@echo "make bench-widgets  key press to a changed picture for every explorer, in JupyterLab in Chromium"
+	@echo "make bench-first-lab  a fresh clone's first make lab until the start page is served (pip, and uv if on the PATH)"
 	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"
 	@echo "make student    write the student edition (solutions stubbed) to build/student/"
 	@echo "make grade SUBMISSIONS=folder [JOBS=n] [UNSAFE=1]  grade returned notebooks, each in a sandbox, n at a time;"
@@ -26,19 +51,31 @@ help:
 	@echo "make site       render the executed chapters to static HTML in build/site/"
 	@echo "make dist       build the sdist and the wheel into dist/ and check them with twine (DIST=folder elsewhere)"
 	@echo "make browser-test  run only the browser suite (JupyterLab and the site in Chromium)"
-	@echo "make lock       regenerate constraints.txt (every package's exact version) from a clean venv"
+	@echo "make lock       regenerate constraints.txt (every package's exact version) from a clean venv of both requirement files"
+	@echo "Installs use uv when it is on the PATH, pip otherwise."
 
-# requirements.txt names what the course uses; constraints.txt pins every
-# package installed with it (indirect ones too), so the stored notebook
-# outputs are reproduced.  `make lock` regenerates it.
-$(STAMP): requirements.txt constraints.txt pyproject.toml
-	@test -x $(BIN)/python || $(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -r requirements.txt -c constraints.txt
+# requirements.txt names what the course needs, requirements-dev.txt adds the
+# developers' tools (tests, notebook hygiene, grading, the static site,
+# publishing); constraints.txt pins every package either brings (indirect ones
+# too), so the stored notebook outputs are reproduced.  `make lock` regenerates it.
+# The venv is Python's own (python -m venv: pip and setuptools as the lock was
+# made with) whichever installer fills it; pip upgrades itself first (the new
+# one installs the course ~10 s faster).
+$(COURSE_STAMP): requirements.txt constraints.txt pyproject.toml
+	@echo "make: installing the course (requirements.txt) into $(VENV) with $(INSTALLER)$(if $(UV),, (uv is not on the PATH; with it the install is faster))"
+	@test -x $(BIN)/python || { $(PYTHON) -m venv $(VENV) $(if $(UV),,&& $(BIN)/python -m pip install --quiet --upgrade pip); }
+	$(INSTALL) -r requirements.txt -c constraints.txt
+	$(COMPILE)
 	rm -rf $(LABEXTENSION_LINK)
 	mkdir -p $(dir $(LABEXTENSION_LINK))
 	ln -s "$(CURDIR)/labextension/twolink_figure_alt/labextension" $(LABEXTENSION_LINK)
-	@touch $(STAMP)
+	@touch $@
+
+$(STAMP): $(COURSE_STAMP) requirements-dev.txt
+	@echo "make: installing the developers' tools (requirements-dev.txt) into $(VENV) with $(INSTALLER)"
+	$(INSTALL) -r requirements-dev.txt -c constraints.txt
+	$(COMPILE)
+	@touch $@
 
 # The prebuilt JupyterLab extension twolink-figure-alt (labextension/: figures'
 # alt text in JupyterLab).  A wheel installs it from pyproject's data-files, but
@@ -47,23 +84,28 @@ $(STAMP): requirements.txt constraints.txt pyproject.toml
 # (python labextension/build.py).
 LABEXTENSION_LINK := $(VENV)/share/jupyter/labextensions/twolink-figure-alt
 
-install: $(STAMP)
+# What `make lab` installs (after a `git pull`, the course's new versions), and with the developers' tools.
+install: $(COURSE_STAMP)
+install-dev: $(STAMP)
 
-# A throwaway venv with only requirements.txt, frozen: what a clean install resolves today.
+# A throwaway venv with requirements-dev.txt (which includes requirements.txt), frozen:
+# what a clean install of both files resolves today.
 LOCK_VENV := build/lock-venv
 lock:
 	rm -rf $(LOCK_VENV)
 	$(PYTHON) -m venv $(LOCK_VENV)
 	$(LOCK_VENV)/bin/python -m pip install --quiet --upgrade pip
-	$(LOCK_VENV)/bin/python -m pip install --quiet -r requirements.txt
-	{ echo "# Generated by \`make lock\` from a clean install of requirements.txt ($$($(LOCK_VENV)/bin/python -c 'import platform; print("Python", platform.python_version())')): do not edit by hand."; \
-	  echo "# Used as pip constraints by \`make install\` (and so CI): pip install -r requirements.txt -c constraints.txt"; \
+	$(LOCK_VENV)/bin/python -m pip install --quiet -r requirements-dev.txt
+	{ echo "# Generated by \`make lock\` from a clean install of requirements-dev.txt, which includes requirements.txt ($$($(LOCK_VENV)/bin/python -c 'import platform; print("Python", platform.python_version())')): do not edit by hand."; \
+	  echo "# Used as constraints by every install (make lab, make test, CI, Binder): pip install -r requirements.txt -c constraints.txt"; \
 	  $(LOCK_VENV)/bin/python -m pip freeze --all --exclude-editable | grep -v '^pip=='; } > constraints.txt.new
 	mv constraints.txt.new constraints.txt
 	rm -rf $(LOCK_VENV)
 
-# JupyterLab refuses to run as root unless told; containers and CI machines often are root.
+# JupyterLab refuses to run as root unless given --allow-root; containers and CI
+# machines often are root, so `make lab` adds it there and says so.
 ALLOW_ROOT := $(if $(filter 0,$(shell id -u 2>/dev/null)),--allow-root,)
+ROOT_NOTE := make lab: you are root, and JupyterLab refuses to run as root (a notebook could change the whole machine), so --allow-root is added; to avoid it, run make lab as an ordinary user (in a container: docker run --user)
 
 # Extra JupyterLab options: make lab LAB_ARGS="--no-browser --port 8890"
 LAB_ARGS ?=
@@ -73,8 +115,10 @@ LAB_ARGS ?=
 LAB_SERVER := PYTHONPATH="$(CURDIR)/tools/lab_server$${PYTHONPATH:+:$$PYTHONPATH}" \
 	$(BIN)/jupyter lab --ServerApp.jpserver_extensions=twolink_nodelay=True
 
-lab: $(STAMP)
-	$(LAB_SERVER) --ServerApp.root_dir=notebooks $(ALLOW_ROOT) $(LAB_ARGS)
+# JupyterLab opens on the start page (its default URL) instead of the Launcher.
+lab: $(COURSE_STAMP)
+	@$(if $(ALLOW_ROOT),echo "$(ROOT_NOTE)",:)
+	$(LAB_SERVER) --ServerApp.root_dir=notebooks --LabApp.default_url=/lab/tree/$(START_PAGE) $(ALLOW_ROOT) $(LAB_ARGS)
 
 # Options for pytest (doctests, strict nbval, sanitize file, xdist) live in
 # pyproject.toml so that a plain `pytest` in the venv behaves the same.
@@ -101,8 +145,12 @@ notebooks: $(STAMP)
 		$(BIN)/nbstripout --keep-output --keep-count "$$notebook" || exit 1; \
 	done
 
+# bench_first_lab.py (a fresh clone's first `make lab`: minutes, and the package index) runs alone.
 bench: $(STAMP)
-	@for script in benchmarks/bench_*.py; do $(BIN)/python "$$script" || exit 1; done
+	@for script in $(filter-out benchmarks/bench_first_lab.py,$(sort $(wildcard benchmarks/bench_*.py))); do $(BIN)/python "$$script" || exit 1; done
+
+bench-first-lab: $(STAMP)
+	$(BIN)/python benchmarks/bench_first_lab.py
 
 bench-widgets: $(STAMP)
 	$(BIN)/python benchmarks/bench_widgets.py

@@ -1,17 +1,24 @@
-"""The course's Jupyter server extension: kernel websockets without Nagle's delay.
+"""The course's Jupyter server: kernel websockets without Nagle's delay, and ``make lab`` itself.
 
 ``tools/lab_server/twolink_nodelay.py`` is loaded by ``make lab``, the browser
 suite and ``benchmarks/bench_widgets.py``.  Its speed is measured by the
 benchmark, not here; these tests check that it does what it says and is
-loaded where it should be.
+loaded where it should be.  The last test runs ``make lab`` (in this
+environment, nothing installed) and checks that it sends the browser to the
+start page.
 """
 
 import asyncio
+import http.client
 import json
+import os
 import pathlib
+import secrets
+import signal
 import subprocess
 import sys
 import tempfile
+import time
 import urllib.request
 
 import pytest
@@ -71,7 +78,8 @@ def test_loading_twice_wraps_the_kernel_handler_once(monkeypatch):
 
 def test_make_lab_loads_the_extension():
     done = subprocess.run(
-        ["make", "-n", "lab", "STAMP=Makefile"],
+        # the course's install stamp taken as up to date: the dry run shows make lab's own command
+        ["make", "-n", "lab", "-o", ".venv/.course-stamp"],
         capture_output=True,
         text=True,
         cwd=ROOT,
@@ -96,3 +104,66 @@ def test_the_course_server_loads_it_and_runs_a_kernel():
             lab_browser.shut_down_kernels(lab)
         log = (pathlib.Path(home) / "server.log").read_text()
     assert "twolink_nodelay: kernel websockets send without Nagle's delay" in log
+
+
+START_PAGE = "00_start_here.ipynb"
+
+
+@pytest.mark.infrastructure
+def test_make_lab_sends_the_browser_to_the_start_page(tmp_path):
+    """``make lab`` (this venv, its install stamps taken as up to date) redirects ``/`` to
+    ``/lab/tree/00_start_here.ipynb``, the URL it opens, and serves that notebook.  (That
+    JupyterLab 4 then opens the notebook instead of the Launcher was checked in Chromium.)"""
+    venv = pathlib.Path(sys.prefix)
+    port, token = lab_browser.free_port(), secrets.token_hex(16)
+    env = {**os.environ, "JUPYTER_RUNTIME_DIR": str(tmp_path / "runtime")}
+    env.pop("PYTHONPATH", None)
+    log = tmp_path / "make-lab.log"
+    with open(log, "w") as out:
+        server = subprocess.Popen(
+            [
+                "make",
+                "--no-print-directory",
+                "lab",
+                f"VENV={venv}",
+                *("-o", f"{venv}/.course-stamp", "-o", f"{venv}/.installed-stamp"),
+                f"LAB_ARGS=--no-browser --port {port} --IdentityProvider.token={token}",
+            ],
+            cwd=ROOT,
+            env=env,
+            stdout=out,
+            stderr=subprocess.STDOUT,
+            start_new_session=True,
+        )
+    try:
+        deadline = time.monotonic() + 90
+        while True:
+            assert server.poll() is None, f"make lab exited: {log.read_text()[-3000:]}"
+            try:
+                connection = http.client.HTTPConnection("127.0.0.1", port, timeout=5)
+                connection.request("GET", f"/?token={token}")
+                response = connection.getresponse()
+                break
+            except OSError:
+                assert time.monotonic() < deadline, (
+                    f"no answer within 90 s: {log.read_text()[-3000:]}"
+                )
+                time.sleep(0.3)
+        assert response.status == 302, response.status
+        assert response.getheader("Location", "").startswith(
+            f"/lab/tree/{START_PAGE}?"
+        ), response.getheader("Location")
+        request = urllib.request.Request(
+            f"http://127.0.0.1:{port}/api/contents/{START_PAGE}?content=0",
+            headers={"Authorization": f"token {token}"},
+        )
+        with urllib.request.urlopen(request, timeout=30) as contents:
+            assert json.load(contents)["type"] == "notebook"
+    finally:
+        os.killpg(server.pid, signal.SIGTERM)
+        try:
+            server.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            os.killpg(server.pid, signal.SIGKILL)
+            server.wait(timeout=10)
+    assert f"/lab/tree/{START_PAGE}" in log.read_text()

@@ -6,6 +6,8 @@ four core dependencies (numpy, scipy, sympy, matplotlib).
 
 import ast
 import importlib.metadata
+import json
+import os
 import pathlib
 import re
 import shutil
@@ -32,6 +34,25 @@ COURSE_ONLY = {
     "jupyterlab",
 }
 CORE = ["numpy", "scipy", "sympy", "matplotlib"]
+#: The course's requirements (make lab) and the developers' (make test and the rest).
+REQUIREMENTS = [ROOT / "requirements.txt", ROOT / "requirements-dev.txt"]
+#: Tools learners need not install: they go with the developers' requirements.
+DEVELOPERS_TOOLS = {
+    "pytest",
+    "pytest-xdist",
+    "hypothesis",
+    "nbval",
+    "nbstripout",
+    "nbgrader",
+    "ruff",
+    "mypy",
+    "build",
+    "twine",
+    "check-jsonschema",
+    "playwright",
+    "axe-playwright-python",
+    "colorspacious",
+}
 
 
 def pins(path):
@@ -98,7 +119,11 @@ def lock_python():
 
 def pinned_requires_python():
     """``{name: Requires-Python}`` of every pinned distribution, read from the installed (pinned) one."""
-    pinned = {**pins(ROOT / "constraints.txt"), **pins(ROOT / "requirements.txt")}
+    pinned = {
+        **pins(ROOT / "constraints.txt"),
+        **pins(ROOT / "requirements.txt"),
+        **pins(ROOT / "requirements-dev.txt"),
+    }
     found = {}
     for name, version in pinned.items():
         dist = importlib.metadata.distribution(name)
@@ -208,11 +233,13 @@ def test_readme_online_links_are_generated_from_project_urls(tmp_path):
 
 def test_constraints_pin_every_package_a_clean_install_brings():
     constraints = pins(ROOT / "constraints.txt")
-    for name, version in pins(ROOT / "requirements.txt").items():
-        assert constraints.get(name) == version, (
-            f"requirements.txt pins {name}=={version}, constraints.txt {constraints.get(name)}"
-        )
-    direct = [name for name in pins(ROOT / "requirements.txt")]
+    direct = []
+    for requirements in REQUIREMENTS:
+        for name, version in pins(requirements).items():
+            assert constraints.get(name) == version, (
+                f"{requirements.name} pins {name}=={version}, constraints.txt {constraints.get(name)}"
+            )
+            direct.append(name)
     needed = _venvs.closure([*direct, *CORE])
     unpinned = {
         dist.metadata["Name"]
@@ -226,41 +253,201 @@ def test_constraints_pin_every_package_a_clean_install_brings():
         assert constraints[canonicalize_name(dist.metadata["Name"])] == dist.version
 
 
-def make_dry_run(*args):
+def requirement_lines(path):
+    """The requirement lines of a requirements file (comments and blank lines left out)."""
+    lines = (line.split("#")[0].strip() for line in path.read_text().splitlines())
+    return [line for line in lines if line]
+
+
+def test_every_requirement_is_pinned_exactly():
+    for requirements in REQUIREMENTS:
+        lines = requirement_lines(requirements)
+        loose = [
+            line
+            for line in lines
+            if not line.startswith(("-r ", "-e "))
+            and canonicalize_name(re.split(r"[=<>!~\[ ;]", line)[0])
+            not in pins(requirements)
+        ]
+        assert not loose, f"{requirements.name}: not pinned with ==: {loose}"
+
+
+def test_learners_get_the_course_and_developers_the_course_and_their_tools():
+    course, dev = pins(ROOT / "requirements.txt"), pins(ROOT / "requirements-dev.txt")
+    assert requirement_lines(ROOT / "requirements.txt").count("-e .") == 1
+    assert (
+        requirement_lines(ROOT / "requirements-dev.txt")[0] == "-r requirements.txt"
+    ), "requirements-dev.txt should start by including the course's requirements.txt"
+    assert not DEVELOPERS_TOOLS & set(course), (
+        f"requirements.txt (what make lab installs) holds developers' tools: "
+        f"{sorted(DEVELOPERS_TOOLS & set(course))}"
+    )
+    assert DEVELOPERS_TOOLS <= set(dev), sorted(DEVELOPERS_TOOLS - set(dev))
+    assert not set(course) & set(dev), "a package named in both files"
+    assert {"jupyterlab", "ipykernel", "mujoco", *CORE} <= set(course)
+
+
+def test_the_course_file_brings_every_module_the_chapters_import():
+    """What a chapter imports (its code cells' import statements) comes with requirements.txt, not
+    with the developers' tools only: the third-party modules' distributions are in its closure."""
+    from importlib.metadata import packages_distributions
+
+    imported = set()
+    for path in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]:
+            if cell["cell_type"] == "code":
+                source = "".join(cell["source"])
+                imported |= set(
+                    re.findall(r"^\s*(?:import|from)\s+(\w+)", source, re.M)
+                )
+    assert {"numpy", "twolink"} <= imported, sorted(imported)
+    providers = packages_distributions()
+    third_party = {
+        module: providers[module]
+        for module in imported - {"twolink"}
+        if module not in sys.stdlib_module_names
+    }
+    assert "numpy" in third_party, third_party
+    closure = {
+        canonicalize_name(dist.metadata["Name"])
+        for dist in _venvs.closure([*pins(ROOT / "requirements.txt"), *CORE])
+    }
+    missing = {
+        module: names
+        for module, names in third_party.items()
+        if not {canonicalize_name(name) for name in names} & closure
+    }
+    assert not missing, (
+        f"the chapters import these, requirements.txt does not bring them: {missing}"
+    )
+
+
+def test_the_extras_follow_the_requirement_files():
+    extras = PYPROJECT["project"]["optional-dependencies"]
+    names = {
+        extra: {canonicalize_name(re.split(r"[=<>!~\[ ;]", item)[0]) for item in items}
+        for extra, items in extras.items()
+    }
+    course = set(pins(ROOT / "requirements.txt")) - set(CORE)
+    assert names["course"] == course, (
+        "the course extra should name what requirements.txt adds to the core: "
+        f"{sorted(names['course'] ^ course)}"
+    )
+    dev = set(pins(ROOT / "requirements-dev.txt"))
+    assert names["dev"] == dev, sorted(names["dev"] ^ dev)
+    assert names["test"] <= dev, sorted(names["test"] - dev)
+    core = {
+        canonicalize_name(re.split(r"[=<>!~ ;]", item)[0])
+        for item in PYPROJECT["project"]["dependencies"]
+    }
+    assert core == set(CORE)
+
+
+def make_dry_run(*args, env=None):
     return subprocess.run(
         ["make", "-n", "-B", "--no-print-directory", *args],
         cwd=ROOT,
         capture_output=True,
         text=True,
         check=True,
+        env=env,
     ).stdout
+
+
+def installs(dry_run):
+    """The requirement files the install commands of a dry run install, in order."""
+    return re.findall(
+        r"pip install .*-r (requirements[\w-]*\.txt) -c constraints\.txt", dry_run
+    )
 
 
 def test_make_install_uses_the_lock_and_make_lock_regenerates_it():
     install = make_dry_run("install")
-    assert re.search(
-        r"pip install .*-r requirements\.txt -c constraints\.txt", install
-    ), install
+    assert installs(install) == ["requirements.txt"], install
+    assert installs(make_dry_run("install-dev")) == [
+        "requirements.txt",
+        "requirements-dev.txt",
+    ]
     lock = make_dry_run("lock")
     assert (
         "-m venv build/lock-venv" in lock
+        and "pip install --quiet -r requirements-dev.txt" in lock
         and "pip freeze --all --exclude-editable" in lock
         and "> constraints.txt.new" in lock
     )
 
 
-# --- 7. make lab LAB_ARGS ----------------------------------------------------------------------------------------
+def test_make_lab_installs_the_course_only_and_make_test_the_developers_tools_too():
+    assert installs(make_dry_run("lab")) == ["requirements.txt"]
+    for target in (
+        "test",
+        "portable",
+        "notebooks",
+        "student",
+        "site",
+        "dist",
+        "bench",
+        "browser-test",
+    ):
+        assert installs(make_dry_run(target)) == [
+            "requirements.txt",
+            "requirements-dev.txt",
+        ], target
+
+
+def test_make_installs_with_uv_when_it_is_on_the_path_and_says_which(tmp_path):
+    fake = tmp_path / "uv"
+    fake.write_text("#!/bin/sh\nexit 0\n")
+    fake.chmod(0o755)
+    path = os.environ.get("PATH", "")
+    with_uv = make_dry_run("install", env={**os.environ, "PATH": f"{tmp_path}:{path}"})
+    assert re.search(
+        rf"^{re.escape(str(fake))} pip install .*--python \.venv/bin/python -r requirements\.txt -c constraints\.txt$",
+        with_uv,
+        re.M,
+    ), with_uv
+    assert "with uv" in with_uv and "-m pip install" not in with_uv
+    without = os.pathsep.join(
+        folder
+        for folder in path.split(os.pathsep)
+        if not os.access(os.path.join(folder, "uv"), os.X_OK)
+    )
+    with_pip = make_dry_run("install", env={**os.environ, "PATH": without})
+    assert re.search(
+        r"^\.venv/bin/python -m pip install .*-r requirements\.txt -c constraints\.txt$",
+        with_pip,
+        re.M,
+    ), with_pip
+    assert "with pip (uv is not on the PATH" in with_pip and "uv pip" not in with_pip
+
+
+# --- 7. make lab: LAB_ARGS, the start page, root ------------------------------------------------------------------
+
+
+def lab_command(*args):
+    lines = make_dry_run("lab", *args).splitlines()
+    return [line for line in lines if "jupyter lab" in line], lines
 
 
 def test_make_lab_passes_extra_jupyterlab_arguments():
-    lab = [
-        line
-        for line in make_dry_run(
-            "lab", "LAB_ARGS=--no-browser --port 8890"
-        ).splitlines()
-        if "jupyter lab" in line
-    ]
+    lab, _ = lab_command("LAB_ARGS=--no-browser --port 8890")
     assert lab and lab[-1].rstrip().endswith("--no-browser --port 8890"), lab
+
+
+def test_make_lab_opens_the_start_page():
+    lab, _ = lab_command()
+    assert "--ServerApp.root_dir=notebooks " in lab[-1]
+    assert "--LabApp.default_url=/lab/tree/00_start_here.ipynb" in lab[-1], lab
+
+
+def test_make_lab_says_why_it_allows_root():
+    lab, lines = lab_command("ALLOW_ROOT=--allow-root")
+    assert "--allow-root" in lab[-1]
+    (note,) = [line for line in lines if "--allow-root is added" in line]
+    assert "you are root" in note and "run make lab as an ordinary user" in note
+    assert lines.index(note) < lines.index(lab[-1])
+    lab, lines = lab_command("ALLOW_ROOT=")
+    assert "--allow-root" not in "\n".join(lines)
 
 
 # --- 4. the package without the course -------------------------------------------------------------------------------
