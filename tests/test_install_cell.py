@@ -1,12 +1,18 @@
 """The chapters' first code cell installs twolink where it is missing, and nothing in a clone.
 
-``tools/install_cell.py`` writes that cell; these tests run it in real
-kernels: one in the project's environment (it must not call pip) and one in a
-throwaway venv that has every course package but not twolink (it must install
-twolink from the source named by TWOLINK_SOURCE, here a copy of this checkout).
+``tools/install_cell.py`` writes that cell.  Its choice of source (a wheel
+beside the notebook, then TWOLINK_SOURCE, then the index) is tested by running
+the cell's own code with ``import twolink`` made to fail and ``%pip``
+replaced, so nothing is installed; then in real kernels: one in the project's
+environment (it must not call pip) and one in a throwaway venv that has every
+course package but not twolink (it must install twolink from the source named
+by TWOLINK_SOURCE, here a copy of this checkout).  The student edition's run
+from its own wheel, in a fresh venv, is in ``tests/test_student_edition.py``.
 """
 
+import contextlib
 import copy
+import io
 import json
 import pathlib
 import shutil
@@ -16,6 +22,7 @@ import sys
 import _venvs
 import nbformat
 import pytest
+from IPython.core.inputtransformer2 import TransformerManager
 from nbclient import NotebookClient
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
@@ -97,6 +104,113 @@ def test_the_cell_names_the_source_variable_and_the_course_extra():
     source = install_cell.install_cell_source()
     assert install_cell.SOURCE_VARIABLE in source and "twolink[course]" in source
     assert source.count("%pip install") == 1
+
+
+def test_the_start_page_gets_no_install_cell():
+    """Without arguments the tool treats the chapters only: the start page has no code to set up."""
+    result = subprocess.run(
+        [sys.executable, str(ROOT / "tools" / "install_cell.py"), "--check"],
+        capture_output=True,
+        text=True,
+    )
+    assert result.returncode == 0, result.stderr
+    start = nbformat.read(ROOT / "notebooks" / "00_start_here.ipynb", as_version=4)
+    assert not code_sources(start)
+
+
+# --- the cell's choice of source, with pip replaced -----------------------------------------------------------
+
+
+class FakeShell:
+    """Stands in for IPython: records each line magic, expanded as IPython expands it; pip "installs" a stub."""
+
+    def __init__(self, namespace):
+        self.namespace = namespace
+        self.calls = []
+
+    def run_line_magic(self, name, line, _stack_depth=1):
+        self.calls.append((name, line.format(**self.namespace)))
+        if name == "pip":  # the cell imports twolink again after installing it
+            import types
+
+            sys.modules["twolink"] = types.ModuleType("twolink")
+
+
+def run_cell_without_twolink(
+    folder, monkeypatch, files=(), variable=None, default="twolink[course]"
+):
+    """Run the install cell's code in ``folder`` where ``import twolink`` fails; (pip lines, printed text)."""
+    for name in files:
+        (folder / name).write_bytes(b"")
+    monkeypatch.chdir(folder)
+    if variable is None:
+        monkeypatch.delenv(install_cell.SOURCE_VARIABLE, raising=False)
+    else:
+        monkeypatch.setenv(install_cell.SOURCE_VARIABLE, variable)
+    monkeypatch.setitem(sys.modules, "twolink", None)  # import twolink: ImportError
+    code = TransformerManager().transform_cell(
+        install_cell.install_cell_source(default)
+    )
+    namespace = {}
+    shell = FakeShell(namespace)
+    namespace["get_ipython"] = lambda: shell
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        exec(code, namespace)
+    assert namespace["twolink"] is sys.modules["twolink"], (
+        "the cell imports twolink last"
+    )
+    return [line for name, line in shell.calls if name == "pip"], printed.getvalue()
+
+
+WHEEL = "twolink-0.1.0-py3-none-any.whl"
+
+
+def test_a_wheel_beside_the_notebook_comes_first(tmp_path, monkeypatch):
+    pip, printed = run_cell_without_twolink(
+        tmp_path, monkeypatch, files=[WHEEL, "notes.whl"], variable="/elsewhere[course]"
+    )
+    assert pip == [f'install --quiet "{WHEEL}[course]"']
+    assert printed == (
+        f"twolink is not installed here: installing {WHEEL}[course] "
+        f"from {install_cell.FROM_WHEEL}\n"
+    )
+
+
+def test_without_a_wheel_TWOLINK_SOURCE_comes_next(tmp_path, monkeypatch):
+    pip, printed = run_cell_without_twolink(
+        tmp_path, monkeypatch, files=["twolink.txt"], variable="/src/twolink[course]"
+    )
+    assert pip == ['install --quiet "/src/twolink[course]"']
+    assert printed.endswith(f"from {install_cell.FROM_VARIABLE}\n"), printed
+
+
+@pytest.mark.parametrize("variable", [None, ""])
+def test_without_either_the_index_or_the_repository(tmp_path, monkeypatch, variable):
+    pip, printed = run_cell_without_twolink(tmp_path, monkeypatch, variable=variable)
+    assert pip == ['install --quiet "twolink[course]"']
+    assert printed.endswith(f"from {install_cell.FROM_INDEX}\n"), printed
+    url = "twolink[course] @ git+https://github.com/someone/twolink"
+    pip, printed = run_cell_without_twolink(
+        tmp_path, monkeypatch, variable=variable, default=url
+    )
+    assert pip == [f'install --quiet "{url}"']
+    assert printed.endswith("from the repository\n"), printed
+
+
+def test_where_twolink_imports_the_cell_does_nothing(tmp_path, monkeypatch):
+    (tmp_path / WHEEL).write_bytes(b"")
+    monkeypatch.chdir(tmp_path)
+    namespace = {}
+    shell = FakeShell(namespace)
+    namespace["get_ipython"] = lambda: shell
+    printed = io.StringIO()
+    with contextlib.redirect_stdout(printed):
+        exec(
+            TransformerManager().transform_cell(install_cell.install_cell_source()),
+            namespace,
+        )
+    assert shell.calls == [] and printed.getvalue() == ""
 
 
 def run_cells(

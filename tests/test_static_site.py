@@ -10,7 +10,10 @@ previous one and the last no next one.  The quick tests check the titles and
 the links the builder computes; the infrastructure ones build a site (a small
 course made here, and the real chapters) and parse the pages.
 ``tests/browser/test_static_site.py`` follows the same links in Chromium, by
-keyboard, and runs axe-core on every page.
+keyboard, and runs axe-core on every page.  The start page is the site's first
+page, and the links the notebooks' Markdown makes between notebooks
+(``02_inverse_kinematics.ipynb``, written by ``tools/course_map.py``) lead to
+the pages (``02_inverse_kinematics.html``).
 """
 
 import html.parser
@@ -146,6 +149,20 @@ def test_previous_and_next_walk_the_chapters_in_order(count):
                 assert link[direction] == {"href": pages[other], "title": titles[other]}
 
 
+def test_links_between_notebooks_lead_to_their_pages():
+    pages = {"00_start_here", "02_ik"}
+    markdown = (
+        "[Next: Chapter 2, IK](02_ik.ipynb) and [its setup](02_ik.ipynb#Setup); "
+        "[start](00_start_here.ipynb); [elsewhere](https://x.org/02_ik.ipynb), "
+        "[not on the site](99_gone.ipynb), [a folder](sub/02_ik.ipynb), `02_ik.ipynb`"
+    )
+    assert editions.site_links(markdown, pages) == (
+        "[Next: Chapter 2, IK](02_ik.html) and [its setup](02_ik.html#Setup); "
+        "[start](00_start_here.html); [elsewhere](https://x.org/02_ik.ipynb), "
+        "[not on the site](99_gone.ipynb), [a folder](sub/02_ik.ipynb), `02_ik.ipynb`"
+    )
+
+
 def test_navigation_needs_a_title_per_page():
     with pytest.raises(ValueError, match="one title per page: 2 pages, 1 titles"):
         editions.navigation(["a.html", "b.html"], ["A"])
@@ -214,6 +231,40 @@ class Page(html.parser.HTMLParser):
 
 def read_page(site, name):
     return Page((site / name).read_text(encoding="utf-8"))
+
+
+class Links(html.parser.HTMLParser):
+    """Every ``href`` of a page's links, with the link's text."""
+
+    def __init__(self, text):
+        super().__init__()
+        self.links = []  # [href, text]
+        self.depth = 0
+        self.feed(text)
+        self.close()
+
+    def handle_starttag(self, tag, attrs):
+        if tag == "a":
+            self.links.append([dict(attrs).get("href"), ""])
+            self.depth += 1
+
+    def handle_endtag(self, tag):
+        if tag == "a":
+            self.depth = max(self.depth - 1, 0)
+
+    def handle_data(self, data):
+        if self.depth:
+            self.links[-1][1] += data
+
+
+def local_links(site, name):
+    """``(file, text)`` of every link of a page to another file of the site (anchors and URLs left out)."""
+    page = Links((site / name).read_text(encoding="utf-8"))
+    return [
+        (href.split("#")[0], " ".join(text.split()))
+        for href, text in page.links
+        if href and not href.startswith(("#", "http:", "https:", "mailto:"))
+    ]
 
 
 def check_site(site, notebooks):
@@ -328,3 +379,17 @@ def test_the_course_site_is_titled_and_linked_in_chapter_order(tmp_path):
     for path in NOTEBOOKS:
         title = read_page(site, editions.page_name(path)).title
         assert title == f"{first_level_one_heading(path)} · {editions.SITE_TITLE}"
+    # the start page first; the links the notebooks make between them lead to pages that exist
+    assert NOTEBOOKS[0].name == "00_start_here.ipynb"
+    start = editions.page_name(NOTEBOOKS[0])
+    for path in NOTEBOOKS:
+        name = editions.page_name(path)
+        links = local_links(site, name)
+        assert not [href for href, _ in links if href.endswith(".ipynb")], name
+        for href, _ in links:
+            assert (site / href).is_file(), (name, href)
+        targets = {href for href, _ in links}
+        if path == NOTEBOOKS[0]:
+            assert {editions.page_name(other) for other in NOTEBOOKS[1:]} <= targets
+        else:
+            assert start in targets, f"{name} does not link the start page"

@@ -1,5 +1,10 @@
 """The student edition: solutions stubbed, nothing shown in advance, notebooks still run, self-checks flip.
 
+The whole edition (``tools/editions.py student``: the notebooks, the start
+page, a twolink wheel and a zip of them) is unpacked away from the repository
+and chapter 1 run in a fresh virtual environment that has only ipykernel and
+nbclient: its first cell installs twolink from the wheel beside it.
+
 Builds ``build/student``-style notebooks in a temporary folder and checks that
 they store no self-check verdict ("correct" or otherwise) and do not say that
 the exercise cells hold worked solutions; then executes each in a fresh kernel
@@ -9,9 +14,13 @@ same test run, re-executes the committed notebooks and compares those outputs).
 """
 
 import json
+import os
 import pathlib
 import re
+import subprocess
 import sys
+import venv
+import zipfile
 
 import nbformat
 import pytest
@@ -19,9 +28,13 @@ from nbclient import NotebookClient
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
+import course_map  # noqa: E402
 import editions  # noqa: E402
+import install_cell  # noqa: E402
 
-NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+#: The chapters (the start page, which has no exercise, is checked on its own).
+NOTEBOOKS = course_map.chapters(ROOT / "notebooks")
+START_PAGE = ROOT / "notebooks" / course_map.START_PAGE
 
 
 class HeadlessClient(NotebookClient):
@@ -265,3 +278,150 @@ def test_student_edition_runs_and_reports_not_solved(path, student_edition):
         assert "not solved yet" in text and "correct." not in text, (
             f"{path.name}: self-check passed on a stub: {text}"
         )
+
+
+def test_the_start_page_is_in_the_edition_and_speaks_to_the_student(student_edition):
+    student = json.loads(
+        (student_edition / START_PAGE.name).read_text(encoding="utf-8")
+    )
+    text = "\n".join("".join(cell["source"]) for cell in student["cells"])
+    instructor = START_PAGE.read_text(encoding="utf-8")
+    assert "worked solution" in instructor and "<!-- STUDENT:" in instructor
+    assert "worked solution" not in text and "<!--" not in text.replace(
+        course_map.MAP_MARKER, ""
+    )
+    assert "replace each `...` with code that computes it" in text
+
+
+# --- the edition away from the repository, in a fresh environment ------------------------------------------------
+
+#: Run in the fresh venv: execute a notebook in its own folder with a kernel of that venv.
+RUN_IN_VENV = """\
+import json, pathlib, sys
+
+import nbformat
+from jupyter_client import KernelManager
+from jupyter_client.kernelspec import KernelSpecManager
+from nbclient import NotebookClient
+
+notebook_path, executed_path, kernels = map(pathlib.Path, sys.argv[1:4])
+(kernels / "fresh").mkdir(parents=True)
+(kernels / "fresh" / "kernel.json").write_text(json.dumps({
+    "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
+    "display_name": "fresh venv", "language": "python"}))
+
+
+class Headless(NotebookClient):
+    def handle_comm_msg(self, outs, msg, cell_index):  # as tests/test_student_edition.py
+        return None
+
+
+notebook = nbformat.read(notebook_path, as_version=4)
+manager = KernelManager(
+    kernel_name="fresh", kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(kernels)])
+)
+Headless(notebook, km=manager, kernel_name="fresh", timeout=900, allow_errors=True,
+         resources={"metadata": {"path": str(notebook_path.parent)}}).execute()
+nbformat.write(notebook, executed_path)
+"""
+
+
+def fresh_environment(tmp_path, venv_dir):
+    """The variables a learner's shell would have: this machine's, without this project's."""
+    env = {
+        key: value
+        for key, value in os.environ.items()
+        if not key.startswith(("PYTHON", "JUPYTER", "VIRTUAL_ENV", "PIP_", "MPL"))
+        and key != install_cell.SOURCE_VARIABLE
+    }
+    env["PATH"] = f"{venv_dir / 'bin'}:/usr/bin:/bin"
+    env["PIP_DISABLE_PIP_VERSION_CHECK"] = "1"
+    return env
+
+
+@pytest.mark.infrastructure
+def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
+    written = editions.build_student_edition(
+        ROOT / "notebooks", tmp_path / "build" / "student"
+    )
+    archive = written[-1]
+    assert archive == tmp_path / "build" / "student.zip"
+    away = tmp_path / "away"
+    with zipfile.ZipFile(archive) as bundle:
+        bundle.extractall(away)
+    edition = away / "student"
+    names = sorted(path.name for path in edition.iterdir())
+    (wheel,) = [name for name in names if name.endswith(".whl")]
+    assert wheel.startswith("twolink-") and names == sorted(
+        [START_PAGE.name, *(path.name for path in NOTEBOOKS), wheel]
+    )
+
+    venv_dir = tmp_path / "venv"
+    try:
+        venv.EnvBuilder(with_pip=True, symlinks=True).create(venv_dir)
+    except (OSError, subprocess.CalledProcessError) as error:  # pragma: no cover
+        pytest.skip(f"cannot create a virtual environment here: {error}")
+    python = venv_dir / "bin" / "python"
+    env = fresh_environment(tmp_path, venv_dir)
+    installed = subprocess.run(
+        [str(python), "-m", "pip", "install", "--quiet", "ipykernel", "nbclient"],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=600,
+    )
+    assert installed.returncode == 0, installed.stderr[-3000:]
+    probe = subprocess.run(
+        [str(python), "-c", "import twolink"],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+    )
+    assert "No module named 'twolink'" in probe.stderr, "the venv must lack twolink"
+
+    chapter = edition / NOTEBOOKS[0].name
+    executed = tmp_path / "executed.ipynb"
+    run = subprocess.run(
+        [
+            str(python),
+            "-c",
+            RUN_IN_VENV,
+            str(chapter),
+            str(executed),
+            str(tmp_path / "kernels"),
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+        timeout=1800,
+    )
+    assert run.returncode == 0, run.stderr[-3000:]
+    notebook = nbformat.read(executed, as_version=4)
+    errors = [
+        output
+        for cell in notebook.cells
+        for output in cell.get("outputs", [])
+        if output.output_type == "error"
+    ]
+    assert not errors, f"{errors[0].ename}: {errors[0].evalue}"
+    install = next(
+        cell for cell in notebook.cells if cell.source.startswith(install_cell.MARKER)
+    )
+    said = output_text(install)
+    assert f"installing {wheel}[course] from {install_cell.FROM_WHEEL}" in said, said
+    checks = selfcheck_cells(notebook)
+    assert checks
+    for cell in checks:
+        text = output_text(cell)
+        assert "not solved yet" in text and "correct." not in text, text
+    site_packages = subprocess.run(
+        [str(python), "-c", "import twolink; print(twolink.__file__)"],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+    ).stdout
+    assert site_packages.startswith(str(venv_dir)), site_packages

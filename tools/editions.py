@@ -14,13 +14,22 @@
   A ``### BEGIN HIDDEN TESTS`` ... ``### END HIDDEN TESTS`` block (the score
   line nbgrader reads at the end of each check cell, ``tools/nbgrader_cells.py``)
   is removed, as ``nbgrader generate_assignment`` removes it.
-- Static edition (``make site`` -> ``build/site/``): every executed chapter
-  rendered to HTML by nbconvert, with an index page linking them in order;
-  hidden-test blocks and the score they print are left out.
+  The edition runs on its own, away from the repository: beside the notebooks
+  (the chapters and the start page ``00_start_here.ipynb``) it holds a wheel
+  of twolink, which each chapter's first cell installs when ``import
+  twolink`` fails (``tools/install_cell.py``), and the whole folder is zipped
+  beside it (``build/student.zip``) for handing out.
+- Static edition (``make site`` -> ``build/site/``): every executed notebook
+  (the start page first, then the chapters) rendered to HTML by nbconvert,
+  with an index page linking them in order; links between notebooks
+  (``02_inverse_kinematics.ipynb``) lead to their pages
+  (``02_inverse_kinematics.html``); hidden-test blocks and the score they
+  print are left out.
   MathJax is served from the ``jupyter-server-mathjax`` package's copy, so the
   pages load nothing from the network.
 
-Usage: ``python tools/editions.py student|site [--source notebooks] [--out DIR]``.
+Usage: ``python tools/editions.py student|site [--source notebooks] [--out DIR]``
+(``student`` writes ``DIR`` and ``DIR.zip``).
 """
 
 from __future__ import annotations
@@ -36,6 +45,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import zipfile
 from collections.abc import Sequence
 from typing import Any
 
@@ -293,6 +303,129 @@ def build_student(
     return written
 
 
+#: The files of the repository a wheel of twolink is built from.
+WHEEL_INPUTS = (
+    "pyproject.toml",
+    "README.md",
+    "LICENSE*",
+    "twolink",
+    "labextension/twolink_figure_alt/labextension",
+)
+
+
+def _copy_wheel_inputs(destination: pathlib.Path) -> None:
+    """Copy what the wheel is built from: the files git tracks, else (no git checkout) the tree."""
+    try:
+        listed = subprocess.run(
+            ["git", "ls-files", "-z", "--", *WHEEL_INPUTS],
+            cwd=ROOT,
+            capture_output=True,
+            check=True,
+        )
+        names = [name for name in listed.stdout.decode().split("\0") if name]
+    except (OSError, subprocess.CalledProcessError):  # no git, or not a checkout
+        names = []
+    if not names:  # the tree as it is
+        names = [
+            str(path.relative_to(ROOT))
+            for pattern in WHEEL_INPUTS
+            for found in ROOT.glob(pattern)
+            for path in ([found] if found.is_file() else found.rglob("*"))
+            if path.is_file() and "__pycache__" not in path.parts
+        ]
+    for name in names:
+        if (ROOT / name).is_file():
+            (destination / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / name, destination / name)
+
+
+def build_wheel(out_dir: str | pathlib.Path) -> pathlib.Path:
+    """Build a wheel of twolink into ``out_dir`` (``pip wheel --no-deps``) and return its path.
+
+    It is built from a copy of the package files git tracks (as they are in
+    the working tree), so nothing untracked (a stray module, ``build/lib``)
+    gets in and the checkout is not written to; an older ``twolink-*.whl`` in
+    ``out_dir`` is removed first.
+    """
+    out_dir = pathlib.Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for old in out_dir.glob("twolink-*.whl"):
+        old.unlink()
+    with tempfile.TemporaryDirectory() as scratch:
+        source = pathlib.Path(scratch, "twolink")
+        _copy_wheel_inputs(source)
+        built = subprocess.run(
+            [
+                sys.executable,
+                "-m",
+                "pip",
+                "wheel",
+                "--no-deps",
+                "--quiet",
+                "--disable-pip-version-check",
+                "--wheel-dir",
+                str(out_dir),
+                str(source),
+            ],
+            capture_output=True,
+            text=True,
+            check=False,
+        )
+    wheels = sorted(out_dir.glob("twolink-*.whl"))
+    if built.returncode != 0 or len(wheels) != 1:
+        raise RuntimeError(
+            f"building the twolink wheel failed (pip wheel exit {built.returncode}, "
+            f"{len(wheels)} wheels):\n{built.stderr[-2000:]}"
+        )
+    return wheels[0]
+
+
+def build_student_edition(
+    source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
+) -> list[pathlib.Path]:
+    """The student edition that runs on its own: notebooks, a twolink wheel, and a zip of both.
+
+    ``out_dir`` gets the student notebooks (:func:`build_student`) and the
+    wheel (:func:`build_wheel`); ``out_dir`` with ``.zip`` (``build/student.zip``)
+    holds the same files in a folder of ``out_dir``'s name.  Returns the files
+    written, the zip last.
+    """
+    out_dir = pathlib.Path(out_dir)
+    out_dir.mkdir(parents=True, exist_ok=True)
+    for stale in out_dir.glob("*.ipynb"):  # a notebook renamed or removed since
+        stale.unlink()
+    written = build_student(source_dir, out_dir)
+    written.append(build_wheel(out_dir))
+    archive = out_dir.with_name(out_dir.name + ".zip")
+    partial = archive.with_name(archive.name + ".partial")
+    with zipfile.ZipFile(partial, "w", compression=zipfile.ZIP_DEFLATED) as bundle:
+        for path in written:
+            bundle.write(path, f"{out_dir.name}/{path.name}")
+    partial.replace(archive)
+    return [*written, archive]
+
+
+#: A Markdown link to a notebook by a relative file name: ``[text](02_x.ipynb#anchor)``.
+NOTEBOOK_LINK = re.compile(r"\]\((?P<name>[^()\s:/#]+)\.ipynb(?P<anchor>#[^()\s]*)?\)")
+
+
+def site_links(markdown: str, pages: set[str]) -> str:
+    """``markdown`` with its links to the notebooks of ``pages`` (stems) leading to their HTML pages.
+
+    Links to other notebooks (not on the site) and to other sites are left alone.
+
+    >>> site_links("[Next](02_ik.ipynb), [here](02_ik.ipynb#Setup), [x](other.ipynb)", {"02_ik"})
+    '[Next](02_ik.html), [here](02_ik.html#Setup), [x](other.ipynb)'
+    """
+
+    def replace(match: re.Match[str]) -> str:
+        if match["name"] not in pages:
+            return match[0]
+        return f"]({match['name']}.html{match['anchor'] or ''})"
+
+    return NOTEBOOK_LINK.sub(replace, markdown)
+
+
 #: An ATX heading: up to three spaces, 1-6 ``#``, then a space (or nothing), the text
 #: and an optional closing run of ``#``.
 ATX_HEADING = re.compile(
@@ -469,6 +602,15 @@ def build_site(
             notebook = without_hidden_tests(
                 json.loads(path.read_text(encoding="utf-8"))
             )
+            stems = {other.stem for other in notebooks}
+            for cell in notebook["cells"]:
+                if cell["cell_type"] == "markdown":
+                    cell["source"] = site_links(
+                        "".join(cell["source"])
+                        if isinstance(cell["source"], list)
+                        else cell["source"],
+                        stems,
+                    )
             notebook["metadata"]["title"] = f"{titles[number]} · {SITE_TITLE}"
             notebook["metadata"]["twolink_site"] = links[number]
             copy = pathlib.Path(scratch, path.name)
@@ -512,7 +654,7 @@ def build_site(
             "<body>",
             "<main>",
             f"  <h1>{SITE_TITLE}: the planar two-link arm</h1>",
-            "  <p>The course's chapters, executed. Run them yourself with <code>make lab</code>.</p>",
+            "  <p>The course's start page and chapters, executed. Run them yourself with <code>make lab</code>.</p>",
             '  <nav aria-label="Chapters">',
             "  <ol>",
             *entries,
@@ -536,7 +678,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument("--out", default=None)
     args = parser.parse_args(argv)
     out = args.out or str(ROOT / "build" / args.edition)
-    builder = build_student if args.edition == "student" else build_site
+    builder = build_student_edition if args.edition == "student" else build_site
     for path in builder(args.source, out):
         print(path)
 

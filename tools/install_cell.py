@@ -1,17 +1,29 @@
-"""Every chapter's first code cell: install twolink where it is missing (Colab, a bare Jupyter).
+"""Every chapter's first code cell: install twolink where it is missing (Colab, a bare Jupyter, the student edition).
 
 In a clone (``make lab``, Binder) ``import twolink`` succeeds and the cell does
-nothing.  Elsewhere it runs ``%pip install`` of the course package with its
-course extras, from the environment variable ``TWOLINK_SOURCE`` when set (any
-pip requirement: a fork's ``twolink[course] @ git+https://...`` or a local
-``/path/to/twolink[course]``), else from the repository URL written in
-``[project.urls]`` of pyproject.toml (by name, ``twolink[course]``, while
-that URL is the placeholder).
+nothing and prints nothing.  Elsewhere it runs ``%pip install`` of the course
+package with its course extras (``[course]``) from the first of
+
+1. a twolink wheel beside the notebook (``twolink-*.whl`` in the kernel's
+   working directory, which Jupyter sets to the notebook's folder): the student
+   edition ships one (``tools/editions.py student``);
+2. the environment variable ``TWOLINK_SOURCE`` when set (any pip requirement:
+   a fork's ``twolink[course] @ git+https://...`` or a local
+   ``/path/to/twolink[course]``);
+3. the public index or repository: the URL written in ``[project.urls]`` of
+   pyproject.toml (by name, ``twolink[course]``, while that URL is the
+   placeholder),
+
+and prints which one it used.
 
 Usage::
 
-    python tools/install_cell.py notebooks/*.ipynb           # insert or update the cell
-    python tools/install_cell.py --check notebooks/*.ipynb   # exit 1 if a notebook's first code cell differs
+    python tools/install_cell.py                             # every chapter: insert or update the cell
+    python tools/install_cell.py notebooks/02_inverse_kinematics.ipynb
+    python tools/install_cell.py --check                     # exit 1 if a chapter's first code cell differs
+
+Without arguments it treats every chapter (``notebooks/NN_*.ipynb``), never
+the start page ``notebooks/00_start_here.ipynb``, which has no code.
 """
 
 from __future__ import annotations
@@ -25,54 +37,91 @@ from typing import Any
 import nbformat
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import course_map  # noqa: E402
 import links  # noqa: E402
 
 ROOT = links.ROOT
 #: The environment variable that overrides where the cell installs twolink from.
 SOURCE_VARIABLE = "TWOLINK_SOURCE"
+#: The wheels the cell looks for beside the notebook.
+WHEEL_PATTERN = "twolink-*.whl"
 #: The cell's first line, which also marks a cell as the install cell.
 MARKER = "# Setup: installs twolink only where `import twolink` fails (Colab, a bare Jupyter)."
+#: What the cell prints for each of its three sources, after "installing {source} from ".
+FROM_WHEEL = "the wheel beside this notebook"
+FROM_VARIABLE = SOURCE_VARIABLE
+FROM_INDEX = "the package index"
 
 
 def install_cell_source(default_requirement: str | None = None) -> str:
-    """The canonical first code cell, installing ``default_requirement`` unless TWOLINK_SOURCE is set.
+    """The canonical first code cell; ``default_requirement`` is what it installs when nothing else is there.
 
     Examples
     --------
     >>> print(install_cell_source("twolink[course]"))  # doctest: +ELLIPSIS
     # Setup: installs twolink only where `import twolink` fails (Colab, a bare Jupyter).
-    # In a clone it does nothing.
+    # In a clone it does nothing. Elsewhere it installs twolink with the course's
+    # packages from a twolink wheel in this folder, else from TWOLINK_SOURCE, else
+    # from the package index.
     try:
         import twolink  # noqa: F401
     except ImportError:
+        import glob
         import os
     <BLANKLINE>
-        source = os.environ.get("TWOLINK_SOURCE", "twolink[course]")
-        print(
-            f"twolink is not installed here: installing {source} "
-            "(set TWOLINK_SOURCE to install from elsewhere)"
-        )
+        wheels = sorted(glob.glob("twolink-*.whl"))
+        if wheels:
+            source, origin = f"{wheels[-1]}[course]", "the wheel beside this notebook"
+        elif os.environ.get("TWOLINK_SOURCE"):
+            source, origin = os.environ["TWOLINK_SOURCE"], "TWOLINK_SOURCE"
+        else:
+            source, origin = "twolink[course]", "the package index"
+        print(f"twolink is not installed here: installing {source} from {origin}")
         %pip install --quiet "{source}"
         import twolink  # noqa: F401
     """
     if default_requirement is None:
         default_requirement = links.install_requirement(links.repository_url())
+    index_origin = (
+        FROM_INDEX if default_requirement == "twolink[course]" else "the repository"
+    )
+
+    def quoted(text: str) -> str:
+        return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+    index_choice = f"        source, origin = {quoted(default_requirement)}, {quoted(index_origin)}"
+    if (
+        len(index_choice) > 88
+    ):  # as ruff format writes a long line (a long repository URL)
+        index_choice = "\n".join(
+            [
+                "        source, origin = (",
+                f"            {quoted(default_requirement)},",
+                f"            {quoted(index_origin)},",
+                "        )",
+            ]
+        )
+
     return "\n".join(
         [
             MARKER,
-            "# In a clone it does nothing.",
+            "# In a clone it does nothing. Elsewhere it installs twolink with the course's",
+            f"# packages from a twolink wheel in this folder, else from {SOURCE_VARIABLE}, else",
+            f"# from {index_origin}.",
             "try:",
             "    import twolink  # noqa: F401",
             "except ImportError:",
+            "    import glob",
             "    import os",
             "",
-            f"    source = os.environ.get({SOURCE_VARIABLE!r}, {default_requirement!r})".replace(
-                "'", '"'
-            ),
-            "    print(",
-            '        f"twolink is not installed here: installing {source} "',
-            f'        "(set {SOURCE_VARIABLE} to install from elsewhere)"',
-            "    )",
+            f"    wheels = sorted(glob.glob({quoted(WHEEL_PATTERN)}))",
+            "    if wheels:",
+            f'        source, origin = f"{{wheels[-1]}}[course]", {quoted(FROM_WHEEL)}',
+            f"    elif os.environ.get({quoted(SOURCE_VARIABLE)}):",
+            f"        source, origin = os.environ[{quoted(SOURCE_VARIABLE)}], {quoted(FROM_VARIABLE)}",
+            "    else:",
+            index_choice,
+            '    print(f"twolink is not installed here: installing {source} from {origin}")',
             '    %pip install --quiet "{source}"',
             "    import twolink  # noqa: F401",
         ]
@@ -126,7 +175,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     )
     parser.add_argument("notebooks", nargs="*", type=pathlib.Path)
     args = parser.parse_args(argv)
-    paths = args.notebooks or sorted((ROOT / "notebooks").glob("*.ipynb"))
+    paths = args.notebooks or course_map.chapters(ROOT / "notebooks")
     source = install_cell_source()
     stale: list[pathlib.Path] = []
     for path in paths:
