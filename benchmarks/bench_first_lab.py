@@ -385,15 +385,23 @@ def main() -> None:
     )
     if not args.quick:
         names = [name for name, _ in STEPS]
-        print("\nWhere the time goes (s, from make's echoed commands):\n")
+        print(
+            "\nWhere the time goes (s, from the moments make echoes its commands; "
+            "-: no such step):\n"
+        )
         print(
             markdown_table(
                 ["installer", *names],
                 [
-                    [row[0], *(steps.get(name, float("nan")) for name in names)]
+                    [
+                        row[0],
+                        *(
+                            f"{steps[name]:.1f}" if name in steps else "-"
+                            for name in names
+                        ),
+                    ]
                     for row, steps in zip(rows, all_steps)
                 ],
-                ["", *[".1f"] * len(names)],
             )
         )
     if notes:
