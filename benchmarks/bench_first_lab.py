@@ -362,7 +362,7 @@ def main() -> None:
                 result["install"],
                 result["server"],
                 result["total"],
-                result["venv"],
+                "-" if args.quick else f"{result['venv']:.0f}",
                 "yes" if float(result["total"]) <= TARGET_S else "no",  # type: ignore[arg-type]
             ]
         )
@@ -380,7 +380,7 @@ def main() -> None:
                 "within target",
             ],
             rows,
-            ["", ".1f", ".1f", ".1f", ".0f", ""],
+            ["", ".1f", ".1f", ".1f", "", ""],
         )
     )
     if not args.quick:
