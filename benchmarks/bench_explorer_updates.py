@@ -29,7 +29,9 @@ import nbformat
 from nbclient import NotebookClient
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+sys.path[:0] = [str(ROOT), str(ROOT / "tools")]
+
+import course_map  # noqa: E402
 
 from twolink.display import markdown_table  # noqa: E402
 
@@ -102,7 +104,7 @@ def main(argv: list[str] | None = None) -> int:
         help="also print cProfile's top 30 per control",
     )
     args = parser.parse_args(argv)
-    paths = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+    paths = course_map.chapters(ROOT / "notebooks")
     if args.quick:
         paths, args.moves = paths[:1], 2
     elif args.chapters:

@@ -30,6 +30,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT), str(ROOT / "tools")]
 
+import course_map  # noqa: E402
 import editions  # noqa: E402
 import grade  # noqa: E402
 import sandbox  # noqa: E402
@@ -70,7 +71,7 @@ def main() -> None:
         "--quick", action="store_true", help="one student, chapter 1 (a smoke run)"
     )
     args = parser.parse_args()
-    chapters = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+    chapters = course_map.chapters(ROOT / "notebooks")
     students = args.students
     if args.quick:
         chapters, students = chapters[:1], 1

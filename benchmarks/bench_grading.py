@@ -56,7 +56,9 @@ from nbclient import NotebookClient
 from nbclient.exceptions import CellExecutionError
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
+sys.path[:0] = [str(ROOT), str(ROOT / "tools")]
+
+import course_map  # noqa: E402
 
 from twolink.display import markdown_table  # noqa: E402
 from twolink.runmode import VARIABLE  # noqa: E402
@@ -250,7 +252,7 @@ def main(argv: list[str] | None = None) -> int:
         parser.error(f"--runs must be 1 to 50; got {args.runs}")
     if not 0 <= args.jobs <= 16 or not 1 <= args.rounds <= 20:
         parser.error("--jobs must be 0 to 16 and --rounds 1 to 20")
-    paths = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+    paths = course_map.chapters(ROOT / "notebooks")
     settings = ["off", "on", "on, agg"] + (
         ["on, 1 BLAS thread", "off, agg"] if args.all else []
     )

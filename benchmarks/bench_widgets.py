@@ -35,6 +35,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
 
+import course_map  # noqa: E402
 import lab_browser  # noqa: E402
 
 from twolink.display import markdown_table  # noqa: E402
@@ -213,7 +214,7 @@ def main(argv: list[str] | None = None) -> int:
     if reason:
         print(f"bench_widgets: skipped: {reason}")
         return 0
-    notebooks = sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
+    notebooks = course_map.chapters(ROOT / "notebooks")
     if args.quick:
         notebooks, args.moves = notebooks[:1], 2
     elif args.chapters:

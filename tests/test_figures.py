@@ -16,6 +16,7 @@ skipped.
 import json
 import pathlib
 import re
+import sys
 
 import matplotlib
 
@@ -29,8 +30,11 @@ import twolink.explorer  # noqa: E402
 import twolink.plot  # noqa: E402
 from twolink import arms, velocity  # noqa: E402
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "tools"))
+import course_map  # noqa: E402
+
 NOTEBOOK_DIR = pathlib.Path(__file__).resolve().parent.parent / "notebooks"
-NOTEBOOKS = sorted(path.name for path in NOTEBOOK_DIR.glob("*.ipynb"))
+NOTEBOOKS = [path.name for path in course_map.chapters(NOTEBOOK_DIR)]
 
 LABEL_WITH_UNIT = re.compile(r"\S.*\[[^\]]+\]")  # "x [m]", "joint rate [rad/s]"
 # "0.4 m per m/s", "600 N/m = 0.4 m", "1 N drawn as 2 m"

@@ -33,7 +33,9 @@ def test_every_make_command_the_readme_names_exists():
     named = set(re.findall(r"\bmake ([a-z][a-z-]*)", README))
     assert {"lab", "test"} <= named
     missing = named - makefile_targets()
-    assert not missing, f"README names make targets the Makefile lacks: {sorted(missing)}"
+    assert not missing, (
+        f"README names make targets the Makefile lacks: {sorted(missing)}"
+    )
 
 
 def test_every_repository_path_the_readme_names_in_backticks_exists():

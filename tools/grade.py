@@ -67,6 +67,7 @@ import numpy as np
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 TOOLS = pathlib.Path(__file__).resolve().parent
 sys.path[:0] = [str(ROOT), str(TOOLS)]
+import course_map  # noqa: E402  (tools/course_map.py)
 import grading_probe  # noqa: E402  (tools/grading_probe.py)
 import sandbox  # noqa: E402  (tools/sandbox.py)
 from grade_run import DEFAULT_LIMITS, PROBE_TAG, Limits, Runner  # noqa: E402  (tools/grade_run.py)
@@ -169,7 +170,7 @@ def release_chapters(folder: pathlib.Path = ROOT / "notebooks") -> dict[str, Cha
     """The course's chapters, read from the instructor's copies in ``folder``."""
     every = exercises.all_exercises()
     chapters = {}
-    for path in sorted(folder.glob("[0-9][0-9]_*.ipynb")):
+    for path in course_map.chapters(folder):
         notebook = nbformat.read(path, as_version=4)
         checks = {
             cell.id: (number, cell)

@@ -24,6 +24,9 @@ import re
 import sys
 from collections.abc import Sequence
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import course_map  # noqa: E402
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 NOTEBOOK_DIR = ROOT / "notebooks"
 CASEBOOK_HEADING = "Casebook: the coursework"
@@ -35,14 +38,14 @@ _MARKUP = re.compile(r"[*_`]")
 
 
 def chapters() -> list[pathlib.Path]:
-    """The chapter notebooks, in order.
+    """The chapter notebooks, in order (the start page is not a chapter).
 
     Examples
     --------
     >>> chapters()[0].name
     '01_dh_forward_kinematics.ipynb'
     """
-    return sorted(NOTEBOOK_DIR.glob("[0-9][0-9]_*.ipynb"))
+    return course_map.chapters(NOTEBOOK_DIR)
 
 
 def heading_id(text: str) -> str:

@@ -12,11 +12,13 @@ import json
 import re
 
 import a11y  # tools/a11y.py: tools/ is on the path (tests/browser/conftest.py, loaded first)
+import course_map
 import pytest
 
 from .conftest import ROOT, SCREENSHOTS, lab_browser
 
-NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
+# The chapters (the start page, text only, is checked by tests/test_course_map.py and the site suite).
+NOTEBOOKS = course_map.chapters(ROOT / "notebooks")
 
 
 def expected_widgets(path):
