@@ -45,7 +45,7 @@ help:
 	@echo "make bench-widgets  key press to a changed picture for every explorer, in JupyterLab in Chromium"
 	@echo "make bench-first-lab  a fresh clone's first make lab until the start page is served (pip, and uv if on the PATH)"
 	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"
-	@echo "make student    write the student edition (solutions stubbed) to build/student/"
+	@echo "make student    write the student edition (solutions stubbed, the start page, a twolink wheel) to build/student/ and build/student.zip"
 	@echo "make grade SUBMISSIONS=folder [JOBS=n] [UNSAFE=1]  grade returned notebooks, each in a sandbox, n at a time;"
 	@echo "                verdicts from the answers; CSV + one line per notebook (UNSAFE=1: no sandbox, trusted notebooks only)"
 	@echo "make site       render the executed chapters to static HTML in build/site/"
@@ -131,10 +131,14 @@ test: $(STAMP)
 portable: $(STAMP)
 	$(BIN)/python tools/portable.py $(if $(filter command line,$(origin NOTEBOOKS)),$(NOTEBOOKS),)
 
+# First the generated cells: the install cell, the start page's map and the chapters' links,
+# nbgrader's metadata (tools/install_cell.py, tools/course_map.py, tools/nbgrader_cells.py).
 # Widget state is stored while executing (nbclient 0.11 raises KeyError on an
 # interactive() output otherwise) and then removed by nbstripout, with the
 # other metadata GitHub and nbval do not need.
 notebooks: $(STAMP)
+	$(BIN)/python tools/install_cell.py
+	$(BIN)/python tools/course_map.py
 	$(BIN)/python tools/nbgrader_cells.py $(NOTEBOOKS)
 	@for notebook in $(NOTEBOOKS); do \
 		echo "executing $$notebook"; \
