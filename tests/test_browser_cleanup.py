@@ -75,3 +75,69 @@ def test_server_and_kernel_are_gone_after(how):
         for pid in pids if "pids" in locals() else []:
             if alive(pid):
                 os.kill(pid, signal.SIGKILL)
+
+
+class _KernelsAPI:
+    """A stand-in for the server's /api/kernels: ``errors`` 500s to the list first, then two kernels."""
+
+    def __init__(self, errors):
+        import http.server
+        import threading
+
+        api = self
+        self.errors, self.deleted = errors, []
+
+        class Handler(http.server.BaseHTTPRequestHandler):
+            def log_message(self, *args):
+                pass
+
+            def do_GET(self):
+                if api.errors:
+                    api.errors -= 1
+                    self.send_error(500)
+                    return
+                body = b'[{"id": "a"}, {"id": "b"}]'
+                self.send_response(200)
+                self.send_header("Content-Length", str(len(body)))
+                self.end_headers()
+                self.wfile.write(body)
+
+            def do_DELETE(self):
+                kernel = self.path.rsplit("/", 1)[-1]
+                api.deleted.append(kernel)
+                self.send_response(
+                    404 if kernel == "b" else 204
+                )  # b: stopped meanwhile
+                self.send_header("Content-Length", "0")
+                self.end_headers()
+
+        self.server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
+        threading.Thread(target=self.server.serve_forever, daemon=True).start()
+        self.lab = {"url": f"http://127.0.0.1:{self.server.server_port}", "token": "t"}
+
+
+def test_shutting_down_kernels_outlasts_a_server_error_and_a_kernel_gone_meanwhile():
+    sys.path.insert(0, str(ROOT / "tools"))
+    import lab_browser
+
+    api = _KernelsAPI(errors=2)
+    try:
+        lab_browser.shut_down_kernels(api.lab, budget=10.0)
+        assert api.deleted == ["a", "b"] and api.errors == 0
+    finally:
+        api.server.shutdown()
+
+
+def test_shutting_down_kernels_gives_up_with_a_clear_error_after_its_budget():
+    sys.path.insert(0, str(ROOT / "tools"))
+    import lab_browser
+
+    api = _KernelsAPI(errors=10**6)
+    try:
+        with pytest.raises(
+            RuntimeError, match="answered 500 to stopping its kernels for 1 s"
+        ):
+            lab_browser.shut_down_kernels(api.lab, budget=1.0)
+        assert api.deleted == []
+    finally:
+        api.server.shutdown()

@@ -22,6 +22,7 @@ import socket
 import subprocess
 import sys
 import time
+import urllib.error
 import urllib.request
 from collections.abc import Iterator
 from typing import Any
@@ -258,15 +259,36 @@ def jupyterlab(home: pathlib.Path, *, nodelay: bool = True) -> Iterator[dict[str
             PROCESS_GROUPS.stop(server)
 
 
-def shut_down_kernels(lab: dict[str, Any]) -> None:
-    """Stop every kernel the server runs, so chapters do not pile up kernels."""
+def shut_down_kernels(lab: dict[str, Any], budget: float = 30.0) -> None:
+    """Stop every kernel the server runs, so chapters do not pile up kernels.
+
+    A kernel that the page is starting or stopping at that moment can make the
+    server answer 500 to the list, or 404 to a kernel gone meanwhile: the list
+    is asked again until ``budget`` seconds have passed, and a kernel already
+    gone counts as stopped.
+    """
     base = f"{lab['url']}/api/kernels"
     headers = {"Authorization": f"token {lab['token']}"}
-    request = urllib.request.Request(base, headers=headers)
-    with urllib.request.urlopen(request, timeout=10) as response:
-        kernels = json.load(response)
-    for kernel in kernels:
-        request = urllib.request.Request(
-            f"{base}/{kernel['id']}", headers=headers, method="DELETE"
-        )
-        urllib.request.urlopen(request, timeout=10).close()
+    deadline = time.monotonic() + budget
+    while True:
+        try:
+            request = urllib.request.Request(base, headers=headers)
+            with urllib.request.urlopen(request, timeout=10) as response:
+                kernels = json.load(response)
+            for kernel in kernels:
+                request = urllib.request.Request(
+                    f"{base}/{kernel['id']}", headers=headers, method="DELETE"
+                )
+                try:
+                    urllib.request.urlopen(request, timeout=10).close()
+                except urllib.error.HTTPError as error:
+                    if error.code != 404:  # 404: stopped meanwhile
+                        raise
+            return
+        except urllib.error.HTTPError as error:
+            if error.code < 500 or time.monotonic() > deadline:
+                raise RuntimeError(
+                    f"JupyterLab answered {error.code} to stopping its kernels "
+                    f"for {budget:g} s ({error.reason})"
+                ) from error
+            time.sleep(0.5)
