@@ -191,3 +191,24 @@ def test_under_the_course_style_an_animations_own_figure_is_laid_out_once():
     video.html5_video(anim, embed_limit=5.0)
     fast_video, full_video, fast_draws, _ = _both_videos(make)
     assert fast_video == full_video and fast_draws == 1
+
+
+def test_under_the_course_style_a_callers_figure_is_laid_out_once_when_its_video_is_made():
+    """A figure the caller made (and drew more on) keeps its layout engine until
+    animation_html takes the finished figure: then it is laid out once and each frame
+    redraws only what moves, instead of a layout and a full draw per frame."""
+    with figure_style.context():
+        fig, ax = plt.subplots(figsize=(3.0, 3.0))
+        anim = plot.animate_arm(
+            arms.two_metre, np.linspace([0.0, 0.0], [1.5, 1.5], 8), ax=ax, title="mine"
+        )
+        ax.add_patch(Circle((1.0, 1.0), 0.5, alpha=0.3))  # drawn on after animate_arm
+        engine = fig.get_layout_engine()
+        assert engine is not None and engine.__class__.__name__ == (
+            "ConstrainedLayoutEngine"
+        )
+        draws = _counting_draws(anim)
+        shown = plot.animation_html(anim)
+    assert "<video" in shown.data
+    assert len(draws) == 1, f"{len(draws)} full draws for 8 frames"
+    assert fig.get_layout_engine().__class__.__name__ == "PlaceHolderLayoutEngine"

@@ -31,6 +31,7 @@ from matplotlib import animation
 from matplotlib.artist import Artist
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import PlaceHolderLayoutEngine
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch, Polygon
 from matplotlib.path import Path
@@ -590,14 +591,24 @@ def animate_arm(
         return artists
 
     figure = _figure_of(ax)
-    if own_figure and figure.get_layout_engine() is not None:
-        # laid out once, for the first frame, then held: a layout engine would lay the
-        # figure out again at every frame, and the video could not redraw only what moves
-        engine = figure.get_layout_engine()
-        assert engine is not None
-        engine.execute(figure)
-        figure.set_layout_engine("none")
+    if own_figure:  # nothing else will be drawn on it
+        _hold_layout(figure)
     return MovingAnimation(figure, update, frames=len(q_frames), interval=interval)
+
+
+def _hold_layout(figure: Figure) -> None:
+    """Lay ``figure`` out once, now, and keep that layout for every later draw.
+
+    A layout engine (the course style's constrained layout) lays a figure out
+    again at every draw, so an animation's video would lay out every frame
+    (about half of each frame's time) and could not redraw only what moves;
+    held, the frames are drawn over one background (:mod:`twolink.video`).
+    """
+    engine = figure.get_layout_engine()
+    if engine is None or isinstance(engine, PlaceHolderLayoutEngine):
+        return
+    engine.execute(figure)
+    figure.set_layout_engine("none")
 
 
 def animation_html(anim: animation.Animation) -> HTMLDisplay:
@@ -666,6 +677,7 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
             return html(note + anim.to_jshtml(default_mode="loop"))
     with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg}):
         if isinstance(anim, MovingAnimation):  # the axes drawn once, not per frame
+            _hold_layout(figure)  # the figure is complete: laid out for the first frame
             video = html5_video(anim, embed_limit=5.0)
         else:
             with frames_drawn_once(anim):
