@@ -10,7 +10,6 @@ import json
 import os
 import pathlib
 import re
-import shutil
 import subprocess
 import sys
 import textwrap
@@ -22,6 +21,9 @@ from packaging.specifiers import SpecifierSet
 from packaging.utils import canonicalize_name
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tools"))
+import editions  # noqa: E402  (tools/editions.py: the wheel as the student edition builds it)
+
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 #: Import names of the course-only dependencies (the ``course`` extra).
@@ -580,58 +582,13 @@ BARE_SCRIPT = textwrap.dedent("""
 """)
 
 
-def _tracked_copy(destination):
-    """The checkout's tracked files (as they are now), copied to ``destination``.
-
-    A wheel built in the checkout itself would also carry modules deleted since
-    setuptools last filled ``build/lib`` (a renamed module survived there).
-    Outside a git checkout the tree is used as it is.
-    """
-    listed = subprocess.run(
-        [
-            "git",
-            "ls-files",
-            "-z",
-            "--",
-            "pyproject.toml",
-            "README.md",
-            "LICENSE*",
-            "twolink",
-        ],
-        cwd=ROOT,
-        capture_output=True,
-    )
-    if listed.returncode != 0 or not listed.stdout:
-        return ROOT
-    for name in filter(None, listed.stdout.decode().split("\0")):
-        if (ROOT / name).is_file():
-            (destination / name).parent.mkdir(parents=True, exist_ok=True)
-            shutil.copy2(ROOT / name, destination / name)
-    return destination
-
-
 @pytest.mark.infrastructure
 def test_the_wheel_works_with_only_its_four_core_dependencies(tmp_path):
     """pip wheel, then install it (dependencies checked, nothing downloaded) in a venv with numpy, scipy,
     sympy and matplotlib only; every module imports and the course-only functions explain themselves."""
-    built = subprocess.run(
-        [
-            sys.executable,
-            "-m",
-            "pip",
-            "wheel",
-            "--no-deps",
-            "--quiet",
-            "-w",
-            str(tmp_path / "dist"),
-            str(_tracked_copy(tmp_path / "source")),
-        ],
-        capture_output=True,
-        text=True,
-        cwd=tmp_path,
-    )
-    assert built.returncode == 0, built.stderr[-3000:]
-    (wheel,) = (tmp_path / "dist").glob("twolink-*.whl")
+    # built as the student edition builds it: from the files git tracks, so a module
+    # deleted since setuptools last filled build/lib cannot slip in
+    wheel = editions.build_wheel(tmp_path / "dist")
     try:
         python = _venvs.bare_venv(tmp_path, CORE)
     except (
