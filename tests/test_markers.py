@@ -3,7 +3,7 @@
 ``make test`` runs everything; ``pytest -m "not infrastructure and not browser"``
 is the quick part.  A test is infrastructure when it (or a helper function or
 fixture of its own module that it uses, transitively) builds a virtual
-environment (``_venvs.bare_venv``, ``_venvs.pip``) or a wheel (``pip wheel``),
+environment (``_venvs.bare_venv``, ``_venvs.pip``) or a wheel (``pip wheel``, ``editions.build_wheel``),
 runs a nested pytest (``python -m pytest``, ``portable.main``), drives the
 browser (the ``page``, ``browser`` or ``jupyterlab`` fixtures) or runs a whole
 edition (``grade.grade_folder``, ``editions.build_site``, a ``HeadlessClient``).
@@ -25,6 +25,7 @@ VENV_OR_EDITION_CALLS = {
     "grade.grade_folder": "runs a whole edition (grading)",
     "grade.grade_notebook": "runs a whole edition (grading)",
     "editions.build_site": "renders the whole static edition",
+    "editions.build_wheel": "builds a wheel",
     "HeadlessClient": "executes a whole edition",
 }
 BROWSER_FIXTURES = {"page", "browser", "jupyterlab"}
