@@ -14,8 +14,10 @@ import textwrap
 
 import matplotlib.pyplot as plt
 import nbformat
+import numpy as np
 import pytest
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import ConstrainedLayoutEngine
 from nbclient import NotebookClient
 from PIL import Image
 
@@ -216,3 +218,85 @@ def test_while_grading_a_figure_is_neither_drawn_nor_encoded(monkeypatch):
     monkeypatch.delenv("TWOLINK_GRADING")
     png, _ = inline.png_output(ax.figure)
     assert png and draws  # drawn without the switch
+
+
+def _rgba(png):
+    return np.asarray(Image.open(io.BytesIO(png)).convert("RGBA"))
+
+
+def _busy_figure(facecolor="white"):
+    """A pyplot figure (the inline backend's Agg canvas) with what a chapter's figures hold."""
+    with figure_style.context():
+        figure, (left, right) = plt.subplots(
+            1, 2, figsize=(6.0, 3.0), facecolor=facecolor
+        )
+    left.plot([0.0, 1.0, 2.0], [0.0, 1.0, 4.0], label="a curve")
+    left.set_xlabel("t [s]")
+    left.set_ylabel("energy [J]")
+    left.legend()
+    left.annotate("a note", (1.0, 1.0))
+    (moving,) = left.plot([0.5], [2.0], "o")
+    moving.set_animated(True)  # drawn when saving, as savefig draws it
+    image = right.imshow(np.arange(12.0).reshape(3, 4))
+    figure.colorbar(image, ax=right, label="value")
+    right.set_yscale("linear")
+    figure.suptitle("Two panels")
+    return figure
+
+
+def test_a_constrained_figure_is_drawn_once_and_matches_ipythons_retina_png_pixel_for_pixel():
+    from IPython.core.pylabtools import retina_figure
+
+    figure = _busy_figure()
+    draws = []
+    figure.canvas.mpl_connect("draw_event", draws.append)
+    dpi = figure.dpi
+    png, metadata = inline.png_output(figure)
+    assert len(draws) == 1  # one draw, its layout included
+    assert figure.dpi == dpi and not figure.canvas.is_saving()
+    assert isinstance(figure.get_layout_engine(), ConstrainedLayoutEngine)
+    ours = Image.open(io.BytesIO(base64.b64decode(png)))
+    assert ours.mode == "RGB"  # opaque: no alpha channel stored
+    assert (metadata["width"], metadata["height"]) == (
+        round(6.0 * dpi),
+        round(3.0 * dpi),
+    )
+    # the same figure made again, printed by IPython (a figure's second print can
+    # differ from its first: constrained layout moves a colorbar's axes again)
+    twin = _busy_figure()
+    twin_draws = []
+    twin.canvas.mpl_connect("draw_event", twin_draws.append)
+    reference, size = retina_figure(twin, bbox_inches=None)
+    assert len(twin_draws) == 2  # matplotlib's own print lays out in a first pass
+    assert size == {"width": metadata["width"], "height": metadata["height"]}
+    assert np.array_equal(_rgba(base64.b64decode(png)), _rgba(reference))
+
+
+def test_a_transparent_figure_keeps_its_alpha_channel():
+    png, _ = inline.png_output(_busy_figure(facecolor="none"))
+    ours = Image.open(io.BytesIO(base64.b64decode(png)))
+    assert ours.mode == "RGBA" and _rgba(base64.b64decode(png))[..., 3].min() < 255
+
+
+# matplotlib_inline's observer of the option, which traitlets calls old-style
+@pytest.mark.filterwarnings("ignore:InlineBackend._print_figure_kwargs_changed")
+def test_changed_print_options_and_other_canvases_go_through_ipython(monkeypatch):
+    from matplotlib_inline.config import InlineBackend
+
+    figure = _busy_figure()
+    draws = []
+    figure.canvas.mpl_connect("draw_event", draws.append)
+    monkeypatch.setattr(
+        InlineBackend.instance(),
+        "print_figure_kwargs",
+        {"bbox_inches": "tight", "facecolor": "yellow"},
+    )
+    png, _ = inline.png_output(figure)
+    assert len(draws) == 2  # IPython's print, with the reader's options
+    assert tuple(_rgba(base64.b64decode(png))[0, 0]) == (255, 255, 0, 255)
+    monkeypatch.undo()
+    bare = Figure(figsize=(2.0, 1.0), layout="constrained")  # no Agg canvas of its own
+    bare.subplots().plot([0.0, 1.0])
+    assert not inline._drawn_here(bare)
+    png, metadata = inline.png_output(bare)
+    assert _twice(_pixels(png), metadata)

@@ -200,8 +200,8 @@ SERIES = (
 #: Pixels per inch of a figure at its intended size: the CSS inch, so that a
 #: matplotlib point is a CSS point on the page.
 DPI = 96
-#: Stored pixels per displayed pixel (a "retina" PNG).
-PIXEL_SCALE = 2
+#: Stored pixels per displayed pixel (a "retina" PNG): :data:`twolink.inline.PIXEL_SCALE`.
+PIXEL_SCALE = inline.PIXEL_SCALE
 #: Smallest text, in points at display size.
 MIN_FONT_PT = 9.0
 #: Body text (axis labels, titles are one point larger).
