@@ -177,12 +177,16 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
                     _failure_detail,
                 )
             if elbow == "both":
+                # down then up, written out: a comprehension here would make the
+                # variables it reads closure cells, slower on every call
                 q_both = _array(
                     [
                         _branch_angles(
-                            l1, l2, x, y, one_minus_c2, one_plus_c2, sign, _sqrt, _atan2
-                        )
-                        for sign in (1.0, -1.0)
+                            l1, l2, x, y, one_minus_c2, one_plus_c2, 1.0, _sqrt, _atan2
+                        ),
+                        _branch_angles(
+                            l1, l2, x, y, one_minus_c2, one_plus_c2, -1.0, _sqrt, _atan2
+                        ),
                     ]
                 )
                 return assemble_result(
