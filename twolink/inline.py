@@ -63,7 +63,7 @@ from .runmode import grading
 
 __all__ = ["png_output", "install", "INLINE_BACKENDS", "PIXEL_SCALE"]
 
-#: Stored pixels per displayed pixel (a "retina" PNG).
+#: Stored pixels per displayed pixel (a "retina" PNG, as IPython's ``retina_figure``).
 PIXEL_SCALE = 2
 #: zlib level of the PNGs encoded here (see the module's notes).
 PNG_COMPRESS_LEVEL = 3
@@ -104,9 +104,8 @@ def png_output(figure: Figure) -> tuple[str, dict[str, Any]] | None:
         raise InputTypeError(f"figure must be a matplotlib Figure; got {figure!r}")
     if grading():  # no answer depends on a picture: not drawn, not encoded
         return None
-    if (
-        not figure.axes and not figure.lines
-    ):  # as IPython's formatters: no empty picture
+    # as IPython's formatters: no picture of an empty figure
+    if not figure.axes and not figure.lines:
         return None
     kwargs = _print_figure_kwargs(figure)
     if kwargs == {"bbox_inches": None} and _drawn_here(figure):
@@ -144,14 +143,14 @@ def _retina_png(figure: Figure) -> tuple[bytes, tuple[int, int]]:
     which lays itself out first.
     """
     canvas: Any = figure.canvas
-    dpi = figure.dpi
+    dpi, saving = figure.dpi, canvas._is_saving
     figure.dpi = dpi * PIXEL_SCALE
     canvas._is_saving = True  # as savefig: animated artists are drawn too
     try:
         canvas.draw()
         pixels = np.asarray(canvas.buffer_rgba())
     finally:
-        canvas._is_saving = False
+        canvas._is_saving = saving
         figure.dpi = dpi
     image = Image.fromarray(pixels)
     if pixels[:, :, 3].min() == 255:  # opaque: the alpha channel says nothing
