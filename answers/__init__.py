@@ -1,12 +1,12 @@
 """The course's exercise references, readable: for teachers, the grader and the store's builder.
 
 Not part of the installed package.  Each chapter module (``ch4`` ...)
-defines ``exercises()``, the :class:`twolink.exercises.spec.Exercise` objects
+defines ``exercises()``, the :class:`twolink_course.exercises.spec.Exercise` objects
 of its chapter, computed by the package from each exercise's data, and, for
 an exercise that asks for a function, ``hidden_cases(number, part, seed)``:
 inputs the student never saw, drawn from a seed only the grader holds.
 ``python tools/build_answers.py`` encodes them into
-``twolink/exercises/store/chN.txt``, what the self-checks compare with.
+``twolink_course/exercises/store/chN.txt``, what the self-checks compare with.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from types import ModuleType
 
 import numpy as np
 
-from twolink.exercises.spec import Case, ExerciseSpec
+from twolink_course.exercises.spec import Case, ExerciseSpec
 
 
 def chapter_names() -> list[str]:

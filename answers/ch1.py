@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from twolink import TwoLinkArm, arms, dh, to_absolute, to_relative
-from twolink.exercises.spec import Case, ExerciseSpec, Mistake, PartSpec
+from twolink_course.exercises.spec import Case, ExerciseSpec, Mistake, PartSpec
 
 CHAPTER = "01_dh_forward_kinematics"
 Q_1_1_DEG = (45.0, -30.0)  # OSAKE arm

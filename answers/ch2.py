@@ -12,8 +12,14 @@ from collections.abc import Callable
 import numpy as np
 
 from twolink import TwoLinkArm, UnreachableError, arms, ik
-from twolink.exercises.spec import Case, ExerciseSpec, Mistake, PartSpec, Tolerance
 from twolink.ik.grid_search import grid_axis
+from twolink_course.exercises.spec import (
+    Case,
+    ExerciseSpec,
+    Mistake,
+    PartSpec,
+    Tolerance,
+)
 
 CHAPTER = "02_inverse_kinematics"
 TARGET_2_1 = (12.0, 4.0)  # on arms.ten

@@ -10,7 +10,13 @@ import numpy as np
 import scipy.optimize
 
 from twolink import TwoLinkArm, arms
-from twolink.exercises.spec import Case, ExerciseSpec, Mistake, PartSpec, Tolerance
+from twolink_course.exercises.spec import (
+    Case,
+    ExerciseSpec,
+    Mistake,
+    PartSpec,
+    Tolerance,
+)
 
 CHAPTER = "03_jacobian_velocity"
 Q_3_1_DEG, V_TIP_3_1 = (20.0, 70.0), (0.0, 0.2)  # the 2 m arm; tip straight up, m/s

@@ -5,7 +5,13 @@ from __future__ import annotations
 import numpy as np
 
 from twolink import TwoLinkArm, arms, ik, to_relative
-from twolink.exercises.spec import Case, ExerciseSpec, Mistake, PartSpec, Tolerance
+from twolink_course.exercises.spec import (
+    Case,
+    ExerciseSpec,
+    Mistake,
+    PartSpec,
+    Tolerance,
+)
 
 CHAPTER = "04_statics_wall"
 Q_4_1_DEG, FORCE_4_1 = (30.0, 60.0), (0.0, -100.0)  # the tip pushes down on the scale

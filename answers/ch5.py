@@ -9,7 +9,13 @@ import numpy as np
 from numpy.typing import NDArray
 
 from twolink import TwoLinkArm, arms, simulate, symbolic
-from twolink.exercises.spec import Case, ExerciseSpec, Mistake, PartSpec, Tolerance
+from twolink_course.exercises.spec import (
+    Case,
+    ExerciseSpec,
+    Mistake,
+    PartSpec,
+    Tolerance,
+)
 
 CHAPTER = "05_lagrangian_dynamics"
 Q_5_1_DEG = (30.0, 45.0)

@@ -8,7 +8,13 @@ from numpy.typing import NDArray
 
 from twolink import arms, controllers, ik, linearization
 from twolink.arm import TwoLinkArm
-from twolink.exercises.spec import Case, ExerciseSpec, Mistake, PartSpec, Tolerance
+from twolink_course.exercises.spec import (
+    Case,
+    ExerciseSpec,
+    Mistake,
+    PartSpec,
+    Tolerance,
+)
 
 CHAPTER = "06_spring_impedance_control"
 K_SOURCE, REST_POINT = 600.0, (3.0, 1.0)  # N/m, m: the chapter's spring

@@ -9,7 +9,13 @@ import numpy as np
 import scipy.optimize
 
 from twolink import TwoLinkArm, arms, ik, trajectory, workspace
-from twolink.exercises.spec import Case, ExerciseSpec, Mistake, PartSpec, Tolerance
+from twolink_course.exercises.spec import (
+    Case,
+    ExerciseSpec,
+    Mistake,
+    PartSpec,
+    Tolerance,
+)
 
 CHAPTER = "07_workspace_trajectories"
 LIMIT_DEG_7_1 = 35.0  # arms.two_metre_limited: link angles in [35, 145] deg

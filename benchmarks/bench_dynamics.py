@@ -27,10 +27,10 @@ import platform
 import numpy as np
 
 from twolink import arms, simulate
-from twolink.display import markdown_table
 from twolink.simulation import simulate_quick
 from twolink.symbolic import lambdify_dynamics
-from twolink.timing import median_time as _median_time
+from twolink_course.display import markdown_table
+from twolink_course.timing import median_time as _median_time
 
 
 def numpy_solve_forward_dynamics(arm, q, qd, tau):

@@ -2,10 +2,10 @@
 
 ``benchmarks/bench_widgets.py`` measures what a student sees (key press to a
 changed picture in JupyterLab); this one isolates the part the chapter's code
-and :mod:`twolink.explorer` control.  Each chapter runs in a kernel (nbclient),
+and :mod:`twolink_course.explorer` control.  Each chapter runs in a kernel (nbclient),
 its explorers' canvases behave as with a browser attached (no PNG copy kept for
 a page that is not there), then every control of every explorer (a slider's or a range's low end one
-step, a choice's first two options) goes there and back ``--moves`` times through :meth:`twolink.explorer.Explorer.set`.
+step, a choice's first two options) goes there and back ``--moves`` times through :meth:`twolink_course.explorer.Explorer.set`.
 
 Prints per slider the median and worst time of one move [ms], the moves that
 redrew the whole figure (slow: limits, labels or ticks changed) and the
@@ -33,12 +33,12 @@ sys.path[:0] = [str(ROOT), str(ROOT / "tools")]
 
 import course_map  # noqa: E402
 
-from twolink.display import markdown_table  # noqa: E402
+from twolink_course.display import markdown_table  # noqa: E402
 
 # Runs in the chapter's kernel after its last cell; prints one JSON line.
 MEASURE = """
 import gc as _gc, json as _json, time as _time
-from twolink.explorer import Explorer as _Explorer
+from twolink_course.explorer import Explorer as _Explorer
 _rows, _profiles = [], []
 for _index, _explorer in enumerate(o for o in _gc.get_objects() if isinstance(o, _Explorer)):
     _explorer.figure.canvas.syncing_data_url = False  # as once a browser shows it

@@ -51,7 +51,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from twolink.display import markdown_table  # noqa: E402
+from twolink_course.display import markdown_table  # noqa: E402
 
 #: The issue's target for the first ``make lab`` on these machines, seconds.
 TARGET_S = 60.0

@@ -35,7 +35,7 @@ import editions  # noqa: E402
 import grade  # noqa: E402
 import sandbox  # noqa: E402
 
-from twolink.display import markdown_table  # noqa: E402
+from twolink_course.display import markdown_table  # noqa: E402
 
 TARGET_NOTEBOOKS = 350
 TARGET_MINUTES = 15.0

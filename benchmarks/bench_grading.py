@@ -8,7 +8,7 @@ front end, as the grader does) in these settings:
 
 - ``off``: as taught (``TWOLINK_GRADING`` and ``MPLBACKEND`` unset: the inline
   backend, figures rendered to PNG, videos encoded, explorers drawn);
-- ``on``: ``TWOLINK_GRADING=1`` (:mod:`twolink.runmode`: no video, no explorer
+- ``on``: ``TWOLINK_GRADING=1`` (:mod:`twolink_course.runmode`: no video, no explorer
   picture, no figure PNG, one call per timing);
 - ``on, agg``: the switch and ``MPLBACKEND=agg`` (``plt.show()`` shows nothing);
 - ``on, 1 BLAS thread`` (``--all``): the switch and ``OPENBLAS_NUM_THREADS=1``
@@ -60,8 +60,8 @@ sys.path[:0] = [str(ROOT), str(ROOT / "tools")]
 
 import course_map  # noqa: E402
 
-from twolink.display import markdown_table  # noqa: E402
-from twolink.runmode import VARIABLE  # noqa: E402
+from twolink_course.display import markdown_table  # noqa: E402
+from twolink_course.runmode import VARIABLE  # noqa: E402
 
 #: A check cell: its stream output is what the grader reads.
 CHECK = "selfcheck.check("

@@ -5,7 +5,7 @@ circle with each method and asks which can run in real time.  This script
 answers it for the a1 = a2 = 10 arm and the circle centred (12.5, 12.5) with
 radius 2, at 20 points: every method per call (one target per call, what a
 controller does each cycle) and vectorised (all targets in one call), brute
-force at four grid resolutions, all timed with :func:`twolink.timing.median_time`
+force at four grid resolutions, all timed with :func:`twolink_course.timing.median_time`
 (median of timeit repeats).  When ``roboticstoolbox-python`` is importable
 (an optional extra, never a requirement of the course) the same targets are
 also solved with its ``ik_LM``.
@@ -20,8 +20,9 @@ import platform
 
 import numpy as np
 
-from twolink import arms, timing, workspace
-from twolink.display import markdown_table
+from twolink import arms, workspace
+from twolink_course import timing
+from twolink_course.display import markdown_table
 
 #: The control rate the real-time question is asked against.
 CONTROL_RATE_HZ = 1000.0

@@ -25,7 +25,7 @@ import sys
 
 import numpy as np
 
-from twolink.display import markdown_table
+from twolink_course.display import markdown_table
 
 # The target of the light-import issue: import twolink after numpy, median of fresh processes.
 TARGET_MS = 100.0

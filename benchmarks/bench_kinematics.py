@@ -12,8 +12,8 @@ import platform
 import numpy as np
 
 from twolink import TwoLinkArm, arms, ik, wrap_angle
-from twolink.display import markdown_table
-from twolink.timing import median_time as _median_time
+from twolink_course.display import markdown_table
+from twolink_course.timing import median_time as _median_time
 
 
 def plain_numpy_closed_form(arm, p):

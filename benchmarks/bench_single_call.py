@@ -40,8 +40,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from twolink import TwoLinkArm, dynamics, ik, simulate
-from twolink.display import markdown_table
-from twolink.timing import median_time
+from twolink_course.display import markdown_table
+from twolink_course.timing import median_time
 
 # The per-call targets of the speed issue: twolink / plain Python (None: a row for information, no target).
 TARGET_RATIO = {

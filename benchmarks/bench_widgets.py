@@ -38,12 +38,12 @@ sys.path.insert(0, str(ROOT / "tools"))
 import course_map  # noqa: E402
 import lab_browser  # noqa: E402
 
-from twolink.display import markdown_table  # noqa: E402
+from twolink_course.display import markdown_table  # noqa: E402
 
 TARGET_MEDIAN_MS = 50.0
 TARGET_P95_MS = 100.0
 TARGET_RUN_ALL_S = 8.0
-#: An explorer's box: twolink.explorer.CSS_CLASS (an ipywidgets `interactive`
+#: An explorer's box: twolink_course.explorer.CSS_CLASS (an ipywidgets `interactive`
 #: before it, measured for comparison).
 EXPLORER = ".twolink-explorer, .widget-interact"
 #: No change within this long counts as a miss (reported, worst = this).

@@ -20,8 +20,8 @@ from dataclasses import replace
 import numpy as np
 
 from twolink import arms, workspace
-from twolink.display import markdown_table
-from twolink.timing import median_time as _median_time
+from twolink_course.display import markdown_table
+from twolink_course.timing import median_time as _median_time
 
 
 def main(argv=None):

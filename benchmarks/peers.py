@@ -28,8 +28,8 @@ import platform
 import numpy as np
 
 from twolink import TwoLinkArm, dynamics, ik
-from twolink.display import markdown_table
-from twolink.timing import median_time
+from twolink_course.display import markdown_table
+from twolink_course.timing import median_time
 
 ARM = TwoLinkArm(l1=1.0, l2=0.7, m1=2.0, m2=1.2)
 Q, QD, TAU, QDD = (0.4, 1.1), (0.3, -0.8), (2.0, -1.0), (1.5, 0.2)

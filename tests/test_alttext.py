@@ -1,4 +1,4 @@
-"""twolink.alttext: every drawing function says what it drew, from its data, and a move says it anew."""
+"""twolink_course.alttext: every drawing function says what it drew, from its data, and a move says it anew."""
 
 import gc
 import re
@@ -12,8 +12,9 @@ from hypothesis import strategies as st
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
-from twolink import TwoLinkArm, alttext, arms, figure_style, plot, statics, velocity
+from twolink import TwoLinkArm, arms, statics, velocity
 from twolink.errors import InputTypeError
+from twolink_course import alttext, figure_style, plot
 
 ARM = arms.two_metre
 NUMBER = re.compile(r"-?\d+(?:\.\d+)?")
@@ -268,7 +269,8 @@ def test_a_colour_bar_is_its_panels_colour_scale_and_log_limits_keep_their_digit
 
 
 def test_an_arm_labelled_with_its_angles_is_not_told_them_twice():
-    from twolink import arms, plot
+    from twolink import arms
+    from twolink_course import plot
 
     ax = plot.setup_axes(arms.ten)
     q = np.radians([120.7, 51.3])
@@ -281,7 +283,8 @@ def test_an_arm_labelled_with_its_angles_is_not_told_them_twice():
 
 
 def test_an_arm_label_with_other_numbers_keeps_the_angles():
-    from twolink import arms, plot
+    from twolink import arms
+    from twolink_course import plot
 
     ax = plot.setup_axes(arms.ten)
     plot.draw_arm(

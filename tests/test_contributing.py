@@ -10,8 +10,8 @@ import pytest
 
 from twolink import _validate as validate
 from twolink import arms, budgets, ik
-from twolink.exercises import judging, spec
 from twolink.ik import result, targets
+from twolink_course.exercises import judging, spec
 
 ROOT = Path(__file__).resolve().parents[1]
 GUIDE = (ROOT / "CONTRIBUTING.md").read_text(encoding="utf-8")

@@ -13,8 +13,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from matplotlib.patches import FancyArrowPatch
 
-from twolink import TwoLinkArm, alttext, diagrams
+from twolink import TwoLinkArm
 from twolink.errors import InputTypeError
+from twolink_course import alttext, diagrams
 
 angles = st.floats(-np.pi, np.pi, allow_nan=False)
 lengths = st.floats(0.2, 3.0, allow_nan=False)

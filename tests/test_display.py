@@ -1,4 +1,4 @@
-"""twolink.display: Markdown tables, angles in degrees, refusals printed instead of tracebacks."""
+"""twolink_course.display: Markdown tables, angles in degrees, refusals printed instead of tracebacks."""
 
 import inspect
 import re
@@ -8,8 +8,9 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from twolink import SingularityError, UnreachableError, arms, display, ik
+from twolink import SingularityError, UnreachableError, arms, ik
 from twolink.errors import InputTypeError
+from twolink_course import display
 
 ANGLES = re.compile(r"\((-?\d+(?:\.\d+)?)°, (-?\d+(?:\.\d+)?)°\)")
 

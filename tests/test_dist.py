@@ -39,6 +39,7 @@ BUILD_INPUTS = [
     "README.md",
     "LICENSE*",
     "twolink",
+    "twolink_course",
     "labextension",
     "tests",
 ]
@@ -167,16 +168,16 @@ def test_the_wheel_holds_the_package_its_store_and_types_and_nothing_else(built)
         names = set(archive.namelist())
     modules = {name for name in committed("twolink/*.py")}
     assert modules and modules <= names, sorted(modules - names)
-    store = committed("twolink/exercises/store/*.txt")
+    store = committed("twolink_course/exercises/store/*.txt")
     assert len(store) >= 7, store
     assert store <= names, sorted(store - names)
-    assert "twolink/py.typed" in names
+    assert "twolink/py.typed" in names and "twolink_course/py.typed" in names
     assert any(
         name.endswith("labextensions/twolink-figure-alt/package.json") for name in names
     ), "the JupyterLab extension's data-files are missing"
     for name in names:
         top, *inside = name.split("/")
-        assert top == "twolink" or top.startswith("twolink-"), name
+        assert top in ("twolink", "twolink_course") or top.startswith("twolink-"), name
         assert not {*NEVER_SHIPPED, "tests", "tools"} & set(inside), name
 
 
@@ -190,7 +191,7 @@ def test_the_sdist_holds_the_sources_and_no_answers_or_notebooks(built):
         names = {name.removeprefix(prefix) for name in archive.getnames()}
     for needed in ("pyproject.toml", "README.md", "LICENSE", "PKG-INFO"):
         assert needed in names, needed
-    missing = committed("twolink") - names
+    missing = (committed("twolink") | committed("twolink_course")) - names
     assert not missing, sorted(missing)
     for folder in NEVER_SHIPPED:
         shipped = [name for name in names if name.split("/")[0] == folder]

@@ -235,6 +235,6 @@ def test_without_mujoco_the_error_names_the_function_and_the_install(monkeypatch
     monkeypatch.setitem(sys.modules, "mujoco", None)
     with pytest.raises(
         ImportError,
-        match=r'twolink.engine.simulate_in_mujoco needs mujoco.*pip install "twolink\[course\]"',
+        match=r'twolink.engine.simulate_in_mujoco needs mujoco.*pip install "twolink\[mujoco\]"',
     ):
         engine.simulate_in_mujoco(arms.two_metre, [0.0, 0.0], [0.0, 0.0], 0.01)

@@ -1,4 +1,4 @@
-"""The exercises (twolink.exercises) through their self-checks, tested.
+"""The exercises (twolink_course.exercises) through their self-checks, tested.
 
 For every exercise:
 
@@ -35,17 +35,19 @@ from twolink import (
     TwoLinkArm,
     arms,
     controllers,
-    exercises,
     ik,
     linearization,
-    selfcheck,
     simulate,
     to_relative,
     trajectory,
     workspace,
 )
-from twolink.exercises import judging
-from twolink.sources import compsys726
+from twolink_course import (
+    exercises,
+    selfcheck,
+)
+from twolink_course.exercises import judging
+from twolink_course.sources import compsys726
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))

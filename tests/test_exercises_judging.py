@@ -6,8 +6,8 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from twolink.exercises.judging import Unusable, judge, read_answer
-from twolink.exercises.spec import Case, Mistake, PartSpec, Tolerance
+from twolink_course.exercises.judging import Unusable, judge, read_answer
+from twolink_course.exercises.spec import Case, Mistake, PartSpec, Tolerance
 
 POINT = PartSpec(
     "p_tip",

@@ -1,4 +1,4 @@
-"""twolink.explorer: controls labelled with units on round grids, a figure drawn
+"""twolink_course.explorer: controls labelled with units on round grids, a figure drawn
 once and moved in place, and what an explorer stores for static pages."""
 
 import asyncio
@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 from _cases import in_fresh_thread
 
-from twolink import arms, explorer, figure_style, plot
+from twolink import arms
 from twolink.errors import InputTypeError
+from twolink_course import explorer, figure_style, plot
 
 ARM = arms.two_metre
 

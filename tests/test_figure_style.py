@@ -1,8 +1,8 @@
-"""twolink.figure_style: colours that stay apart for colour-blind readers, shapes that tell roles
+"""twolink_course.figure_style: colours that stay apart for colour-blind readers, shapes that tell roles
 apart without colour, legible text, and a use() that sets only what it says.
 
 The colour-vision test: every pair of colours that carries meaning (the style's,
-and those each drawing function of twolink.plot draws together) is simulated
+and those each drawing function of twolink_course.plot draws together) is simulated
 for deuteranopia, protanopia and tritanopia (Machado, Oliveira & Fernandes
 2009 at severity 100, as colorspacious implements it) and must stay at least
 ``figure_style.MIN_DISTANCE`` (20) apart in CAM02-UCS (Delta E'), the minimum
@@ -21,7 +21,8 @@ from matplotlib.colors import to_hex, to_rgb
 from matplotlib.lines import Line2D
 from matplotlib.patches import Patch
 
-from twolink import arms, figure_style, plot, simulate, statics, velocity
+from twolink import arms, simulate, statics, velocity
+from twolink_course import figure_style, plot
 
 VISIONS = ("normal", "deuteranomaly", "protanomaly", "tritanomaly")
 ARM = arms.two_metre
@@ -109,7 +110,7 @@ def test_the_prop_cycle_is_the_series():
     assert figure_style.RC["axes.prop_cycle"] == figure_style.prop_cycle()
 
 
-# ------------------------------------------------------------------ what twolink.plot draws
+# ------------------------------------------------------------------ what twolink_course.plot draws
 
 
 def _meaning_colours_drawn(figure):

@@ -6,7 +6,7 @@ every figure is inspected when the chapter calls ``plt.show()`` or hands an
 animation to ``plot.animation_html`` (no video is encoded): both axes show a
 quantity with a unit in brackets, and a figure that draws velocity ellipses or
 velocity arrows on position axes says in its own text how many metres of
-figure one m/s is.  An explorer (``twolink.explorer.Explorer``) is checked as
+figure one m/s is.  An explorer (``twolink_course.explorer.Explorer``) is checked as
 it is built, after every control was moved to its ends (and every option
 chosen) without an error.  Cells marked ``# NBVAL_IGNORE_OUTPUT`` (sliders and
 timings: they redraw what a checked cell already drew, or only measure) are
@@ -26,8 +26,8 @@ import pytest  # noqa: E402
 from IPython.core.inputtransformer2 import TransformerManager  # noqa: E402
 from matplotlib.quiver import Quiver  # noqa: E402
 
-import twolink.explorer  # noqa: E402
-import twolink.plot  # noqa: E402
+import twolink_course.explorer  # noqa: E402
+import twolink_course.plot  # noqa: E402
 from twolink import arms, velocity  # noqa: E402
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parents[1] / "tools"))
@@ -107,7 +107,7 @@ def run_chapter(name, monkeypatch):
     """Run the chapter's checked code cells; return (problems, number of figures checked)."""
     problems, ellipse_axes, checked = [], set(), []
     where = {"cell": None}
-    draw_ellipse = twolink.plot.draw_ellipse
+    draw_ellipse = twolink_course.plot.draw_ellipse
 
     def recording_draw_ellipse(ellipse, *args, ax=None, **kwargs):
         ellipse_axes.add(plt.gca() if ax is None else ax)
@@ -127,7 +127,7 @@ def run_chapter(name, monkeypatch):
         check_open_figures()  # the animation's figure is still open here
         return None
 
-    explorer_init = twolink.explorer.Explorer.__init__
+    explorer_init = twolink_course.explorer.Explorer.__init__
 
     def checking_explorer(self, *args, **kwargs):
         """Build the explorer, then move every control to its ends and back:
@@ -150,9 +150,9 @@ def run_chapter(name, monkeypatch):
             for problem in problems_in(self.figure, ellipse_axes)
         )
 
-    monkeypatch.setattr(twolink.plot, "draw_ellipse", recording_draw_ellipse)
-    monkeypatch.setattr(twolink.plot, "animation_html", checking_animation_html)
-    monkeypatch.setattr(twolink.explorer.Explorer, "__init__", checking_explorer)
+    monkeypatch.setattr(twolink_course.plot, "draw_ellipse", recording_draw_ellipse)
+    monkeypatch.setattr(twolink_course.plot, "animation_html", checking_animation_html)
+    monkeypatch.setattr(twolink_course.explorer.Explorer, "__init__", checking_explorer)
     monkeypatch.setattr(plt, "show", check_open_figures)
     monkeypatch.chdir(NOTEBOOK_DIR)
     to_python = TransformerManager().transform_cell
@@ -180,8 +180,8 @@ def test_the_check_catches_an_unlabelled_axis_and_an_unstated_scale():
     ax_plain.plot([0, 1], [0, 1])
     ax_plain.set_xlabel("t [s]")
     ax_plain.set_ylabel("angle")
-    twolink.plot.setup_axes(arms.osake, ax=ax_arm)
-    twolink.plot.draw_ellipse(
+    twolink_course.plot.setup_axes(arms.osake, ax=ax_arm)
+    twolink_course.plot.draw_ellipse(
         velocity.velocity_ellipse(arms.osake, [0.3, 1.0]), ax=ax_arm, scale=0.4
     )
     problems = problems_in(figure, {ax_arm})

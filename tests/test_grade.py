@@ -21,7 +21,7 @@ sys.path.insert(0, str(ROOT / "tools"))
 import grade  # noqa: E402
 import sandbox  # noqa: E402
 
-from twolink import exercises  # noqa: E402
+from twolink_course import exercises  # noqa: E402
 
 CHAPTER = "01_dh_forward_kinematics.ipynb"
 UNSAFE = (
@@ -200,7 +200,7 @@ def test_a_function_fitted_to_the_visible_calls_fails_on_the_hidden_ones(
     part = exercises.get("1.4").parts[0]
     namespace = {"np": np}
     exec(fitted_to_the_visible_calls(), namespace)
-    from twolink.exercises import judging
+    from twolink_course.exercises import judging
 
     assert judging.judge_function(part, namespace["tip_position"], part.cases).right
 
@@ -437,9 +437,11 @@ def test_a_function_part_is_judged_from_its_return_values():
 
 def test_tampering_marks_every_part_and_says_what(chapters, plan):
     chapter = chapters[CHAPTER.removesuffix(".ipynb")]
-    genuine = {"twolink.selfcheck.check": "abc", "json.dumps": "def"}
+    genuine = {"twolink_course.selfcheck.check": "abc", "json.dumps": "def"}
     honest = {"answers": {}, "fingerprints": dict(genuine), "exercise": "1.1"}
-    replaced = dict(honest, fingerprints={**genuine, "twolink.selfcheck.check": "zzz"})
+    replaced = dict(
+        honest, fingerprints={**genuine, "twolink_course.selfcheck.check": "zzz"}
+    )
     rows, signs = grade.verdicts(
         chapter,
         ["1.1", "1.2"],
@@ -447,7 +449,7 @@ def test_tampering_marks_every_part_and_says_what(chapters, plan):
         plan,
         genuine,
     )
-    assert signs == ["replaced before check 1.2: twolink.selfcheck.check"]
+    assert signs == ["replaced before check 1.2: twolink_course.selfcheck.check"]
     assert {result for _, _, result in rows} == {"tampered"}
     rows, signs = grade.verdicts(
         chapter, ["1.1"], {"reports": {"1.1": "silent"}}, plan, genuine
@@ -470,8 +472,8 @@ def test_tampering_marks_every_part_and_says_what(chapters, plan):
 def test_the_genuine_fingerprints_cover_what_a_submission_could_replace():
     genuine = grade.expected_fingerprints()
     for key in (
-        "twolink.selfcheck.check",
-        "twolink.exercises.judging.judge",
+        "twolink_course.selfcheck.check",
+        "twolink_course.exercises.judging.judge",
         "json.dumps",
         "builtins.print",
     ):

@@ -85,11 +85,11 @@ ATTACK_CELLS = {
     "print_the_verdicts": SOLVED_LINES,
     # the student's code judges itself
     "replace_the_check": (
-        "from twolink import selfcheck\n"
+        "from twolink_course import selfcheck\n"
         "selfcheck.check = lambda *a, **k: print('Exercise 1.1 (tip position): correct.')"
     ),
     "replace_the_judge": (
-        "from twolink.exercises import judging\n"
+        "from twolink_course.exercises import judging\n"
         "judging.judge = lambda part, answer: judging.Verdict(True, '')\n"
         "judging.judge_function = lambda part, function, cases: judging.Verdict(True, '')"
     ),
@@ -115,9 +115,9 @@ ATTACK_CELLS = {
         "        pass"
     ),
     "patch_the_package": (
-        "import twolink.selfcheck\n"
+        "import twolink_course.selfcheck\n"
         "try:\n"
-        "    open(twolink.selfcheck.__file__, 'a').write('\\n# patched\\n')\n"
+        "    open(twolink_course.selfcheck.__file__, 'a').write('\\n# patched\\n')\n"
         "except OSError:\n"
         "    pass"
     ),

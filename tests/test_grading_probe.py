@@ -13,8 +13,9 @@ sys.path.insert(0, str(ROOT / "tools"))
 import grade  # noqa: E402
 import grading_probe  # noqa: E402
 
-from twolink import TwoLinkArm, selfcheck  # noqa: E402
-from twolink.exercises import judging  # noqa: E402
+from twolink import TwoLinkArm  # noqa: E402
+from twolink_course import selfcheck  # noqa: E402
+from twolink_course.exercises import judging  # noqa: E402
 
 
 @pytest.mark.parametrize(
@@ -44,7 +45,7 @@ def test_answers_are_encoded_as_plain_data(answer, encoded):
 
 
 def test_what_the_probe_encodes_the_grader_decodes_to_the_same_verdict():
-    from twolink import exercises
+    from twolink_course import exercises
 
     part = exercises.get("1.1").parts[0]
     for answer in (
@@ -88,7 +89,7 @@ def test_fingerprints_change_when_a_watched_function_is_replaced(monkeypatch):
     monkeypatch.setattr(selfcheck, "check", lambda *a, **k: None)
     changed = grading_probe.fingerprints({"selfcheck": selfcheck})
     assert [key for key in genuine if genuine[key] != changed[key]] == [
-        "twolink.selfcheck.check"
+        "twolink_course.selfcheck.check"
     ]
     monkeypatch.undo()
     assert (

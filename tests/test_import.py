@@ -24,13 +24,13 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 HEAVY = ("scipy", "sympy", "matplotlib", "control", "mujoco")
 # The modules that exist to use a heavy library, and the one they load: chapters import them by name.
 HEAVY_BY_DESIGN = {
-    "twolink.plot": "matplotlib",
-    "twolink.diagrams": "matplotlib",
-    "twolink.explorer": "matplotlib",
-    "twolink.figure_style": "matplotlib",
-    "twolink.alttext": "matplotlib",
-    "twolink.inline": "matplotlib",
-    "twolink.video": "matplotlib",
+    "twolink_course.plot": "matplotlib",
+    "twolink_course.diagrams": "matplotlib",
+    "twolink_course.explorer": "matplotlib",
+    "twolink_course.figure_style": "matplotlib",
+    "twolink_course.alttext": "matplotlib",
+    "twolink_course.inline": "matplotlib",
+    "twolink_course.video": "matplotlib",
     "twolink.symbolic": "sympy",
 }
 
@@ -149,7 +149,7 @@ LATE_SCIPY_CALLS = {
         assert np.allclose(arms.two_metre.fk(q_sag), [3.0, 1.0], atol=0.05), q_sag
     """,
     "sources.mae6245.numerical_ik (scipy.optimize)": """
-        from twolink.sources import mae6245
+        from twolink_course.sources import mae6245
         run = mae6245.numerical_ik(acos="matlab")
         assert run.success and abs(run.q[0] - np.pi / 4) < 1e-4, run
     """,

@@ -1,4 +1,4 @@
-"""twolink.inline: a figure in a notebook output is a PNG of twice the pixels, shown at its
+"""twolink_course.inline: a figure in a notebook output is a PNG of twice the pixels, shown at its
 intended size, whose metadata carries its text alternative, and the site renders that as
 the image's ``alt``."""
 
@@ -21,8 +21,9 @@ from matplotlib.layout_engine import ConstrainedLayoutEngine
 from nbclient import NotebookClient
 from PIL import Image
 
-from twolink import alttext, arms, figure_style, inline, plot
+from twolink import arms
 from twolink.errors import InputTypeError
+from twolink_course import alttext, figure_style, inline, plot
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 
@@ -71,7 +72,7 @@ def test_install_in_an_ipython_shell_formats_figures_with_alt():
         import json
         from IPython.core.interactiveshell import InteractiveShell
         from matplotlib.figure import Figure
-        from twolink import figure_style
+        from twolink_course import figure_style
         shell = InteractiveShell.instance()
         shell.display_formatter.formatters["image/svg+xml"].for_type(Figure, lambda f: "<svg/>")
         first, second = figure_style.use(), figure_style.use()
@@ -100,8 +101,8 @@ def test_install_in_an_ipython_shell_formats_figures_with_alt():
 
 
 CELLS = [
-    "from twolink import figure_style\nprint(figure_style.use(), figure_style.use())",
-    "import numpy as np\nimport matplotlib.pyplot as plt\nfrom twolink import arms, plot\n"
+    "from twolink_course import figure_style\nprint(figure_style.use(), figure_style.use())",
+    "import numpy as np\nimport matplotlib.pyplot as plt\nfrom twolink import arms\nfrom twolink_course import plot\n"
     "ax = plot.setup_axes(arms.two_metre, title='The arm')\n"
     "plot.draw_arm(arms.two_metre, np.radians([30.0, 45.0]), ax=ax)\nplt.show()",
     "fig, ax = plt.subplots(figsize=(4.0, 3.0))\n"
@@ -173,7 +174,7 @@ def test_the_site_renders_the_stored_alt_as_the_images_alt(executed):
 
 def test_the_package_side_imports_no_ipython_and_no_pyplot():
     code = (
-        "import sys, twolink, twolink.figure_style, twolink.alttext, twolink.inline\n"
+        "import sys, twolink, twolink_course.figure_style, twolink_course.alttext, twolink_course.inline\n"
         "print(sorted(m for m in ('IPython', 'matplotlib.pyplot') if m in sys.modules))"
     )
     done = subprocess.run(
@@ -186,7 +187,7 @@ def test_the_package_side_imports_no_ipython_and_no_pyplot():
 def test_a_figure_laid_out_by_constrained_layout_is_stored_whole_not_cropped():
     from matplotlib.figure import Figure
 
-    from twolink import figure_style
+    from twolink_course import figure_style
 
     sizes = {}
     for layout in ("constrained", "none"):

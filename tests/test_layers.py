@@ -1,10 +1,14 @@
-"""The package's layers: its internal imports form no cycle, and none hides in a function.
+"""The packages' layers: no import of the library or the kit hides in a function.
 
-Every ``twolink`` module is parsed (``ast``, nothing imported).  An import under
-``if TYPE_CHECKING:`` is for the type checker only and is left out of the
-graph; any other import of a ``twolink`` module must sit at module level.
-(A function-level ``import scipy...`` keeps ``import twolink`` light and is
-allowed: only the package's own modules are checked.)
+The two layers themselves (the library ``twolink`` never imports the course
+kit ``twolink_course``; no import cycle inside either) are import-linter's
+contracts in ``pyproject.toml``, which ``make test`` runs (``lint-imports``).
+Here every module of both packages is parsed (``ast``, nothing imported).  An
+import under ``if TYPE_CHECKING:`` is for the type checker only and is left
+out; any other import of a module of either package must sit at module level,
+where import-linter sees it.  (A function-level ``import scipy...`` keeps
+``import twolink`` light and is allowed: only the two packages' own modules
+are checked.)
 """
 
 from __future__ import annotations
@@ -14,15 +18,20 @@ from pathlib import Path
 
 import pytest
 
-PACKAGE = Path(__file__).resolve().parent.parent / "twolink"
+ROOT = Path(__file__).resolve().parent.parent
+PACKAGES = (ROOT / "twolink", ROOT / "twolink_course")
 
 
 def _module_name(path: Path) -> str:
-    parts = path.relative_to(PACKAGE.parent).with_suffix("").parts
+    parts = path.relative_to(ROOT).with_suffix("").parts
     return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
 
 
-MODULES = {_module_name(path): path for path in sorted(PACKAGE.rglob("*.py"))}
+MODULES = {
+    _module_name(path): path
+    for package in PACKAGES
+    for path in sorted(package.rglob("*.py"))
+}
 
 
 def _is_type_checking(node: ast.If) -> bool:
@@ -33,7 +42,7 @@ def _is_type_checking(node: ast.If) -> bool:
 
 
 def _targets(module: str, node: ast.Import | ast.ImportFrom) -> list[str]:
-    """The ``twolink`` modules an import statement loads (a name imported from a package may be a module)."""
+    """The modules of the two packages an import statement loads (a name imported from a package may be a module)."""
     is_package = MODULES[module].name == "__init__.py"
     if isinstance(node, ast.Import):
         names = [alias.name for alias in node.names]
@@ -49,7 +58,7 @@ def _targets(module: str, node: ast.Import | ast.ImportFrom) -> list[str]:
 
 
 def _imports(module: str) -> tuple[set[str], list[tuple[int, str]]]:
-    """(module-level imports of twolink modules, [(line, target)] of function-level ones)."""
+    """(module-level imports of the packages' modules, [(line, target)] of function-level ones)."""
     tree = ast.parse(MODULES[module].read_text(encoding="utf-8"))
     top: set[str] = set()
     late: list[tuple[int, str]] = []
@@ -85,67 +94,26 @@ def _imports(module: str) -> tuple[set[str], list[tuple[int, str]]]:
     return top, late
 
 
-def _find_cycle(graph: dict[str, set[str]]) -> list[str] | None:
-    state: dict[str, int] = {}
-    stack: list[str] = []
-
-    def visit(node: str) -> list[str] | None:
-        state[node] = 1
-        stack.append(node)
-        for nxt in sorted(graph[node]):
-            if state.get(nxt) == 1:
-                return stack[stack.index(nxt) :] + [nxt]
-            if nxt not in state:
-                found = visit(nxt)
-                if found:
-                    return found
-        stack.pop()
-        state[node] = 2
-        return None
-
-    for node in sorted(graph):
-        if node not in state:
-            found = visit(node)
-            if found:
-                return found
-    return None
+def test_the_walk_sees_both_packages():
+    top, _ = _imports("twolink.ik.analytic")
+    assert "twolink.ik.result" in top and "twolink.kinematics" in top
+    top, _ = _imports("twolink_course.diagrams")
+    assert {"twolink_course.plot", "twolink._validate"} <= top
 
 
-def _graph() -> dict[str, set[str]]:
-    # a package's __init__ importing its own submodules is not a cycle with them
-    graph = {}
-    for module in MODULES:
-        top, _ = _imports(module)
-        graph[module] = {
-            target for target in top if not module.startswith(target + ".")
-        }
-    return graph
-
-
-def test_the_walk_sees_the_package():
-    graph = _graph()
-    assert (
-        "twolink.ik.grid_search" in graph
-        and "twolink.ik.result" in graph["twolink.ik.analytic"]
-    )
-    assert "twolink.kinematics" in graph["twolink.arm"]
-
-
-def test_the_internal_import_graph_has_no_cycle():
-    cycle = _find_cycle(_graph())
-    assert cycle is None, "import cycle: " + " -> ".join(cycle or [])
-
-
-def test_the_cycle_check_can_fail():
-    assert _find_cycle({"a": {"b"}, "b": {"c"}, "c": {"a"}}) == ["a", "b", "c", "a"]
-    assert _find_cycle({"a": {"b"}, "b": set()}) is None
+def test_the_walk_finds_a_late_import(tmp_path, monkeypatch):
+    path = tmp_path / "late_example.py"
+    path.write_text("import numpy\n\n\ndef f():\n    from twolink import dh\n")
+    monkeypatch.setitem(MODULES, "twolink_course.late_example", path)
+    top, late = _imports("twolink_course.late_example")
+    assert top == set() and (5, "twolink.dh") in late
 
 
 @pytest.mark.parametrize("module", sorted(MODULES))
 def test_no_function_level_import_of_a_twolink_module(module):
     _, late = _imports(module)
     assert late == [], (
-        f"{module} imports twolink modules inside functions (line, module): {late}"
+        f"{module} imports modules of the packages inside functions (line, module): {late}"
     )
 
 
@@ -172,7 +140,7 @@ def test_no_attribute_hides_a_module():
 
 # The symbolic mirror of a numeric formula keeps its name (``symbolic.dh_matrix`` is
 # ``dh.dh_matrix`` with symbols); each source module keeps the names its source used.
-SAME_NAME_ALLOWED = ("twolink.symbolic", "twolink.sources.")
+SAME_NAME_ALLOWED = ("twolink.symbolic", "twolink_course.sources.")
 
 
 def test_one_public_name_one_object():

@@ -1,7 +1,8 @@
 """Where tests live: one file per public module, no grab-bag files, no issue numbers.
 
-- ``twolink/<module>.py`` is tested in ``tests/test_<module>.py``;
-- ``twolink/<package>/<module>.py`` in ``tests/test_<package>_<module>.py``, or,
+- ``twolink/<module>.py`` (the library) and ``twolink_course/<module>.py`` (the
+  course kit) are tested in ``tests/test_<module>.py`` (no module name is in both);
+- ``<package>/<subpackage>/<module>.py`` in ``tests/test_<subpackage>_<module>.py``, or,
   when the package's ``__init__.py`` imports it (its names are the package's),
   in ``tests/test_<package>.py`` with the package;
 - no ``tests/test_edges_*.py``: a test of an edge case goes to the file of the
@@ -16,13 +17,14 @@ import re
 import pytest
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
-PACKAGE = ROOT / "twolink"
+PACKAGES = (ROOT / "twolink", ROOT / "twolink_course")
 TESTS = ROOT / "tests"
 
 #: Public modules without a test file of their own, and why.
 NO_TEST_FILE = {
     "twolink": "the package as a whole: tests/test_import.py",
-    "twolink.sources": "a docstring only: each source has its tests/test_sources_*.py",
+    "twolink_course": "a docstring only: the kit's modules have their test files",
+    "twolink_course.sources": "a docstring only: each source has its tests/test_sources_*.py",
 }
 
 #: "issue 12", "issues 11 and 12", "issue #21", " #21" (not "owner/repo#312", not a
@@ -38,22 +40,36 @@ def _module_name(path: pathlib.Path) -> str:
 
 
 def public_modules() -> list[str]:
-    """Every module of the package with no part of its path starting with ``_``."""
+    """Every module of the two packages with no part of its path starting with ``_``."""
     names = []
-    for path in sorted(PACKAGE.rglob("*.py")):
-        parts = path.relative_to(PACKAGE).parts
-        if any(part.startswith("_") for part in parts[:-1]):
-            continue
-        if parts[-1].startswith("_") and parts[-1] != "__init__.py":
-            continue
-        names.append(_module_name(path))
+    for package in PACKAGES:
+        for path in sorted(package.rglob("*.py")):
+            parts = path.relative_to(package).parts
+            if any(part.startswith("_") for part in parts[:-1]):
+                continue
+            if parts[-1].startswith("_") and parts[-1] != "__init__.py":
+                continue
+            names.append(_module_name(path))
     return names
+
+
+def test_no_module_name_is_in_both_packages():
+    """``tests/test_<module>.py`` names one module only."""
+    library, kit = (
+        {
+            name.partition(".")[2]
+            for name in public_modules()
+            if name.split(".")[0] == top
+        }
+        for top in ("twolink", "twolink_course")
+    )
+    assert library & kit - {""} == set()
 
 
 def imported_by_its_package(module: str) -> bool:
     """Whether ``package/__init__.py`` imports ``module`` (``from .module import ...``)."""
     package, _, leaf = module.rpartition(".")
-    init = PACKAGE.joinpath(*package.split(".")[1:], "__init__.py")
+    init = ROOT.joinpath(*package.split("."), "__init__.py")
     for node in ast.walk(ast.parse(init.read_text())):
         if isinstance(node, ast.ImportFrom) and node.level == 1:
             if node.module == leaf:
@@ -65,7 +81,7 @@ def imported_by_its_package(module: str) -> bool:
 
 def expected_test_files(module: str) -> list[str]:
     """The test files any one of which holds ``module``'s tests."""
-    parts = module.split(".")[1:]  # without "twolink"
+    parts = module.split(".")[1:]  # without "twolink" or "twolink_course"
     own = "test_" + "_".join(parts) + ".py"
     if len(parts) == 2 and imported_by_its_package(module):
         return [own, f"test_{parts[0]}.py"]
@@ -98,7 +114,9 @@ def test_the_rule_maps_modules_to_the_files_a_newcomer_would_look_for():
         "test_ik_analytic.py",
         "test_ik.py",
     ]
-    assert expected_test_files("twolink.sources.osake") == ["test_sources_osake.py"]
+    assert expected_test_files("twolink_course.sources.osake") == [
+        "test_sources_osake.py"
+    ]
     assert "twolink._validate" not in public_modules()
     assert "twolink.ik" in public_modules()
 
@@ -111,7 +129,9 @@ def test_no_grab_bag_test_files():
 
 
 def _files_to_keep_free_of_issue_numbers() -> list[pathlib.Path]:
-    return sorted([*TESTS.rglob("*.py"), *PACKAGE.rglob("*.py")])
+    return sorted(
+        [*TESTS.rglob("*.py"), *(path for p in PACKAGES for path in p.rglob("*.py"))]
+    )
 
 
 @pytest.mark.parametrize(

@@ -23,7 +23,7 @@ import sys
 import nbformat
 import pytest
 
-from twolink import exercises
+from twolink_course import exercises
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))

@@ -99,7 +99,7 @@ def test_no_hand_rolled_scientific_format_in_code(notebook):
     ]
     assert not found, (
         f"{path.name}: scientific formats in code ({'; '.join(found)}): show a round-off quantity as a bound "
-        "(twolink.display.below) and a settled value with display.rounded / display.significant"
+        "(twolink_course.display.below) and a settled value with display.rounded / display.significant"
     )
 
 
@@ -152,7 +152,7 @@ def test_round_off_sized_numbers_are_shown_as_bounds(notebook):
                     found.append(f"cell {index}: ...{before[-40:]}{match.group(0)}")
     assert not found, (
         f"{path.name}: numbers at round-off size shown as measurements ({'; '.join(found)}): another machine prints "
-        "other digits; show them as bounds with twolink.display.below"
+        "other digits; show them as bounds with twolink_course.display.below"
     )
 
 

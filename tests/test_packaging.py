@@ -1,7 +1,7 @@
-"""Every ordinary way of getting the course works: licence, Binder, conda, the lock file, the bare package.
+"""Every ordinary way of getting the course works: licence, Binder, conda, the lock file, the bare library.
 
 The slow test here builds the wheel and imports it in a venv that has only the
-four core dependencies (numpy, scipy, sympy, matplotlib).
+library's three dependencies (numpy, scipy, sympy).
 """
 
 import ast
@@ -26,16 +26,20 @@ import editions  # noqa: E402  (tools/editions.py: the wheel as the student edit
 
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 README = (ROOT / "README.md").read_text(encoding="utf-8")
-#: Import names of the course-only dependencies (the ``course`` extra).
+#: Import names of the optional dependencies: the library's two (mujoco, control: extras of
+#: their own) and the course kit's (the ``course`` extra, which includes both).
 COURSE_ONLY = {
     "control",
     "imageio_ffmpeg",
     "ipywidgets",
+    "ipympl",
     "IPython",
+    "matplotlib",
     "mujoco",
     "jupyterlab",
 }
-CORE = ["numpy", "scipy", "sympy", "matplotlib"]
+#: The library's dependencies (pip install twolink).
+CORE = ["numpy", "scipy", "sympy"]
 #: The course's requirements (make lab) and the developers' (make test and the rest).
 REQUIREMENTS = [ROOT / "requirements.txt", ROOT / "requirements-dev.txt"]
 #: Tools learners need not install: they go with the developers' requirements.
@@ -302,11 +306,11 @@ def test_the_course_file_brings_every_module_the_chapters_import():
                 imported |= set(
                     re.findall(r"^\s*(?:import|from)\s+(\w+)", source, re.M)
                 )
-    assert {"numpy", "twolink"} <= imported, sorted(imported)
+    assert {"numpy", "twolink", "twolink_course"} <= imported, sorted(imported)
     providers = packages_distributions()
     third_party = {
         module: providers[module]
-        for module in imported - {"twolink"}
+        for module in imported - {"twolink", "twolink_course"}
         if module not in sys.stdlib_module_names
     }
     assert "numpy" in third_party, third_party
@@ -343,6 +347,8 @@ def test_the_extras_follow_the_requirement_files():
         for item in PYPROJECT["project"]["dependencies"]
     }
     assert core == set(CORE)
+    assert names["mujoco"] == {"mujoco"} and names["control"] == {"control"}
+    assert names["mujoco"] | names["control"] <= names["course"]
 
 
 def make_dry_run(*args, env=None):
@@ -452,7 +458,7 @@ def test_make_lab_says_why_it_allows_root():
     assert "--allow-root" not in "\n".join(lines)
 
 
-# --- 4. the package without the course -------------------------------------------------------------------------------
+# --- 4. the library without the course -------------------------------------------------------------------------------
 
 
 def test_the_version_is_written_once():
@@ -469,7 +475,7 @@ def test_the_version_is_written_once():
 
 
 def course_only_imports():
-    """``(file, line, module)`` of every import statement of a course-only module in the package."""
+    """``(file, line, module)`` of every import statement of an optional module in the library."""
     found = []
     for path in sorted((ROOT / "twolink").rglob("*.py")):
         if path.name == "_optional.py":
@@ -510,13 +516,14 @@ def test_a_function_without_its_course_dependency_names_itself_and_the_extra(
     args = (arm, impedance, q_rest) if function == "linearize" else (arm, impedance)
     with pytest.raises(
         ImportError,
-        match=rf'twolink\.linearization\.{function} needs control.*pip install "twolink\[course\]"',
+        match=rf'twolink\.linearization\.{function} needs control.*pip install "twolink\[control\]"',
     ):
         getattr(linearization, function)(*args)
 
 
 def small_animation():
-    from twolink import arms, plot
+    from twolink import arms
+    from twolink_course import plot
 
     return plot.animate_arm(
         arms.two_metre, [[0.0, 0.0], [0.2, 0.3], [0.4, 0.6]], interval=50
@@ -524,7 +531,7 @@ def small_animation():
 
 
 def test_animation_html_is_a_video_with_ffmpeg():
-    from twolink import plot
+    from twolink_course import plot
 
     html = plot.animation_html(small_animation())._repr_html_()
     assert (
@@ -535,7 +542,7 @@ def test_animation_html_is_a_video_with_ffmpeg():
 
 
 def test_animation_html_falls_back_to_javascript_without_ffmpeg(monkeypatch):
-    from twolink import plot
+    from twolink_course import plot
 
     monkeypatch.setitem(sys.modules, "imageio_ffmpeg", None)
     html = plot.animation_html(small_animation())._repr_html_()
@@ -548,8 +555,6 @@ def test_animation_html_falls_back_to_javascript_without_ffmpeg(monkeypatch):
 
 BARE_SCRIPT = textwrap.dedent("""
     import importlib, importlib.metadata, importlib.util, pkgutil, sys
-    import matplotlib
-    matplotlib.use("Agg")
     import numpy as np
     for name in {course_only!r}:
         assert importlib.util.find_spec(name) is None, f"{{name}} is importable: the venv is not bare"
@@ -560,22 +565,26 @@ BARE_SCRIPT = textwrap.dedent("""
         importlib.import_module(name)
     assert importlib.metadata.version("twolink") == twolink.__version__
     assert any(f.name == "LICENSE" for f in importlib.metadata.files("twolink"))
-    from twolink import arms, controllers, ik, linearization, plot, simulate
+    from twolink import arms, controllers, ik, linearization, simulate
+    try:
+        import twolink_course
+    except ImportError as error:
+        assert 'pip install "twolink[course]"' in str(error), error
+    else:
+        raise AssertionError("twolink_course imported without the course's dependencies")
     arm = twolink.TwoLinkArm(l1=2.0, l2=2.0, m1=1.0, m2=1.0)
     q = ik.closed_form(arm, [3.0, 1.0], elbow="down").q
     assert np.allclose(arm.fk(q), [3.0, 1.0])
     assert np.allclose(arm.joint_torques(q, [0.0, -10.0]), arm.jacobian(q).T @ [0.0, -10.0])
     result = simulate(arm, [0.5, 0.0], [0.0, 0.0], 0.2)
     assert np.all(np.isfinite(result.q))
-    html = plot.animation_html(plot.animate_arm(arm, [[0.0, 0.0], [0.2, 0.3]]))._repr_html_()
-    assert "<script" in html and 'pip install "twolink[course]"' in html
     impedance = controllers.Impedance(arm, 600.0, 50.0, [3.0, 1.0])
     for function, args in [(linearization.linearize, (arm, impedance, q)),
                            (linearization.closed_loop_system, (arm, impedance))]:
         try:
             function(*args)
         except ImportError as error:
-            assert function.__name__ in str(error) and 'pip install "twolink[course]"' in str(error), error
+            assert function.__name__ in str(error) and 'pip install "twolink[control]"' in str(error), error
         else:
             raise AssertionError(f"{{function.__name__}} worked without python-control")
     print("ok", twolink.__version__, len(modules), "modules")
@@ -583,9 +592,10 @@ BARE_SCRIPT = textwrap.dedent("""
 
 
 @pytest.mark.infrastructure
-def test_the_wheel_works_with_only_its_four_core_dependencies(tmp_path):
-    """pip wheel, then install it (dependencies checked, nothing downloaded) in a venv with numpy, scipy,
-    sympy and matplotlib only; every module imports and the course-only functions explain themselves."""
+def test_the_wheel_works_with_only_the_librarys_three_dependencies(tmp_path):
+    """pip wheel, then install it (dependencies checked, nothing downloaded) in a venv with numpy, scipy
+    and sympy only; every library module imports, the optional functions and the course kit explain
+    what to install."""
     # built as the student edition builds it: from the files git tracks, so a module
     # deleted since setuptools last filled build/lib cannot slip in
     wheel = editions.build_wheel(tmp_path / "dist")

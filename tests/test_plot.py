@@ -1,4 +1,4 @@
-"""twolink.plot: every drawing function takes ``ax`` the same way, labels its axes "quantity [unit]", draws what it says."""
+"""twolink_course.plot: every drawing function takes ``ax`` the same way, labels its axes "quantity [unit]", draws what it says."""
 
 import gc
 import inspect
@@ -15,8 +15,9 @@ from matplotlib.axes import Axes
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch
 
-from twolink import TwoLinkArm, arms, plot, simulate, statics, velocity
+from twolink import TwoLinkArm, arms, simulate, statics, velocity
 from twolink.errors import InputTypeError
+from twolink_course import plot
 
 LABEL_WITH_UNIT = re.compile(
     r"\S.*\[[^\]]+\]"
@@ -550,7 +551,7 @@ def test_while_grading_animation_html_draws_no_frame_and_closes_the_figure(
     # matplotlib warns of an animation deleted unrendered: not of this one
     assert [str(warning.message) for warning in caught] == []
     assert html == (
-        "<p><em>twolink.plot.animation_html: animation skipped while grading "
+        "<p><em>twolink_course.plot.animation_html: animation skipped while grading "
         "(TWOLINK_GRADING=1).</em></p>"
     )
     assert draws == [] and plt.get_fignums() == []

@@ -131,13 +131,13 @@ def _imports_sources(code):
     tree = ast.parse(TransformerManager().transform_cell(code))
     for node in ast.walk(tree):
         if isinstance(node, ast.Import) and any(
-            alias.name.startswith("twolink.sources") for alias in node.names
+            alias.name.startswith("twolink_course.sources") for alias in node.names
         ):
             return True
         if isinstance(node, ast.ImportFrom) and (
-            (node.module or "").startswith("twolink.sources")
+            (node.module or "").startswith("twolink_course.sources")
             or (
-                node.module == "twolink"
+                node.module == "twolink_course"
                 and any(a.name == "sources" for a in node.names)
             )
         ):
@@ -154,7 +154,7 @@ def test_the_main_line_code_does_not_import_the_sources(chapter):
         if cell["cell_type"] == "code" and _imports_sources(outline.source(cell))
     ]
     assert not offending, (
-        f"main-line code cells that import twolink.sources (cell, first line): {offending}"
+        f"main-line code cells that import twolink_course.sources (cell, first line): {offending}"
     )
 
 

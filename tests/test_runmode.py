@@ -1,4 +1,4 @@
-"""twolink.runmode: the grading switch, read from TWOLINK_GRADING at each call, and
+"""twolink_course.runmode: the grading switch, read from TWOLINK_GRADING at each call, and
 chapters whose self-checks print the same lines with the switch on as off.
 
 What each heavy function does with the switch on is tested with it:
@@ -13,8 +13,8 @@ import nbformat
 import pytest
 from nbclient import NotebookClient
 
-from twolink import runmode
 from twolink.errors import InputTypeError
+from twolink_course import runmode
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 CHECK = "selfcheck.check("

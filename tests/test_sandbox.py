@@ -118,7 +118,7 @@ def printed(tmp_path_factory):
     values = {
         "hidden": str(hidden),
         "hidden_file": str(hidden / "classmate.ipynb"),
-        "package_file": str(ROOT / "twolink" / "selfcheck.py"),
+        "package_file": str(ROOT / "twolink_course" / "selfcheck.py"),
         "grader_home": str(pathlib.Path.home()),
     }
     notebook = nbformat.v4.new_notebook(

@@ -1,4 +1,4 @@
-"""twolink.selfcheck: verdicts on right, wrong and unsolved answers, and the lines read back."""
+"""twolink_course.selfcheck: verdicts on right, wrong and unsolved answers, and the lines read back."""
 
 import collections
 import contextlib
@@ -8,7 +8,8 @@ import re
 import numpy as np
 import pytest
 
-from twolink import arms, exercises, selfcheck
+from twolink import arms
+from twolink_course import exercises, selfcheck
 
 
 def test_check_arguments_and_messages():

@@ -21,13 +21,13 @@ from twolink import (
     contact,
     controllers,
     ik,
-    plot,
     simulate,
     statics,
     trajectory,
 )
 from twolink.errors import InputTypeError
 from twolink.simulation import simulate_quick
+from twolink_course import plot
 
 TIGHT = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
 

@@ -1,4 +1,4 @@
-"""COMPSYS726 reproduced (twolink.sources.compsys726), and the course's corrections.
+"""COMPSYS726 reproduced (twolink_course.sources.compsys726), and the course's corrections.
 
 The printed numbers checked here are those COURSE.md section H quotes from the
 source: the angle columns' first and last rows and the rate at x = 10 (0.6132).
@@ -17,7 +17,7 @@ from hypothesis import strategies as st
 from conftest import arms as arm_strategy
 from conftest import configurations
 from twolink import TwoLinkArm, ik
-from twolink.sources import compsys726 as source
+from twolink_course.sources import compsys726 as source
 
 arm_source = TwoLinkArm(
     l1=source.A1, l2=source.A2

@@ -1,4 +1,4 @@
-"""MAE 6245, reproduced (twolink.sources.mae6245).
+"""MAE 6245, reproduced (twolink_course.sources.mae6245).
 
 For every number its solution printed (COURSE.md H1), the reproduction of its
 method must give it to the printed rounding; beside it, the corrected value
@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from conftest import angles
 from twolink import arms, ik, wrap_angle
-from twolink.sources import mae6245
+from twolink_course.sources import mae6245
 
 ARM = arms.ten
 

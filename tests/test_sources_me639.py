@@ -1,4 +1,4 @@
-"""The ME 639 2R mini-project reproduced (twolink.sources.me639): its printed numbers from its own methods.
+"""The ME 639 2R mini-project reproduced (twolink_course.sources.me639): its printed numbers from its own methods.
 
 The printed numbers are facts from the course's source notes (section H4); each test
 asserts that the reproduction of the source's method yields them, and compares with the
@@ -13,7 +13,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from twolink import UnreachableError, Wall, arms, to_relative, wall_contact
-from twolink.sources import me639
+from twolink_course.sources import me639
 
 arm = arms.two_metre
 q1_values = st.floats(min_value=-np.pi, max_value=np.pi, allow_nan=False)

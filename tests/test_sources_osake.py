@@ -1,4 +1,4 @@
-"""The OSAKE mini-project reproduced (twolink.sources.osake), and the course's corrections.
+"""The OSAKE mini-project reproduced (twolink_course.sources.osake), and the course's corrections.
 
 Lengths in the source module are in its unit, centimetres; the package's arm
 ``arms.osake`` is in metres, hence the factor 100 below.
@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from conftest import angles, configurations
 from twolink import arms
-from twolink.sources import osake
+from twolink_course.sources import osake
 
 CM = 100.0  # centimetres per metre
 q_example = np.radians([30.0, 45.0])

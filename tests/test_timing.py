@@ -3,10 +3,8 @@
 import numpy as np
 import pytest
 
-from twolink import (
-    arms,
-    timing,
-)
+from twolink import arms
+from twolink_course import timing
 
 
 def circle(n=6):
@@ -39,7 +37,7 @@ def test_unknown_method_and_bad_targets():
 
 
 def test_timing_an_empty_batch_is_refused_clearly():
-    from twolink import timing
+    from twolink_course import timing
 
     with pytest.raises(ValueError, match=r"n >= 1"):
         timing.compare_ik_methods(

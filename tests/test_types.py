@@ -20,6 +20,8 @@ from collections.abc import Iterator
 
 ROOT = pathlib.Path(__file__).resolve().parents[1]
 PACKAGE = ROOT / "twolink"
+#: The library and the course kit: both typed, both walked.
+PACKAGES = (PACKAGE, ROOT / "twolink_course")
 
 #: Private modules whose public names the other modules may import.
 INTERNAL_API_MODULES = {"twolink._validate", "twolink._optional"}
@@ -34,7 +36,7 @@ def _module_name(path: pathlib.Path) -> str:
 
 
 def _source_files() -> list[pathlib.Path]:
-    return sorted(PACKAGE.rglob("*.py"))
+    return sorted(path for package in PACKAGES for path in package.rglob("*.py"))
 
 
 def _is_public_module(path: pathlib.Path) -> bool:
@@ -139,7 +141,7 @@ def test_the_walk_finds_the_public_functions():
         "twolink.arm:TwoLinkArm.__init__" not in found
     )  # a dataclass: no __init__ in the source
     assert "twolink.kinematics:fk" in found
-    assert "twolink.exercises.judging:judge" in found  # in a subpackage
+    assert "twolink_course.exercises.judging:judge" in found  # in a subpackage
     assert not any(
         name.startswith("twolink._validate:") for name in found
     )  # private module
@@ -164,15 +166,13 @@ def test_every_public_function_is_fully_annotated():
 
 
 def test_the_typed_marker_ships_in_the_wheel():
-    """PEP 561: twolink/py.typed exists and is package data, so users' type checkers read the annotations."""
-    assert (PACKAGE / "py.typed").is_file()
+    """PEP 561: each package's py.typed exists and is package data, so users' type checkers read the annotations."""
     pyproject = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
     setuptools = pyproject["tool"]["setuptools"]
-    assert "py.typed" in setuptools["package-data"]["twolink"]
-    assert any(
-        pattern in ("twolink", "twolink*")
-        for pattern in setuptools["packages"]["find"]["include"]
-    )
+    for package in PACKAGES:
+        assert (package / "py.typed").is_file()
+        assert "py.typed" in setuptools["package-data"][package.name]
+        assert package.name in setuptools["packages"]["find"]["include"]
 
 
 # ----------------------------------------------------------------------------- private names
@@ -190,7 +190,7 @@ def _resolve(module: str, is_package: bool, level: int, target: str | None) -> s
 
 def _is_twolink_module(name: str) -> bool:
     relative = pathlib.Path(*name.split("."))
-    return name.split(".")[0] == "twolink" and (
+    return name.split(".")[0] in ("twolink", "twolink_course") and (
         (ROOT / relative).with_suffix(".py").is_file()
         or (ROOT / relative / "__init__.py").is_file()
     )
@@ -275,7 +275,7 @@ def test_the_private_name_walk_sees_both_forms(tmp_path, monkeypatch):
         "x = kinematics._lengths(1) + kin._lengths(2)\n"
     )
     monkeypatch.setattr(sys.modules[__name__], "ROOT", tmp_path)
-    monkeypatch.setattr(sys.modules[__name__], "PACKAGE", package)
+    monkeypatch.setattr(sys.modules[__name__], "PACKAGES", (package,))
     assert private_name_uses() == [
         "twolink.user (line 3): from twolink.kinematics import _lengths",
         "twolink.user (line 5): kinematics._lengths (twolink.kinematics)",

@@ -18,13 +18,13 @@ from twolink import (
     kinematics,
     simulate,
     statics,
-    timing,
     trajectory,
     velocity,
     workspace,
 )
 from twolink._validate import as_flag, real_array
 from twolink.errors import InputTypeError
+from twolink_course import timing
 
 ARM = arms.two_metre
 EMPTY_SHAPES = [(0, 2), (3, 0, 2), (0, 0, 2)]

@@ -1,4 +1,4 @@
-"""twolink.video: a video drawn by redrawing only what moves is the video matplotlib draws in full."""
+"""twolink_course.video: a video drawn by redrawing only what moves is the video matplotlib draws in full."""
 
 import imageio_ffmpeg
 import matplotlib
@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 from matplotlib.patches import Circle
 
-from twolink import arms, figure_style, plot, video
+from twolink import arms
+from twolink_course import figure_style, plot, video
 
 
 @pytest.fixture(autouse=True)

@@ -1,10 +1,10 @@
-"""Encode the readable exercise references of ``answers/`` into ``twolink/exercises/store/``.
+"""Encode the readable exercise references of ``answers/`` into ``twolink_course/exercises/store/``.
 
 The self-checks of the installed package compare a learner's answers with
 the values in the store (encoded, so that no module reads as a list of
 answers); the references themselves stay readable in the repository's
 ``answers/`` folder, for teachers and the grader.  One file per chapter:
-``answers/ch4.py`` -> ``twolink/exercises/store/ch4.txt``.
+``answers/ch4.py`` -> ``twolink_course/exercises/store/ch4.txt``.
 
 Usage::
 
@@ -20,7 +20,6 @@ differ) still counts as current.
 from __future__ import annotations
 
 import argparse
-import math
 import pathlib
 import sys
 import textwrap
@@ -31,9 +30,9 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 import answers  # noqa: E402
-from twolink.exercises import stored  # noqa: E402
+from twolink_course.exercises import stored  # noqa: E402
 
-STORE = ROOT / "twolink" / "exercises" / "store"
+STORE = ROOT / "twolink_course" / "exercises" / "store"
 
 
 def store_file(chapter: str) -> pathlib.Path:
@@ -47,16 +46,54 @@ def store_text(chapter: str) -> str:
     return "\n".join(textwrap.wrap(encoded, 76)) + "\n"
 
 
+#: How closely a store file must hold what ``answers/`` computes, relative to each
+#: quantity's scale (its largest magnitude).  Far above another machine's round-off (an
+#: integrator's 1e-11, the split of a double pole's eigenvalues: 1e-8 on this one), far
+#: below any change of an answer, a mistake or a tolerance.
+STORE_RTOL = 1e-6
+
+
+def _numbers(value: Any) -> list[float] | None:
+    """The numbers of a number or of a (nested) list of numbers, else None."""
+    if isinstance(value, bool):
+        return None
+    if isinstance(value, (int, float)):
+        return [float(value)]
+    if isinstance(value, list):
+        found: list[float] = []
+        for item in value:
+            numbers = _numbers(item)
+            if numbers is None:
+                return None
+            found += numbers
+        return found
+    return None
+
+
+def _skeleton(value: Any) -> Any:
+    """A quantity's nesting and types, its numbers left out."""
+    if isinstance(value, list):
+        return [_skeleton(item) for item in value]
+    return type(value).__name__
+
+
 def same(a: Any, b: Any) -> bool:
-    """Equal data, numbers within 1e-12 relative (1e-300 absolute)."""
+    """Equal data; a quantity (a number, or a nested list of numbers) within
+    ``STORE_RTOL`` of its scale, the largest magnitude in either."""
+    numbers_a, numbers_b = _numbers(a), _numbers(b)
+    if numbers_a is not None and numbers_b is not None:
+        if _skeleton(a) != _skeleton(b):
+            return False
+        scale = max(map(abs, numbers_a + numbers_b), default=0.0)
+        return all(
+            abs(x - y) <= STORE_RTOL * scale for x, y in zip(numbers_a, numbers_b)
+        )
     if isinstance(a, dict) and isinstance(b, dict):
         return a.keys() == b.keys() and all(same(a[k], b[k]) for k in a)
     if isinstance(a, list) and isinstance(b, list):
         return len(a) == len(b) and all(same(x, y) for x, y in zip(a, b))
     if isinstance(a, bool) or isinstance(b, bool):
         return a is b
-    if isinstance(a, float) or isinstance(b, float):
-        return math.isclose(a, b, rel_tol=1e-12, abs_tol=1e-300)
     return bool(a == b)
 
 
@@ -91,7 +128,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         if wrong:
             print(f"out of date: {', '.join(wrong)}: run python tools/build_answers.py")
             return 1
-        print("twolink/exercises/store/ is up to date")
+        print("twolink_course/exercises/store/ is up to date")
         return 0
     chapters = [f"ch{args.chapter}"] if args.chapter else answers.chapter_names()
     STORE.mkdir(exist_ok=True)

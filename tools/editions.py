@@ -303,12 +303,13 @@ def build_student(
     return written
 
 
-#: The files of the repository a wheel of twolink is built from.
+#: The files of the repository a wheel of twolink (the library and the course kit) is built from.
 WHEEL_INPUTS = (
     "pyproject.toml",
     "README.md",
     "LICENSE*",
     "twolink",
+    "twolink_course",
     "labextension/twolink_figure_alt/labextension",
 )
 

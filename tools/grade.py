@@ -24,7 +24,7 @@ folder (subfolders too):
    can be had, grading refuses and says why, unless ``--unsafe``
    (``make grade UNSAFE=1``).
 4. Outside the kernel, each part is judged against the exercise's
-   specification (:func:`twolink.exercises.judging.judge`): ``passed``,
+   specification (:func:`twolink_course.exercises.judging.judge`): ``passed``,
    ``wrong`` or ``not solved``; every part of a notebook whose probe finds
    the self-check, the judging or store modules, the serializer or a builtin
    replaced, or whose probe cell publishes nothing, is ``tampered``; parts
@@ -74,9 +74,9 @@ from grade_run import DEFAULT_LIMITS, PROBE_TAG, Limits, Runner  # noqa: E402  (
 from nbgrader_cells import check_call  # noqa: E402  (tools/nbgrader_cells.py)
 
 import answers  # noqa: E402  (the repository's readable references)
-from twolink import exercises  # noqa: E402
-from twolink.exercises import judging  # noqa: E402
-from twolink.exercises.spec import Case, ExerciseSpec, PartSpec  # noqa: E402
+from twolink_course import exercises  # noqa: E402
+from twolink_course.exercises import judging  # noqa: E402
+from twolink_course.exercises.spec import Case, ExerciseSpec, PartSpec  # noqa: E402
 
 PASSED, WRONG, NOT_SOLVED, TAMPERED, FAILED = (
     "passed",
@@ -381,7 +381,7 @@ def expected_fingerprints() -> dict[str, str]:
     """The probe's fingerprints of the genuine modules (as this grader imports them)."""
     import IPython.display  # noqa: F401  (watched: imported so that it is fingerprinted)
 
-    from twolink import selfcheck
+    from twolink_course import selfcheck
 
     return grading_probe.fingerprints({"selfcheck": selfcheck})
 

@@ -36,10 +36,15 @@ MAX_NUMBERS = 100_000
 
 #: What a submission could replace to pass without solving: ``module: attributes``.
 WATCHED = {
-    "twolink.selfcheck": ("check", "_hint", "parse_line"),
-    "twolink.exercises": ("get", "is_unsolved"),
-    "twolink.exercises.judging": ("judge", "judge_function", "read_answer", "_matches"),
-    "twolink.exercises.stored": ("specification", "decode", "exercise_numbers"),
+    "twolink_course.selfcheck": ("check", "_hint", "parse_line"),
+    "twolink_course.exercises": ("get", "is_unsolved"),
+    "twolink_course.exercises.judging": (
+        "judge",
+        "judge_function",
+        "read_answer",
+        "_matches",
+    ),
+    "twolink_course.exercises.stored": ("specification", "decode", "exercise_numbers"),
     "json": ("dumps", "loads"),
     "IPython.display": ("display", "publish_display_data"),
 }
@@ -90,7 +95,7 @@ def fingerprints(user_namespace: dict[str, Any]) -> dict[str, str]:
         found[f"builtins.{name}"] = fingerprint(value) + (
             "" if getattr(value, "__self__", None) is builtins else " (replaced)"
         )
-    module = sys.modules.get("twolink.selfcheck")
+    module = sys.modules.get("twolink_course.selfcheck")
     found["the notebook's selfcheck"] = (
         "the module"
         if module is not None and user_namespace.get("selfcheck", module) is module

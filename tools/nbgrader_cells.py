@@ -7,7 +7,7 @@ SOLUTION`` and ``### END SOLUTION``) followed by a check cell
 - each solution cell as nbgrader's *autograded answer*:
   ``{"grade": false, "solution": true, "locked": false, "grade_id": "solution_1_1", ...}``;
 - each check cell as a *locked autograder test* worth one point per part of
-  its exercise (``twolink.exercises.get("1.1").parts``):
+  its exercise (``twolink_course.exercises.get("1.1").parts``):
   ``{"grade": true, "solution": false, "locked": true, "points": 1, "grade_id": "check_1_1", ...}``,
 
 and ends each check cell with a hidden-test block whose value is the number of
@@ -53,7 +53,7 @@ sys.path.insert(0, str(ROOT / "tools"))
 from editions import BEGIN as BEGIN_SOLUTION  # noqa: E402
 from editions import BEGIN_HIDDEN, END_HIDDEN, strip_hidden_tests  # noqa: E402
 
-from twolink import exercises  # noqa: E402
+from twolink_course import exercises  # noqa: E402
 
 SCORE_COMMENT = "# nbgrader's partial credit: the parts right"
 #: nbgrader's cell metadata format (nbgrader.nbgraderformat.v3).

@@ -228,6 +228,7 @@ def main(argv: list[str] | None = None) -> int:
             str(path.relative_to(ROOT)) for path in (ROOT / "notebooks").glob("*.ipynb")
         ),
         "twolink",
+        "twolink_course",
     ]
     notebooks = [
         str(Path(name).resolve()) if Path(name).is_file() else name

@@ -5,8 +5,10 @@ radians, SI units.  Start with :class:`TwoLinkArm` and the presets in
 :mod:`twolink.arms`; inverse kinematics lives in :mod:`twolink.ik`.
 
 ``import twolink`` loads numpy and no other library: scipy is imported by the
-first call that needs it (``ik.minimize``, ``simulate``, ...), matplotlib by
-:mod:`twolink.plot` and sympy by :mod:`twolink.symbolic`.
+first call that needs it (``ik.minimize``, ``simulate``, ...) and sympy by
+:mod:`twolink.symbolic`.  The library draws nothing: the course's figures,
+explorers and exercises are the course kit, :mod:`twolink_course`, which
+imports this package (never the reverse).
 
 Examples
 --------

@@ -1,8 +1,11 @@
-"""Course-only dependencies, imported when a function needs them.
+"""Optional dependencies, imported when a function needs them.
 
-``pip install twolink`` brings only numpy, scipy, sympy and matplotlib.  The
-course adds python-control, imageio-ffmpeg, ipywidgets, mujoco and JupyterLab
-(``pip install "twolink[course]"``).  A function that needs one of those
+``pip install twolink`` brings only numpy, scipy and sympy.  Two functions
+need more: :mod:`twolink.engine` needs MuJoCo (``pip install
+"twolink[mujoco]"``) and :func:`twolink.linearize` needs python-control
+(``pip install "twolink[control]"``); the course kit, :mod:`twolink_course`,
+needs matplotlib, ipywidgets, ipympl and JupyterLab (``pip install
+"twolink[course]"``, which includes both).  A function that needs one of those
 imports it through :func:`require`, so that a user without it gets an
 ``ImportError`` that names the function and the command to run, instead of a
 bare ``ModuleNotFoundError``.
@@ -12,21 +15,21 @@ from __future__ import annotations
 
 import importlib
 from types import ModuleType
-from typing import Protocol
 
-__all__ = ["COURSE_INSTALL", "require", "html", "HTMLDisplay"]
+__all__ = ["COURSE_INSTALL", "require"]
 
-#: The command that installs every course-only dependency.
+#: The command that installs every optional dependency (the course's, which include the library's).
 COURSE_INSTALL = 'pip install "twolink[course]"'
 
-#: Import name -> distribution name, for the error message.
+#: Import name -> (distribution name, the extra that brings it), for the error message.
 _DISTRIBUTIONS = {
-    "control": "control",
-    "imageio_ffmpeg": "imageio-ffmpeg",
-    "ipywidgets": "ipywidgets",
-    "ipympl": "ipympl",
-    "IPython": "ipython",
-    "mujoco": "mujoco",
+    "control": ("control", "control"),
+    "mujoco": ("mujoco", "mujoco"),
+    "imageio_ffmpeg": ("imageio-ffmpeg", "course"),
+    "ipywidgets": ("ipywidgets", "course"),
+    "ipympl": ("ipympl", "course"),
+    "IPython": ("ipython", "course"),
+    "matplotlib": ("matplotlib", "course"),
 }
 
 
@@ -48,8 +51,8 @@ def require(module: str, function: str) -> ModuleType:
     Raises
     ------
     ImportError
-        Naming ``function``, the missing distribution and ``pip install
-        "twolink[course]"``.
+        Naming ``function``, the missing distribution and the ``pip install``
+        command of the extra that brings it.
 
     Examples
     --------
@@ -58,51 +61,15 @@ def require(module: str, function: str) -> ModuleType:
     >>> require("no_such_module_xyz", "twolink.example")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    ImportError: twolink.example needs no_such_module_xyz, which is not installed: pip install "twolink[course]" ...
+    ImportError: twolink.example needs no_such_module_xyz, which is not installed: pip install "twolink[course]" installs it
     """
     try:
         return importlib.import_module(module)
     except ImportError as error:
         top = module.partition(".")[0]
-        distribution = _DISTRIBUTIONS.get(top, top)
+        distribution, extra = _DISTRIBUTIONS.get(top, (top, "course"))
         raise ImportError(
-            f"{function} needs {distribution}, which is not installed: {COURSE_INSTALL} "
-            f"installs it with the other course-only dependencies",
+            f"{function} needs {distribution}, which is not installed: "
+            f'pip install "twolink[{extra}]" installs it',
             name=module,
         ) from error
-
-
-class HTMLDisplay(Protocol):
-    """What Jupyter displays as HTML: an object with ``_repr_html_()`` (``IPython.display.HTML``, ...)."""
-
-    def _repr_html_(self) -> str:
-        """The HTML text Jupyter shows."""
-        ...
-
-
-class _HTML:
-    """A minimal stand-in for ``IPython.display.HTML`` when IPython is absent."""
-
-    def __init__(self, data: str) -> None:
-        self.data = data
-
-    def _repr_html_(self) -> str:
-        return self.data
-
-    def __repr__(self) -> str:
-        return f"<HTML: {len(self.data)} characters>"
-
-
-def html(text: str) -> HTMLDisplay:
-    """``IPython.display.HTML(text)``, or an object with the same ``_repr_html_`` without IPython.
-
-    Examples
-    --------
-    >>> html("<b>x</b>")._repr_html_()
-    '<b>x</b>'
-    """
-    try:
-        from IPython.display import HTML
-    except ImportError:
-        return _HTML(text)
-    return HTML(text)

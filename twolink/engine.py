@@ -3,7 +3,7 @@
 The model is :func:`twolink.export.to_mjcf`'s: the same rods, gravity along
 -y (magnitude ``arm.g``), motors on both joints applying the ``tau`` of
 ``M qdd + C qd + g = tau`` (N m), no damping.  MuJoCo is an optional
-dependency (``pip install "twolink[course]"``); it is imported only when a
+dependency (``pip install "twolink[mujoco]"``); it is imported only when a
 function here is called, which raises :class:`ImportError` naming itself and
 the install command when it is missing.
 

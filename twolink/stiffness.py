@@ -135,7 +135,7 @@ def stiffness_ellipse(
     ``{K d : |d| = 1}``: semi-axes are the eigenvalues of ``K`` (N/m),
     largest first, along its eigenvectors; centred at the tip ``fk(q)``.
     A circle means the tip feels the same spring in every direction.
-    Draw it with :func:`twolink.plot.draw_ellipse` and a ``scale`` in metres
+    Draw it with :func:`twolink_course.plot.draw_ellipse` and a ``scale`` in metres
     of figure per N/m.
 
     Parameters

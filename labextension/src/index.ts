@@ -1,7 +1,7 @@
 /**
  * twolink-figure-alt: image outputs in JupyterLab get their text alternative.
  *
- * twolink's inline figures (twolink/inline.py) store a text alternative in the
+ * twolink's inline figures (twolink_course/inline.py) store a text alternative in the
  * output's metadata, {"image/png": {"width": W, "height": H, "alt": "..."}}.
  * JupyterLab's own image renderer (RenderedImage -> renderImage in
  * @jupyterlab/rendermime) reads width and height there but never alt, so a

@@ -2,7 +2,7 @@
 
 For each notebook: open it, Run All Cells from the menu, wait for the kernel to
 go idle, then assert there is no error or stderr output, every interactive
-explorer the notebook builds (``twolink.explorer.Explorer``) is rendered,
+explorer the notebook builds (``twolink_course.explorer.Explorer``) is rendered,
 moving each of its sliders with the keyboard changes its readout and the
 pixels of its figure, and every animation is present
 and plays.  A screenshot per chapter goes to build/screenshots/.

@@ -43,9 +43,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validate import as_finite_scalar, as_pairs
-from ..arm import TwoLinkArm
-from ..errors import UnreachableError
+from twolink._validate import as_finite_scalar, as_pairs
+from twolink.arm import TwoLinkArm
+from twolink.errors import UnreachableError
 
 __all__ = [
     "READINGS",

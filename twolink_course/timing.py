@@ -14,13 +14,14 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from . import ik
-from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs
-from .kinematics import require_within_reach
+from twolink import ik
+from twolink._validate import InputTypeError, as_count, as_finite_scalar, as_pairs
+from twolink.kinematics import require_within_reach
+
 from .runmode import grading
 
 if TYPE_CHECKING:
-    from .arm import TwoLinkArm
+    from twolink.arm import TwoLinkArm
 
 #: Longest measurement :func:`median_time` accepts per batch, seconds.
 MAX_SECONDS = 60.0
@@ -39,7 +40,7 @@ def median_time(
     dominated notebooks timing several methods); the median of ``repeat``
     batches resists the odd slow run.
 
-    While grading (``TWOLINK_GRADING=1``, :mod:`twolink.runmode`) the
+    While grading (``TWOLINK_GRADING=1``, :mod:`twolink_course.runmode`) the
     function is called once and that call is timed: timings are shown,
     never checked, and a grader need not wait for calibrated batches.
 

@@ -2,11 +2,11 @@
 
 Exercises are specified in the repository's ``answers/`` folder and shipped
 encoded in the package's ``store/chN.txt`` files (decoded by
-:mod:`twolink.exercises.stored`, described by :mod:`twolink.exercises.spec`,
-judged by :mod:`twolink.exercises.judging`).  A notebook's check cell holds
+:mod:`twolink_course.exercises.stored`, described by :mod:`twolink_course.exercises.spec`,
+judged by :mod:`twolink_course.exercises.judging`).  A notebook's check cell holds
 no reference: ``selfcheck.check("2.1", q_elbow_up, up_within_limits)``.
 
->>> from twolink import exercises
+>>> from twolink_course import exercises
 >>> exercises.get("2.1").parts[0].name
 'q_elbow_up'
 >>> [exercise.number for exercise in exercises.all_exercises()][:5]

@@ -23,14 +23,14 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import (
+from twolink._validate import (
     InputTypeError,
     as_configuration,
     as_count,
     as_finite_scalar,
     real_array,
 )
-from .errors import SingularityError, UnreachableError
+from twolink.errors import SingularityError, UnreachableError
 
 __all__ = [
     "markdown_table",
@@ -134,7 +134,7 @@ def below(value: ArrayLike, bound: float, unit: str = "") -> str:
     >>> below(0.02, 1e-3, "m")  # doctest: +ELLIPSIS
     Traceback (most recent call last):
     ...
-    twolink.display.BoundError: value's largest magnitude 0.02 is not below the stated bound 1e-3 m; ...
+    twolink_course.display.BoundError: value's largest magnitude 0.02 is not below the stated bound 1e-3 m; ...
     """
     limit = as_finite_scalar(bound, "bound", minimum=0.0, strictly=True)
     largest = _largest_magnitude(value, "value")

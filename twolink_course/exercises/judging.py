@@ -10,7 +10,7 @@ prints a bare tolerance.
 
 Examples
 --------
->>> from twolink.exercises.spec import Mistake, PartSpec
+>>> from twolink_course.exercises.spec import Mistake, PartSpec
 >>> part = PartSpec("tau", "torques", "vector", expected=[10.0, -4.0], shape=(2,),
 ...             unit="N m", components=("tau1", "tau2"),
 ...             mistakes=(Mistake([-10.0, 4.0], "the sign is reversed"),))
@@ -33,8 +33,9 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
-from ..arm import TwoLinkArm
-from ..conventions import wrap_angle
+from twolink.arm import TwoLinkArm
+from twolink.conventions import wrap_angle
+
 from ..display import significant
 from .spec import Case, PartSpec
 
@@ -137,11 +138,11 @@ def read_answer(part: PartSpec, answer: Any) -> Any:
 
     Raises :class:`Unusable` with what was expected.
 
-    >>> from twolink.exercises.spec import PartSpec
+    >>> from twolink_course.exercises.spec import PartSpec
     >>> read_answer(PartSpec("ok", "reachable", "bool", expected=True), 0)
     Traceback (most recent call last):
     ...
-    twolink.exercises.judging.Unusable: a yes/no answer is True or False; got 0 (a int)
+    twolink_course.exercises.judging.Unusable: a yes/no answer is True or False; got 0 (a int)
     """
     if part.kind == "bool":
         if isinstance(answer, (bool, np.bool_)):

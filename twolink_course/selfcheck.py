@@ -3,7 +3,7 @@
 An exercise cell assigns the learner's answers to named variables; the next
 cell calls ``selfcheck.check("2.1", q_elbow_up, up_within_limits)``.  The
 expected values, tolerances, typical mistakes and hints come from
-:mod:`twolink.exercises` (stored encoded), out of the learner's sight.  Each
+:mod:`twolink_course.exercises` (stored encoded), out of the learner's sight.  Each
 part prints one line: ``correct.``, ``not solved yet`` (an answer left as
 ``...``, the stub of the student edition, so a notebook runs top to bottom
 with unsolved exercises), or ``wrong:`` with what is wrong (a typical mistake

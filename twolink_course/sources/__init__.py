@@ -6,14 +6,14 @@ Each module here reproduces one of them, method by method, so that a chapter
 own formula before the course corrects it.  Nothing here is meant for use in
 new code: the rest of :mod:`twolink` holds the correct versions.
 
-- :mod:`twolink.sources.mae6245`: MAE 6245 (inverse kinematics three
+- :mod:`twolink_course.sources.mae6245`: MAE 6245 (inverse kinematics three
   ways, a1 = a2 = 10).
-- :mod:`twolink.sources.compsys726`: COMPSYS726 (DH, Jacobian, the
+- :mod:`twolink_course.sources.compsys726`: COMPSYS726 (DH, Jacobian, the
   velocity table along y = 50).
-- :mod:`twolink.sources.osake`: the OSAKE mini-project (L1 = 10 cm,
+- :mod:`twolink_course.sources.osake`: the OSAKE mini-project (L1 = 10 cm,
   L2 = 11.5 cm, base offset 6.5 cm).
-- :mod:`twolink.sources.me639`: the ME 639 2R mini-project (l1 = l2 = 2 m, absolute
+- :mod:`twolink_course.sources.me639`: the ME 639 2R mini-project (l1 = l2 = 2 m, absolute
   angles, motor 2 on the ground).
 
-Import the modules explicitly (``from twolink.sources import mae6245``).
+Import the modules explicitly (``from twolink_course.sources import mae6245``).
 """

@@ -2,7 +2,7 @@
 
 A reader who cannot see a figure gets its text alternative instead: the
 ``alt`` of its image in JupyterLab and on the static site, the sentence under
-an explorer.  Each drawing function of :mod:`twolink.plot` records, for what
+an explorer.  Each drawing function of :mod:`twolink_course.plot` records, for what
 it drew, a sentence made from the data it drew (:func:`record`): "The arm at
 q = (30°, 45°), tip at (2.25, 2.93) m."  A ``move_*`` function records the
 new sentence with the new data, so the sentence stays true.
@@ -51,7 +51,8 @@ from matplotlib.spines import Spine
 from matplotlib.text import Text
 from numpy.typing import ArrayLike
 
-from ._validate import InputTypeError, as_configuration
+from twolink._validate import InputTypeError, as_configuration
+
 from .display import rounded, significant
 
 __all__ = [

@@ -8,14 +8,14 @@ functions that set up axes of their own (:func:`setup_axes`,
 :func:`animate_arm`, :func:`animate_simulation`) make a new, square figure
 instead.  The ``move_*`` functions move what a drawing function returned
 (:func:`move_arm`, :func:`move_strobe`, :func:`move_ellipse`): an explorer
-(:mod:`twolink.explorer`) draws once and moves its artists on every change.
+(:mod:`twolink_course.explorer`) draws once and moves its artists on every change.
 
 Colours, line styles and markers come from the roles of
-:mod:`twolink.figure_style` (the arm, the tip's path, a force, ...), never from
+:mod:`twolink_course.figure_style` (the arm, the tip's path, a force, ...), never from
 colour names here.  Every drawing function records, for what it drew, a
-sentence built from the data drawn (:func:`twolink.alttext.record`), and
+sentence built from the data drawn (:func:`twolink_course.alttext.record`), and
 every ``move_*`` function records the new one, so the figure's text
-alternative, :func:`twolink.alttext.describe`, stays true.
+alternative, :func:`twolink_course.alttext.describe`, stays true.
 """
 
 from __future__ import annotations
@@ -39,9 +39,8 @@ from matplotlib.text import Text
 from matplotlib.typing import ColorType
 from numpy.typing import ArrayLike, NDArray
 
-from . import figure_style
-from ._optional import COURSE_INSTALL, HTMLDisplay, html, require
-from ._validate import (
+from twolink._optional import COURSE_INSTALL, require
+from twolink._validate import (
     InputTypeError,
     as_configuration,
     as_finite_scalar,
@@ -49,6 +48,9 @@ from ._validate import (
     real_array,
     require_arm,
 )
+from twolink.velocity import Ellipse
+
+from . import figure_style
 from .alttext import (
     angles_text,
     describe,
@@ -60,13 +62,12 @@ from .alttext import (
 )
 from .display import rounded
 from .runmode import grading, skipped_note
-from .velocity import Ellipse
 from .video import MovingAnimation, frames_drawn_once, html5_video
 
 if TYPE_CHECKING:
-    from .arm import TwoLinkArm
-    from .simulation import SimulationResult
-    from .statics import Wall
+    from twolink.arm import TwoLinkArm
+    from twolink.simulation import SimulationResult
+    from twolink.statics import Wall
 
 __all__ = [
     "setup_axes",
@@ -87,7 +88,7 @@ __all__ = [
     "draw_note",
 ]
 
-#: The colours of the roles (:mod:`twolink.figure_style`), by the names chapters use.
+#: The colours of the roles (:mod:`twolink_course.figure_style`), by the names chapters use.
 LINK_COLOR = figure_style.ARM.color
 PATH_COLOR = figure_style.PATH.color
 
@@ -186,7 +187,7 @@ def draw_reach(
         Axes to draw on; the current axes (``plt.gca()``) if omitted.
     **options
         Options of :class:`matplotlib.patches.Circle` (the reach role of
-        :mod:`twolink.figure_style`, dashed grey outlines, by default).
+        :mod:`twolink_course.figure_style`, dashed grey outlines, by default).
 
     Returns
     -------
@@ -245,7 +246,7 @@ def draw_arm(
         Axes to draw on; the current axes (``plt.gca()``) if omitted.
     color, label, alpha, linewidth :
         Style of the links (``color=None``: the role's colour).
-    role : twolink.figure_style.Role
+    role : twolink_course.figure_style.Role
         Line style, joint marker and colour: ``figure_style.ARM`` (which is
         ``figure_style.ELBOW_DOWN``), or ``figure_style.ELBOW_UP`` for the other branch.
 
@@ -286,7 +287,7 @@ def _draw_links(
     """The line through base, elbow and tip, joints marked (no base square, nothing recorded)."""
     if not isinstance(role, figure_style.Role):
         raise InputTypeError(
-            f"role must be a twolink.figure_style.Role (figure_style.ARM, figure_style.ELBOW_UP); got {role!r}"
+            f"role must be a twolink_course.figure_style.Role (figure_style.ARM, figure_style.ELBOW_UP); got {role!r}"
         )
     color = role.color if color is None else color
     points = arm.joint_positions(q)
@@ -401,7 +402,7 @@ def draw_strobe(
         The poses' colour (``None``: the role's).
     path : bool
         Also draw the tip's path.
-    role : twolink.figure_style.Role
+    role : twolink_course.figure_style.Role
         The poses' look (``figure_style.ARM`` or ``figure_style.ELBOW_UP``).
 
     Returns
@@ -534,7 +535,7 @@ def animate_arm(
 
     Returns
     -------
-    twolink.video.MovingAnimation
+    twolink_course.video.MovingAnimation
         A :class:`matplotlib.animation.FuncAnimation` that keeps the artists
         each frame moved.  Show it in a notebook with :func:`animation_html`, which closes its
         figure so no stray still is shown.
@@ -602,7 +603,7 @@ def _hold_layout(figure: Figure) -> None:
     A layout engine (the course style's constrained layout) lays a figure out
     again at every draw, so an animation's video would lay out every frame
     (about half of each frame's time) and could not redraw only what moves;
-    held, the frames are drawn over one background (:mod:`twolink.video`).
+    held, the frames are drawn over one background (:mod:`twolink_course.video`).
     """
     engine = figure.get_layout_engine()
     if engine is None or isinstance(engine, PlaceHolderLayoutEngine):
@@ -611,46 +612,45 @@ def _hold_layout(figure: Figure) -> None:
     figure.set_layout_engine("none")
 
 
-def animation_html(anim: animation.Animation) -> HTMLDisplay:
+def animation_html(anim: animation.Animation) -> Any:
     """An H.264 ``<video>`` of the animation for notebooks (small, byte-stable).
 
     Uses the ffmpeg shipped by the ``imageio-ffmpeg`` package, so no system
     ffmpeg is needed.  The animations of this module draw their axes once and
-    only what moves per frame (:mod:`twolink.video`; the same video as
+    only what moves per frame (:mod:`twolink_course.video`; the same video as
     matplotlib's ``to_html5_video``, several times faster).  Closes the animation's figure so no stray still is
     shown.  Without imageio-ffmpeg (``pip install twolink`` alone) it falls
     back to matplotlib's JavaScript player (``to_jshtml``), headed by a note
     saying so and how to get the video.
 
     The video is labelled with the animation's text alternative
-    (:func:`twolink.alttext.describe` of its figure) as the ``aria-label`` of
+    (:func:`twolink_course.alttext.describe` of its figure) as the ``aria-label`` of
     a ``<div role="figure">`` around it, so the ``<video>`` tag itself stays
     matplotlib's.
 
-    While grading (``TWOLINK_GRADING=1``, :mod:`twolink.runmode`) no frame is
+    While grading (``TWOLINK_GRADING=1``, :mod:`twolink_course.runmode`) no frame is
     drawn and no video encoded: the figure is closed and a one-line note
     stands in for the video (no answer depends on a video).
 
     Returns
     -------
     IPython.display.HTML
-        (or an object with the same ``_repr_html_`` when IPython is absent)
 
     Examples
     --------
     >>> import os
-    >>> from twolink import arms, runmode
+    >>> from twolink import arms
+    >>> from twolink_course import runmode
     >>> anim = animate_arm(arms.two_metre, np.linspace([0.0, 0.0], [1.0, 1.0], 5))
     >>> saved = os.environ.get(runmode.VARIABLE)
     >>> os.environ[runmode.VARIABLE] = "1"
     >>> animation_html(anim)._repr_html_()
-    '<p><em>twolink.plot.animation_html: animation skipped while grading (TWOLINK_GRADING=1).</em></p>'
+    '<p><em>twolink_course.plot.animation_html: animation skipped while grading (TWOLINK_GRADING=1).</em></p>'
     >>> _ = os.environ.pop(runmode.VARIABLE) if saved is None else os.environ.update({runmode.VARIABLE: saved})
     >>> plt.fignum_exists(anim._fig.number)
     False
     """
-    import matplotlib
-
+    html = require("IPython.display", "twolink_course.plot.animation_html").HTML
     # matplotlib keeps the figure in _fig, outside its type stubs
     figure = getattr(anim, "_fig")  # noqa: B009
     if grading():  # no frame drawn, no video encoded: nothing an answer reads
@@ -658,24 +658,22 @@ def animation_html(anim: animation.Animation) -> HTMLDisplay:
         # as a save would mark it: matplotlib warns of an animation deleted unrendered
         setattr(anim, "_draw_was_started", True)  # noqa: B010
         return html(
-            "<p><em>twolink.plot.animation_html: "
+            "<p><em>twolink_course.plot.animation_html: "
             f"{html_escape(skipped_note('animation'))}.</em></p>"
         )
     label = html_escape(describe(figure), quote=True)
     plt.close(figure)
     try:
-        imageio_ffmpeg = require("imageio_ffmpeg", "twolink.plot.animation_html")
+        imageio_ffmpeg = require("imageio_ffmpeg", "twolink_course.plot.animation_html")
         ffmpeg = imageio_ffmpeg.get_ffmpeg_exe()
     except (ImportError, RuntimeError):  # not installed, or its binary is missing
         note = (
-            "<p><em>twolink.plot.animation_html: ffmpeg (imageio-ffmpeg) is not installed, so this is "
+            "<p><em>twolink_course.plot.animation_html: ffmpeg (imageio-ffmpeg) is not installed, so this is "
             f"a JavaScript animation instead of a video; {COURSE_INSTALL} gives the video.</em></p>"
         )
-        with matplotlib.rc_context(
-            {"animation.embed_limit": 5.0}
-        ):  # MB, as for the video
+        with plt.rc_context({"animation.embed_limit": 5.0}):  # MB, as for the video
             return html(note + anim.to_jshtml(default_mode="loop"))
-    with matplotlib.rc_context({"animation.ffmpeg_path": ffmpeg}):
+    with plt.rc_context({"animation.ffmpeg_path": ffmpeg}):
         if isinstance(anim, MovingAnimation):  # the axes drawn once, not per frame
             _hold_layout(figure)  # the figure is complete: laid out for the first frame
             video = html5_video(anim, embed_limit=5.0)
@@ -716,7 +714,7 @@ def animate_simulation(
 
     Returns
     -------
-    twolink.video.MovingAnimation
+    twolink_course.video.MovingAnimation
 
     Examples
     --------

@@ -7,7 +7,7 @@ registered for :class:`matplotlib.figure.Figure`.  :func:`install` registers
 selects: the PNG at twice the figure's dpi, and ``width`` and ``height``
 metadata of half its pixels, so it is shown at its intended size and sharp
 on a high-resolution screen), plus ``alt``: the figure's text alternative,
-:func:`twolink.alttext.describe`.  The output then reads
+:func:`twolink_course.alttext.describe`.  The output then reads
 
 .. code-block:: json
 
@@ -56,8 +56,9 @@ from matplotlib.figure import Figure
 from matplotlib.layout_engine import ConstrainedLayoutEngine
 from PIL import Image
 
-from ._optional import require
-from ._validate import InputTypeError
+from twolink._optional import require
+from twolink._validate import InputTypeError
+
 from .alttext import describe
 from .runmode import grading
 
@@ -80,7 +81,7 @@ def _print_figure_kwargs(figure: Figure) -> dict[str, Any]:
     (the course style's default) already fits its canvas and is drawn once,
     at its own size.
     """
-    config = require("matplotlib_inline.config", "twolink.inline.png_output")
+    config = require("matplotlib_inline.config", "twolink_course.inline.png_output")
     kwargs = dict(config.InlineBackend.instance().print_figure_kwargs)
     if isinstance(figure.get_layout_engine(), ConstrainedLayoutEngine):
         kwargs["bbox_inches"] = None
@@ -97,7 +98,7 @@ def png_output(figure: Figure) -> tuple[str, dict[str, Any]] | None:
         and height in displayed pixels, half the PNG's); None for a figure
         with nothing drawn (as IPython's formatters do: no empty picture),
         and None while grading (``TWOLINK_GRADING=1``,
-        :mod:`twolink.runmode`): the figure is then neither drawn nor
+        :mod:`twolink_course.runmode`): the figure is then neither drawn nor
         encoded, and the notebook shows only its text form.
     """
     if not isinstance(figure, Figure):
@@ -115,7 +116,7 @@ def png_output(figure: Figure) -> tuple[str, dict[str, Any]] | None:
             "height": height // PIXEL_SCALE,
             "alt": describe(figure),
         }
-    pylabtools = require("IPython.core.pylabtools", "twolink.inline.png_output")
+    pylabtools = require("IPython.core.pylabtools", "twolink_course.inline.png_output")
     output = pylabtools.retina_figure(figure, base64=True, **kwargs)
     if output is None:
         return None
@@ -170,14 +171,14 @@ def install() -> bool:
     yet, it is loaded first (``matplotlib_inline`` sets up its own formats
     when loaded, which would replace this formatter if it came later).
     """
-    ipython = require("IPython", "twolink.inline.install")
+    ipython = require("IPython", "twolink_course.inline.install")
     shell = ipython.get_ipython()
     if shell is None:
         return False
     # the backend as configured, without resolving an "auto" backend
     backend = dict.__getitem__(matplotlib.rcParams, "backend")
     if isinstance(backend, str) and backend.lower() in INLINE_BACKENDS:
-        require("matplotlib_inline.backend_inline", "twolink.inline.install")
+        require("matplotlib_inline.backend_inline", "twolink_course.inline.install")
     formatters = shell.display_formatter.formatters
     for mime, formatter in formatters.items():
         if mime != "image/png":

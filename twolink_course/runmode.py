@@ -17,20 +17,20 @@ work off for the kernel it is set for:
 It is read at each call, not at import, so a kernel, a test or a script can
 set it at any time.  With the switch on:
 
-- :func:`twolink.plot.animation_html` renders no frame and encodes no video:
+- :func:`twolink_course.plot.animation_html` renders no frame and encodes no video:
   it closes the animation's figure and returns a short note
   (:func:`skipped_note`), for every animation function of
-  :mod:`twolink.plot`;
-- :func:`twolink.explorer.explorer_figure` makes a plain (Agg) figure, not
-  an ipympl widget, and an :class:`twolink.explorer.Explorer` on it runs its
+  :mod:`twolink_course.plot`;
+- :func:`twolink_course.explorer.explorer_figure` makes a plain (Agg) figure, not
+  an ipympl widget, and an :class:`twolink_course.explorer.Explorer` on it runs its
   ``update`` and ``describe`` as usual (``description``, ``values``,
   ``set``, ``redraw``, ``updates`` and the controls behave the same) but
   draws nothing, stores no picture and displays as its description;
 - figures shown in a notebook (``plt.show()``, or a figure as a cell's
-  value) are not rendered to PNG: :func:`twolink.inline.png_output` gives no
+  value) are not rendered to PNG: :func:`twolink_course.inline.png_output` gives no
   picture, so the figure is neither drawn nor encoded;
-- :func:`twolink.timing.median_time` (and so
-  :func:`twolink.timing.compare_ik_methods`) times one call, once, instead
+- :func:`twolink_course.timing.median_time` (and so
+  :func:`twolink_course.timing.compare_ik_methods`) times one call, once, instead
   of calibrated batches: timings are printed, never checked.
 
 Everything else runs as usual: solvers, simulations, symbolic algebra, the
@@ -61,7 +61,7 @@ from __future__ import annotations
 
 import os
 
-from .errors import InputTypeError
+from twolink.errors import InputTypeError
 
 __all__ = ["VARIABLE", "grading", "skipped_note"]
 

@@ -48,7 +48,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validate import as_configuration, as_finite_scalar, as_pairs
+from twolink._validate import as_configuration, as_finite_scalar, as_pairs
 
 __all__ = [
     "L1_CM",
@@ -191,7 +191,7 @@ def jacobian_as_printed(
     as the source record (H3.2) gives them (the right block is
     ``[[-16.11, -11.11], [11.64, 2.98]]``):
 
-    >>> from twolink.display import rounded
+    >>> from twolink_course.display import rounded
     >>> J = jacobian_as_printed(np.radians([30.0, 45.0]))
     >>> rounded(J[0], 2), rounded(J[1], 2)          # v_x row, v_y row
     ('(-9.07, -4.07)', '(15.70, 7.04)')

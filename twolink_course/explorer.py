@@ -27,7 +27,7 @@ Displayed in a notebook an explorer stores, besides the live widgets, a PNG of
 its first state and its description, which static renderers (nbconvert,
 GitHub) show instead of the widgets.
 
-While grading (``TWOLINK_GRADING=1``, :mod:`twolink.runmode`) nothing is drawn:
+While grading (``TWOLINK_GRADING=1``, :mod:`twolink_course.runmode`) nothing is drawn:
 :func:`explorer_figure` makes a plain figure (no ipympl canvas, no widget), and
 an :class:`Explorer` runs ``update`` and ``describe`` as always (its
 ``description``, ``values``, ``set``, ``refresh``, ``redraw``, ``updates`` and
@@ -37,7 +37,8 @@ description with a note that the interactive figure was skipped.
 Examples
 --------
 >>> import numpy as np
->>> from twolink import arms, explorer, plot
+>>> from twolink import arms
+>>> from twolink_course import explorer, plot
 >>> arm = arms.two_metre
 >>> figure, ax = explorer_figure(4.0, 4.0)
 >>> _ = plot.setup_axes(arm, ax=ax)
@@ -87,9 +88,10 @@ from matplotlib.figure import Figure
 from matplotlib.spines import Spine
 from PIL import Image
 
+from twolink._optional import require
+from twolink._validate import InputTypeError, as_finite_scalar
+
 from . import figure_style
-from ._optional import require
-from ._validate import InputTypeError, as_finite_scalar
 from .alttext import describe as describe_figure
 from .alttext import listed
 from .runmode import grading, skipped_note
@@ -124,7 +126,7 @@ def _ipympl_backend() -> Any:
     if "ipympl.backend_nbagg" in sys.modules:
         return sys.modules["ipympl.backend_nbagg"]
     saved = dict.__getitem__(matplotlib.rcParams, "backend")
-    module = require("ipympl.backend_nbagg", "twolink.explorer")
+    module = require("ipympl.backend_nbagg", "twolink_course.explorer")
     if dict.__getitem__(matplotlib.rcParams, "backend") != saved:
         if "matplotlib.pyplot" in sys.modules:  # (saved may be "auto": a sentinel)
             sys.modules["matplotlib.pyplot"].switch_backend(saved)
@@ -177,7 +179,7 @@ def _canvas_class(base: Any) -> Any:
 
 
 def _widgets() -> Any:
-    return require("ipywidgets", "twolink.explorer")
+    return require("ipywidgets", "twolink_course.explorer")
 
 
 def explorer_figure(
@@ -194,10 +196,10 @@ def explorer_figure(
     keep their backend (inline) and this one is shown only inside its
     :class:`Explorer`.  The canvas has no toolbar, header or footer and does
     not resize.  The figure and its axes are made with the course style
-    (:func:`twolink.figure_style.context`: font sizes, the colour and line-style
-    cycle), whether or not :func:`twolink.figure_style.use` was called.
+    (:func:`twolink_course.figure_style.context`: font sizes, the colour and line-style
+    cycle), whether or not :func:`twolink_course.figure_style.use` was called.
 
-    While grading (:func:`twolink.runmode.grading`) the figure is on a plain
+    While grading (:func:`twolink_course.runmode.grading`) the figure is on a plain
     Agg canvas instead: no widget, no ipympl, nothing sent to a browser.
 
     Parameters
@@ -444,7 +446,7 @@ class Explorer:
         ``describe(**values) -> str``: what the figure shows, in words (the
         text alternative, shown under the figure and stored for static pages).
         Without it, the stored picture's text alternative is
-        :func:`twolink.alttext.describe` of the figure (what the drawing
+        :func:`twolink_course.alttext.describe` of the figure (what the drawing
         functions recorded, kept true by the ``move_*`` functions).
     extra : sequence of widgets, optional
         Further widgets placed after the controls (a button, a note).
@@ -462,7 +464,7 @@ class Explorer:
         update draws only the artists it changed, and those above them.
     drawn : bool
         Whether the explorer draws its figure: False while grading
-        (:func:`twolink.runmode.grading` when it was made), when ``update``
+        (:func:`twolink_course.runmode.grading` when it was made), when ``update``
         and ``describe`` still run but nothing is rendered (``full_redraws``
         stays 0) and it displays as its description.
     """
@@ -482,7 +484,7 @@ class Explorer:
             self.drawn and not isinstance(figure.canvas, widgets.DOMWidget)
         ):
             raise InputTypeError(
-                "figure must be a matplotlib Figure from twolink.explorer.explorer_figure "
+                "figure must be a matplotlib Figure from twolink_course.explorer.explorer_figure "
                 f"(on an ipympl canvas); got {figure!r}"
             )
         if not callable(update) or (describe is not None and not callable(describe)):

@@ -43,7 +43,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .._validate import as_finite_scalar
+from twolink._validate import as_finite_scalar
 
 __all__ = [
     "A1",

@@ -2,7 +2,7 @@
 
 A part's specification is written by the course in the repository's
 ``answers/`` folder (readable, for teachers and the grader) and shipped with
-the package only in encoded form (``twolink/exercises/store/chN.txt``): the
+the package only in encoded form (``twolink_course/exercises/store/chN.txt``): the
 self-check compares with the values stored there, and no function of the
 installed package computes an exercise's answer.
 

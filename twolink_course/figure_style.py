@@ -1,7 +1,7 @@
 """The course's figure style: colour-blind-safe roles, legible text, sharp pictures.
 
 One look for every figure of the course, set once.  A chapter's first code
-cell calls :func:`use`; :mod:`twolink.plot` and :mod:`twolink.explorer` draw
+cell calls :func:`use`; :mod:`twolink_course.plot` and :mod:`twolink_course.explorer` draw
 with the roles below whether or not it was called.
 
 - **Colours**: the Okabe-Ito palette (Okabe & Ito, *Color Universal Design*,
@@ -18,7 +18,7 @@ with the roles below whether or not it was called.
 - **Text** at least :data:`MIN_FONT_PT` points at display size: figures are
   made at :data:`DPI` = 96 pixels per inch, the CSS inch, so a matplotlib
   point is a CSS point on the page.
-- **Sharp**: in a notebook, :func:`use` installs :mod:`twolink.inline`'s
+- **Sharp**: in a notebook, :func:`use` installs :mod:`twolink_course.inline`'s
   figure formatter: a PNG of twice the pixels (IPython's "retina" format,
   the one ``matplotlib_inline``'s ``set_matplotlib_formats("retina")``
   selects), shown at its intended size through its ``width`` and ``height``
@@ -200,7 +200,7 @@ SERIES = (
 #: Pixels per inch of a figure at its intended size: the CSS inch, so that a
 #: matplotlib point is a CSS point on the page.
 DPI = 96
-#: Stored pixels per displayed pixel (a "retina" PNG): :data:`twolink.inline.PIXEL_SCALE`.
+#: Stored pixels per displayed pixel (a "retina" PNG): :data:`twolink_course.inline.PIXEL_SCALE`.
 PIXEL_SCALE = inline.PIXEL_SCALE
 #: Smallest text, in points at display size.
 MIN_FONT_PT = 9.0
@@ -254,7 +254,7 @@ def use() -> bool:
     Sets the matplotlib ``rcParams`` listed in :data:`RC` (figure resolution
     96 dpi, font sizes, the :data:`SERIES` colour and line-style cycle, a
     colour-blind-safe colour map, constrained layout), and, when running in IPython, installs
-    :func:`twolink.inline.install`'s figure formatter (a PNG at twice the
+    :func:`twolink_course.inline.install`'s figure formatter (a PNG at twice the
     pixels, shown at its intended size, with its text alternative).  Nothing
     else changes.  Calling it again changes nothing more.
 

@@ -10,10 +10,10 @@ every ``z_i`` out of the page; the link lengths ``a_1``, ``a_2`` along the
 every force and torque that acts on it while the tip pushes with
 ``force_by_tip`` (chapter 4's free-body equations, weight neglected).
 
-Both follow :mod:`twolink.plot`'s conventions (``ax`` keyword-only, ``None``
-for the current axes; colours from :mod:`twolink.figure_style`) and record
+Both follow :mod:`twolink_course.plot`'s conventions (``ax`` keyword-only, ``None``
+for the current axes; colours from :mod:`twolink_course.figure_style`) and record
 one sentence per diagram, built from the data drawn, for the figure's text
-alternative (:func:`twolink.alttext.describe`).
+alternative (:func:`twolink_course.alttext.describe`).
 """
 
 from __future__ import annotations
@@ -29,13 +29,14 @@ from matplotlib.path import Path
 from matplotlib.text import Text
 from numpy.typing import ArrayLike, NDArray
 
+from twolink._validate import InputTypeError, as_configuration, require_arm
+
 from . import figure_style
-from ._validate import InputTypeError, as_configuration, require_arm
 from .alttext import angles_text, plain_number, point_text, quantity_text, record
 from .plot import axes_or_current, draw_arm, draw_force, draw_torque
 
 if TYPE_CHECKING:
-    from .arm import TwoLinkArm
+    from twolink.arm import TwoLinkArm
 
 __all__ = ["draw_dh_frames", "draw_free_bodies"]
 
@@ -117,7 +118,8 @@ def draw_dh_frames(arm: TwoLinkArm, q: ArrayLike, *, ax: Axes | None = None) -> 
 
     Examples
     --------
-    >>> from twolink import TwoLinkArm, alttext
+    >>> from twolink import TwoLinkArm
+    >>> from twolink_course import alttext
     >>> ax = draw_dh_frames(TwoLinkArm(1.0, 1.0), np.radians([30.0, 45.0]))
     >>> alttext.describe(ax.figure).split(": ")[0]
     'DH frames of the 2R arm. The arm at q = (30°, 45°) in its DH frames'
@@ -262,7 +264,8 @@ def draw_free_bodies(
 
     Examples
     --------
-    >>> from twolink import TwoLinkArm, alttext
+    >>> from twolink import TwoLinkArm
+    >>> from twolink_course import alttext
     >>> link_1, link_2 = draw_free_bodies(
     ...     TwoLinkArm(1.0, 1.0), np.radians([30.0, 60.0]), [0.0, -10.0])
     >>> link_2.get_title(), [text.get_text() for text in link_2.texts][:1]
