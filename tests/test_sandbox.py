@@ -53,6 +53,16 @@ def test_the_command_hides_folders_drops_privileges_and_sets_limits(tmp_path):
         tmp_path / "work", tmp_path / "run", [secret], limits
     )
     assert f"--tmpfs {secret.resolve()}" in " ".join(command)
+    # a hidden file (a git worktree's .git is a file) is covered, not mounted over
+    # by a tmpfs, which bwrap cannot do (the sandbox would not start)
+    pointer = tmp_path / "gitdir-pointer"
+    pointer.write_text("gitdir: /elsewhere\n", encoding="utf-8")
+    command = sandbox.command_prefix(
+        tmp_path / "work", tmp_path / "run", [pointer], limits
+    )
+    text = " ".join(command)
+    assert f"--ro-bind /dev/null {pointer.resolve()}" in text
+    assert f"--tmpfs {pointer.resolve()}" not in text
 
 
 def test_user_for_gives_each_grader_process_a_user_of_its_own():

@@ -136,10 +136,13 @@ def command_prefix(
         for parent in reversed(path.relative_to(below).parents[:-1]):
             prefix += ["--perms", "0755", "--dir", str(below / parent)]
         prefix += ["--ro-bind", str(path), str(path)]
-    # last, so that a hidden folder inside a bound-back one stays hidden
+    # last, so that a hidden folder inside a bound-back one stays hidden; a hidden
+    # file (a git worktree's .git is one) is covered by an empty one
     for path in hidden:
-        if path.exists():
+        if path.is_dir():
             prefix += ["--tmpfs", str(path.resolve())]
+        elif path.exists():
+            prefix += ["--ro-bind", "/dev/null", str(path.resolve())]
     prefix += [
         "--bind", str(workdir), str(workdir),
         "--bind", str(runtime), str(runtime),
@@ -179,16 +182,22 @@ def command_prefix(
     return prefix
 
 
+#: The packages a graded notebook imports: the library and the course kit (bound read-only).
+PACKAGES = ("twolink", "twolink_course")
+
+
 def needed_paths() -> list[pathlib.Path]:
-    """What a kernel needs to read: the Python installation, the environment and the twolink package.
+    """What a kernel needs to read: the Python installation, the environment, and the two
+    packages, the library twolink and the course kit twolink_course.
 
     >>> pathlib.Path(sys.prefix).resolve() in needed_paths()
     True
     """
     paths = [pathlib.Path(sys.base_prefix), pathlib.Path(sys.prefix)]
-    spec = importlib.util.find_spec("twolink")  # finds it without importing it
-    if spec is not None and spec.origin is not None:
-        paths.append(pathlib.Path(spec.origin).parent)
+    for package in PACKAGES:
+        spec = importlib.util.find_spec(package)  # finds it without importing it
+        if spec is not None and spec.origin is not None:
+            paths.append(pathlib.Path(spec.origin).parent)
     return sorted({path.resolve() for path in paths})
 
 
