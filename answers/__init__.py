@@ -1,19 +1,33 @@
 """The course's exercise references, readable: for teachers, the grader and the store's builder.
 
 Not part of the installed package.  Each chapter module (``ch4`` ...)
-defines ``exercises()``, the :class:`twolink_course.exercises.spec.Exercise` objects
-of its chapter, computed by the package from each exercise's data, and, for
-an exercise that asks for a function, ``hidden_cases(number, part, seed)``:
-inputs the student never saw, drawn from a seed only the grader holds.
-``python tools/build_answers.py`` encodes them into
+defines ``exercises()``, the :class:`twolink_course.exercises.spec.ExerciseSpec`
+objects of its chapter, computed by the package from each exercise's data,
+and may define
+
+- ``HIDDEN = {(number, part): hidden_cases}``: for a function part, calls the
+  student never saw, ``hidden_cases(rng, count) -> list[Case]``;
+- ``RERUN = {number: Rerun(inputs=..., hidden=..., answers=...)}``: for a value
+  exercise whose answer cell computes from the names its *inputs cell* binds
+  (``# Inputs of exercise N.M``), those inputs, a draw of inputs the student
+  never saw and each part's reference on any inputs (:class:`Rerun`); the
+  grader re-runs the student's answer cell on hidden draws;
+- ``FORBIDDEN = {(number, part): (dotted path, ...)}``: for a function part,
+  the package's callables the exercise asks the student not to use (carried
+  into the part's specification, :attr:`PartSpec.forbidden`).
+
+``python tools/build_answers.py`` encodes the exercises (forbidden calls
+included, no hidden input or reference) into
 ``twolink_course/exercises/store/chN.txt``, what the self-checks compare with.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import importlib
 import pkgutil
-from collections.abc import Callable
+import zlib
+from collections.abc import Callable, Mapping
 from types import ModuleType
 
 import numpy as np
@@ -37,14 +51,105 @@ def chapter(name: str) -> ModuleType:
     return importlib.import_module(f"{__name__}.{name}")
 
 
-def all_exercises() -> list[ExerciseSpec]:
-    """Every exercise of every chapter module, in order."""
+def with_forbidden(
+    exercises: list[ExerciseSpec],
+    forbidden: Mapping[tuple[str, str], tuple[str, ...]],
+) -> list[ExerciseSpec]:
+    """``exercises`` with each part's forbidden calls taken from ``forbidden``.
+
+    A key that names no function part of them is an error naming it.
+    """
+    parts = {
+        (exercise.number, part.name): part
+        for exercise in exercises
+        for part in exercise.parts
+    }
+    for key in forbidden:
+        if key not in parts or parts[key].kind != "function":
+            raise KeyError(
+                f"FORBIDDEN names {key}, which is no function part of the chapter; "
+                f"its function parts: {sorted(k for k, p in parts.items() if p.kind == 'function')}"
+            )
     return [
-        exercise for name in chapter_names() for exercise in chapter(name).exercises()
+        dataclasses.replace(
+            exercise,
+            parts=tuple(
+                dataclasses.replace(
+                    part, forbidden=tuple(forbidden[exercise.number, part.name])
+                )
+                if (exercise.number, part.name) in forbidden
+                else part
+                for part in exercise.parts
+            ),
+        )
+        for exercise in exercises
+    ]
+
+
+def chapter_exercises(name: str) -> list[ExerciseSpec]:
+    """The exercises of chapter module ``name`` as stored: with its ``FORBIDDEN`` calls."""
+    module = chapter(name)
+    return with_forbidden(module.exercises(), getattr(module, "FORBIDDEN", {}))
+
+
+def all_exercises() -> list[ExerciseSpec]:
+    """Every exercise of every chapter module, in order (forbidden calls included)."""
+    return [
+        exercise for name in chapter_names() for exercise in chapter_exercises(name)
     ]
 
 
 HiddenCases = Callable[[np.random.Generator, int], list[Case]]
+Inputs = dict[str, object]
+
+
+@dataclasses.dataclass(frozen=True)
+class Rerun:
+    """How a value exercise is graded on inputs the student never saw.
+
+    Attributes
+    ----------
+    inputs : dict
+        Exactly what the exercise's inputs cell (first line ``# Inputs of
+        exercise N.M``) binds, by name: the arm, the angles, the target...
+        (``tests/test_exercises_rerun.py`` checks it against the chapter).
+    hidden : callable
+        ``hidden(rng) -> dict``: one draw of inputs the student never saw, the
+        same names, valid for the exercise (reachable targets, non-singular
+        poses).
+    answers : callable
+        ``answers(inputs) -> dict``: each part's reference value, by part
+        name, computed by the package from those inputs (outside the
+        student's process).
+
+    Examples
+    --------
+    >>> from twolink import TwoLinkArm
+    >>> rerun = Rerun(
+    ...     inputs={"arm_ex9": TwoLinkArm(1.0, 1.0), "q_ex9": np.zeros(2)},
+    ...     hidden=lambda rng: {"arm_ex9": TwoLinkArm(2.0, 1.0), "q_ex9": rng.uniform(-1, 1, 2)},
+    ...     answers=lambda given: {"p_ex9": given["arm_ex9"].fk(given["q_ex9"])},
+    ... )
+    >>> rerun.answers(rerun.inputs)["p_ex9"].tolist()
+    [2.0, 0.0]
+    """
+
+    inputs: Inputs
+    hidden: Callable[[np.random.Generator], Inputs]
+    answers: Callable[[Inputs], dict[str, object]]
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.inputs, dict) or not all(
+            isinstance(name, str) and name.isidentifier() for name in self.inputs
+        ):
+            raise TypeError(
+                f"Rerun.inputs must be a dict of the inputs cell's names; got {self.inputs!r}"
+            )
+        for field in ("hidden", "answers"):
+            if not callable(getattr(self, field)):
+                raise TypeError(
+                    f"Rerun.{field} must be a function; got {getattr(self, field)!r}"
+                )
 
 
 def hidden_generators() -> dict[tuple[str, str], HiddenCases]:
@@ -52,6 +157,14 @@ def hidden_generators() -> dict[tuple[str, str], HiddenCases]:
     found: dict[tuple[str, str], HiddenCases] = {}
     for name in chapter_names():
         found.update(getattr(chapter(name), "HIDDEN", {}))
+    return found
+
+
+def rerun_specs() -> dict[str, Rerun]:
+    """Every chapter's :class:`Rerun` entries, by exercise number."""
+    found: dict[str, Rerun] = {}
+    for name in chapter_names():
+        found.update(getattr(chapter(name), "RERUN", {}))
     return found
 
 
@@ -68,3 +181,32 @@ def hidden_cases(number: str, part: str, seed: int, count: int = 20) -> list[Cas
             f"those with hidden cases: {sorted(generators)}"
         )
     return generators[number, part](np.random.default_rng(seed), count)
+
+
+def exercise_seed(seed: int, number: str) -> list[int]:
+    """The seed of exercise ``number``'s draws: the grader's seed, then the exercise's own.
+
+    Each exercise draws from a stream of its own, so adding an exercise
+    changes no other exercise's draws.
+
+    >>> exercise_seed(7, "4.1") == exercise_seed(7, "4.1") != exercise_seed(7, "4.2")
+    True
+    """
+    return [seed, zlib.crc32(number.encode("ascii"))]
+
+
+def hidden_draws(
+    rerun: Rerun, number: str, seed: int, count: int
+) -> list[tuple[Inputs, dict[str, object]]]:
+    """``count`` draws of hidden inputs of exercise ``number``, each with its references."""
+    rng = np.random.default_rng(exercise_seed(seed, number))
+    draws = []
+    for _ in range(count):
+        inputs = rerun.hidden(rng)
+        if set(inputs) != set(rerun.inputs):
+            raise ValueError(
+                f"exercise {number}: a hidden draw binds {sorted(inputs)}, the inputs "
+                f"cell {sorted(rerun.inputs)}: they must be the same names"
+            )
+        draws.append((inputs, rerun.answers(inputs)))
+    return draws

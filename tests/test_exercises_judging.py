@@ -1,4 +1,7 @@
-"""The judging of one answer: equivalent forms accepted, typical mistakes named, other misses sized in words."""
+"""The judging of one answer: equivalent forms accepted, typical mistakes named, other misses sized in words;
+nan and inf never right, typed rounded numbers told, parameters named, the one-liner forbidden."""
+
+import dataclasses
 
 import numpy as np
 import pytest
@@ -6,7 +9,13 @@ import sympy as sp
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from twolink_course.exercises.judging import Unusable, judge, read_answer
+from twolink_course.exercises.judging import (
+    Unusable,
+    agrees,
+    judge,
+    judge_function,
+    read_answer,
+)
 from twolink_course.exercises.spec import Case, Mistake, PartSpec, Tolerance
 
 POINT = PartSpec(
@@ -94,10 +103,16 @@ def test_a_hand_rounded_number_is_right_at_the_precision_asked(answer):
     assert judge(SPEED, answer).right
 
 
-def test_a_number_rounded_below_the_precision_asked_is_wrong_with_its_miss():
+def test_a_number_rounded_below_the_precision_asked_says_how_many_figures_are_asked():
     verdict = judge(SPEED, 0.013)
     assert not verdict.right
-    assert verdict.message == "your tip speed is 0.00033 m/s too small"
+    assert verdict.message == (
+        "your tip speed is rounded to 2 significant figures; this part asks for at least 3"
+    )
+
+
+def test_a_number_that_misses_otherwise_is_told_by_how_much():
+    assert judge(SPEED, 0.0129).message == "your tip speed is 0.00043 m/s too small"
 
 
 @pytest.mark.parametrize(
@@ -163,7 +178,8 @@ def test_a_matrix_miss_names_the_entry():
     [
         ([1.0, 2.0, 3.0], "expected 2 numbers (shape (2,)) in N m, got shape (3,)"),
         ("10, -4", "expected numbers in N m, got a str"),
-        ([10.0, np.nan], "your answer contains nan or inf"),
+        ([10.0, np.nan], "your torques contains nan (not a number)"),
+        ([np.inf, -4.0], "your torques contains an infinite number"),
         ([10.0, 1j], "expected real numbers, got a complex one"),
         ([[1.0, 2.0], [3.0]], "could not read your numbers"),
     ],
@@ -240,3 +256,176 @@ def test_something_else_than_a_function():
         judge(FUNCTION, [3.0, 0.0]).message
         == "expected a function (def ...), got a list"
     )
+
+
+# ---------------------------------------------------------------- one comparison: nan and inf never right
+
+finite = st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False)
+nonfinite = st.sampled_from([np.nan, np.inf, -np.inf])
+
+
+@given(finite, finite, st.floats(0.0, 10.0))
+def test_agrees_is_a_tolerance_on_finite_numbers(value, target, allowed):
+    assert agrees(value, target, allowed) == (abs(value - target) <= allowed)
+
+
+@given(nonfinite, finite, st.floats(0.0, 1e300))
+def test_nan_and_inf_never_agree_with_a_finite_number_whatever_the_tolerance(
+    value, target, allowed
+):
+    assert not agrees(value, target, allowed)
+    assert not agrees(target, value, allowed)
+
+
+@given(nonfinite)
+def test_a_nan_or_an_infinity_agrees_only_with_itself(value):
+    assert agrees(value, value, 0.0)
+    assert not agrees(value, -value if np.isinf(value) else np.inf, 1e300)
+
+
+@pytest.mark.parametrize(
+    "answer, message",
+    [
+        (float("nan"), "your tip speed is nan (not a number): compute a finite number"),
+        (np.inf, "your tip speed is infinite: compute a finite number"),
+        (-np.inf, "your tip speed is infinite: compute a finite number"),
+        (sp.nan, "your tip speed is nan (not a number): compute a finite number"),
+        (sp.oo, "your tip speed is infinite: compute a finite number"),
+        (
+            np.array([np.nan]),
+            "your tip speed is nan (not a number): compute a finite number",
+        ),
+    ],
+)
+def test_a_number_part_says_nan_and_inf_are_not_numbers(answer, message):
+    assert judge(SPEED, answer) == (False, message)
+
+
+def test_a_wide_tolerance_does_not_let_nan_through():
+    wide = PartSpec("x", "x", "number", expected=1.0, tolerance=Tolerance(atol=1e300))
+    assert judge(wide, 2.0).right and not judge(wide, float("nan")).right
+
+
+# ---------------------------------------------------------------- rounded numbers typed in
+
+EXACT = PartSpec("T", "transform entry", "number", expected=0.123456789012, unit="m")
+
+
+@pytest.mark.parametrize("figures", [2, 3, 5, 7])
+def test_a_typed_rounded_number_is_told_to_compute_it(figures):
+    typed = float(f"{EXACT.expected:.{figures}g}")
+    verdict = judge(EXACT, typed)
+    assert not verdict.right
+    assert verdict.message.startswith(
+        f"your transform entry looks rounded (to {figures} significant figures): compute it in code"
+    )
+
+
+def test_a_rounded_vector_looks_rounded_and_another_miss_does_not():
+    part = PartSpec("p", "tip", "vector", expected=[0.3216, 1.7777777], shape=(2,))
+    assert "looks rounded" in judge(part, [0.3216, 1.78]).message
+    assert "looks rounded" not in judge(part, [0.3216, 1.79]).message
+
+
+# ---------------------------------------------------------------- calling a function by keyword
+
+
+def test_a_function_with_other_parameter_names_is_told_to_rename_them():
+    def tip(robot, angles):
+        return robot.fk(angles)
+
+    assert judge(FUNCTION, tip).message == (
+        "the check calls your function with keyword arguments (arm=..., q=...), but yours "
+        "names its parameters (robot, angles): rename robot to arm and angles to q"
+    )
+
+    def one(arm):
+        return arm.fk([0.0, 0.0])
+
+    assert judge(FUNCTION, one).message == (
+        "the check calls your function with keyword arguments (arm=..., q=...), but yours "
+        "takes (arm)"
+    )
+
+    def flexible(*args, **kwargs):
+        return kwargs["arm"].fk(kwargs["q"])
+
+    assert judge(FUNCTION, flexible).right
+
+
+# ---------------------------------------------------------------- hidden cases: a miss told without the arguments
+
+
+def test_a_miss_on_a_case_not_shown_hides_its_arguments():
+    hidden = Case(
+        {"arm": {"arm": {"l1": 1.25, "l2": 0.75}}, "q": [0.3, 0.4]}, [9.0, 9.0]
+    )
+
+    def off(arm, q):
+        return arm.fk(q)
+
+    plain = dataclasses.replace(FUNCTION, mistakes=())
+    verdict = judge_function(plain, off, (*FUNCTION.cases, hidden), shown=2)
+    assert not verdict.right
+    assert verdict.message.startswith(
+        "called with other arguments of the grader's (not shown), your tip"
+    )
+    assert "1.25" not in verdict.message and "0.3" not in verdict.message
+
+    def raises_on_it(arm, q):
+        if arm.l1 == 1.25:
+            raise ValueError(f"l1 = {arm.l1}")
+        return arm.fk(q)
+
+    message = judge_function(
+        FUNCTION, raises_on_it, (*FUNCTION.cases, hidden), shown=2
+    ).message
+    assert message == (
+        "your function raised ValueError when called with other arguments of the "
+        "grader's (not shown)"
+    )
+
+
+# ---------------------------------------------------------------- the package's one-liner forbidden
+
+FORBIDS_FK = dataclasses.replace(
+    FUNCTION, forbidden=("twolink.arm.TwoLinkArm.fk", "twolink.kinematics.fk")
+)
+
+
+def test_a_forbidden_call_fails_the_part_by_any_name_it_is_reached():
+    from twolink import kinematics
+
+    fk = kinematics.fk
+
+    def by_method(arm, q):
+        return arm.fk(q)
+
+    def by_alias(arm, q):
+        return fk(arm, q)
+
+    def hiding_it(arm, q):
+        try:
+            return arm.fk(q)
+        except Exception:
+            return np.array([arm.l1 + arm.l2, 0.0])
+
+    for function in (by_method, by_alias, hiding_it):
+        verdict = judge(FORBIDS_FK, function)
+        assert not verdict.right
+        assert verdict.message.startswith(
+            "this exercise asks you to write it yourself: "
+        ) and verdict.message.endswith("is the package's answer"), function
+    assert judge(FUNCTION, by_method).right  # allowed where nothing is forbidden
+
+
+def test_the_function_written_out_passes_where_the_one_liner_is_forbidden():
+    def written(arm, q):
+        return np.array(
+            [
+                arm.l1 * np.cos(q[0]) + arm.l2 * np.cos(q[0] + q[1]),
+                arm.l1 * np.sin(q[0]) + arm.l2 * np.sin(q[0] + q[1]),
+            ]
+        )
+
+    assert judge(FORBIDS_FK, written).right

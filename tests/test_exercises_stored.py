@@ -225,3 +225,64 @@ def test_a_function_fitted_to_the_visible_cases_fails_on_hidden_ones(number, par
     # and the seed decides the cases: another seed, other cases
     other = answers.hidden_cases(number, part.name, seed=7)
     assert [repr(c.arguments) for c in other] != [repr(c.arguments) for c in hidden]
+
+
+def not_numbers(part):
+    """Answers that are never right for ``part``: nan, infinities, nan in place of one number, non-numbers."""
+    if part.kind == "bool":
+        return [float("nan"), 1, "True", None, np.array([True, False])]
+    if part.kind == "text":
+        return [float("nan"), 1, None, b"text"]
+    shape = np.shape(part.expected)
+    one_nan = np.array(part.expected, dtype=float)
+    one_nan.flat[0] = np.nan
+    return [
+        float("nan"),
+        np.inf,
+        -np.inf,
+        np.full(shape, np.nan),
+        np.full(shape, np.inf),
+        one_nan,
+        sp.nan,
+        "nan",
+        None,
+        object(),
+    ]
+
+
+def returning(values):
+    """A function returning ``values`` one call after another (the last one again after that)."""
+    calls = iter(values)
+    last = [None]
+
+    def function(**arguments):
+        last[0] = next(calls, last[0])
+        return last[0]
+
+    return function
+
+
+VALUE_PARTS = [(number, part) for number, part in PARTS if part.kind != "function"]
+
+
+@pytest.mark.parametrize(
+    "number, part", VALUE_PARTS, ids=[f"{n}-{p.name}" for n, p in VALUE_PARTS]
+)
+def test_nan_inf_and_non_numbers_are_never_right(number, part):
+    for answer in not_numbers(part):
+        verdict = judging.judge(part, answer)
+        assert not verdict.right, (number, part.name, answer)
+        assert verdict.message, (number, part.name, answer)
+
+
+@pytest.mark.parametrize(
+    "number, part", FUNCTION_PARTS, ids=[f"{n}-{p.name}" for n, p in FUNCTION_PARTS]
+)
+def test_a_function_returning_nan_or_inf_is_never_right(number, part):
+    right = [case.expected for case in part.cases]
+    shape = np.shape(right[0])
+    for bad in (np.full(shape, np.nan), np.full(shape, np.inf), float("nan")):
+        assert not judging.judge(part, returning([bad])).right, (number, bad)
+        # right on every call but the last
+        assert not judging.judge(part, returning([*right[:-1], bad])).right, number
+    assert judging.judge(part, returning(right)).right  # the replay itself is sound

@@ -137,3 +137,51 @@ def test_score_counts_the_correct_parts_only():
     assert (right.score, half.score, unsolved.score, wrong.score) == (2, 1, 0, 0)
     assert all(type(report.score) is int for report in (right, half, wrong))
     assert right.passed and not half.passed
+
+
+# ---------------------------------------------------------------- in a kernel: an answer never assigned, the score
+def run_in_a_kernel(sources, grading):
+    """Run ``sources`` as cells of a fresh kernel (the grading switch on or off); each cell's outputs."""
+    import os
+
+    import nbformat
+    from nbclient import NotebookClient
+
+    notebook = nbformat.v4.new_notebook(
+        cells=[nbformat.v4.new_code_cell(source) for source in sources]
+    )
+    environment = {k: v for k, v in os.environ.items() if k != "TWOLINK_GRADING"}
+    if grading:
+        environment["TWOLINK_GRADING"] = "1"
+    NotebookClient(
+        notebook, timeout=120, allow_errors=True, kernel_name="python3"
+    ).execute(env=environment)
+    return [cell.outputs for cell in notebook.cells]
+
+
+CELLS = [
+    "import numpy as np\nfrom twolink import arms\nfrom twolink_course import selfcheck",
+    "p_tip_ex1 = undefined_name + 1",
+    'correct_ex1 = selfcheck.check("1.1", p_tip_ex1)',
+    "another_undefined_name",
+    "p_tip_ex1 = arms.osake.fk(np.radians([45.0, -30.0]))",
+    'correct_ex1 = selfcheck.check("1.1", p_tip_ex1)',
+]
+
+
+@pytest.mark.infrastructure
+@pytest.mark.parametrize("grading", [False, True], ids=["learning", "grading"])
+def test_a_check_of_an_answer_never_assigned_says_so_in_a_sentence(grading):
+    outputs = run_in_a_kernel(CELLS, grading)
+    [error] = outputs[2]
+    assert error.output_type == "error" and error.ename == "NameError"  # still 0 points
+    assert error.evalue == selfcheck.not_checked("1.1", "p_tip_ex1")
+    assert len(error.traceback) == 1  # the sentence, no traceback
+    [other] = outputs[3]  # any other cell: the usual traceback
+    assert other.evalue == "name 'another_undefined_name' is not defined"
+    assert len(other.traceback) > 1
+    results = [o for o in outputs[5] if o.output_type == "execute_result"]
+    if grading:  # nbgrader's partial credit: the parts right, as the cell's result
+        assert [r.data["text/plain"] for r in results] == ["1"]
+    else:
+        assert results == []

@@ -4,7 +4,10 @@ The self-checks of the installed package compare a learner's answers with
 the values in the store (encoded, so that no module reads as a list of
 answers); the references themselves stay readable in the repository's
 ``answers/`` folder, for teachers and the grader.  One file per chapter:
-``answers/ch4.py`` -> ``twolink_course/exercises/store/ch4.txt``.
+``answers/ch4.py`` -> ``twolink_course/exercises/store/ch4.txt``: its
+``exercises()``, each function part with the calls its ``FORBIDDEN`` lists;
+no hidden case, hidden input or reference on hidden inputs (``HIDDEN``,
+``RERUN``) is stored: those stay with the grader.
 
 Usage::
 
@@ -42,7 +45,7 @@ def store_file(chapter: str) -> pathlib.Path:
 
 def store_text(chapter: str) -> str:
     """The text of a chapter's store file for the current ``answers/``."""
-    encoded = stored.encode(answers.chapter(chapter).exercises())
+    encoded = stored.encode(answers.chapter_exercises(chapter))
     return "\n".join(textwrap.wrap(encoded, 76)) + "\n"
 
 

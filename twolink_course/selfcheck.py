@@ -10,18 +10,38 @@ with unsolved exercises), or ``wrong:`` with what is wrong (a typical mistake
 named, or the quantity that misses, by how much and which way) and the next
 hint (the first wrong try a nudge, later ones more specific).
 
+While grading (``TWOLINK_GRADING=1``, :mod:`twolink_course.runmode`) each check
+also gives its score, the number of parts right, as the check cell's result
+(``sys.displayhook``), which is what nbgrader's autograde reads as the cell's
+partial credit; a learner's run shows no such result.
+
+In a Jupyter kernel, a check cell whose answer was never assigned (the answer
+cell above raised, or was not run) shows one sentence saying so, as the
+cell's error, instead of a ``NameError`` traceback (:func:`install`, run when
+this module is imported in a kernel).
 """
 
 from __future__ import annotations
 
 import collections
+import linecache
 import re
-from typing import NamedTuple
+import sys
+from types import TracebackType
+from typing import Any, NamedTuple
 
-from . import exercises
+from . import exercises, runmode
 from .exercises import judging, spec
 
-__all__ = ["check", "reset_hints", "parse_line", "NOT_SOLVED", "CORRECT", "WRONG"]
+__all__ = [
+    "check",
+    "reset_hints",
+    "parse_line",
+    "install",
+    "NOT_SOLVED",
+    "CORRECT",
+    "WRONG",
+]
 
 NOT_SOLVED = "not solved yet"
 CORRECT = "correct"
@@ -143,7 +163,10 @@ T_0^2 = A1 A2 with sympy': the last column of T_0^2 holds the tip's x and y.
                 )
         print(line)
         results.append(PartResult(entry.number, part.label, status, line))
-    return CheckReport(results)
+    report = CheckReport(results)
+    if runmode.grading() and _kernel() is not None:
+        sys.displayhook(report.score)  # the cell's result: nbgrader's partial credit
+    return report
 
 
 #: Wrong tries so far, per (exercise, part): the hint's tier follows it.
@@ -182,3 +205,84 @@ def parse_line(line: str) -> tuple[str, str, str] | None:
         WRONG if match["status"] == "not right yet" else match["status"]
     )  # the word for wrong in older notebooks' outputs
     return match["number"], match["part"] or "", status
+
+
+#: A call of the self-check in a cell's source, with its exercise's number.
+_CHECK_CALL = re.compile(r"selfcheck\.check\(\s*[\"'](?P<number>\d+\.\d+)[\"']")
+
+
+def _kernel() -> Any:
+    """The IPython shell this runs in, or None (a plain script, a test)."""
+    ipython = sys.modules.get("IPython")
+    return None if ipython is None else ipython.get_ipython()
+
+
+def _cell_source(traceback: TracebackType | None) -> str:
+    """The source of the notebook cell an exception was raised in ("" if not found)."""
+    while traceback is not None:
+        code = traceback.tb_frame.f_code
+        if code.co_name == "<module>":
+            return "".join(linecache.getlines(code.co_filename))
+        traceback = traceback.tb_next
+    return ""
+
+
+def not_checked(number: str, name: str) -> str:
+    """The sentence a check cell shows when its answer ``name`` was never assigned.
+
+    >>> print(not_checked("7.2", "q_ex2"))
+    Exercise 7.2 is not checked: q_ex2 is not defined. The answer cell above did not assign it: it raised an error (fix it and run it again) or has not been run yet; then run this cell.
+    """
+    return (
+        f"Exercise {number} is not checked: {name} is not defined. The answer cell "
+        "above did not assign it: it raised an error (fix it and run it again) or "
+        "has not been run yet; then run this cell."
+    )
+
+
+def _name_error(
+    shell: Any,
+    kind: type[BaseException],
+    error: BaseException,
+    traceback: TracebackType | None,
+    tb_offset: int | None = None,
+) -> None:
+    """IPython's handler of a ``NameError``: a check cell's sentence, any other cell's traceback."""
+    found = _CHECK_CALL.search(_cell_source(traceback))
+    name = getattr(error, "name", None)
+    if found is None or not isinstance(name, str):
+        shell.showtraceback((kind, error, traceback), tb_offset=tb_offset)
+        return
+    sentence = NameError(not_checked(found["number"], name), name=name)
+    show = getattr(shell, "_showtraceback", None)
+    if show is None:  # a shell without it: the exception without its traceback
+        shell.showtraceback((NameError, sentence, None), exception_only=True)
+        return
+    # IPython's private _showtraceback (what showtraceback ends with; ipykernel
+    # sends it as the cell's error): the only way to show an error whose
+    # "traceback" is one sentence, with no header line and no "%tb" advice
+    show(NameError, sentence, [f"NameError: {sentence}"])
+
+
+def install() -> bool:
+    """Make check cells explain an answer never assigned (in a Jupyter kernel; else nothing).
+
+    The shell's handler of ``NameError`` (``set_custom_exc``) shows
+    :func:`not_checked`'s sentence, still as the cell's error (nbgrader gives
+    such a check no points), when the cell calls ``selfcheck.check``, and the
+    usual traceback for any other cell.  A shell that already has a handler
+    of its own keeps it.  Returns whether the handler is in place.
+
+    >>> install()  # not in a kernel
+    False
+    """
+    shell = _kernel()
+    if shell is None or not hasattr(shell, "set_custom_exc"):
+        return False
+    if shell.custom_exceptions not in ((), (NameError,)):
+        return False
+    shell.set_custom_exc((NameError,), _name_error)
+    return True
+
+
+install()

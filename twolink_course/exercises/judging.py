@@ -8,6 +8,12 @@ matches gives its diagnosis in words), and otherwise says which quantity
 misses, in which direction and by how much, in the part's unit.  It never
 prints a bare tolerance.
 
+Every comparison goes through :func:`agrees`: a nan or an infinity is never
+within a tolerance of a finite value (so never right unless the part's
+expected value is that nan or infinity), and anything that is not a number is
+refused with what was expected.  A value that equals the expected one rounded
+(where the part asks for full precision) is told it looks rounded.
+
 Examples
 --------
 >>> from twolink_course.exercises.spec import Mistake, PartSpec
@@ -25,6 +31,7 @@ Verdict(right=True, message='')
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import math
 import numbers as abstract_numbers
 from collections.abc import Callable, Mapping, Sequence
@@ -37,9 +44,18 @@ from twolink.arm import TwoLinkArm
 from twolink.conventions import wrap_angle
 
 from ..display import significant
+from . import forbidden
 from .spec import Case, PartSpec
 
-__all__ = ["Verdict", "Unusable", "judge", "judge_function", "read_answer"]
+__all__ = [
+    "Verdict",
+    "Unusable",
+    "agrees",
+    "judge",
+    "judge_value",
+    "judge_function",
+    "read_answer",
+]
 
 
 class Verdict(NamedTuple):
@@ -128,8 +144,6 @@ def _array(answer: Any, part: PartSpec) -> NDArray[np.float64]:
                 f"expected {count} number{'s' if count != 1 else ''} (shape {shape})"
                 f"{_in_unit(part)}, got shape {values.shape}"
             )
-    if not np.all(np.isfinite(values)):
-        raise Unusable("your answer contains nan or inf")
     return values
 
 
@@ -167,21 +181,115 @@ def read_answer(part: PartSpec, answer: Any) -> Any:
     return _array(answer, part)
 
 
+def agrees(
+    value: Any, target: Any, allowed: Any, *, angles: bool = False
+) -> NDArray[np.bool_]:
+    """Whether each number of ``value`` is within ``allowed`` of ``target`` (elementwise).
+
+    The one comparison of every judged number.  A nan or an infinity agrees
+    only with the same nan or infinity (so never with a finite target, however
+    large the tolerance); ``angles``: equal up to whole turns.
+
+    >>> agrees([1.0, np.nan, np.inf], [1.0 + 1e-12, 2.0, 3.0], 1e-9).tolist()
+    [True, False, False]
+    >>> agrees(np.inf, np.inf, 0.0).tolist(), agrees(2 * np.pi, 0.0, 1e-9, angles=True).tolist()
+    (True, True)
+    """
+    value = np.asarray(value, dtype=float)
+    target = np.asarray(target, dtype=float)
+    finite = np.isfinite(value) & np.isfinite(target)
+    difference = np.where(finite, value - np.where(finite, target, 0.0), 0.0)
+    if angles:
+        difference = np.asarray(wrap_angle(difference))
+    close = finite & (np.abs(difference) <= np.asarray(allowed, dtype=float))
+    same = ~np.isfinite(target) & (
+        (value == target) | (np.isnan(value) & np.isnan(target))
+    )
+    return np.asarray(close | same)
+
+
 def _misses(part: PartSpec, value: Any, target: Any) -> NDArray[np.float64] | bool:
-    """``value - target`` where it exceeds the tolerance (0 elsewhere), or whether bool/text differ."""
+    """``value - target`` where they do not agree (0 elsewhere), or whether bool/text differ."""
     if part.kind in ("bool", "text"):
         return bool(value != target)
     expected = np.asarray(target, dtype=float)
-    difference = np.asarray(value, dtype=float) - expected
+    given = np.asarray(value, dtype=float)
+    allowed = np.vectorize(part.tolerance.allowed, otypes=[float])(
+        np.where(np.isfinite(expected), expected, 0.0)
+    )
+    agreed = agrees(given, expected, allowed, angles=part.kind == "angles")
+    with np.errstate(invalid="ignore"):
+        difference = given - expected
     if part.kind == "angles":
-        difference = wrap_angle(difference)
-    allowed = np.vectorize(part.tolerance.allowed, otypes=[float])(expected)
-    return np.where(np.abs(difference) > allowed, difference, 0.0)
+        finite = np.isfinite(difference)
+        difference = np.where(
+            finite, wrap_angle(np.where(finite, difference, 0.0)), difference
+        )
+    return np.where(agreed, 0.0, difference)
 
 
 def _matches(part: PartSpec, value: Any, target: Any) -> bool:
     miss = _misses(part, value, target)
     return not miss if isinstance(miss, bool) else not np.any(miss)
+
+
+def _not_finite(part: PartSpec, value: Any, target: Any) -> str | None:
+    """What is wrong with a nan or an infinity where the part expects a finite number, or None."""
+    if part.kind not in ("number", "vector", "matrix", "angles"):
+        return None
+    given = np.asarray(value, dtype=float)
+    wrong = ~np.isfinite(given) & np.isfinite(np.asarray(target, dtype=float))
+    if not np.any(wrong):
+        return None
+    what = "nan (not a number)" if np.any(np.isnan(given[wrong])) else "infinite"
+    if given.ndim == 0:
+        return f"your {part.label} is {what}: compute a finite number"
+    return f"your {part.label} contains {'nan (not a number)' if 'nan' in what else 'an infinite number'}: compute finite numbers"
+
+
+#: The most significant figures a typed number is looked at with (a double holds ~16).
+_MOST_FIGURES = 12
+
+
+def _figures(value: float, expected: float) -> int | None:
+    """The fewest significant figures to which ``expected`` rounds to exactly ``value``, or None.
+
+    >>> _figures(1.23, 1.2345678), _figures(1.2345678, 1.2345678), _figures(1.3, 1.2345678)
+    (3, 1, None)
+    """
+    if value == expected:
+        return 1
+    for figures in range(1, _MOST_FIGURES + 1):
+        if float(f"{expected:.{figures}g}") == value:
+            return figures
+    return None
+
+
+def _rounding(part: PartSpec, value: Any, target: Any) -> str | None:
+    """Why a value that misses looks typed in rounded (every number ``target`` rounded), or None."""
+    if part.kind not in ("number", "vector", "matrix"):
+        return None
+    given = np.ravel(np.asarray(value, dtype=float))
+    expected = np.ravel(np.asarray(target, dtype=float))
+    if not (np.all(np.isfinite(given)) and np.all(np.isfinite(expected))):
+        return None
+    figures = [_figures(float(v), float(e)) for v, e in zip(given, expected)]
+    if any(found is None for found in figures):
+        return None
+    most = max(found for found in figures if found is not None)
+    asked = part.tolerance.significant
+    if asked is None:
+        return (
+            f"your {part.label} looks rounded (to {most} significant figures): compute "
+            "it in code from the exercise's values; this part is compared to full "
+            "precision, so a typed number does not do"
+        )
+    if most < asked:
+        return (
+            f"your {part.label} is rounded to {most} significant figures; this part "
+            f"asks for at least {asked}"
+        )
+    return None
 
 
 def _digits(value: float) -> int:
@@ -252,12 +360,44 @@ def judge(part: PartSpec, answer: Any) -> Verdict:
         value = read_answer(part, answer)
     except Unusable as error:
         return Verdict(False, str(error))
-    if _matches(part, value, part.expected):
+    return _verdict(part, value, part.expected, part.mistakes)
+
+
+def _verdict(
+    part: PartSpec, value: Any, expected: Any, mistakes: Sequence[Any] = ()
+) -> Verdict:
+    """``value`` (as read) against ``expected``: right, nan or inf, a mistake, rounded, or the miss."""
+    if _matches(part, value, expected):
         return Verdict(True, "")
-    for mistake in part.mistakes:
+    message = _not_finite(part, value, expected)
+    if message is not None:
+        return Verdict(False, message)
+    for mistake in mistakes:
         if _matches(part, value, mistake.value):
             return Verdict(False, mistake.diagnosis)
-    return Verdict(False, _describe_miss(part, _misses(part, value, part.expected)))
+    message = _rounding(part, value, expected)
+    if message is not None:
+        return Verdict(False, message)
+    return Verdict(False, _describe_miss(part, _misses(part, value, expected)))
+
+
+def judge_value(part: PartSpec, answer: Any, expected: Any) -> Verdict:
+    """Judge ``answer`` for ``part`` against another expected value (the part's on other inputs).
+
+    The grader's verdict on inputs the learner never saw: the part's kind,
+    shape and tolerance, no typical mistake (they belong to the visible
+    inputs), and no value of the inputs in the message.
+
+    >>> from twolink_course.exercises.spec import PartSpec
+    >>> part = PartSpec("tau", "torques", "vector", expected=[1.0, 2.0], shape=(2,), unit="N m")
+    >>> judge_value(part, [3.0, 4.0], [3.0, 4.0]).right, judge_value(part, [1.0, 2.0], [3.0, 4.0]).right
+    (True, False)
+    """
+    try:
+        value = read_answer(part, answer)
+    except Unusable as error:
+        return Verdict(False, str(error))
+    return _verdict(part, value, expected)
 
 
 def _arguments(case: Case, make_arm: Callable[..., Any]) -> dict[str, Any]:
@@ -283,47 +423,102 @@ def _shown(arguments: Mapping[str, Any]) -> str:
     return ", ".join(f"{name}={text(value)}" for name, value in arguments.items())
 
 
+def _parameter_problem(
+    function: Callable[..., Any], arguments: Mapping[str, Any]
+) -> str | None:
+    """Why ``function`` cannot be called with ``arguments`` by name (its parameters' names), or None."""
+    try:
+        signature = inspect.signature(function)
+    except (TypeError, ValueError):  # a builtin without a signature: call it and see
+        return None
+    try:
+        signature.bind(**arguments)
+    except TypeError:
+        pass
+    else:
+        return None
+    named = [
+        parameter.name
+        for parameter in signature.parameters.values()
+        if parameter.kind
+        in (inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)
+    ]
+    asked = list(arguments)
+    said = (
+        f"the check calls your function with keyword arguments "
+        f"({', '.join(f'{name}=...' for name in asked)})"
+    )
+    if len(named) == len(asked) and named != asked:
+        differing = [
+            (mine, theirs) for mine, theirs in zip(named, asked) if mine != theirs
+        ]
+        renames = " and ".join(f"{mine} to {theirs}" for mine, theirs in differing)
+        return f"{said}, but yours names its parameters ({', '.join(named)}): rename {renames}"
+    return f"{said}, but yours takes ({', '.join(named) or 'no named parameters'})"
+
+
 def judge_function(
-    part: PartSpec, function: Callable[..., Any], cases: Sequence[Case]
+    part: PartSpec,
+    function: Callable[..., Any],
+    cases: Sequence[Case],
+    *,
+    shown: int | None = None,
 ) -> Verdict:
     """Call ``function`` on each case and judge what it returns as ``part.output``.
 
-    A typical mistake of a function part is recognised when the function
-    returns the mistake's value on every case; otherwise the first case
-    that misses is shown with the miss described.
+    The function is called with the case's arguments by name, with the
+    callables of ``part.forbidden`` unavailable
+    (:func:`twolink_course.exercises.forbidden.unavailable`): a call of one
+    fails the part, saying why.  A typical mistake of a function part is
+    recognised when the function returns the mistake's value on the cases it
+    was written for (the visible ones, first); otherwise the first case that
+    misses is described.  ``shown``: how many cases, from the first, may be
+    shown with their arguments (the grader's hidden cases are not: a miss
+    there is told without them); all by default.
     """
     if part.output is None:
         raise ValueError(
             f"part {part.name!r} is not a function part (it has no output)"
         )
+    shown = len(cases) if shown is None else shown
     returned = []
     first_miss: str | None = None
-    for case in cases:
+    for index, case in enumerate(cases):
         arguments = _arguments(case, TwoLinkArm)
-        try:
-            result = function(**arguments)
-        except Exception as error:  # the learner's function may raise anything
+        where = (
+            f"called with {_shown(arguments)}"
+            if index < shown
+            else "called with other arguments of the grader's (not shown)"
+        )
+        problem = _parameter_problem(function, arguments)
+        if problem is not None:
+            return Verdict(False, problem)
+        with forbidden.unavailable(part.forbidden) as called:
+            try:
+                result = function(**arguments)
+            except Exception as error:  # the learner's function may raise anything
+                result = error
+        if called:
+            return Verdict(False, forbidden.reason(called[0]))
+        if isinstance(result, Exception):
+            detail = f": {result}" if index < shown else ""
             return Verdict(
                 False,
-                f"your function raised {type(error).__name__}: {error} "
-                f"when called with {_shown(arguments)}",
+                f"your function raised {type(result).__name__}{detail} when {where}",
             )
         try:
             value = read_answer(part.output, result)
         except Unusable as error:
-            return Verdict(
-                False, f"called with {_shown(arguments)}, it returned: {error}"
-            )
+            return Verdict(False, f"{where}, it returned: {error}")
         returned.append(value)
-        if first_miss is None and not _matches(part.output, value, case.expected):
-            miss = _describe_miss(
-                part.output, _misses(part.output, value, case.expected)
-            )
-            first_miss = f"called with {_shown(arguments)}, {miss}"
+        if first_miss is None:
+            verdict = _verdict(part.output, value, case.expected)
+            if not verdict.right:
+                first_miss = f"{where}, {verdict.message}"
     if first_miss is None:
         return Verdict(True, "")
     for mistake in part.mistakes:
-        if len(mistake.value) == len(returned) and all(
+        if len(mistake.value) <= len(returned) and all(
             _matches(part.output, value, target)
             for value, target in zip(returned, mistake.value)
         ):

@@ -131,6 +131,11 @@ class PartSpec:
     output : PartSpec or None
         For ``"function"``: how a return value is judged (kind, shape, unit,
         tolerance).
+    forbidden : tuple of str
+        For ``"function"``: the package's callables the exercise asks the
+        learner not to use, as dotted import paths
+        (``"twolink.arm.TwoLinkArm.fk"``); the function is judged with them
+        unavailable (:func:`twolink_course.exercises.forbidden.unavailable`).
     """
 
     name: str
@@ -145,6 +150,7 @@ class PartSpec:
     hints: tuple[str, ...] = ()
     cases: tuple[Case, ...] = ()
     output: PartSpec | None = None
+    forbidden: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.kind not in KINDS:
@@ -155,12 +161,21 @@ class PartSpec:
             raise ValueError(
                 f"part {self.name!r}: a function part needs an output and cases"
             )
+        if self.forbidden and self.kind != "function":
+            raise ValueError(
+                f"part {self.name!r}: only a function part can forbid calls; "
+                f"got forbidden={self.forbidden!r} on a {self.kind!r} part"
+            )
 
     def to_json(self) -> dict[str, Any]:
         """The part as JSON-ready data (nested dicts and lists)."""
         data = plain(dataclasses.asdict(self))
         if self.output is not None:
             data["output"] = self.output.to_json()
+        if not self.forbidden:
+            del data[
+                "forbidden"
+            ]  # most parts forbid nothing: the store stays as it was
         return data
 
     @classmethod
@@ -173,6 +188,7 @@ class PartSpec:
         fields["mistakes"] = tuple(Mistake(**m) for m in fields.get("mistakes", ()))
         fields["hints"] = tuple(fields.get("hints", ()))
         fields["cases"] = tuple(Case(**c) for c in fields.get("cases", ()))
+        fields["forbidden"] = tuple(fields.get("forbidden", ()))
         output = fields.get("output")
         fields["output"] = None if output is None else cls.from_json(output)
         return cls(**fields)
