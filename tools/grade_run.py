@@ -5,14 +5,19 @@
 at a time, started once: their imports cost a second each), waits at most
 the notebook's time limit and a minute more, and kills the worker otherwise;
 the kernel's sandbox (``bwrap --die-with-parent``) dies with it, and a new
-worker takes its place.  Workers are started with ``multiprocessing``'s
-"spawn": a script that calls the grader must do so under
-``if __name__ == "__main__":``.  :func:`run_one` runs the notebook in a
-temporary folder of its own (:func:`execute`: nbclient, the kernel started
-by ``sandbox.SandboxKernelManager``, every cell's time limited, the whole
-notebook's time limited by a watchdog, the outputs' size limited) and
-returns only data: each probe cell's report (``tools/grading_probe.py``),
-the cells that raised, and why the run stopped early, if it did.
+worker takes its place.  Workers ignore Ctrl-C: the grader stops them
+(:meth:`Runner.close`).  Workers are started with ``multiprocessing``'s
+"spawn": a script that calls the grader must do so under ``if __name__ ==
+"__main__":``.
+
+:func:`run_one` runs the notebook with its kernel in the sandbox
+(:class:`sandbox.SandboxKernelManager`: every cell's time limited, the whole
+notebook's time limited by a watchdog, the outputs' size limited), its
+temporary folders in the grader's scratch folder (mode 0700), and returns
+only data: each probe cell's outputs (``tools/grading_probe.py``), the
+cells that raised (numbered as in the returned file), the limits the
+notebook ran into, in words, the CPU time it used (where control groups
+count it) and why the run stopped early, if it did.
 
 This module imports no numpy and no twolink: the grader's processes stay light.
 """
@@ -26,6 +31,7 @@ import os
 import pathlib
 import queue
 import shutil
+import signal
 import subprocess
 import tempfile
 import threading
@@ -40,10 +46,10 @@ from jupyter_core.utils import run_sync
 from nbclient import NotebookClient
 from nbclient.exceptions import CellTimeoutError, DeadKernelError
 
-#: The tag of the grader's probe cells.
+#: The tag of the grader's probe cells (``grade_build.PROBE_TAG``).
 PROBE_TAG = "grader-probe"
-#: Set in every sandbox: the package skips heavy cells that no answer needs.
-ENVIRONMENT = {"TWOLINK_GRADING": "1"}
+#: Set in every kernel: the package skips heavy cells that no answer needs.
+VARIABLES = {"TWOLINK_GRADING": "1"}
 #: The workers are fresh interpreters (a fork of the grader's threads could inherit a held lock).
 CONTEXT = multiprocessing.get_context("spawn")
 
@@ -80,10 +86,11 @@ class HeadlessClient(NotebookClient):
 
 @dataclasses.dataclass(frozen=True)
 class Limits:
-    """The time limits of one notebook (the sandbox's own limits are in ``sandbox.Limits``)."""
+    """The time limits of one notebook (its resources: ``sandbox.Limits``)."""
 
     cell_seconds: float = 120.0
     notebook_seconds: float = 600.0
+    resources: sandbox.Limits = sandbox.Limits()
 
     @property
     def overrun(self) -> str:
@@ -99,25 +106,58 @@ class Limits:
 DEFAULT_LIMITS = Limits()
 
 
+@dataclasses.dataclass(frozen=True)
+class Setting:
+    """Where and how notebooks run: the scratch folder (0700), the sandbox's means (None: unsafe)."""
+
+    scratch: pathlib.Path
+    isolation: sandbox.Isolation | None
+    limits: Limits = DEFAULT_LIMITS
+
+
+def make_scratch() -> pathlib.Path:
+    """The grader's scratch folder: every temporary folder of a run, readable by the grader alone."""
+    scratch = pathlib.Path(tempfile.mkdtemp(prefix="twolink-grade-")).resolve()
+    scratch.chmod(0o700)
+    return scratch
+
+
+def remove_scratch(setting: Setting) -> None:
+    """Remove the scratch folder, and any control group a killed worker left."""
+    cgroups = setting.isolation.cgroups if setting.isolation else None
+    if cgroups is not None:
+        token = setting.scratch.name
+        for folder in set(cgroups.folders.values()):
+            for group in pathlib.Path(folder).glob(f"kernel-*-{token}-*"):
+                sandbox.NotebookGroup(cgroups.version, {"any": group}).remove()
+    shutil.rmtree(setting.scratch, ignore_errors=True)
+
+
+def _manager(
+    setting: Setting, workdir: pathlib.Path, submission: pathlib.Path | None
+) -> AsyncKernelManager:
+    if setting.isolation is None:
+        return AsyncKernelManager(kernel_name="python3")
+    return sandbox.SandboxKernelManager(
+        workdir,
+        setting.isolation,
+        setting.limits.resources,
+        user=sandbox.user_for(os.getpid()),  # one user per notebook running at once
+        variables=VARIABLES,
+        submission=submission,
+        group_name=f"{setting.scratch.name}-{os.getpid()}",
+    )
+
+
 def execute(
     notebook: Any,
+    setting: Setting,
     workdir: pathlib.Path,
-    *,
-    unsafe: bool,
-    hidden: Sequence[pathlib.Path],
-    limits: Limits,
-) -> str | None:
-    """Run ``notebook`` in place, in ``workdir`` (in the sandbox unless ``unsafe``); why it stopped early, or None."""
-    if unsafe:
-        manager: AsyncKernelManager = AsyncKernelManager(kernel_name="python3")
-    else:
-        manager = sandbox.SandboxKernelManager(
-            workdir,
-            hidden=hidden,
-            limits=sandbox.Limits(cpu_seconds=int(limits.notebook_seconds)),
-            user=sandbox.user_for(os.getpid()),  # one user per notebook running at once
-            environment=ENVIRONMENT,
-        )
+    submission: pathlib.Path | None = None,
+) -> tuple[str | None, dict[str, Any]]:
+    """Run ``notebook`` in place; why it stopped early (or None), and what it used (its groups' counts)."""
+    limits = setting.limits
+    manager = _manager(setting, workdir, submission)
     client = HeadlessClient(
         notebook,
         km=manager,
@@ -137,9 +177,10 @@ def execute(
     watchdog = threading.Timer(limits.notebook_seconds, stop)
     watchdog.start()
     failure: str | None = None
+    used: dict[str, Any] = {}
     environment_before = dict(os.environ)
-    if unsafe:
-        os.environ.update(ENVIRONMENT)
+    if setting.isolation is None:
+        os.environ.update(VARIABLES)
     try:
         # the kernel's own stdout and stderr go nowhere: never to the teacher's terminal
         client.execute(
@@ -168,42 +209,47 @@ def execute(
                 run_sync(manager.shutdown_kernel)(now=True)
         finally:
             if isinstance(manager, sandbox.SandboxKernelManager):
-                manager.cleanup_runtime()
-    return failure
+                used = manager.finish()
+    return failure, used
 
 
-def probe_reports(notebook: Any) -> dict[str, Any]:
-    """Each probe cell's report (a dict), or ``"silent"`` (it ran, published nothing) or ``"not run"``, by exercise."""
-    reports: dict[str, Any] = {}
+def probe_reports(notebook: Any) -> dict[str, dict[str, Any]]:
+    """By exercise: ``visible``, the probe's first report (a dict), or ``"silent"`` (it ran,
+    published nothing) or ``"not run"``; ``draws``, its reports on hidden inputs by draw."""
+    reports: dict[str, dict[str, Any]] = {}
     for cell in notebook.cells:
         if PROBE_TAG not in cell.metadata.get("tags", []):
             continue
-        number = cell.id.removeprefix("grader-probe-").replace("-", ".")
-        found: Any = (
-            "not run"
+        number = str(cell.metadata.get("twolink_probe", ""))
+        found: dict[str, Any] = {
+            "visible": "not run"
             if cell.get("execution_count") is None and not cell.outputs
-            else "silent"
-        )
+            else "silent",
+            "draws": {},
+        }
         for output in cell.outputs:
             data = output.get("data", {}).get(grading_probe.MIME)
-            if isinstance(data, dict) and data.get("exercise") == number:
-                found = data
+            if not isinstance(data, dict) or data.get("exercise") != number:
+                continue
+            if "draw" in data and isinstance(data["draw"], int):
+                found["draws"].setdefault(data["draw"], data)
+            elif not isinstance(found["visible"], dict):
+                found["visible"] = data
         reports[number] = found
     return reports
 
 
-def cell_errors(notebook: Any) -> list[str]:
-    """``cell N: Name: value`` for each of the submission's cells that raised (N counted from 1, the probes not counted)."""
+def cell_errors(notebook: Any, positions: Sequence[int | None]) -> list[str]:
+    """``cell N: Name: value`` for each of the returned notebook's cells that raised (N as in its file, from 1)."""
     errors = []
-    position = 0
-    for cell in notebook.cells:
+    for cell, position in zip(notebook.cells, positions):
         if PROBE_TAG in cell.metadata.get("tags", []):
             continue
-        position += 1
         for output in cell.get("outputs", []):
             if output.get("output_type") == "error":
+                where = f"cell {position}" if position else "a cell the grader put back"
                 errors.append(
-                    f"cell {position}: {output.get('ename', '?')}: {output.get('evalue', '')}"[
+                    f"{where}: {output.get('ename', '?')}: {output.get('evalue', '')}"[
                         :200
                     ]
                 )
@@ -211,20 +257,30 @@ def cell_errors(notebook: Any) -> list[str]:
 
 
 def run_one(
-    notebook: Any, hidden: Sequence[pathlib.Path], unsafe: bool, limits: Limits
+    notebook: Any,
+    positions: Sequence[int | None],
+    submission: bytes | None,
+    setting: Setting,
 ) -> dict[str, Any]:
-    """Run the graded ``notebook`` in a temporary folder of its own: its probes' reports, its cells' errors, why it stopped."""
-    workdir = pathlib.Path(tempfile.mkdtemp(prefix="twolink-grade-"))
+    """Run the graded ``notebook`` in a folder of its own in the scratch folder: its probes'
+    reports, its cells' errors, the limits it ran into, its CPU time, why it stopped."""
+    workdir = pathlib.Path(tempfile.mkdtemp(prefix="notebook-", dir=setting.scratch))
     try:
-        copy = workdir / "submission.ipynb"
-        copy.write_text(json.dumps(notebook), encoding="utf-8")
-        failure = execute(
-            notebook, workdir, unsafe=unsafe, hidden=hidden, limits=limits
-        )
+        copy = None
+        if submission is not None:
+            copy = workdir / "submission.ipynb"
+            copy.write_bytes(submission)
+            copy.chmod(0o644)
+        failure, used = execute(notebook, setting, workdir, copy)
+        errors = cell_errors(notebook, positions)
+        limits = setting.limits.resources
         return {
             "reports": probe_reports(notebook),
-            "errors": cell_errors(notebook),
+            "errors": errors,
             "failure": failure,
+            "limits": sandbox.overruns(used, limits)
+            + sandbox.full_disk(errors, limits),
+            "cpu_seconds": used.get("cpu_seconds"),
         }
     finally:
         shutil.rmtree(workdir, ignore_errors=True)
@@ -232,6 +288,7 @@ def run_one(
 
 def _serve(connection: Any) -> None:
     """A worker's loop: run each notebook sent, send back what :func:`run_one` returns; stop at ``None``."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the grader's to handle
     while True:
         try:
             task = connection.recv()
@@ -239,12 +296,10 @@ def _serve(connection: Any) -> None:
             return
         if task is None:
             return
-        notebook_text, hidden, unsafe, limits = task
-        # built and validated by the grader: not validated again
+        notebook_text, positions, submission, setting = task
+        # built by the grader: not validated again
         notebook = nbformat.from_dict(json.loads(notebook_text))
-        connection.send(
-            run_one(notebook, [pathlib.Path(h) for h in hidden], unsafe, limits)
-        )
+        connection.send(run_one(notebook, positions, submission, setting))
 
 
 class Worker:
@@ -259,18 +314,18 @@ class Worker:
     def run(
         self,
         notebook: Any,
-        hidden: Sequence[pathlib.Path],
-        unsafe: bool,
-        limits: Limits,
+        positions: Sequence[int | None],
+        submission: bytes | None,
+        setting: Setting,
     ) -> dict[str, Any]:
         """What :func:`run_one` returns for ``notebook``; if the worker died or overran, a failure saying so (and it is stopped)."""
         try:
             self.connection.send(
-                (json.dumps(notebook), [str(h) for h in hidden], unsafe, limits)
+                (json.dumps(notebook), list(positions), submission, setting)
             )
-            if not self.connection.poll(limits.notebook_seconds + 60):
+            if not self.connection.poll(setting.limits.notebook_seconds + 60):
                 self.stop()
-                return {"failure": limits.overrun}
+                return {"failure": setting.limits.overrun}
             ran = self.connection.recv()
             if isinstance(ran, dict):
                 return ran
@@ -298,26 +353,35 @@ class Worker:
 class Runner:
     """Workers for notebooks run ``jobs`` at a time: each started once (its imports paid once), replaced when stopped."""
 
-    def __init__(self) -> None:
+    def __init__(self, setting: Setting) -> None:
+        self.setting = setting
         self._idle: queue.SimpleQueue[Worker] = queue.SimpleQueue()
         self._all: list[Worker] = []
         self._lock = threading.Lock()
+        self.closed = False
 
     def run(
         self,
         notebook: Any,
-        *,
-        hidden: Sequence[pathlib.Path],
-        unsafe: bool,
-        limits: Limits,
+        positions: Sequence[int | None] = (),
+        submission: bytes | None = None,
     ) -> dict[str, Any]:
         """:func:`run_one` for ``notebook`` in an idle worker; a failure saying why if the worker died or overran."""
         worker = self._idle_worker()
         if worker is None:
-            worker = Worker()
             with self._lock:
+                if self.closed:
+                    return {"failure": "grading was stopped (Ctrl-C)"}
+                worker = Worker()
                 self._all.append(worker)
-        ran = worker.run(notebook, hidden, unsafe, limits)
+        ran = worker.run(
+            notebook,
+            positions or [None] * len(notebook.cells),
+            submission,
+            self.setting,
+        )
+        if self.closed:
+            return {"failure": "grading was stopped (Ctrl-C)"}
         if worker.usable:
             self._idle.put(worker)
         return ran
@@ -333,23 +397,50 @@ class Runner:
                 return worker
 
     def close(self) -> None:
-        """Stop every worker."""
+        """Stop every worker (a notebook running is stopped with it)."""
         with self._lock:
+            self.closed = True
             for worker in self._all:
                 worker.stop()
             self._all.clear()
 
 
-def run_isolated(
-    notebook: Any,
-    *,
-    hidden: Sequence[pathlib.Path],
-    unsafe: bool,
-    limits: Limits,
-) -> dict[str, Any]:
+def run_isolated(notebook: Any, setting: Setting) -> dict[str, Any]:
     """:func:`run_one` for one notebook in a worker of its own (a :class:`Runner` runs many)."""
-    runner = Runner()
+    runner = Runner(setting)
     try:
-        return runner.run(notebook, hidden=hidden, unsafe=unsafe, limits=limits)
+        return runner.run(notebook)
     finally:
         runner.close()
+
+
+def genuine_kernel(setting: Setting, probe_source: str) -> dict[str, Any]:
+    """What a kernel started as the notebooks' are sees: the probe's fingerprints, the packages' files.
+
+    Runs one cell in a worker, as a notebook runs, with ``probe_source`` (the
+    probe as the notebooks run it); a kernel that cannot start gives
+    ``{"failure": why}``.
+    """
+    code = (
+        "import json, sys, twolink, twolink_course.selfcheck\n"
+        "from IPython import get_ipython\n"
+        "from IPython.display import publish_display_data\n"
+        "_probe = {'__name__': 'grader_probe'}\n"
+        f"exec(compile({probe_source!r}, '<grader probe>', 'exec'), _probe)\n"
+        "publish_display_data({%r: {'exercise': 'setup', 'fingerprints': _probe['fingerprints'](get_ipython()),"
+        " 'files': {'twolink': twolink.__file__, 'twolink_course': twolink_course.__file__,"
+        " 'python': sys.executable}}})\n" % grading_probe.MIME
+    )
+    notebook = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code)])
+    notebook.cells[0].metadata["tags"] = [PROBE_TAG]
+    notebook.cells[0].metadata["twolink_probe"] = "setup"
+    ran = run_isolated(notebook, setting)
+    report = ran.get("reports", {}).get("setup", {}).get("visible")
+    if not isinstance(report, dict):
+        why = (
+            ran.get("failure")
+            or "; ".join(ran.get("errors") or [])
+            or "it published nothing"
+        )
+        return {"failure": why}
+    return report
