@@ -46,8 +46,9 @@ help:
 	@echo "make bench-first-lab  a fresh clone's first make lab until the start page is served (pip, and uv if on the PATH)"
 	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"
 	@echo "make student    write the student edition (solutions stubbed, the start page, a twolink wheel) to build/student/ and build/student.zip"
-	@echo "make grade SUBMISSIONS=folder [JOBS=n] [UNSAFE=1]  grade returned notebooks, each in a sandbox, n at a time;"
-	@echo "                verdicts from the answers; CSV + one line per notebook (UNSAFE=1: no sandbox, trusted notebooks only)"
+	@echo "make grade SUBMISSIONS=folder [OUT=file.csv] [JOBS=n] [UNSAFE=1]  grade returned notebooks, each in a sandbox, n at a time;"
+	@echo "                verdicts from the answers, hidden inputs and calls; grades, gradebook (nbgrader columns), points and"
+	@echo "                feedback per student beside the CSV (UNSAFE=1: no sandbox, trusted notebooks only)"
 	@echo "make site       render the executed chapters to static HTML in build/site/"
 	@echo "make dist       build the sdist and the wheel into dist/ and check them with twine (DIST=folder elsewhere)"
 	@echo "make browser-test  run only the browser suite (JupyterLab and the site in Chromium)"
@@ -173,13 +174,16 @@ bench-peers:
 	-$(PEERS_VENV)/bin/python -m pip install --quiet pin
 	cd build && ../$(PEERS_VENV)/bin/python ../benchmarks/peers.py
 
-student: $(STAMP)
+# The teacher's two targets need the course's install only (make install: requirements.txt
+# brings nbformat, nbclient and jupyter_client with JupyterLab); tests/test_grade.py checks it.
+student: $(COURSE_STAMP)
 	$(BIN)/python tools/editions.py student --out build/student
 
 SUBMISSIONS ?=
-grade: $(STAMP)
-	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=folder-of-returned-notebooks"; exit 2; }
-	$(BIN)/python tools/grade.py "$(SUBMISSIONS)" $(if $(JOBS),--jobs $(JOBS),) $(if $(UNSAFE),--unsafe,)
+OUT ?=
+grade: $(COURSE_STAMP)
+	@test -n "$(SUBMISSIONS)" || { echo "usage: make grade SUBMISSIONS=folder-of-returned-notebooks [OUT=grades.csv] [JOBS=n] [UNSAFE=1]"; exit 2; }
+	$(BIN)/python tools/grade.py "$(SUBMISSIONS)" $(if $(OUT),--out "$(OUT)",) $(if $(JOBS),--jobs $(JOBS),) $(if $(UNSAFE),--unsafe,)
 
 site: $(STAMP)
 	$(BIN)/python tools/editions.py site --out build/site

@@ -37,6 +37,7 @@ from __future__ import annotations
 import argparse
 import ast
 import copy
+import hashlib
 import html
 import json
 import pathlib
@@ -381,12 +382,77 @@ def build_wheel(out_dir: str | pathlib.Path) -> pathlib.Path:
     return wheels[0]
 
 
+# ------------------------------------------------------------------ the edition's record (grading)
+
+
+def exercise_digest(notebook: dict[str, Any]) -> str:
+    """A digest of what grading a chapter depends on: its check cells (hidden tests left out)
+    and inputs cells (``# Inputs of exercise N.M``).  Two editions of a chapter with the same
+    digest grade alike.
+
+    >>> cell = {"cell_type": "code", "source": 'r = selfcheck.check("1.1", x)'}
+    >>> exercise_digest({"cells": [cell]}) == exercise_digest({"cells": [cell, {"cell_type": "markdown", "source": "x"}]})
+    True
+    """
+    kept = []
+    for cell in notebook["cells"]:
+        source = (
+            "".join(cell["source"])
+            if isinstance(cell["source"], list)
+            else cell["source"]
+        )
+        if is_selfcheck_cell(cell):
+            kept.append(strip_hidden_tests(source))
+        elif cell["cell_type"] == "code" and source.startswith("# Inputs of exercise "):
+            kept.append(source)
+    return hashlib.sha256(json.dumps(kept).encode("utf-8")).hexdigest()[:12]
+
+
+def commit_of(folder: pathlib.Path = ROOT) -> str:
+    """The commit of the checkout (``+changes`` after it if the notebooks or packages differ from it), or ``unknown``."""
+    try:
+        commit = subprocess.run(
+            ["git", "rev-parse", "HEAD"],
+            cwd=folder,
+            capture_output=True,
+            text=True,
+            check=True,
+        ).stdout.strip()
+        changed = subprocess.run(
+            ["git", "status", "--porcelain", "--", "notebooks", "twolink", "twolink_course", "answers"],
+            cwd=folder, capture_output=True, text=True, check=True,
+        ).stdout.strip()  # fmt: skip
+    except (OSError, subprocess.CalledProcessError):
+        return "unknown"
+    return commit + ("+changes" if changed else "")
+
+
+def record_edition(notebooks: Sequence[pathlib.Path]) -> str:
+    """Record in each chapter's metadata (``twolink_edition``: the commit and the chapter's
+    :func:`exercise_digest`) what the edition was built from; a returned notebook keeps it, and
+    ``make grade`` warns when it differs from the chapters it grades with.  Returns the commit."""
+    commit = commit_of()
+    for path in notebooks:
+        notebook = json.loads(path.read_text(encoding="utf-8"))
+        if any(is_selfcheck_cell(cell) for cell in notebook["cells"]):
+            notebook["metadata"]["twolink_edition"] = {
+                "commit": commit,
+                "digest": exercise_digest(notebook),
+            }
+            path.write_text(
+                json.dumps(notebook, indent=1, ensure_ascii=False) + "\n",
+                encoding="utf-8",
+            )
+    return commit
+
+
 def build_student_edition(
     source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
 ) -> list[pathlib.Path]:
     """The student edition that runs on its own: notebooks, a twolink wheel, and a zip of both.
 
-    ``out_dir`` gets the student notebooks (:func:`build_student`) and the
+    ``out_dir`` gets the student notebooks (:func:`build_student`, each
+    chapter recording the commit it comes from, :func:`record_edition`) and the
     wheel (:func:`build_wheel`); ``out_dir`` with ``.zip`` (``build/student.zip``)
     holds the same files in a folder of ``out_dir``'s name.  Returns the files
     written, the zip last.
@@ -396,6 +462,7 @@ def build_student_edition(
     for stale in out_dir.glob("*.ipynb"):  # a notebook renamed or removed since
         stale.unlink()
     written = build_student(source_dir, out_dir)
+    record_edition(written)
     written.append(build_wheel(out_dir))
     archive = out_dir.with_name(out_dir.name + ".zip")
     partial = archive.with_name(archive.name + ".partial")

@@ -8,9 +8,8 @@ folder (subfolders too; ``.ipynb_checkpoints`` skipped):
    symbolic link, a FIFO or an oversized file is refused unread.  Its chapter
    is the one its exercise cells name (``tools/grade_release.py``).
 2. Its exercise cells are found by nbgrader's ``grade_id`` or by content;
-   each check cell and inputs cell is restored from the course's own copy,
-   after each check cell a probe cell takes the answers out of the kernel
-   as data (a function part: its return values on the visible calls and on
+   each inputs cell is restored from the course's own copy, and in place of
+   each check cell a probe cell takes the answers out of the kernel as data (a function part: its return values on the visible calls and on
    hidden ones; a value exercise graded on hidden inputs: the answer cell
    re-run on draws of inputs the student never saw, drawn from a seed only
    the grader holds), and the notebook is cut to what the answers need
@@ -54,6 +53,7 @@ import secrets
 import signal
 import sys
 import tempfile
+import types
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -64,8 +64,14 @@ import grade_report  # noqa: E402  (tools/grade_report.py)
 import sandbox  # noqa: E402  (tools/sandbox.py)
 from grade_build import PROBE_SOURCE, PROBE_TAG, build  # noqa: E402
 from grade_plan import Plan  # noqa: E402
-from grade_read import MAX_NOTEBOOK_BYTES, Unreadable, read_returned  # noqa: E402
-from grade_release import Course, match_chapter  # noqa: E402
+from grade_read import (  # noqa: E402
+    MAX_NOTEBOOK_BYTES,
+    Returned,
+    Unreadable,
+    read_bytes,
+    read_returned,
+)
+from grade_release import Chapter, Course, match_chapter  # noqa: E402
 from grade_report import Graded, summary_line, text  # noqa: E402
 from grade_run import (  # noqa: E402
     DEFAULT_LIMITS,
@@ -88,6 +94,17 @@ from grade_verdicts import (  # noqa: E402
 import answers  # noqa: E402  (the repository's readable references)
 import twolink  # noqa: E402
 import twolink_course  # noqa: E402
+from twolink_course import exercises  # noqa: E402
+
+#: The repository's references: the exercises as stored (the store holds what answers/
+#: computes, tests/test_exercises_stored.py; it decodes in milliseconds where computing the
+#: references takes seconds), the hidden calls and inputs from answers/.
+REFERENCES = types.SimpleNamespace(
+    all_exercises=exercises.all_exercises,
+    rerun_specs=answers.rerun_specs,
+    hidden_cases=answers.hidden_cases,
+    hidden_draws=answers.hidden_draws,
+)
 
 __all__ = [
     "grade_folder",
@@ -180,15 +197,28 @@ def check_kernel(setting: Setting) -> dict[str, str]:
 def edition_warnings(
     course: Course, build_folder: pathlib.Path = ROOT / "build" / "student"
 ) -> list[str]:
-    """Warnings when the student edition in ``build/student`` was made from chapters that grade otherwise."""
-    record = build_folder / "EDITION.json"
-    if not record.exists():
+    """Warnings when the student edition in ``build/student`` (``make student``) was built from
+    chapters whose exercises differ from this checkout's (its notebooks' ``twolink_edition``)."""
+    recorded: dict[str, Any] = {}
+    commit = "?"
+    for path in sorted(build_folder.glob("*.ipynb")):
+        try:
+            metadata = json.loads(path.read_text(encoding="utf-8")).get("metadata", {})
+        except (OSError, ValueError):
+            continue
+        edition = (
+            metadata.get("twolink_edition") if isinstance(metadata, dict) else None
+        )
+        if isinstance(edition, dict):
+            recorded[path.stem] = edition.get("digest")
+            commit = str(edition.get("commit", "?"))
+    if not recorded:
         return []
-    try:
-        edition = json.loads(record.read_text(encoding="utf-8"))
-    except ValueError:
-        return [f"{record} is not JSON: rebuild it with make student"]
-    return differing(course, edition, f"the student edition in {build_folder}")
+    return differing(
+        course,
+        {"commit": commit, "digests": recorded},
+        f"the student edition in {build_folder}",
+    )
 
 
 def differing(course: Course, edition: Mapping[str, Any], what: str) -> list[str]:
@@ -210,16 +240,21 @@ def differing(course: Course, edition: Mapping[str, Any], what: str) -> list[str
     ]
 
 
-def grade_one(
-    path: pathlib.Path,
-    folder: pathlib.Path,
-    course: Course,
-    plan: Plan,
-    genuine: Mapping[str, str],
-    runner: Runner,
-    options: Options,
-) -> Graded:
-    """Grade one returned notebook (refused, unreadable, not a chapter: a failure saying so)."""
+@dataclasses.dataclass(frozen=True)
+class Prepared:
+    """A returned notebook read and matched (``chapter`` None: ``graded`` says why it is not run)."""
+
+    path: pathlib.Path
+    name: str
+    student: str
+    modified: float
+    returned: Returned | None = None
+    chapter: Chapter | None = None
+    graded: Graded | None = None
+
+
+def prepare(path: pathlib.Path, folder: pathlib.Path, course: Course) -> Prepared:
+    """Read ``path`` and find its chapter (refused, unreadable, not a chapter: its row, final)."""
     relative = path.relative_to(folder)
     name = text(str(relative))
     student = grade_report.student_of(relative, list(course.chapters))
@@ -229,17 +264,27 @@ def grade_one(
     except Unreadable as error:
         reason = str(error)
         reason = reason if reason.startswith("refused:") else f"unreadable ({reason})"
-        return Graded(name, student, None, [], reason[:300], modified=modified)
+        final = Graded(name, student, None, [], reason[:300], modified=modified)
+        return Prepared(path, name, student, modified, graded=final)
     chapter = match_chapter(returned, path.name, course.chapters)
     if chapter is None:
-        return Graded(
-            name,
-            student,
-            None,
-            [],
-            "not a chapter of the course (no cell of any chapter in it)",
-            modified=modified,
-        )
+        why = "not a chapter of the course (no cell of any chapter in it)"
+        final = Graded(name, student, None, [], why, modified=modified)
+        return Prepared(path, name, student, modified, graded=final)
+    return Prepared(path, name, student, modified, returned, chapter)
+
+
+def grade_one(
+    prepared: Prepared,
+    course: Course,
+    plan: Plan,
+    genuine: Mapping[str, str],
+    runner: Runner,
+    options: Options,
+) -> Graded:
+    """Grade one returned notebook, read and matched."""
+    returned, chapter = prepared.returned, prepared.chapter
+    assert returned is not None and chapter is not None
     built = build(returned, chapter, plan, prune=options.prune)
     notes = list(built.notes)
     if returned.edition is not None:
@@ -251,36 +296,39 @@ def grade_one(
             },
             "this notebook's edition",
         )
-    ran = runner.run(built.notebook, built.positions, path.read_bytes())
+    try:
+        submission: bytes | None = read_bytes(prepared.path, MAX_NOTEBOOK_BYTES)
+    except OSError:
+        submission = None
+    ran = runner.run(built.notebook, built.positions, submission)
     rows, signs = verdicts(chapter.exercises, built.probed, ran, plan, genuine)
     notes[:0] = [f"TAMPERED: {sign}" for sign in signs[:1]]
     errors = ran.get("errors") or []
     if errors:
         notes.append(f"{len(errors)} cell(s) raised; the first: {errors[0]}")
     return Graded(
-        name,
-        student,
+        prepared.name,
+        prepared.student,
         chapter.stem,
         rows,
         ran.get("failure"),
         notes,
         list(ran.get("limits") or []),
-        modified,
+        prepared.modified,
         ran.get("cpu_seconds"),
     )
 
 
-def crashed(
-    path: pathlib.Path, folder: pathlib.Path, course: Course, error: BaseException
-) -> Graded:
+def crashed(prepared: Prepared, error: BaseException) -> Graded:
     """The row of a notebook whose grading failed in the grader itself: the run goes on."""
-    relative = path.relative_to(folder)
     return Graded(
-        text(str(relative)),
-        grade_report.student_of(relative, list(course.chapters)),
-        None,
+        prepared.name,
+        prepared.student,
+        prepared.chapter.stem if prepared.chapter else None,
         [],
-        f"the grader failed on it ({type(error).__name__}: {text(str(error))[:200]}): grade it again, or report it",
+        f"the grader failed on it ({type(error).__name__}: {text(str(error))[:200]}): "
+        "grade it again, or report it",
+        modified=prepared.modified,
     )
 
 
@@ -328,89 +376,84 @@ def grade_folder(
                 "if you accept that, pass --unsafe (make grade UNSAFE=1)"
             )
     try:
-        course = course or Course.read(ROOT / "notebooks", answers)
+        course = course or Course.read(ROOT / "notebooks", REFERENCES)
     except ValueError as error:
         raise SetupError(
             f"the course's chapters and answers/ disagree: {error}"
         ) from None
     plan = Plan.drawn(course, secrets.randbits(32) if seed is None else seed)
+    chapters = {
+        stem: {e.number: len(e.parts) for e in chapter.exercises}
+        for stem, chapter in course.chapters.items()
+    }
     scratch = make_scratch()
     setting = Setting(
         scratch, None if unsafe else sandbox.Isolation.detect(scratch), limits
     )
-    lines: list[str] = []
     graded: dict[pathlib.Path, Graded] = {}
+    lines: list[str] = []
+
+    def record(path: pathlib.Path, result: Graded) -> None:
+        graded[path] = result
+        if graded_out is not None:
+            graded_out.append(result)
+        grade_report.write_grades(out, [graded[p] for p in paths if p in graded])
+        line = summary_line(result)
+        print(line, flush=True)
+        lines.append(line)
+
     runner = Runner(setting)
     interrupted = False
+    pool = concurrent.futures.ThreadPoolExecutor(max_workers=workers)
     try:
-        genuine = check_kernel(setting)
-        print(
-            f"grading {len(paths)} notebooks, {workers} at a time; "
-            + (
-                "UNSAFE: no sandbox"
-                if setting.isolation is None
-                else f"sandboxed: {setting.isolation.words()}; {limits.resources.words()}"
-            ),
-            flush=True,
+        prepared = [prepare(path, folder, course) for path in paths]
+        runnable = [item for item in prepared if item.graded is None]
+        genuine = check_kernel(setting) if runnable else {}
+        how = (
+            "UNSAFE: no sandbox"
+            if setting.isolation is None
+            else f"sandboxed: {setting.isolation.words()}; {limits.resources.words()}"
         )
+        print(f"grading {len(paths)} notebooks, {workers} at a time; {how}", flush=True)
         for warning in edition_warnings(course):
             print(f"WARNING: {warning}", flush=True)
-        chapters = {
-            stem: {e.number: len(e.parts) for e in chapter.exercises}
-            for stem, chapter in course.chapters.items()
+        for item in prepared:
+            if item.graded is not None:
+                record(item.path, item.graded)
+        futures = {
+            pool.submit(grade_one, item, course, plan, genuine, runner, options): item
+            for item in runnable
         }
-
-        def record(path: pathlib.Path, result: Graded) -> None:
-            graded[path] = result
-            if graded_out is not None:
-                graded_out.append(result)
-            done = [graded[p] for p in paths if p in graded]
-            grade_report.write_grades(out, done)
-            line = summary_line(result)
-            print(line, flush=True)
-            lines.append(line)
-
-        pool = concurrent.futures.ThreadPoolExecutor(max_workers=workers)
-        try:
-            futures = {
-                pool.submit(
-                    grade_one, path, folder, course, plan, genuine, runner, options
-                ): path
-                for path in paths
-            }
-            for future in concurrent.futures.as_completed(futures):
-                path = futures[future]
-                try:
-                    result = future.result()
-                except (
-                    Exception
-                ) as error:  # the grader's own failure on one file: the run goes on
-                    result = crashed(path, folder, course, error)
-                if runner.closed:
-                    break
-                record(path, result)
-        except KeyboardInterrupt:
-            interrupted = True
-            signal.signal(
-                signal.SIGINT, signal.SIG_IGN
-            )  # cleaning up: a second Ctrl-C waits
-            runner.close()  # the notebooks running stop with their workers
-            pool.shutdown(wait=True, cancel_futures=True)
-        else:
-            pool.shutdown(wait=True)
-        done = [graded[p] for p in paths if p in graded]
-        grade_report.write_grades(out, done)
-        class_students = grade_report.write_gradebook(out.parent, done, chapters)
-        grade_report.write_feedback(out.parent, class_students, chapters)
-    except KeyboardInterrupt:  # before the notebooks started, or while writing
+        for future in concurrent.futures.as_completed(futures):
+            item = futures[future]
+            try:
+                result = future.result()
+            except (
+                Exception
+            ) as error:  # the grader's own failure on one file: the run goes on
+                result = crashed(item, error)
+            record(item.path, result)
+    except KeyboardInterrupt:
         interrupted = True
+        signal.signal(
+            signal.SIGINT, signal.SIG_IGN
+        )  # cleaning up: a second Ctrl-C waits
     finally:
-        runner.close()
+        runner.close()  # a notebook still running stops with its worker
+        pool.shutdown(wait=True, cancel_futures=True)
         remove_scratch(setting)
+    done = [graded[p] for p in paths if p in graded]
+    grade_report.write_grades(out, done)
+    class_students = grade_report.write_gradebook(out.parent, done, chapters)
+    returned = grade_report.class_chapters(done, chapters)
+    grade_report.write_feedback(
+        out.parent, class_students, {c: chapters[c] for c in returned}
+    )
     if interrupted:
         print(
-            f"stopped (Ctrl-C): {len(graded)} of {len(paths)} notebooks graded, written to "
-            f"{text(str(out))}; the others were not graded",
+            f"stopped (Ctrl-C): {len(done)} of {len(paths)} notebooks graded, written to "
+            f"{text(str(out))} with the gradebook, points and feedback; the others were "
+            "not graded",
             flush=True,
         )
         raise SystemExit(130)

@@ -1,15 +1,17 @@
-"""A returned notebook made ready to grade: released cells restored, a probe after each check, cut to what the answers need.
+"""A returned notebook made ready to grade: released inputs restored, a probe for each check, cut to what the answers need.
 
 :func:`build` takes a returned notebook's code cells in order and
 
-- puts each exercise's released check cell and inputs cell in place of the
-  returned ones (found by :func:`grade_release.locate`: by nbgrader's
-  ``grade_id`` or by content); a check or inputs cell the student deleted is
-  put back where it belongs (after, before the answer cell) and said so; an
-  exercise whose answer cell cannot be found is not probed (not solved);
-- adds after each check cell a probe cell (``tools/grading_probe.py``, with
-  the forbidden-call guard of ``twolink_course/exercises/forbidden.py``, both
-  from the grader's own copies), asked what :class:`grade_plan.Plan` asks;
+- puts each exercise's released inputs cell in place of the returned one
+  (found by :func:`grade_release.locate`: by nbgrader's ``grade_id`` or by
+  content; one the student deleted is put back before the answer cell, and
+  said so), and the probe in place of its check cell (the check's verdicts
+  are the grader's: the check itself is not run; a deleted check cell is
+  probed all the same, after the answer cell); an exercise whose answer cell
+  cannot be found is not probed (not solved);
+- a probe cell (``tools/grading_probe.py``, with the forbidden-call guard of
+  ``twolink_course/exercises/forbidden.py``, both from the grader's own
+  copies) asks what :class:`grade_plan.Plan` asks;
 - drops every cell after the last probe and cuts the others to the
   statements the answers need (:func:`grade_prune.needed`).
 
@@ -111,7 +113,7 @@ def build(
         positions.append(position)
 
     def check_and_probe(number: str, position: int | None) -> None:
-        add(chapter.released[number].check, position, root=True)
+        add("", position)  # the check: its verdicts are the grader's, not run
         if number in probed:
             return
         solution = where[number].solution
@@ -132,7 +134,7 @@ def build(
         elif kind == "check":
             check_and_probe(number, index + 1)
         elif kind == "check without answer":
-            add(chapter.released[number].check, index + 1, root=True)
+            add("", index + 1)
         elif kind == "solution":
             if (
                 where[number].inputs is None

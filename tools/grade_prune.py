@@ -10,9 +10,11 @@ defined early may call one defined later).
 
 A statement binds the names it assigns, imports, defines (``def``,
 ``class``), deletes, changes in place (``x[0] = ...``, ``x.a = ...``,
-``x += ...``), passes to a call or calls a method of (``plot.draw(ax, q)``,
-``q.sort()``: either may change the object; a module's functions are not
-taken to change the module).  A plain assignment, import or definition at a
+``x += ...``) or calls a method of for its effect (a statement
+``q.sort()``; a module's functions are not taken to change the module, but
+a ``seed``); a statement of a cell the student wrote or changed also binds
+every name whose methods it calls or that it passes to a call
+(``helper(q)`` may change ``q``: the course's own cells are trusted not to).  A plain assignment, import or definition at a
 statement's top level surely rebinds its names, so an earlier binding of
 them is not needed by what comes after; one in a branch, a loop or a
 handler may not.  A name read in a function's body is read whenever the
@@ -167,6 +169,14 @@ class _Names(ast.NodeVisitor):
                 name = _root(argument)
                 if name is not None and name not in self.modules:
                     self._bind(name)  # a function may change what it is given
+        self.generic_visit(node)
+
+    def visit_Expr(self, node: ast.Expr) -> None:
+        call = node.value
+        if isinstance(call, ast.Call) and isinstance(call.func, ast.Attribute):
+            owner = _root(call.func)
+            if owner is not None and owner not in self.modules:
+                self._bind(owner)  # a method called for its effect changes its object
         self.generic_visit(node)
 
     def visit_Global(self, node: ast.Global) -> None:

@@ -126,10 +126,12 @@ def parse(text: str | bytes) -> Returned:
     for number, cell in enumerate(cells, start=1):
         if not isinstance(cell, dict) or cell.get("cell_type") not in CELL_KINDS:
             raise Unreadable(f"cell {number} is no code, Markdown or raw cell")
+        if "source" not in cell:
+            raise Unreadable(f"cell {number} has no source")
         read.append(
             Cell(
                 cell["cell_type"],
-                _text(cell.get("source", "")),
+                _text(cell["source"]),
                 _grade_id(cell.get("metadata")),
             )
         )
@@ -138,20 +140,26 @@ def parse(text: str | bytes) -> Returned:
     return Returned(tuple(read), edition if isinstance(edition, dict) else None)
 
 
+def read_bytes(path: pathlib.Path, max_bytes: int = MAX_NOTEBOOK_BYTES) -> bytes:
+    """At most ``max_bytes + 1`` bytes of the regular file ``path``, never through a symbolic
+    link and never waiting on a FIFO (an ``OSError`` for those)."""
+
+    def opener(name: str, flags: int) -> int:
+        return os.open(name, flags | os.O_NOFOLLOW | os.O_NONBLOCK)
+
+    with open(path, "rb", opener=opener) as handle:
+        if not stat.S_ISREG(os.fstat(handle.fileno()).st_mode):
+            raise OSError(0, "not a regular file")
+        return handle.read(max_bytes + 1)
+
+
 def read_returned(path: pathlib.Path, max_bytes: int = MAX_NOTEBOOK_BYTES) -> Returned:
     """The notebook at ``path``, read as :func:`parse` does; :class:`Unreadable` if refused or unreadable."""
     reason = refusal(path, max_bytes)
     if reason is not None:
         raise Unreadable(reason)
     try:
-        with open(
-            path,
-            "rb",
-            opener=lambda name, flags: os.open(
-                name, flags | os.O_NOFOLLOW | os.O_NONBLOCK
-            ),
-        ) as handle:
-            text = handle.read(max_bytes + 1)
+        text = read_bytes(path, max_bytes)
     except OSError as error:
         raise Unreadable(f"refused: cannot read it ({error.strerror})") from None
     if len(text) > max_bytes:

@@ -9,7 +9,8 @@ in a returned notebook by nbgrader's ``grade_id`` (``check_1_2``,
 (an id-less save, a copy and paste), by content: the check cell by its
 ``selfcheck.check("1.2", ...)`` call, the inputs cell by its first line
 ``# Inputs of exercise 1.2``, the answer cell as the nearest code cell before
-the check that assigns one of the exercise's answers.  Cell ids are never
+the check (after the inputs cell) that assigns one of the exercise's answers
+(the last such cell where the check was deleted).  Cell ids are never
 used: Colab, JupyterLab 3 and VS Code drop or renumber them.
 
 :func:`match_chapter` tells which chapter a notebook is: the chapter whose
@@ -21,7 +22,6 @@ from __future__ import annotations
 
 import ast
 import dataclasses
-import hashlib
 import json
 import pathlib
 import re
@@ -30,7 +30,7 @@ from typing import Any
 
 import course_map  # tools/course_map.py
 import editions  # tools/editions.py
-import nbformat
+import grade_read  # tools/grade_read.py
 from grade_read import Cell, Returned
 from nbgrader_cells import INPUTS_LINE, check_call
 
@@ -103,31 +103,12 @@ class Chapter:
         return [exercise.number for exercise in self.exercises]
 
 
-def exercise_digest(released: Mapping[str, Released]) -> str:
-    """A digest of what grading a chapter depends on: its exercises' check and inputs cells.
-
-    Two editions of a chapter with the same digest grade alike.
-    """
-    hasher = hashlib.sha256()
-    for number in sorted(released):
-        cells = released[number]
-        hasher.update(repr((number, cells.check, cells.inputs)).encode())
-    return hasher.hexdigest()[:12]
-
-
 def read_chapter(
     path: pathlib.Path, exercises: Sequence[ExerciseSpec]
 ) -> Chapter | None:
     """The released chapter at ``path`` (None: it has no exercise of ``exercises``)."""
-    notebook = nbformat.read(path, as_version=4)
-    cells = [
-        Cell(
-            cell.cell_type,
-            cell.source,
-            cell.metadata.get("nbgrader", {}).get("grade_id"),
-        )
-        for cell in notebook.cells
-    ]
+    data = json.loads(path.read_text(encoding="utf-8"))
+    cells = list(grade_read.parse(json.dumps(data)).cells)
     specs = tuple(e for e in exercises if e.chapter == path.stem)
     if not specs:
         return None
@@ -144,7 +125,7 @@ def read_chapter(
             editions.strip_hidden_tests(checks[0].source),
             inputs[0] if inputs else None,
         )
-    student = editions.student_notebook(json.loads(path.read_text(encoding="utf-8")))
+    student = editions.student_notebook(data)
     sources = {c.source for c in cells if c.kind == "code" and c.source.strip()}
     sources |= {
         "".join(c["source"]) if isinstance(c["source"], list) else c["source"]
@@ -152,7 +133,7 @@ def read_chapter(
         if c["cell_type"] == "code"
     }
     return Chapter(
-        path.stem, specs, released, frozenset(sources), exercise_digest(released)
+        path.stem, specs, released, frozenset(sources), editions.exercise_digest(data)
     )
 
 
@@ -237,15 +218,21 @@ def locate(cells: Sequence[Cell], exercise: ExerciseSpec) -> Where:
             (i for i, c in enumerate(cells) if inputs_number(c) == number), None
         )
     solution = ids.get(("solution", number))
-    if solution is None and check is not None:
+    if solution is None:
         names = {part.name for part in exercise.parts}
-        first = inputs + 1 if inputs is not None and inputs < check else 0
+        first = (
+            inputs + 1
+            if inputs is not None and (check is None or inputs < check)
+            else 0
+        )
+        last = check - 1 if check is not None else len(cells) - 1
         solution = next(
             (
                 i
-                for i in range(check - 1, first - 1, -1)
+                for i in range(last, first - 1, -1)
                 if cells[i].kind == "code"
                 and check_number(cells[i]) is None
+                and inputs_number(cells[i]) is None
                 and assigned(cells[i].source) & names
             ),
             None,

@@ -128,7 +128,7 @@ def student_of(relative: pathlib.PurePath, stems: Sequence[str]) -> str:
     stem = relative.stem
     for chapter in sorted(stems, key=len, reverse=True):
         stem = stem.replace(chapter, "")
-    stem = re.sub(r"(^|[_\-. ])\d\d([_\-. ]|$)", r"\1\2", stem).strip("_-. ")
+    stem = re.sub(r"(?:(?<=^)|(?<=[_\-. ]))\d\d(?:[_\-. ]|$)", "", stem).strip("_-. ")
     return text(stem or relative.stem)
 
 
@@ -268,6 +268,13 @@ def students(notebooks: Sequence[Graded], chapters: Sequence[str]) -> list[Stude
     return found
 
 
+def class_chapters(
+    notebooks: Sequence[Graded], chapters: Mapping[str, Mapping[str, int]]
+) -> list[str]:
+    """The chapters someone of the class returned, in course order (the gradebook's assignments)."""
+    return [c for c in chapters if any(g.chapter == c for g in notebooks)]
+
+
 def write_gradebook(
     folder: pathlib.Path,
     notebooks: Sequence[Graded],
@@ -277,7 +284,7 @@ def write_gradebook(
 
     ``chapters``: each chapter's exercises and their points (parts), in order.
     """
-    returned = [c for c in chapters if any(g.chapter == c for g in notebooks)]
+    returned = class_chapters(notebooks, chapters)
     class_students = students(notebooks, list(chapters))
     gradebook, points = [], []
     numbers = [n for c in returned for n in chapters[c]]
@@ -341,18 +348,23 @@ def _cell(value: str) -> str:
 
 
 def feedback(student: Student, chapters: Mapping[str, Mapping[str, int]]) -> str:
-    """A student's feedback file, in Markdown."""
+    """A student's feedback file, in Markdown; ``chapters``: those the class returned (a chapter
+    the student did not return counts 0 of its points, as in the gradebook)."""
     returned = [c for c in chapters if c in student.counted]
     total = sum(student.counted[c].points for c in returned)
-    most = sum(sum(chapters[c].values()) for c in returned)
-    lines = [f"# Feedback: {student.name}", "", f"Total: {total} of {most} points."]
+    most = sum(sum(points.values()) for points in chapters.values())
+    lines = [
+        f"# Feedback: {text(student.name)}",
+        "",
+        f"Total: {total} of {most} points.",
+    ]
     if student.flags:
         lines += ["", "Please note:", *(f"- {text(flag)}" for flag in student.flags)]
     for chapter in returned:
         graded = student.counted[chapter]
         lines += [
             "",
-            f"## {chapter} ({graded.file}): {graded.points} of {sum(chapters[chapter].values())} points",
+            f"## {chapter} ({text(graded.file)}): {graded.points} of {sum(chapters[chapter].values())} points",
             "",
             "| exercise | part | result | what to look at |",
             "|---|---|---|---|",
@@ -375,7 +387,8 @@ def write_feedback(
     class_students: Sequence[Student],
     chapters: Mapping[str, Mapping[str, int]],
 ) -> list[pathlib.Path]:
-    """``feedback/STUDENT.md`` for every student (names made safe for a file)."""
+    """``feedback/STUDENT.md`` for every student (names made safe for a file); ``chapters``:
+    the class's (:func:`class_chapters`), each with its exercises' points."""
     out = folder / "feedback"
     out.mkdir(exist_ok=True)
     written = []

@@ -196,11 +196,13 @@ def judge_value_part(
                 f"{part.name} on other inputs the grader gave it"
             )
         again = judging.judge_value(part, decoded(answer), reference[part.name])
-        if not again.right:
+        if (
+            not again.right
+        ):  # how it misses is not told: it would say what the reference is
             return WRONG, (
-                f"right on the exercise's inputs but not on other inputs the grader gave "
-                f"your answer cell ({again.message}): compute every answer from the inputs "
-                f"cell's names ({names}), not from numbers typed in"
+                "right on the exercise's inputs but not on other inputs the grader gave "
+                f"your answer cell: compute every answer from the inputs cell's names "
+                f"({names}), not from numbers typed in"
             )
     return PASSED, ""
 
