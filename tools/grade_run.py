@@ -376,7 +376,7 @@ class Runner:
                 self._all.append(worker)
         ran = worker.run(
             notebook,
-            positions or [None] * len(notebook.cells),
+            positions or range(1, len(notebook.cells) + 1),
             submission,
             self.setting,
         )
