@@ -1,14 +1,21 @@
 """The attacks on ``make grade``, each a returned notebook built here and graded with its classmates.
 
-Every attack is chapter 1's student edition with the attack added (a cell
-after the imports, or changed check cells).  Graded together with two
-honest classmates (one solved, one untouched), the suite asserts: no attack
-gains a pass; the classmates' results are what they are when graded alone;
-the repository, the classmates' files and the grades are unchanged; the run
-ends within its limits and leaves no process behind.  What the sandbox
-refuses inside the kernel (reading, writing, the network, memory and
-process floods) is asserted from the attacks' own words in
-``tests/test_sandbox.py``.
+Two suites.  The first: chapter 1's student edition with the attack added at
+the top of its first answer cell (a cell that always runs), or changed check
+cells, graded together with two honest classmates (one solved, one
+untouched): no attack gains a pass; the classmates' results are what they
+are when graded alone; the repository, the classmates' files and the grades
+are unchanged; the run ends within its limits and leaves no process behind.
+
+The second: the small course of ``tests/_grading_course.py``, whose value
+exercise is graded on hidden inputs, attacked by what made a known number
+earn points (typed in from the store, a classmate or the self-check's
+messages; a report forged by a kernel callback or by rewriting the kernel's
+outgoing messages; a self-check replaced through ``functools.wraps``), by
+nan, by memory over several processes and files filling the tmpfs (each a
+row in words), by a classmate's folder when each student's folder is graded
+alone, and by the teacher's environment.  What the sandbox refuses inside
+the kernel is asserted from the attacks' own words in ``tests/test_sandbox.py``.
 """
 
 import csv
@@ -20,12 +27,22 @@ import sys
 import tempfile
 import time
 
+import _grading_course as course_9
 import pytest
 from test_grade import UNSAFE, results, solved, student_chapter
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "tools"))
 import grade  # noqa: E402
+import grade_plan  # noqa: E402
+import grade_read  # noqa: E402
+import grade_release  # noqa: E402
+import grade_verdicts  # noqa: E402
+import grading_probe  # noqa: E402
+import sandbox  # noqa: E402
+
+import answers  # noqa: E402
+from twolink_course import exercises  # noqa: E402
 
 pytestmark = [
     pytest.mark.infrastructure,
@@ -102,7 +119,9 @@ ATTACK_CELLS = {
         "import types\n"
         "selfcheck = types.SimpleNamespace(check=lambda *a, **k: print('correct'))"
     ),
-    "silence_the_probe": "get_ipython = lambda: None",
+    "silence_the_probe": (
+        "import IPython.display\nIPython.display.publish_display_data = lambda *a, **k: None"
+    ),
     "replace_a_builtin": "import builtins\nbuiltins.print = lambda *a, **k: None",
     # the instructor's solutions and the classmates' files
     "run_the_instructor_solutions": STEAL + "steal({instructor!r})\nsteal({answers!r})",
@@ -170,7 +189,14 @@ def attacked_notebook(student_edition, name, paths):
     """Chapter 1 (student edition) attacked by ``name``."""
     notebook = student_chapter(student_edition)
     cells = notebook["cells"]
-    checks = [i for i, cell in enumerate(cells) if grade.check_number(cell) is not None]
+    checks = [
+        i
+        for i, cell in enumerate(cells)
+        if grade_release.check_number(
+            grade_read.Cell(cell["cell_type"], "".join(cell["source"]))
+        )
+        is not None
+    ]
     if name == "delete_the_check_cells":
         notebook["cells"] = [cell for i, cell in enumerate(cells) if i not in checks]
         return notebook
@@ -188,22 +214,12 @@ def attacked_notebook(student_edition, name, paths):
     code = ATTACK_CELLS[name].format(
         solved_lines=SOLVED_LINES, **{k: str(v) for k, v in paths.items()}
     )
-    imports = next(
-        i
-        for i, cell in enumerate(cells)
-        if "from twolink import" in "".join(cell["source"])
+    first_answer = next(
+        cell
+        for cell in cells
+        if "p_tip_ex1 = ...  # your code here" in "".join(cell["source"])
     )
-    cells.insert(
-        imports + 1,
-        {
-            "cell_type": "code",
-            "id": f"attack-{name}",
-            "metadata": {},
-            "outputs": [],
-            "execution_count": None,
-            "source": code,
-        },
-    )
+    first_answer["source"] = code + "\n" + "".join(first_answer["source"])
     if "STOLEN" in code:
         for cell in cells:
             source = "".join(cell["source"])
@@ -376,3 +392,202 @@ def test_the_run_ends_within_its_limits_and_leaves_no_process(attacked):
         ["pgrep", "-f", "sleep 1000|twolink-grade-"], capture_output=True, text=True
     )
     assert leftovers.stdout.strip() == "", "processes outlived their notebook"
+
+
+# ------------------------------------------------------------------ the small course: known numbers, forged reports, limits
+
+#: Exercise 9.1 answered with the numbers right on the visible inputs: what reading the store, copying a
+#: classmate or probing the self-check's messages gives.
+KNOWN = "p_ex1 = np.array({tip!r})\nreach_ex1 = {reach!r}"
+#: name: (what replaces exercise 9.1's answer cell (KNOWN first, so the visible answers are right), 9.3's)
+COURSE_ATTACKS = {
+    "known_numbers": ("", None),
+    "forge_the_report_in_a_callback": (
+        "def forge(result):\n"
+        "    pass  # would rewrite the probe's outputs after each cell\n"
+        "get_ipython().events.register('post_run_cell', forge)",
+        None,
+    ),
+    "forge_the_kernel_s_messages": (
+        "session = get_ipython().kernel.session\n"
+        "real_pack = session.pack\n"
+        "session.pack = lambda message: real_pack(message)  # would rewrite every outgoing message",
+        None,
+    ),
+    "wrap_the_self_check": (
+        "import functools\n"
+        "real_check = selfcheck.check\n"
+        "selfcheck.check = functools.wraps(real_check)(lambda *a, **k: real_check(*a, **k))",
+        None,
+    ),
+    "nan_everywhere": (
+        "p_ex1 = np.full(2, np.nan)\nreach_ex1 = float('nan')",
+        "faster_ex3 = float('nan')",
+    ),
+    "memory_over_processes": (
+        "",
+        "import subprocess, sys\n"
+        "code = 'import time; block = bytearray(400 * 2**20); time.sleep(30)'\n"
+        "started = [subprocess.Popen([sys.executable, '-c', code]) for _ in range(3)]\n"
+        "[process.wait() for process in started]\nfaster_ex3 = True",
+    ),
+    "fill_the_disk": (
+        "",
+        "import os\nfor folder in ('/tmp', '/dev/shm', os.path.expanduser('~')):\n"
+        "    with open(os.path.join(folder, 'flood'), 'wb') as handle:\n"
+        "        for _ in range(64):\n            handle.write(bytes(2**20))\nfaster_ex3 = True",
+    ),
+    "read_the_teacher_s_environment": (
+        "",
+        "import os\nfaster_ex3 = True if 'TWOLINK_TEST_SECRET' in os.environ else ...",
+    ),
+}
+COURSE_EXPECTED = {
+    "known_numbers": {("9.1", "tip"): "wrong", ("9.1", "reach"): "wrong"},
+    "forge_the_report_in_a_callback": "tampered",
+    "forge_the_kernel_s_messages": "tampered",
+    "wrap_the_self_check": "tampered",
+    "nan_everywhere": {
+        ("9.1", "tip"): "wrong",
+        ("9.1", "reach"): "wrong",
+        ("9.3", "faster"): "wrong",
+    },
+    "read_the_teacher_s_environment": {("9.3", "faster"): "not solved"},
+}
+COURSE_LIMITS = grade.Limits(
+    30.0,
+    120.0,
+    sandbox.Limits(
+        memory_bytes=512 * 2**20,
+        tmp_bytes=16 * 2**20,
+        shm_bytes=16 * 2**20,
+        workdir_bytes=16 * 2**20,
+    ),
+)
+
+
+def known_numbers():
+    tip, reach = (part.expected for part in course_9.exercises()[0].parts)
+    return KNOWN.format(tip=[float(v) for v in tip], reach=float(reach))
+
+
+@pytest.fixture(scope="module")
+def course_attacked(tmp_path_factory):
+    tmp_path = tmp_path_factory.mktemp("course-attacks")
+    course_9.write_course(tmp_path / "course")
+    course = grade_release.Course.read(tmp_path / "course", course_9.REFERENCES)
+    submissions = tmp_path / "submissions"
+    name = f"{course_9.STEM}.ipynb"
+    course_9.returned(submissions / "honest", name, course_9.RIGHT)
+    for attack, (first, third) in COURSE_ATTACKS.items():
+        answers_ = {**course_9.RIGHT, "9.1": known_numbers() + "\n" + first}
+        if third is not None:
+            answers_["9.3"] = third
+        course_9.returned(submissions / attack, name, answers_)
+    os.environ["TWOLINK_TEST_SECRET"] = (
+        "1"  # the teacher's environment, never the kernel's
+    )
+    try:
+        graded = []
+        grade.grade_folder(
+            submissions,
+            tmp_path / "out" / "grades.csv",
+            jobs=2,
+            limits=COURSE_LIMITS,
+            seed=13,
+            course=course,
+            graded_out=graded,
+        )
+    finally:
+        del os.environ["TWOLINK_TEST_SECRET"]
+    # graded one student's folder at a time: a classmate's folder beside it is out of reach
+    thief = tmp_path / "class" / "zed"
+    course_9.returned(tmp_path / "class" / "amy", name, course_9.RIGHT)
+    steal = (
+        f"import json\ntry:\n    json.load(open({str(tmp_path / 'class' / 'amy' / name)!r}))\n    faster_ex3 = True\n"
+        "except OSError:\n    faster_ex3 = ..."
+    )
+    course_9.returned(thief, name, {**course_9.RIGHT, "9.3": steal})
+    alone = []
+    grade.grade_folder(
+        thief, tmp_path / "zed.csv", jobs=1, seed=13, course=course, graded_out=alone
+    )
+    return {g.file.split("/")[0]: g for g in graded + alone}
+
+
+def course_results(course_attacked, name):
+    return {(v.number, v.part): v.result for v in course_attacked[name].verdicts}
+
+
+@pytest.mark.parametrize("name", sorted(COURSE_EXPECTED))
+def test_a_known_number_or_a_forged_report_earns_nothing(course_attacked, name):
+    found = course_results(course_attacked, name)
+    expected = COURSE_EXPECTED[name]
+    if isinstance(expected, str):
+        assert set(found.values()) == {expected}, found
+    else:
+        assert {key: found[key] for key in expected} == expected, found
+
+
+def test_the_honest_classmate_passes_every_part(course_attacked):
+    assert set(course_results(course_attacked, "honest").values()) == {"passed"}
+
+
+def test_memory_over_several_processes_and_a_full_disk_are_rows_in_words(
+    course_attacked,
+):
+    memory = course_attacked["memory_over_processes"]
+    if sandbox.Cgroups.detect() is not None:
+        assert memory.limits == [
+            "used more than 512 MiB of memory (the limit per notebook): a process was killed"
+        ]
+    else:  # one process: the subprocesses are refused
+        assert any("PermissionError" in note for note in memory.notes)
+    assert (
+        course_results(course_attacked, "memory_over_processes")["9.3", "faster"]
+        != "passed"
+    )
+    disk = course_attacked["fill_the_disk"]
+    assert disk.limits == [
+        "wrote more than its disk space (/tmp 16 MiB, /dev/shm 16 MiB, working folder 16 MiB: the limit per notebook)"
+    ]
+    assert (
+        course_results(course_attacked, "fill_the_disk")["9.3", "faster"]
+        == "not solved"
+    )
+
+
+def test_a_classmate_s_folder_is_out_of_reach_when_each_folder_is_graded_alone(
+    course_attacked,
+):
+    assert (
+        course_results(course_attacked, course_9.STEM + ".ipynb")["9.3", "faster"]
+        == "not solved"
+    )
+
+
+RERUN_PARTS = [
+    (number, part)
+    for number in sorted(answers.rerun_specs())
+    for part in exercises.get(number).parts
+    if part.kind != "function"
+]
+
+
+@pytest.mark.parametrize(
+    "number, part", RERUN_PARTS, ids=[f"{n}-{p.name}" for n, p in RERUN_PARTS]
+)
+def test_a_value_read_from_the_store_earns_nothing_where_the_chapter_reruns_the_exercise(
+    number, part
+):
+    """For every value part of the repository's chapters graded on hidden inputs: its stored value fails the draws."""
+    course = grade_release.Course.read(ROOT / "notebooks", grade.REFERENCES)
+    plan = grade_plan.Plan.drawn(course, seed=5, count=1, draws=3)
+    exercise = exercises.get(number)
+    stored = grading_probe.encode(part.expected)
+    found = {"visible": {"exercise": number, "answers": {part.name: stored}, "fingerprints": {}},
+             "draws": {i: {"exercise": number, "draw": i, "answers": {part.name: stored}} for i in range(3)}}  # fmt: skip
+    rows, _ = grade_verdicts.verdicts(
+        [exercise], [number], {"reports": {number: found}}, plan, {}
+    )
+    assert [row.result for row in rows if row.part == part.label] == ["wrong"]
