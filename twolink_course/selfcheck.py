@@ -17,7 +17,7 @@ partial credit; a learner's run shows no such result.
 
 In a Jupyter kernel, a check cell whose answer was never assigned (the answer
 cell above raised, or was not run) shows one sentence saying so, as the
-cell's error, instead of a ``NameError`` traceback (:func:`install`, run when
+cell's error, instead of a ``NameError`` traceback (:func:`explain_missing_answers`, run when
 this module is imported in a kernel).
 """
 
@@ -37,7 +37,7 @@ __all__ = [
     "check",
     "reset_hints",
     "parse_line",
-    "install",
+    "explain_missing_answers",
     "NOT_SOLVED",
     "CORRECT",
     "WRONG",
@@ -264,7 +264,7 @@ def _name_error(
     show(NameError, sentence, [f"NameError: {sentence}"])
 
 
-def install() -> bool:
+def explain_missing_answers() -> bool:
     """Make check cells explain an answer never assigned (in a Jupyter kernel; else nothing).
 
     The shell's handler of ``NameError`` (``set_custom_exc``) shows
@@ -273,7 +273,7 @@ def install() -> bool:
     usual traceback for any other cell.  A shell that already has a handler
     of its own keeps it.  Returns whether the handler is in place.
 
-    >>> install()  # not in a kernel
+    >>> explain_missing_answers()  # not in a kernel
     False
     """
     shell = _kernel()
@@ -285,4 +285,4 @@ def install() -> bool:
     return True
 
 
-install()
+explain_missing_answers()
