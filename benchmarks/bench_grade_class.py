@@ -202,8 +202,7 @@ def main() -> None:
         )
     )
     if counted:
-        print("\n## Where the CPU time goes (seconds per notebook)\n")
-        rows = []
+        print("\nWhere the CPU time goes, seconds per notebook (median, max):\n")
         for chapter in chapters:
             for solved in (True, False):
                 mine = [
@@ -213,26 +212,13 @@ def main() -> None:
                     and (deserved[g.file] == "passed") == solved
                 ]
                 if mine:
-                    rows.append(
-                        [
-                            chapter.stem,
-                            "solved" if solved else "untouched",
-                            f"{statistics.median(mine):.2f}",
-                            f"{max(mine):.2f}",
-                        ]
+                    print(
+                        f"- {chapter.stem}, {'solved' if solved else 'untouched'}: kernel and sandbox "
+                        f"{statistics.median(mine):.2f}, {max(mine):.2f}"  # type: ignore[type-var]
                     )
-        rows.append(
-            [
-                "the grader itself (reading, building, judging, workers)",
-                "all",
-                f"{grader_cpu / notebooks:.2f}",
-                "",
-            ]
-        )  # type: ignore[operator]
         print(
-            markdown_table(
-                ["kernel and sandbox of", "notebooks", "median", "max"], rows
-            )
+            f"- the grader itself (reading, building, judging, its workers): "
+            f"{grader_cpu / notebooks:.2f} per notebook"  # type: ignore[operator]
         )
     print(
         f"\nEvery one of the {sum(len(g.verdicts) for g in graded)} parts got the verdict its notebook deserves."
