@@ -793,3 +793,24 @@ def test_the_grader_s_temporary_folders_are_its_own():
         assert (setting_scratch.stat().st_mode & 0o777) == 0o700
     finally:
         setting_scratch.rmdir()
+
+
+def test_how_each_part_is_graded_is_printed_for_the_teacher(tmp_path):
+    course_9.write_course(tmp_path)
+    table = grade.how_graded(grade_release.Course.read(tmp_path, course_9.REFERENCES))
+    assert table.splitlines()[:2] == [
+        "| exercise | part | graded on |",
+        "|---|---|---|",
+    ]
+    assert (
+        "| 9.1 | reach_ex1 | the exercise's inputs and 3 hidden draws of them |"
+        in table
+    )
+    assert (
+        "| 9.2 | tip | its visible calls and 20 hidden ones, with arm.fk, kinematics.fk unavailable |"
+        in table
+    )
+    assert (
+        "| 9.3 | faster_ex3 | the exercise's inputs only (no inputs cell to re-run) |"
+        in table
+    )

@@ -38,7 +38,9 @@ Every temporary folder is in one scratch folder readable by the grader
 alone, removed at the end whatever happens.
 
 Usage: ``python tools/grade.py FOLDER [--out grades.csv] [--timeout 120]
-[--max-wall 600] [--jobs N] [--seed S] [--unsafe]``.
+[--max-wall 600] [--jobs N] [--seed S] [--unsafe]``; ``python tools/grade.py
+--how`` prints how each part is graded (hidden inputs, hidden calls, or the
+notebook's own values only).
 """
 
 from __future__ import annotations
@@ -88,6 +90,7 @@ from grade_verdicts import (  # noqa: E402
     PASSED,
     TAMPERED,
     WRONG,
+    methods,
     verdicts,
 )
 
@@ -464,6 +467,20 @@ def grade_folder(
     return lines
 
 
+def how_graded(course: Course | None = None) -> str:
+    """How each part of the course is graded, as a Markdown table (``grade.py --how``)."""
+    course = course or Course.read(ROOT / "notebooks", REFERENCES)
+    plan = Plan.drawn(course, 0)
+    rows = methods(course.exercises, plan)
+    return "\n".join(
+        [
+            "| exercise | part | graded on |",
+            "|---|---|---|",
+            *(f"| {number} | {part} | {how} |" for number, part, how in rows),
+        ]
+    )
+
+
 def main(argv: Sequence[str] | None = None) -> None:
     """Grade the folder named on the command line."""
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
@@ -499,7 +516,15 @@ def main(argv: Sequence[str] | None = None) -> None:
         action="store_true",
         help="run the notebooks without a sandbox (only for notebooks you trust)",
     )
+    parser.add_argument(
+        "--how",
+        action="store_true",
+        help="print how each part of the course is graded, and grade nothing",
+    )
     args = parser.parse_args(argv)
+    if args.how:
+        print(how_graded())
+        return
     if not args.submissions:
         parser.error("give the folder of returned notebooks")
     grade_folder(
