@@ -168,6 +168,21 @@ def rerun_specs() -> dict[str, Rerun]:
     return found
 
 
+def on_paper() -> frozenset[tuple[str, str]]:
+    """Every chapter's ``PEN_AND_PAPER`` parts, as ``(exercise number, part name)``.
+
+    A value part worked on paper (a choice of reason, a hand-derived value)
+    has no reference on hidden inputs: within an exercise graded on hidden
+    inputs, it is judged on the notebook's own value only, and ``answers()``
+    of its :class:`Rerun` need not give it.
+    """
+    return frozenset(
+        (number, part)
+        for name in chapter_names()
+        for number, part in getattr(chapter(name), "PEN_AND_PAPER", ())
+    )
+
+
 def hidden_cases(number: str, part: str, seed: int, count: int = 20) -> list[Case]:
     """``count`` hidden cases of a function part, drawn from ``seed`` (the grader's).
 

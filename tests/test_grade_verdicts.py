@@ -7,6 +7,7 @@ function with the package's one-liner forbidden, a yes/no answer) and, where
 said, the repository's own chapters.
 """
 
+import dataclasses
 import json
 import pathlib
 import sys
@@ -98,6 +99,10 @@ def test_an_input_the_kernel_cannot_be_given_is_refused_naming_it():
         grade_plan.encode_input(np.array([np.nan]), "x")
     arm = TwoLinkArm(1.5, 0.5, q_min=(-1.0, -2.0), q_max=(1.0, 2.0))
     assert grading_probe.decode_input(grade_plan.encode_input(arm)) == arm
+    timings = {"closed form": 1e-6, "newton": (2e-5, 3)}  # an input by name (2.5's)
+    assert grading_probe.decode_input(grade_plan.encode_input(timings)) == timings
+    with pytest.raises(TypeError, match="is a dict: "):
+        grade_plan.encode_input({1: 2.0}, "x")
     array = np.arange(6, dtype=np.int64).reshape(2, 3)
     back = grading_probe.decode_input(grade_plan.encode_input(array))
     assert back.dtype == array.dtype and np.array_equal(back, array)
@@ -275,6 +280,52 @@ def test_a_hidden_draw_s_miss_is_not_described(course, plan):
     ]
     message = value_verdicts(course, plan, encoded(right), close)[0][1]
     assert "cm" not in message and "too" not in message
+
+
+def test_a_part_worked_on_paper_is_judged_on_the_notebook_s_value_only(course):
+    """``answers.on_paper()``: a value part of a re-run exercise with no reference on other inputs."""
+    only_tip = course_9.answers.Rerun(
+        inputs=dict(course_9.RERUN["9.1"].inputs),
+        hidden=course_9._hidden_9_1,
+        answers=lambda given: {"p_ex1": course_9._answers_9_1(given)["p_ex1"]},
+    )
+    with pytest.raises(
+        KeyError,
+        match=r"9.1: RERUN's answers\(\) gives no reference for \['reach_ex1'\]",
+    ):
+        grade_plan.Plan.drawn(
+            dataclasses.replace(course, reruns={"9.1": only_tip}), seed=11, draws=3
+        )
+    on_paper = dataclasses.replace(
+        course, reruns={"9.1": only_tip}, on_paper=frozenset({("9.1", "reach_ex1")})
+    )
+    plan = grade_plan.Plan.drawn(on_paper, seed=11, count=5, draws=3)
+    assert all(set(draw.references) == {"p_ex1"} for draw in plan.draws["9.1"])
+    right = course_9._answers_9_1(
+        {"arm_ex1": course_9.arms.two_metre, "q_ex1": course_9.Q_9_1}
+    )
+    typed = [{"answers": encoded(right)} for _ in plan.draws["9.1"]]
+    (tip, _), reach = value_verdicts(course, plan, encoded(right), typed)
+    assert tip == WRONG and reach == (PASSED, "")  # the tip is still re-run
+    wrong = {**right, "reach_ex1": 2 * right["reach_ex1"]}
+    assert value_verdicts(course, plan, encoded(wrong), typed)[1][0] == WRONG
+    found = {
+        (n, p): how for n, p, how in grade_verdicts.methods(course.exercises, plan)
+    }
+    on_paper_only = grade_verdicts.methods(
+        course.exercises[2:], plan, on_paper=frozenset({("9.3", "faster_ex3")})
+    )
+    assert on_paper_only == [
+        (
+            "9.3",
+            "faster_ex3",
+            "the exercise's inputs only (worked on paper: no reference on other inputs)",
+        )
+    ]
+    assert found["9.1", "reach_ex1"] == (
+        "the exercise's inputs only (worked on paper: no reference on other inputs)"
+    )
+    assert found["9.1", "p_ex1"] == "the exercise's inputs and 3 hidden draws of them"
 
 
 def function_verdict(course, plan, data):

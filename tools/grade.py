@@ -107,6 +107,7 @@ REFERENCES = types.SimpleNamespace(
     rerun_specs=answers.rerun_specs,
     hidden_cases=answers.hidden_cases,
     hidden_draws=answers.hidden_draws,
+    on_paper=answers.on_paper,
 )
 
 __all__ = [
@@ -471,7 +472,7 @@ def how_graded(course: Course | None = None) -> str:
     """How each part of the course is graded, as a Markdown table (``grade.py --how``)."""
     course = course or Course.read(ROOT / "notebooks", REFERENCES)
     plan = Plan.drawn(course, 0)
-    rows = methods(course.exercises, plan)
+    rows = methods(course.exercises, plan, on_paper=course.on_paper)
     return "\n".join(
         [
             "| exercise | part | graded on |",

@@ -4,7 +4,8 @@
   (``answers.hidden_cases``);
 - each value exercise with a ``RERUN`` entry: ``draws`` draws of hidden
   inputs (``answers.hidden_draws``), each with its references computed by the
-  package, here, outside every student's process;
+  package, here, outside every student's process (for every value part but
+  those worked on paper, ``answers.on_paper``);
 - each function part's forbidden calls (``PartSpec.forbidden``).
 
 The inputs travel to the kernel as plain data (:func:`encode_input`), read
@@ -28,7 +29,7 @@ HIDDEN_CALLS, HIDDEN_DRAWS = 20, 3
 
 
 def encode_input(value: Any, where: str = "input") -> dict[str, Any]:
-    """An input of an exercise as plain data: an arm, an array, a number, a text, a tuple or list of them.
+    """An input of an exercise as plain data: an arm, an array, a number, a text, a tuple, list or dict of them.
 
     >>> encode_input(np.array([0.5, 1.0]))
     {'array': {'values': [0.5, 1.0], 'dtype': 'float64'}}
@@ -37,7 +38,7 @@ def encode_input(value: Any, where: str = "input") -> dict[str, Any]:
     >>> encode_input({1, 2}, "exercise 4.1's q_ex1")
     Traceback (most recent call last):
     ...
-    TypeError: exercise 4.1's q_ex1 is a set: the grader passes arms, arrays, numbers, texts, None and tuples or lists of them
+    TypeError: exercise 4.1's q_ex1 is a set: the grader passes arms, arrays, numbers, texts, None, and tuples, lists and dicts (by text) of them
     """
     if isinstance(value, TwoLinkArm):
         return {
@@ -66,9 +67,13 @@ def encode_input(value: Any, where: str = "input") -> dict[str, Any]:
     if isinstance(value, (tuple, list)):
         kind = "tuple" if isinstance(value, tuple) else "list"
         return {kind: [encode_input(item, where) for item in value]}
+    if isinstance(value, dict) and all(isinstance(key, str) for key in value):
+        return {
+            "dict": [[key, encode_input(item, where)] for key, item in value.items()]
+        }
     raise TypeError(
         f"{where} is a {type(value).__name__}: the grader passes arms, arrays, numbers, "
-        "texts, None and tuples or lists of them"
+        "texts, None, and tuples, lists and dicts (by text) of them"
     )
 
 
@@ -117,7 +122,12 @@ class Plan:
         for number, rerun in reruns.items():
             if number not in numbers:
                 continue
-            values = [p.name for p in numbers[number].parts if p.kind != "function"]
+            on_paper = getattr(course, "on_paper", frozenset())
+            values = [
+                p.name
+                for p in numbers[number].parts
+                if p.kind != "function" and (number, p.name) not in on_paper
+            ]
             made = []
             for inputs, references in course.hidden_draws(rerun, number, seed, draws):
                 missing = sorted(set(values) - set(references))

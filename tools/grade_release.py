@@ -143,7 +143,9 @@ class Course:
 
     ``references``: the repository's ``answers`` package or an object with its
     functions ``all_exercises()``, ``rerun_specs()``, ``hidden_cases(number,
-    part, seed, count)`` and ``hidden_draws(rerun, number, seed, count)``.
+    part, seed, count)`` and ``hidden_draws(rerun, number, seed, count)``, and
+    optionally ``on_paper()`` (the value parts of re-run exercises that are
+    worked on paper: judged on the notebook's values only).
     """
 
     chapters: Mapping[str, Chapter]
@@ -151,6 +153,7 @@ class Course:
     reruns: Mapping[str, Any]
     hidden_cases: Callable[..., Any]
     hidden_draws: Callable[..., Any]
+    on_paper: frozenset[tuple[str, str]] = frozenset()
 
     @classmethod
     def read(cls, folder: pathlib.Path, references: Any) -> Course:
@@ -175,6 +178,7 @@ class Course:
             reruns,
             references.hidden_cases,
             references.hidden_draws,
+            frozenset(getattr(references, "on_paper", frozenset)()),
         )
 
 

@@ -269,12 +269,13 @@ def verdicts(
                         part, data, plan, exercise.number
                     )
                 else:
+                    rerun = [d for d in draws if part.name in d.references]
                     result, message = judge_value_part(
                         part,
                         data,
-                        [found.get("draws", {}).get(i) for i in range(len(draws))],
-                        [draw.references for draw in draws],
-                        sorted(draws[0].inputs) if draws else [],
+                        [found.get("draws", {}).get(i) for i in range(len(rerun))],
+                        [draw.references for draw in rerun],
+                        sorted(rerun[0].inputs) if rerun else [],
                     )
             rows.append(Verdict(exercise.number, part.label, result, message))
     return rows, signs
@@ -284,11 +285,13 @@ def methods(
     exercises: Sequence[ExerciseSpec],
     plan: Plan,
     reasons: Mapping[str, str] | None = None,
+    on_paper: frozenset[tuple[str, str]] = frozenset(),
 ) -> list[tuple[str, str, str]]:
     """How each part is graded, in words: ``(exercise, part, how)``.
 
     ``reasons``: why an exercise without hidden inputs has none (a choice, a
-    yes/no, a pen-and-paper result), by exercise number.
+    yes/no, a pen-and-paper result), by exercise number; ``on_paper``: the
+    value parts worked on paper, as ``(exercise, part)`` (``answers.on_paper``).
     """
     found = []
     for exercise in exercises:
@@ -302,8 +305,12 @@ def methods(
                         + ", ".join(forbidden.shown_name(p) for p in part.forbidden)
                         + " unavailable"
                     )
-            elif plan.draws.get(exercise.number):
+            elif any(
+                part.name in d.references for d in plan.draws.get(exercise.number, ())
+            ):
                 how = f"the exercise's inputs and {len(plan.draws[exercise.number])} hidden draws of them"
+            elif key in on_paper or plan.draws.get(exercise.number):
+                how = "the exercise's inputs only (worked on paper: no reference on other inputs)"
             else:
                 why = (reasons or {}).get(exercise.number, "no inputs cell to re-run")
                 how = f"the exercise's inputs only ({why})"

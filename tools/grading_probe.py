@@ -239,6 +239,8 @@ def decode_input(data: Any) -> Any:
         return tuple(decode_input(item) for item in value)
     if kind == "list":
         return [decode_input(item) for item in value]
+    if kind == "dict":
+        return {key: decode_input(item) for key, item in value}
     return value  # "float", "int", "str", "bool", "none"
 
 
