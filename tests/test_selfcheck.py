@@ -8,7 +8,6 @@ import re
 import numpy as np
 import pytest
 
-from twolink import arms
 from twolink_course import exercises, selfcheck
 
 
@@ -32,7 +31,8 @@ def test_check_arguments_and_messages():
 
 
 # ---------------------------------------------------------------- verdicts
-RIGHT_TIP = arms.osake.fk(np.radians([45.0, -30.0]))
+#: Exercise 1.1's answer on its visible inputs, as stored (the chapter's inputs may change).
+RIGHT_TIP = np.asarray(exercises.get("1.1").parts[0].expected, dtype=float)
 
 
 def checked(*answers, **named_answers):
@@ -52,8 +52,8 @@ def test_a_right_answer_is_correct():
 
 @pytest.mark.parametrize(
     "wrong",
-    [RIGHT_TIP + [0.01, 0.0], arms.osake.fk([45.0, -30.0]), "abc", [1.0, 2.0, 3.0]],
-    ids=["off by a centimetre", "degrees as radians", "a string", "three numbers"],
+    [RIGHT_TIP + [0.01, 0.0], -RIGHT_TIP, "abc", [1.0, 2.0, 3.0]],
+    ids=["off by a centimetre", "mirrored", "a string", "three numbers"],
 )
 def test_a_wrong_answer_is_wrong_with_a_reason_and_the_hint(wrong):
     report, lines = checked("1.1", wrong)
@@ -127,8 +127,9 @@ def test_parse_line_gives_none_for_other_lines(line):
 
 # ---------------------------------------------------------------- the score nbgrader reads
 def test_score_counts_the_correct_parts_only():
-    q_rel = np.radians([60.0, 90.0])  # exercise 1.3: absolute (60, 150) deg, relative
-    p_tip = arms.two_metre.fk(q_rel)
+    q_rel, p_tip = (  # exercise 1.3's two parts, as stored
+        np.asarray(part.expected, dtype=float) for part in exercises.get("1.3").parts
+    )
     right, _ = checked("1.3", q_rel, p_tip)
     half, _ = checked("1.3", q_rel, 2 * p_tip)
     unsolved, _ = checked("1.3", ..., ...)
@@ -164,7 +165,8 @@ CELLS = [
     "p_tip_ex1 = undefined_name + 1",
     'correct_ex1 = selfcheck.check("1.1", p_tip_ex1)',
     "another_undefined_name",
-    "p_tip_ex1 = arms.osake.fk(np.radians([45.0, -30.0]))",
+    # the stored answer (whatever the chapter's inputs): the check's result is its points
+    "from twolink_course import exercises\np_tip_ex1 = exercises.get('1.1').parts[0].expected",
     'correct_ex1 = selfcheck.check("1.1", p_tip_ex1)',
 ]
 
