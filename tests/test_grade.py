@@ -70,32 +70,41 @@ def replace(notebook, old, new):
 
 
 STUB = "{} = ...  # your code here"
-#: Chapter 1's answers, right, as a student would write them (from the notebook's own names).
-RIGHT = {
-    "p_tip_ex1": "osake.fk(q_ex1)",
-    "T_02_ex2": (
-        "dh.dh_matrix(q_ex2[0] + row1_ex2.theta_offset, row1_ex2.d, row1_ex2.a, row1_ex2.alpha)"
-        " @ dh.dh_matrix(q_ex2[1] + row2_ex2.theta_offset, d2_ex2, row2_ex2.a, row2_ex2.alpha)"
-    ),
-    "z_tip_ex2": "T_02_ex2[2, 3]",
-    "x_axis_ex2": "T_02_ex2[:3, 0]",
-    "q_rel_ex3": "to_relative(q_abs_ex3)",
-    "p_tip_ex3": "arms.two_metre.fk(q_rel_ex3)",
-}
-TIP_FUNCTION = (
-    "def tip_position(arm, q):\n"
-    "    return np.array([arm.l1 * np.cos(q[0]) + arm.l2 * np.cos(q[0] + q[1]),\n"
-    "                     arm.l1 * np.sin(q[0]) + arm.l2 * np.sin(q[0] + q[1])])"
-)
+#: The first parts of exercises 1.1 and 1.3 (by name, as the store has them).
+TIP_1_1, RELATIVE_1_3 = (exercises.get(n).parts[0].name for n in ("1.1", "1.3"))
 
 
-def solved(student_edition, tip_position=TIP_FUNCTION, **changed):
-    """Chapter 1 with every answer right, except those in ``changed`` (name: code) and the function ``tip_position``."""
-    notebook = student_chapter(student_edition)
-    for name, code in {**RIGHT, **changed}.items():
-        replace(notebook, STUB.format(name), f"{name} = {code}")
-    replace(notebook, STUB.format("tip_position"), tip_position)
+def instructor_solutions():
+    """Chapter 1's worked solutions by ``grade_id``, as a student would type them (no markers)."""
+    notebook = json.loads((ROOT / "notebooks" / CHAPTER).read_text(encoding="utf-8"))
+    return {
+        cell["metadata"]["nbgrader"]["grade_id"]: "".join(cell["source"])
+        .replace("### BEGIN SOLUTION\n", "")
+        .replace("### END SOLUTION", "")
+        for cell in notebook["cells"]
+        if cell["metadata"].get("nbgrader", {}).get("solution")
+    }
+
+
+def with_solutions(notebook, numbers, tip_position=None):
+    """``notebook`` with the worked solutions of ``numbers`` typed in (1.4's function ``tip_position`` if given)."""
+    solutions = instructor_solutions()
+    chosen = {f"solution_{n.replace('.', '_')}" for n in numbers}
+    for cell in notebook["cells"]:
+        grade_id = cell["metadata"].get("nbgrader", {}).get("grade_id")
+        if grade_id in chosen:
+            cell["source"] = solutions[grade_id]
+            if grade_id == "solution_1_4" and tip_position is not None:
+                cell["source"] = tip_position
     return notebook
+
+
+def solved(student_edition, tip_position=None):
+    """Chapter 1 with every exercise's worked solution typed in (1.4's function ``tip_position`` if given)."""
+    numbers = [
+        e.number for e in exercises.all_exercises() if e.chapter + ".ipynb" == CHAPTER
+    ]
+    return with_solutions(student_chapter(student_edition), numbers, tip_position)
 
 
 def fitted_to_the_visible_calls():
@@ -135,13 +144,15 @@ def graded(tmp_path_factory, student_edition):
     submissions = tmp_path / "submissions"
     submissions.mkdir()
     write(submissions, "ada_untouched.ipynb", student_chapter(student_edition))
-    partly = student_chapter(student_edition)
-    replace(partly, STUB.format("p_tip_ex1"), "p_tip_ex1 = osake.fk(q_ex1)")
-    replace(partly, STUB.format("q_rel_ex3"), "q_rel_ex3 = np.array([1.0, 2.0])")
+    partly = with_solutions(student_chapter(student_edition), ["1.1"])
+    replace(
+        partly,
+        STUB.format(RELATIVE_1_3),
+        f"{RELATIVE_1_3} = np.array([1.0, 2.0])",
+    )
     write(submissions, "bob_partly.ipynb", partly)
-    broken = student_chapter(student_edition)
-    replace(broken, STUB.format("p_tip_ex1"), "p_tip_ex1 = undefined_name + 1")
-    replace(broken, STUB.format("q_rel_ex3"), "q_rel_ex3 = to_relative(q_abs_ex3)")
+    broken = with_solutions(student_chapter(student_edition), ["1.3"])
+    replace(broken, STUB.format(TIP_1_1), f"{TIP_1_1} = undefined_name + 1")
     write(submissions, "cy_broken.ipynb", broken)
     write(submissions, "dan_solved.ipynb", solved(student_edition))
     write(
@@ -193,7 +204,7 @@ def test_each_part_is_judged_from_its_answer(graded):
     assert found["1.3", "relative angles"] == "wrong"
     assert found["1.2", "T_02"] == "not solved"
     assert line_of(lines, "bob_partly.ipynb").startswith(
-        "bob_partly.ipynb: 1 passed, 5 not solved, 1 wrong"
+        f"bob_partly.ipynb: 1 passed, {len(found) - 2} not solved, 1 wrong"
     )
 
 
@@ -207,7 +218,7 @@ def test_a_cell_that_raises_leaves_the_other_parts_graded(graded, student_editio
     position = 1 + next(
         i
         for i, cell in enumerate(student_chapter(student_edition)["cells"])
-        if STUB.format("p_tip_ex1") in "".join(cell["source"])
+        if STUB.format(TIP_1_1) in "".join(cell["source"])
     )
     assert (
         f"1 cell(s) raised; the first: cell {position}: NameError: name 'undefined_name' is not defined"
