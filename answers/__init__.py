@@ -14,7 +14,11 @@ and may define
   grader re-runs the student's answer cell on hidden draws;
 - ``FORBIDDEN = {(number, part): (dotted path, ...)}``: for a function part,
   the package's callables the exercise asks the student not to use (carried
-  into the part's specification, :attr:`PartSpec.forbidden`).
+  into the part's specification, :attr:`PartSpec.forbidden`);
+- ``PEN_AND_PAPER = ((number, part), ...)``: value parts worked on paper (a
+  choice of reason, a hand-derived value), judged on the notebook's own value
+  only, even in an exercise with a ``RERUN`` entry (whose ``answers`` need not
+  give them).
 
 ``python tools/build_answers.py`` encodes the exercises (forbidden calls
 included, no hidden input or reference) into
