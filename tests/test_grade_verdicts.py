@@ -92,6 +92,38 @@ def test_the_kernel_is_asked_with_inputs_never_with_references(course, plan):
     assert "rerun" not in plan.request(spec(course, "9.3"), "faster_ex3 = True")
 
 
+def test_a_draw_is_added_where_no_draw_tells_a_typed_answer_from_a_computed_one(course):
+    """A draw that mostly repeats the visible inputs (as a yes/no or a count mostly gives the visible answer)."""
+    visible = dict(course_9.RERUN["9.1"].inputs)
+
+    def mostly_visible(rng):
+        other = course_9._hidden_9_1(rng)
+        return other if rng.uniform() < 0.2 else dict(visible)
+
+    rerun = answers.Rerun(
+        inputs=visible, hidden=mostly_visible, answers=course_9._answers_9_1
+    )
+    rigged = dataclasses.replace(course, reruns={"9.1": rerun})
+    tip = spec(course, "9.1").parts[0]
+
+    def told(references):
+        return any(
+            not judging.judge_value(tip, tip.expected, r["p_ex1"]).right
+            for r in references
+        )
+
+    untold = [  # the first three draws alone: a typed-in tip passes on these seeds
+        seed
+        for seed in range(20)
+        if not told(r for _, r in answers.hidden_draws(rerun, "9.1", seed, 3))
+    ]
+    assert untold
+    for seed in range(20):
+        draws = grade_plan.Plan.drawn(rigged, seed=seed, count=1, draws=3).draws["9.1"]
+        assert len(draws) >= 3 and told(d.references for d in draws), seed
+        assert (len(draws) > 3) == (seed in untold)
+
+
 def test_an_input_the_kernel_cannot_be_given_is_refused_naming_it():
     with pytest.raises(TypeError, match="exercise 4.1's q_ex1 is a set"):
         grade_plan.encode_input({1.0}, "exercise 4.1's q_ex1")

@@ -22,10 +22,12 @@ from typing import Any
 import numpy as np
 
 from twolink import TwoLinkArm
-from twolink_course.exercises.spec import Case, ExerciseSpec
+from twolink_course.exercises import judging
+from twolink_course.exercises.spec import Case, ExerciseSpec, PartSpec
 
-#: Hidden calls per function part; hidden draws per value exercise graded on hidden inputs.
-HIDDEN_CALLS, HIDDEN_DRAWS = 20, 3
+#: Hidden calls per function part; hidden draws per value exercise graded on hidden inputs;
+#: draws looked at to find one that tells a part's visible answer from a computed one.
+HIDDEN_CALLS, HIDDEN_DRAWS, MORE_DRAWS = 20, 3, 30
 
 
 def encode_input(value: Any, where: str = "input") -> dict[str, Any]:
@@ -75,6 +77,55 @@ def encode_input(value: Any, where: str = "input") -> dict[str, Any]:
         f"{where} is a {type(value).__name__}: the grader passes arms, arrays, numbers, "
         "texts, None, and tuples, lists and dicts (by text) of them"
     )
+
+
+def telling(
+    hidden_draws: Any,
+    rerun: Any,
+    number: str,
+    seed: int,
+    draws: int,
+    parts: list[PartSpec],
+) -> list[tuple[Mapping[str, Any], Mapping[str, Any]]]:
+    """``draws`` hidden draws of exercise ``number``, and more where a part needs them.
+
+    A draw tells a part's visible answer (typed in) from a computed one when the
+    visible answer is wrong on it.  A yes/no or a count has few values: three
+    draws can all share the visible answer (a chapter's yes/no did in one seed
+    in ten).  For each part that no draw tells, the first later draw of the same
+    stream that does is added (at most :data:`MORE_DRAWS` draws looked at), so
+    a typed-in answer earns nothing on any seed.
+    """
+    made = list(hidden_draws(rerun, number, seed, draws))
+
+    def untold(chosen: list[Any]) -> list[PartSpec]:
+        return [
+            part
+            for part in parts
+            if part.name in chosen[0][1]
+            and all(
+                judging.judge_value(part, part.expected, references[part.name]).right
+                for _, references in chosen
+            )
+        ]
+
+    if not made or not untold(made):
+        return made
+    more = list(hidden_draws(rerun, number, seed, MORE_DRAWS))[draws:]
+    for part in untold(made):
+        found = next(
+            (
+                draw
+                for draw in more
+                if not judging.judge_value(
+                    part, part.expected, draw[1][part.name]
+                ).right
+            ),
+            None,
+        )
+        if found is not None and all(found is not d for d in made):
+            made.append(found)
+    return made
 
 
 @dataclasses.dataclass(frozen=True)
@@ -128,8 +179,11 @@ class Plan:
                 for p in numbers[number].parts
                 if p.kind != "function" and (number, p.name) not in on_paper
             ]
+            parts = [p for p in numbers[number].parts if p.name in values]
             made = []
-            for inputs, references in course.hidden_draws(rerun, number, seed, draws):
+            for inputs, references in telling(
+                course.hidden_draws, rerun, number, seed, draws, parts
+            ):
                 missing = sorted(set(values) - set(references))
                 if missing:
                     raise KeyError(
