@@ -876,10 +876,16 @@ def test_lm_step_formula_solves_the_damped_normal_equations(
 
 @given(wide_angles, wide_angles)
 @settings(max_examples=50, deadline=None)
-def test_a_results_arrays_are_its_own(q1, q2):
+def test_a_results_arrays_are_its_own_and_read_only(q1, q2):
     result = ik.newton(ONE_ARM, ONE_ARM.fk([q1, q2]).tolist())
-    result.q[0] = 5.0
+    with pytest.raises(ValueError, match="read-only"):
+        result.q[0] = 5.0
+    changed = result.q.copy()
+    changed[0] = 5.0
     assert ik.newton(ONE_ARM, ONE_ARM.fk([q1, q2]).tolist()).q[0] != 5.0
+    batch = ik.closed_form(ONE_ARM, [ONE_ARM.fk([q1, q2])] * 2)
+    for values in (batch.q, batch.success, batch.residual, batch.within_limits):
+        assert not values.flags.writeable
 
 
 @pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)

@@ -33,12 +33,14 @@ __all__ = [
     "as_pairs",
     "pair_floats",
     "as_finite_scalar",
+    "as_time_span",
+    "TIME_RANGE",
     "as_count",
     "as_flag",
     "broadcast_start",
     "broadcast_shape",
     "frozen_array",
-    "public_torque_floats",
+    "torque_floats",
 ]
 
 #: Scalar types the one-input fast path converts itself (``float`` is tested
@@ -223,6 +225,32 @@ def as_finite_scalar(
             raise ValueError(f"{name} must be > {minimum}; got {number}")
         if not strictly and not number >= minimum:
             raise ValueError(f"{name} must be >= {minimum}; got {number}")
+    return number
+
+
+#: The durations and end times the package accepts, seconds: within them a time's square,
+#: its inverse and the accelerations of a path run over it stay normal float64 numbers
+#: (a duration of 1e-308 s would make them overflow; one of 1e300 s has no meaning).
+TIME_RANGE = (1e-50, 1e50)
+
+
+def as_time_span(value: object, name: str) -> float:
+    """``value`` as a duration in seconds within :data:`TIME_RANGE`, or an error naming ``name``.
+
+    Examples
+    --------
+    >>> as_time_span(2, "duration (s)")
+    2.0
+    >>> as_time_span(5e-324, "duration (s)")
+    Traceback (most recent call last):
+    ...
+    ValueError: duration (s) must be in [1e-50, 1e+50]; got 5e-324
+    """
+    number = as_finite_scalar(value, name)
+    if not TIME_RANGE[0] <= number <= TIME_RANGE[1]:
+        raise ValueError(
+            f"{name} must be in [{TIME_RANGE[0]:g}, {TIME_RANGE[1]:g}]; got {number:g}"
+        )
     return number
 
 
@@ -513,22 +541,13 @@ def as_configuration(
     return values
 
 
-class NonFiniteTorque(ValueError):
-    """A torque callable returned NaN or infinity (the message names the time)."""
-
-
 def torque_floats(value: object, t: float) -> tuple[float, float]:
-    """A torque callable's result ``torque(t, q, qd)`` as two finite floats, or a clear error.
+    """A torque callable's result ``torque(t, q, qd)`` as two finite floats, or a ``ValueError`` naming the time.
 
-    Shared by :func:`twolink.dynamics.state_derivative`, :func:`twolink.simulate`
-    and :func:`twolink.engine.simulate_in_mujoco`.
-
-    Raises
-    ------
-    ValueError
-        When the result is not two numbers.
-    NonFiniteTorque
-        (a ``ValueError``) when one is NaN or infinite.
+    The one check of what a torque function returns, for
+    :func:`twolink.dynamics.state_derivative`, :func:`twolink.simulate` and
+    :func:`twolink.engine.simulate_in_mujoco` (which, past the start, report
+    a non-finite torque as the motion blowing up).
 
     Examples
     --------
@@ -537,7 +556,7 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
     >>> torque_floats([1.0, float("nan")], 0.25)
     Traceback (most recent call last):
     ...
-    twolink._validate.NonFiniteTorque: torque(t, q, qd) returned non-finite torques [ 1. nan] at t = 0.25
+    ValueError: torque(t, q, qd) returned non-finite torques [ 1. nan] at t = 0.25
     """
     if type(value) is not np.ndarray and isinstance(value, np.ma.MaskedArray):
         raise ValueError(
@@ -555,24 +574,10 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
         )
     tau1, tau2 = array.tolist()
     if not (math.isfinite(tau1) and math.isfinite(tau2)):
-        raise NonFiniteTorque(
+        raise ValueError(
             f"torque(t, q, qd) returned non-finite torques {array} at t = {t}"
         )
     return tau1, tau2
-
-
-def public_torque_floats(value: object, t: float) -> tuple[float, float]:
-    """:func:`torque_floats` for a public function: a non-finite torque raises a plain ``ValueError``.
-
-    >>> public_torque_floats([1.0, float("inf")], 0.5)
-    Traceback (most recent call last):
-    ...
-    ValueError: torque(t, q, qd) returned non-finite torques [ 1. inf] at t = 0.5
-    """
-    try:
-        return torque_floats(value, t)
-    except NonFiniteTorque as exc:
-        raise ValueError(str(exc)) from None
 
 
 def frozen_array(array: object) -> NDArray[np.float64]:

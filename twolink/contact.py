@@ -41,6 +41,7 @@ from ._validate import (
     plain_state,
     require_arm,
 )
+from ._values import Value
 from .kinematics import joint_torques
 from .statics import Wall, as_wall
 
@@ -58,7 +59,7 @@ TorqueFunction = Callable[[float, NDArray[np.float64], NDArray[np.float64]], Arr
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class SpringWall:
+class SpringWall(Value):
     """A wall modelled as a stiff spring and damper that only pushes.
 
     With ``n`` the unit normal pointing from the base's side into the wall
@@ -129,7 +130,7 @@ class SpringWall:
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class TipForce:
+class TipForce(Value):
     """A controller's torques plus a force acting on the tip: ``tau + J(q)^T force_on_tip``.
 
     Pass it to :func:`twolink.simulate` as the ``torque``: the arm then moves

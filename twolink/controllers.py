@@ -58,6 +58,7 @@ from ._validate import (
     real_array,
     require_arm,
 )
+from ._values import Value
 from .dynamics import gravity_jacobian, mass_matrix_derivative
 from .kinematics import jacobian_derivative, joint_torques
 from .references import JointReference
@@ -166,7 +167,7 @@ def _state(
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class CartesianSpring:
+class CartesianSpring(Value):
     """A virtual spring between the tip and a rest point: ``tau = J(q)^T K (x0 - x)``.
 
     The force on the tip is ``force_on_tip = K (x0 - x)``, pulling it towards the rest
@@ -273,7 +274,7 @@ def _spring_stiffness(
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class Impedance:
+class Impedance(Value):
     """Impedance control: a tip spring, Cartesian damping and gravity compensation.
 
     ``tau = J(q)^T (K (x0 - x) - D J(q) qd) [+ g(q)]``, the joint torques
@@ -405,7 +406,7 @@ def _as_reference(reference: JointReference | ArrayLike) -> JointReference:
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class JointPD:
+class JointPD(Value):
     """Joint-space PD control with gravity compensation.
 
     ``tau = Kp (q_ref - q) + Kd (qd_ref - qd) [+ g(q)]``: a spring and a
@@ -503,7 +504,7 @@ class JointPD:
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class ComputedTorque:
+class ComputedTorque(Value):
     """Computed-torque control (feedback linearisation) tracking a joint reference.
 
     ``tau = M(q) v + C(q, qd) qd + g(q)`` with

@@ -44,7 +44,6 @@ from numpy.typing import ArrayLike, NDArray
 from . import kinematics
 from ._derived import derived
 from ._validate import (
-    NonFiniteTorque,
     as_pairs,
     broadcast_shape,
     finite_result,
@@ -699,84 +698,52 @@ def state_derivative(
     ...
     ValueError: torque(t, q, qd) returned non-finite torques [nan  0.] at t = 0.5
     """
-    return solver_state_derivative(arm, torque, signal_non_finite=False)
-
-
-def solver_state_derivative(
-    arm: TwoLinkArm,
-    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
-    | None,
-    signal_non_finite: bool,
-) -> Callable[[float, NDArray[np.float64]], list[float]]:
-    """:func:`state_derivative` for :func:`twolink.simulate` (not in ``__all__``): with ``signal_non_finite``
-    a non-finite torque raises the private
-    ``NonFiniteTorque`` (for :func:`twolink.simulate`, which turns it into a clear error), else a ``ValueError``."""
     constants = _invertible_constants(arm)
-    cos, sin, state_array = math.cos, math.sin, _state_array
-    if torque is None:
-
-        def free_motion(t, state):
-            try:  # a float array of four, as a solver passes: no checks
-                q1, q2, qd1, qd2 = state.tolist()
-                finite = math.isfinite(q1 + q2 + qd1 + qd2)
-            except (
-                AttributeError,
-                TypeError,
-                ValueError,
-            ):  # a list, or an array of another shape or type
-                state = state_array(state)
-                q1, q2, qd1, qd2 = state.tolist()
-                finite = True
-            if not finite:
-                _raise_blow_up(t, state)
-            qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, 0.0, 0.0)
-            return [qd1, qd2, qdd1, qdd2]
-
-        return free_motion
-    if not callable(torque):
+    if torque is not None and not callable(torque):
         raise ValueError(
             f"torque must be None or a callable torque(t, q, qd) -> tau; got {torque!r}"
         )
+    cos, sin, read = math.cos, math.sin, _state_floats
 
-    def driven_motion(t, state):
-        try:  # a float array of four, as a solver passes: no checks
-            q1, q2, qd1, qd2 = state.tolist()
-            finite = math.isfinite(q1 + q2 + qd1 + qd2)
-        except (
-            AttributeError,
-            TypeError,
-            ValueError,
-        ):  # a list, or an array of another shape or type
-            state = state_array(state)
-            q1, q2, qd1, qd2 = state.tolist()
-            finite = True
-        if not finite:
-            _raise_blow_up(t, state)
-        try:
+    def right_hand_side(t, state):
+        q1, q2, qd1, qd2, state = read(t, state)
+        if torque is None:
+            tau1 = tau2 = 0.0
+        else:
             tau1, tau2 = torque_floats(torque(t, state[:2].copy(), state[2:].copy()), t)
-        except NonFiniteTorque as exc:
-            if signal_non_finite:
-                raise
-            raise ValueError(
-                str(exc)
-            ) from None  # the private class never reaches users
         qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2)
         return [qd1, qd2, qdd1, qdd2]
 
-    return driven_motion
+    return right_hand_side
 
 
 _STATE_WORDS = "four finite real numbers (q1, q2, qd1, qd2), shape (4,)"
 
 
-def _state_array(state: object) -> NDArray[np.float64]:
-    """The state of :func:`state_derivative` as a float array of shape ``(4,)``, or a clear error naming ``state``."""
-    values = real_array(state, "state", _STATE_WORDS)
-    if values.shape != (4,):
-        raise ValueError(f"state must be {_STATE_WORDS}; got shape {values.shape}")
-    if not np.all(np.isfinite(values)):
-        raise ValueError(f"state must be {_STATE_WORDS}; got {state!r}")
-    return values
+def _state_floats(t, state):
+    """``(q1, q2, qd1, qd2, state)``: the state of :func:`state_derivative` as four floats and a float array.
+
+    A float array of four, as a solver passes it, is read without checks; a
+    non-finite one is the motion blowing up (:class:`twolink.SimulationError`
+    naming the time and the state).  Anything else (a list, an array of
+    another shape or type) is checked, with an error naming ``state``.
+    """
+    try:
+        q1, q2, qd1, qd2 = state.tolist()
+        finite = math.isfinite(q1 + q2 + qd1 + qd2)
+    except (AttributeError, TypeError, ValueError):
+        values = real_array(state, "state", _STATE_WORDS)
+        if values.shape != (4,):
+            raise ValueError(
+                f"state must be {_STATE_WORDS}; got shape {values.shape}"
+            ) from None
+        if not np.all(np.isfinite(values)):
+            raise ValueError(f"state must be {_STATE_WORDS}; got {state!r}") from None
+        q1, q2, qd1, qd2 = values.tolist()
+        return q1, q2, qd1, qd2, values
+    if not finite:
+        _raise_blow_up(t, state)
+    return q1, q2, qd1, qd2, state
 
 
 def _raise_blow_up(t, state):

@@ -23,6 +23,7 @@ from ._validate import (
     as_pairs,
     require_arm,
 )
+from ._values import Value, freeze
 from .errors import UnreachableError
 from .kinematics import REACH_RTOL, fk, joint_torques
 
@@ -34,8 +35,8 @@ __all__ = ["Wall", "as_wall", "WallContact", "wall_contact"]
 _POINT = {"what": "one (x, y) point", "unit": "metres"}
 
 
-@dataclass(frozen=True, init=False)
-class Wall:
+@dataclass(frozen=True, init=False, eq=False)
+class Wall(Value):
     """A straight wall (a line in the arm's plane): a point on it and a normal.
 
     Parameters
@@ -76,6 +77,7 @@ class Wall:
             )
         object.__setattr__(self, "point", on_wall.copy())
         object.__setattr__(self, "normal", direction / length)
+        freeze(self)
 
     @classmethod
     def through(cls, p_a: ArrayLike, p_b: ArrayLike) -> Wall:
@@ -142,8 +144,8 @@ def as_wall(wall: Wall | ArrayLike) -> Wall:
     )
 
 
-@dataclass(frozen=True)
-class WallContact:
+@dataclass(frozen=True, eq=False)
+class WallContact(Value):
     """The arm pushing on a wall with link 2 perpendicular to it (see :func:`wall_contact`).
 
     Row ``k`` of every array is one contact configuration.
@@ -185,6 +187,9 @@ class WallContact:
     tau_gravity: NDArray[np.float64]
     tau: NDArray[np.float64]
     within_limits: NDArray[np.bool_]
+
+    def __post_init__(self) -> None:
+        freeze(self)
 
     def branch(self, elbow: str) -> int:
         """Row index of the configuration named ``elbow`` (``"down"``, ``"up"``, ...)."""

@@ -17,6 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._validate import as_count, as_finite_scalar, as_pairs, finite_result, require_arm
+from ._values import Value, freeze
 from .errors import SingularityError
 from .kinematics import SINGULARITY_TOL, fk, jacobian, require_nonsingular
 
@@ -272,8 +273,8 @@ def manipulability(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     return np.abs(arm.l1 * arm.l2 * _sin_q2(q_pairs))
 
 
-@dataclass(frozen=True)
-class Ellipse:
+@dataclass(frozen=True, eq=False)
+class Ellipse(Value):
     """An ellipse (or a batch of them) ready to draw.
 
     Attributes
@@ -290,6 +291,9 @@ class Ellipse:
     centre: NDArray[np.float64]
     semi_axes: NDArray[np.float64]
     directions: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        freeze(self)
 
     @property
     def angle(self) -> NDArray[np.float64]:

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any, NoReturn
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .._values import Value
 from ..kinematics import fk, tip_from_trig
 
 if TYPE_CHECKING:
@@ -32,7 +33,7 @@ _cos, _sin, _hypot, _empty = math.cos, math.sin, math.hypot, np.empty
 
 
 @dataclass(frozen=True, eq=False, repr=False, init=False)
-class IKResult:
+class IKResult(Value):
     """What an IK solver found, and whether to trust it.
 
     Modelled on the Robotics Toolbox's ``IKSolution``: always check
@@ -48,8 +49,10 @@ class IKResult:
     axis of 2 (the down branch first), so one target solved on both branches
     is a batch of two answers.
 
-    ``q`` is the result's own array: change a copy of it, not it (the other
-    fields describe the angles the solver returned).
+    The result is a value: its arrays are read-only (the other fields
+    describe the angles the solver returned; change a copy of ``q``), two
+    results with the same fields are equal (``==``) and hash alike, and a
+    result pickles (to another process, for a parameter sweep).
 
     Attributes
     ----------
@@ -120,6 +123,11 @@ class IKResult:
         # dictionary rather than through one object.__setattr__ call each (a frozen dataclass's way,
         # which costs as much as the closed form itself).
         fields = self.__dict__
+        # the result owns its arrays (assemble_result's answers): read-only from now on, in place
+        q.setflags(write=False)
+        if type(success) is np.ndarray:  # a batch: the fields are arrays too
+            for values in (success, residual, within_limits, iterations):
+                values.setflags(write=False)  # type: ignore[union-attr]
         fields["q"] = q
         fields["success"] = success
         fields["residual"] = residual
