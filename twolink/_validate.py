@@ -32,6 +32,7 @@ __all__ = [
     "require_arm",
     "as_pairs",
     "pair_floats",
+    "state_floats",
     "as_finite_scalar",
     "as_time_span",
     "TIME_RANGE",
@@ -183,6 +184,55 @@ def pair_floats(values: object) -> tuple[float, float] | None:
     if math.isfinite(first) and math.isfinite(second):
         return first, second
     return None
+
+
+def state_floats(
+    first: object, second: object, third: object
+) -> tuple[float, float, float, float, float, float] | None:
+    """Six finite Python floats when each argument is plainly one pair of real numbers, else ``None``.
+
+    The fast path of the one-state dynamics (``q``, ``qd`` and ``qdd`` or
+    ``tau``), in one step for the usual calls: three lists (or tuples) of
+    two floats, or three float64 arrays of shape ``(2,)``.  Other mixes go
+    through :func:`pair_floats` pair by pair; anything it refuses returns
+    ``None``, for the caller's vectorised path and its messages.
+
+    Examples
+    --------
+    >>> state_floats([0.1, 0.2], [0.0, 1.0], [2.0, 3.0])
+    (0.1, 0.2, 0.0, 1.0, 2.0, 3.0)
+    >>> state_floats(np.zeros(2), [0.0, 1.0], (2, 3))
+    (0.0, 0.0, 0.0, 1.0, 2.0, 3.0)
+    >>> state_floats([0.1, True], [0.0, 1.0], [2.0, 3.0]) is None
+    True
+    """
+    kind: Any = type(first)
+    items: Any = (first, second, third)
+    if kind is type(second) and kind is type(third):
+        if kind is list or kind is tuple:
+            if len(first) == len(second) == len(third) == 2:  # type: ignore[arg-type]
+                (a, b), (c, d), (e, f) = items
+                if (
+                    type(a) is float
+                    and type(b) is float
+                    and type(c) is float
+                    and type(d) is float
+                    and type(e) is float
+                    and type(f) is float
+                    and math.isfinite(a + b + c + d + e + f)
+                ):
+                    return a, b, c, d, e, f
+        elif kind is np.ndarray:
+            arrays: tuple[NDArray[Any], ...] = items
+            if all(array.shape == (2,) and array.dtype is _FLOAT64 for array in arrays):
+                (a, b), (c, d), (e, f) = (array.tolist() for array in arrays)
+                if math.isfinite(a + b + c + d + e + f):
+                    return a, b, c, d, e, f
+    pairs = [pair_floats(item) for item in items]
+    if None in pairs:
+        return None
+    (a, b), (c, d), (e, f) = pairs  # type: ignore[misc]
+    return a, b, c, d, e, f
 
 
 def as_finite_scalar(

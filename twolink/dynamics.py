@@ -50,9 +50,11 @@ from ._validate import (
     pair_floats,
     real_array,
     require_arm,
+    state_floats,
     torque_floats,
 )
 from .errors import SimulationError
+from .kinematics import link_trig
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
@@ -157,11 +159,12 @@ def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
     ``qdd2 = ((A1 + beta c2) r2 - (delta + beta c2) d1) / det``.
     """
     _, beta, delta, gamma1, gamma2, det_min, link1 = constants
-    h = -beta * sin(q2)
+    c1, _, c2, s2, c12, _ = link_trig(q1, q2, cos, sin)
+    h = -beta * s2
     qd12 = qd1 + qd2
-    r2 = tau2 + h * qd1 * qd1 - gamma2 * cos(q1 + q2)
-    d1 = tau1 - tau2 - h * qd12 * qd12 - gamma1 * cos(q1)
-    beta_cos = beta * cos(q2)
+    r2 = tau2 + h * qd1 * qd1 - gamma2 * c12
+    d1 = tau1 - tau2 - h * qd12 * qd12 - gamma1 * c1
+    beta_cos = beta * c2
     det = det_min + h * h
     return (
         (delta * d1 - beta_cos * r2) / det,
@@ -172,9 +175,10 @@ def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
 def _inverse(constants, cos, sin, q1, q2, qd1, qd2, qdd1, qdd2):
     """Joint torques ``(tau1, tau2) = M qdd + C qd + g``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays)."""
     alpha, beta, delta, gamma1, gamma2 = constants[:5]
-    m11, m12, m22 = _mass_terms(alpha, beta, delta, cos(q2))
-    c11, c12, c21 = _coriolis_terms(beta, sin(q2), qd1, qd2)
-    g1, g2 = _gravity_terms(gamma1, gamma2, cos(q1), cos(q1 + q2))
+    cos_q1, _, cos_q2, sin_q2, cos_q12, _ = link_trig(q1, q2, cos, sin)
+    m11, m12, m22 = _mass_terms(alpha, beta, delta, cos_q2)
+    c11, c12, c21 = _coriolis_terms(beta, sin_q2, qd1, qd2)
+    g1, g2 = _gravity_terms(gamma1, gamma2, cos_q1, cos_q12)
     return m11 * qdd1 + m12 * qdd2 + (
         c11 * qd1 + c12 * qd2 + g1
     ), m12 * qdd1 + m22 * qdd2 + (c21 * qd1 + g2)
@@ -189,7 +193,6 @@ def _blockwise(formula, constants, q, qd, last):
     shape = broadcast_shape(
         **{"q": q, "qd": qd, "tau" if formula is _forward else "qdd": last}
     )
-    kinematics.require_finite_angle_sum(q)
     q_flat, qd_flat, last_flat = (
         np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last)
     )
@@ -209,25 +212,6 @@ def _blockwise(formula, constants, q, qd, last):
             formula, (constants, np.cos, np.sin), columns, result.reshape(-1, 2)
         )
     return result
-
-
-# ---------------------------------------------------------------- input checks
-def _single_state(q, qd, last):
-    """Six floats when each argument is one pair of finite real numbers, else None.
-
-    Anything unusual (other shapes or types, a NaN, an infinity) returns None
-    and goes down the vectorised path, whose checks raise the clear errors.
-    """
-    q_pair = pair_floats(q)
-    if q_pair is None:
-        return None
-    qd_pair = pair_floats(qd)
-    if qd_pair is None:
-        return None
-    last_pair = pair_floats(last)
-    if last_pair is None:
-        return None
-    return q_pair + qd_pair + last_pair
 
 
 # ---------------------------------------------------------------- public functions
@@ -256,16 +240,26 @@ def mass_matrix(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     array([[32., 10.],
            [10.,  4.]])
     """
-    q = as_pairs(q, "q")
     constants = _constants(arm)
-    m11, m12, m22 = _mass_terms(
-        constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1])
-    )
+    alpha, beta, delta = constants.alpha, constants.beta, constants.delta
+    angles = pair_floats(q)
+    if angles is not None:  # one pose on floats: the same terms with math
+        m11_one, m12_one, m22_one = _mass_terms(alpha, beta, delta, math.cos(angles[1]))
+        M_one = np.empty((2, 2))  # then four item assignments: faster than np.array
+        M_one[0, 0], M_one[0, 1], M_one[1, 0], M_one[1, 1] = (
+            m11_one,
+            m12_one,
+            m12_one,
+            m22_one,
+        )
+        return M_one
+    q = as_pairs(q, "q")
     M = np.empty(q.shape[:-1] + (2, 2))
-    M[..., 0, 0] = m11
-    M[..., 0, 1] = m12
-    M[..., 1, 0] = m12
-    M[..., 1, 1] = m22
+    # written into M as they are formed: one temporary at a time (a batch's temporaries are large)
+    M[..., 0, 0], M[..., 0, 1], M[..., 1, 1] = _mass_terms(
+        alpha, beta, delta, np.cos(q[..., 1])
+    )
+    M[..., 1, 0] = M[..., 0, 1]
     return M
 
 
@@ -304,13 +298,11 @@ def coriolis(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)
-    c11, c12, c21 = _coriolis_terms(
+    C = np.empty(shape[:-1] + (2, 2))
+    C[..., 0, 0], C[..., 0, 1], C[..., 1, 0] = _coriolis_terms(
         _constants(arm).beta, np.sin(q[..., 1]), qd[..., 0], qd[..., 1]
     )
-    C = np.zeros(shape[:-1] + (2, 2))
-    C[..., 0, 0] = c11
-    C[..., 0, 1] = c12
-    C[..., 1, 0] = c21
+    C[..., 1, 1] = 0.0
     return C
 
 
@@ -341,13 +333,10 @@ def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     constants = _constants(arm)
     angles = pair_floats(q)
-    if angles is not None and math.isfinite(angles[0] + angles[1]):
-        # one pose on floats: the same terms with math
+    if angles is not None:  # one pose on floats: the same terms with math
+        c1_one, _, _, _, c12_one, _ = link_trig(*angles, math.cos, math.sin)
         g1_one, g2_one = _gravity_terms(
-            constants.gamma1,
-            constants.gamma2,
-            math.cos(angles[0]),
-            math.cos(angles[0] + angles[1]),
+            constants.gamma1, constants.gamma2, c1_one, c12_one
         )
         torques_one = np.empty(
             2
@@ -355,11 +344,11 @@ def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         torques_one[0], torques_one[1] = g1_one, g2_one
         return torques_one
     q = as_pairs(q, "q")
-    q1, q12 = kinematics.link_angles(q)
-    g1, g2 = _gravity_terms(constants.gamma1, constants.gamma2, np.cos(q1), np.cos(q12))
+    c1, _, _, _, c12, _ = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
     torques = np.empty(q.shape)
-    torques[..., 0] = g1
-    torques[..., 1] = g2
+    torques[..., 0], torques[..., 1] = _gravity_terms(
+        constants.gamma1, constants.gamma2, c1, c12
+    )
     return torques
 
 
@@ -436,10 +425,10 @@ def gravity_jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     constants = _constants(arm)
-    q1, q12 = kinematics.link_angles(q)
-    by_q2 = -constants.gamma2 * np.sin(q12)
+    _, s1, _, _, _, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
+    by_q2 = -constants.gamma2 * s12
     G = np.empty(q.shape[:-1] + (2, 2))
-    G[..., 0, 0] = -constants.gamma1 * np.sin(q1) + by_q2
+    G[..., 0, 0] = -constants.gamma1 * s1 + by_q2
     G[..., 0, 1] = by_q2
     G[..., 1, 0] = by_q2
     G[..., 1, 1] = by_q2
@@ -486,14 +475,9 @@ def inverse_dynamics(
     array([  0., -10.])
     """
     if force_by_tip is None:
-        state = _single_state(q, qd, qdd)
+        state = state_floats(q, qd, qdd)
         if state is not None:
-            try:
-                tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
-            except (
-                ValueError
-            ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-                tau1 = tau2 = math.inf
+            tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
             if math.isfinite(tau1 + tau2):
                 tau = np.empty(
                     2
@@ -573,16 +557,11 @@ def forward_dynamics(
     array([0., 0.])
     """
     if force_by_tip is None:
-        state = _single_state(q, qd, tau)
+        state = state_floats(q, qd, tau)
         if state is not None:
-            try:
-                qdd1, qdd2 = _forward(
-                    _invertible_constants(arm), math.cos, math.sin, *state
-                )
-            except (
-                ValueError
-            ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-                qdd1 = qdd2 = math.inf
+            qdd1, qdd2 = _forward(
+                _invertible_constants(arm), math.cos, math.sin, *state
+            )
             if math.isfinite(qdd1 + qdd2):
                 qdd = np.empty(
                     2
@@ -637,13 +616,11 @@ def energy(
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)[:-1]
     constants = _constants(arm)
-    m11, m12, m22 = _mass_terms(
-        constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1])
-    )
+    _, s1, c2, _, _, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
+    m11, m12, m22 = _mass_terms(constants.alpha, constants.beta, constants.delta, c2)
     qd1, qd2 = qd[..., 0], qd[..., 1]
-    q1, q12 = kinematics.link_angles(q)
     kinetic = 0.5 * (m11 * qd1 * qd1 + 2.0 * m12 * qd1 * qd2 + m22 * qd2 * qd2)
-    potential = constants.gamma1 * np.sin(q1) + constants.gamma2 * np.sin(q12)
+    potential = constants.gamma1 * s1 + constants.gamma2 * s12
     return np.broadcast_to(kinetic, shape).copy(), np.broadcast_to(
         potential, shape
     ).copy()

@@ -7,7 +7,11 @@ joint angles in the DH / relative convention: ``q1`` is link 1 from the x-axis,
 
 Each formula is written once, as a function of the link angles' cosines and
 sines (:func:`tip_from_trig`, :func:`jacobian_from_trig`,
-:func:`torques_from_jacobian`), read beside the textbook.  One configuration
+:func:`torques_from_jacobian`), read beside the textbook.  Those of link 2's
+absolute angle ``q1 + q2`` come from the joint angles' own by the
+angle-addition formulas (:func:`link_trig`): the sum is never formed, so each
+angle, however large, is reduced exactly by ``cos`` and ``sin`` (a sum
+``1e17 + 0.5`` would round the ``0.5`` away).  One configuration
 (a pair of floats, shape ``(2,)``) evaluates it on Python floats with the
 :mod:`math` module (what a loop, a widget or a controller calls thousands of
 times); a batch evaluates the same function on numpy arrays, block by block
@@ -36,11 +40,6 @@ if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
 __all__ = [
-    "tip_from_trig",
-    "jacobian_from_trig",
-    "torques_from_jacobian",
-    "link_angles",
-    "require_finite_angle_sum",
     "fk",
     "joint_positions",
     "jacobian",
@@ -120,20 +119,42 @@ def torques_from_jacobian(
     return j11 * fx + j21 * fy, j12 * fx + j22 * fy
 
 
+def link_trig(
+    q1: Values, q2: Values, cos: Callable[[Any], Any], sin: Callable[[Any], Any]
+) -> tuple[Values, Values, Values, Values, Values, Values]:
+    """``(c1, s1, c2, s2, c12, s12)``: cosines and sines of ``q1``, ``q2`` and ``q1 + q2``.
+
+    ``c12 = c1 c2 - s1 s2`` and ``s12 = s1 c2 + c1 s2`` (angle addition):
+    ``q1 + q2`` is never formed, so each angle is reduced exactly by
+    ``cos``/``sin`` (from :mod:`math` for floats, numpy for arrays) however
+    large it is, and no sum can overflow.
+
+    Examples
+    --------
+    >>> c1, s1, c2, s2, c12, s12 = link_trig(1e17, 0.5, math.cos, math.sin)
+    >>> abs(c12 - math.cos(1e17 + 0.5)) > 0.1   # the sum rounds the 0.5 away; the formula keeps it
+    True
+    >>> round(c12 - (c1 * math.cos(0.5) - s1 * math.sin(0.5)), 15)
+    0.0
+    """
+    c1, s1, c2, s2 = cos(q1), sin(q1), cos(q2), sin(q2)
+    return c1, s1, c2, s2, c1 * c2 - s1 * s2, s1 * c2 + c1 * s2
+
+
 def _tip_of_angles(
     l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]
 ) -> tuple[Values, Values]:
     """:func:`tip_from_trig` of a block of angles, evaluated with numpy."""
-    q12 = q1 + q2
-    return tip_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
+    c1, s1, _, _, c12, s12 = link_trig(q1, q2, np.cos, np.sin)
+    return tip_from_trig(l1, l2, c1, s1, c12, s12)
 
 
 def _jacobian_of_angles(
     l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]
 ) -> tuple[Values, Values, Values, Values]:
     """:func:`jacobian_from_trig` of a block of angles, evaluated with numpy."""
-    q12 = q1 + q2
-    return jacobian_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
+    c1, s1, _, _, c12, s12 = link_trig(q1, q2, np.cos, np.sin)
+    return jacobian_from_trig(l1, l2, c1, s1, c12, s12)
 
 
 #: Rows per block of the vectorised paths: the temporaries of one block stay
@@ -168,66 +189,6 @@ def evaluate_blockwise(
     return out
 
 
-#: Angles at least this large in size may overflow float64 in ``q1 + q2``.
-_HALF_MAX = float(np.finfo(np.float64).max) / 2.0
-
-
-def link_angles(
-    q: NDArray[np.float64],
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The link angles ``(q1, q1 + q2)`` from the x-axis of checked configurations ``q`` ``(..., 2)``.
-
-    Raises
-    ------
-    ValueError
-        Naming the first configuration whose ``q1 + q2`` overflows float64
-        (angles near 1e308 rad: finite, but without a finite sum); see
-        :func:`require_finite_angle_sum`.
-
-    Examples
-    --------
-    >>> link_angles(np.array([0.5, 0.25]))
-    (array(0.5), array(0.75))
-    """
-    require_finite_angle_sum(q)
-    q1 = q[..., 0]
-    return np.asarray(q1), np.asarray(q1 + q[..., 1])
-
-
-def require_finite_angle_sum(q: NDArray[np.float64]) -> None:
-    """Raise ValueError naming the first configuration of ``q`` ``(..., 2)`` whose ``q1 + q2`` overflows float64.
-
-    Two passes over ``q`` (its largest and smallest entry) when nothing is
-    near the float64 limit.
-
-    Examples
-    --------
-    >>> require_finite_angle_sum(np.array([[0.5, 0.25], [1e308, -1e308]]))  # finite sums
-    >>> require_finite_angle_sum(np.array([1e308, 1e308]))
-    Traceback (most recent call last):
-    ...
-    ValueError: q = (1e+308, 1e+308) rad: q1 + q2 overflows float64; the joint angles must have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)
-    """
-    if not q.size or -_HALF_MAX < q.min() and q.max() < _HALF_MAX:
-        return
-    with np.errstate(over="ignore"):
-        overflowed = ~np.isfinite(q[..., 0] + q[..., 1])
-    if np.any(overflowed):
-        index = (
-            tuple(int(i) for i in np.argwhere(overflowed)[0]) if overflowed.ndim else ()
-        )
-        where = (
-            f" (index {index}, first of {int(np.count_nonzero(overflowed))})"
-            if overflowed.ndim
-            else ""
-        )
-        first, second = q[index]
-        raise ValueError(
-            f"q = ({first:.6g}, {second:.6g}) rad{where}: q1 + q2 overflows float64; the joint angles must "
-            "have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)"
-        )
-
-
 def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """Tip position ``x = l1 c1 + l2 c12``, ``y = l1 s1 + l2 s12``.
 
@@ -252,24 +213,13 @@ def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     pair = pair_floats(q)
     if pair is not None:
         q1, q2 = pair
-        q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        try:
-            x, y = tip_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
-        except (
-            ValueError
-        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-            pass
-        else:
-            p_tip = _empty(
-                2
-            )  # then two item assignments: faster than np.array of a tuple
-            p_tip[0] = x
-            p_tip[1] = y
-            return p_tip
+        c1, s1, _, _, c12, s12 = link_trig(q1, q2, _cos, _sin)
+        p_tip = _empty(2)  # then two item assignments: faster than np.array of a tuple
+        p_tip[0], p_tip[1] = tip_from_trig(l1, l2, c1, s1, c12, s12)
+        return p_tip
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    require_finite_angle_sum(q)
     p_tips = np.empty(q.shape)
     flat = q.reshape(-1, 2)
     evaluate_blockwise(
@@ -302,14 +252,11 @@ def joint_positions(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    q1, q12 = link_angles(q)
-    c1, s1 = np.cos(q1), np.sin(q1)
+    c1, s1, _, _, c12, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
     points = np.zeros(q.shape[:-1] + (3, 2))
     points[..., 1, 0] = l1 * c1
     points[..., 1, 1] = l1 * s1
-    points[..., 2, 0], points[..., 2, 1] = tip_from_trig(
-        l1, l2, c1, s1, np.cos(q12), np.sin(q12)
-    )
+    points[..., 2, 0], points[..., 2, 1] = tip_from_trig(l1, l2, c1, s1, c12, s12)
     return points
 
 
@@ -343,28 +290,15 @@ def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     pair = pair_floats(q)
     if pair is not None:
         q1, q2 = pair
-        q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        try:
-            j11, j12, j21, j22 = jacobian_from_trig(
-                l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
-            )
-        except (
-            ValueError
-        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-            pass
-        else:
-            J = _empty(
-                (2, 2)
-            )  # then four item assignments: faster than np.array of a list
-            J[0, 0] = j11
-            J[0, 1] = j12
-            J[1, 0] = j21
-            J[1, 1] = j22
-            return J
+        c1, s1, _, _, c12, s12 = link_trig(q1, q2, _cos, _sin)
+        J = _empty((2, 2))  # then four item assignments: faster than np.array of a list
+        J[0, 0], J[0, 1], J[1, 0], J[1, 1] = jacobian_from_trig(
+            l1, l2, c1, s1, c12, s12
+        )
+        return J
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    require_finite_angle_sum(q)
     Js = np.empty(q.shape[:-1] + (2, 2))
     flat = q.reshape(-1, 2)
     evaluate_blockwise(
@@ -419,22 +353,12 @@ def joint_torques(
     force_pair = pair_floats(force_by_tip) if pair is not None else None
     if pair is not None and force_pair is not None:
         q1, q2 = pair
-        q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        try:
-            J_entries = jacobian_from_trig(
-                l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
-            )
-        except (
-            ValueError
-        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-            pass
-        else:
-            tau = _empty(
-                2
-            )  # then two item assignments: faster than np.array of a tuple
-            tau[0], tau[1] = torques_from_jacobian(*J_entries, *force_pair)
-            return tau
+        c1, s1, _, _, c12, s12 = link_trig(q1, q2, _cos, _sin)
+        J_entries = jacobian_from_trig(l1, l2, c1, s1, c12, s12)
+        tau = _empty(2)  # then two item assignments: faster than np.array of a tuple
+        tau[0], tau[1] = torques_from_jacobian(*J_entries, *force_pair)
+        return tau
     q = as_pairs(q, "q")
     force_by_tip = as_pairs(force_by_tip, "force_by_tip")
     shape = broadcast_shape(q=q, force_by_tip=force_by_tip)
@@ -486,11 +410,11 @@ def jacobian_derivative(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    q1, q12 = link_angles(q)
-    x2, y2 = l2 * np.cos(q12), l2 * np.sin(q12)
+    c1, s1, _, _, c12, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
+    x2, y2 = l2 * c12, l2 * s12
     dJ = np.empty(q.shape[:-1] + (2, 2, 2))
-    dJ[..., 0, 0, 0] = -(l1 * np.cos(q1) + x2)
-    dJ[..., 1, 0, 0] = -(l1 * np.sin(q1) + y2)
+    dJ[..., 0, 0, 0] = -(l1 * c1 + x2)
+    dJ[..., 1, 0, 0] = -(l1 * s1 + y2)
     for i, relative in ((0, x2), (1, y2)):
         dJ[..., i, 0, 1] = dJ[..., i, 1, 0] = dJ[..., i, 1, 1] = -relative
     return dJ
@@ -530,14 +454,14 @@ def jacobian_rate(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.fl
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)
     l1, l2 = arm_lengths(arm)
-    q1, q12 = link_angles(q)
-    x2, y2 = l2 * np.cos(q12), l2 * np.sin(q12)
+    c1, s1, _, _, c12, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
+    x2, y2 = l2 * c12, l2 * s12
     qd1, qd2 = qd[..., 0], qd[..., 1]
     qd12 = qd1 + qd2
     Jdot = np.empty(shape[:-1] + (2, 2))
-    Jdot[..., 0, 0] = -(l1 * np.cos(q1) * qd1 + x2 * qd12)
+    Jdot[..., 0, 0] = -(l1 * c1 * qd1 + x2 * qd12)
     Jdot[..., 0, 1] = -x2 * qd12
-    Jdot[..., 1, 0] = -(l1 * np.sin(q1) * qd1 + y2 * qd12)
+    Jdot[..., 1, 0] = -(l1 * s1 * qd1 + y2 * qd12)
     Jdot[..., 1, 1] = -y2 * qd12
     return Jdot
 

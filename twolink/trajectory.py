@@ -56,7 +56,7 @@ from .budgets import (
     MAX_SAMPLES,
     EvaluationBudget,
 )
-from .conventions import check_elbow
+from .conventions import check_elbow, wrap_angle
 from .errors import InputTypeError, SingularityError, UnreachableError
 from .ik import LIMIT_TOL, solutions_within_limits
 from .kinematics import (
@@ -422,7 +422,8 @@ class CirclePath(_TimedPath):
             over="ignore", invalid="ignore"
         ):  # _finite_motion names an overflow
             sweep = 2.0 * np.pi * self.turns
-            angle = self.start_angle + sweep * s
+            # the start reduced exactly first: added to a large start the sweep would round away
+            angle = wrap_angle(self.start_angle) + sweep * s
             rate, angular_acceleration = sweep * s_dot, sweep * s_ddot  # rad/s, rad/s^2
             direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
             tangent = np.stack([-np.sin(angle), np.cos(angle)], axis=-1)

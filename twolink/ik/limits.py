@@ -89,9 +89,8 @@ def solutions_within_limits(
         points,
         direction * np.clip(distance, r_min, r_max)[..., None],
     )
-    q_both = np.ascontiguousarray(
-        np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2)
-    )
+    # a copy of its own (the result's arrays are read-only), C-contiguous
+    q_both = np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2).copy()
     valid = np.broadcast_to(in_reach[..., None], q_both.shape[:-1]).copy()
     if arm.has_limits:
         at_base, free_q1 = free_q1_at_base(arm, points)

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._values import Value
-from ..kinematics import fk, tip_from_trig
+from ..kinematics import fk, link_trig, tip_from_trig
 
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
@@ -225,10 +225,8 @@ def one_answer_result(
     floats (the residual with :func:`twolink.kinematics.tip_from_trig`), with
     the values and the message a batch of one would get.
     """
-    q12 = q1 + q2
-    tip_x, tip_y = tip_from_trig(
-        arm.l1, arm.l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
-    )
+    c1, s1, _, _, c12, s12 = link_trig(q1, q2, _cos, _sin)
+    tip_x, tip_y = tip_from_trig(arm.l1, arm.l2, c1, s1, c12, s12)
     residual = _hypot(tip_x - x, tip_y - y)
     success = residual <= threshold
     if success:
