@@ -9,9 +9,13 @@ alternating batches so that both see the same load, and gives their ratio.
 
 - ``ik.closed_form``: the floor is the textbook closed form (``arccos``,
   two ``arctan2``), no checks, returning the angles; twolink also tests the
-  reach and returns an ``IKResult`` that says which targets are reached.
-- ``ik.closed_form, residual read``: the same call and reading the result's
-  ``residual``, which forward kinematics computes when it is first read.
+  reach and returns an ``IKResult`` whose residuals come from forward
+  kinematics of its answers, so that it says truthfully which targets are
+  reached.
+
+Times are CPU seconds of this process (``time.process_time``): on a
+machine shared with other work, wall time also counts the other processes,
+and a ratio of two wall times measured a second apart varies by 2x.
 
 Run with ``make bench`` or ``.venv/bin/python benchmarks/bench_batch.py``
 (``--quick`` for a smoke run with tiny sizes, used by the test suite).
@@ -20,6 +24,7 @@ Run with ``make bench`` or ``.venv/bin/python benchmarks/bench_batch.py``
 import argparse
 import math
 import platform
+import time
 import timeit
 
 import numpy as np
@@ -34,7 +39,10 @@ CLOSED_FORM_TARGET_RATIO = 1.5
 
 def interleaved_medians(first, second, repeat, min_seconds):
     """Median seconds of one call of ``first()`` and of ``second()``, timed in alternating batches."""
-    timers = [timeit.Timer(first), timeit.Timer(second)]
+    timers = [
+        timeit.Timer(first, timer=time.process_time),
+        timeit.Timer(second, timer=time.process_time),
+    ]
     numbers = []
     for timer in timers:
         number = 1
@@ -240,9 +248,6 @@ def batch_rows(count, repeat, min_seconds):
     p = arm.fk(rng.uniform([-np.pi, 0.2], [np.pi, 2.9], (count, 2)))
     check_floors_agree(arm, constants, q, qd, qdd, tau, force, p)
 
-    def closed_form_and_residual():
-        return ik.closed_form(arm, p).residual
-
     cases = [
         ("kinematics.fk", lambda: kinematics.fk(arm, q), lambda: floor_fk(l1, l2, q)),
         (
@@ -276,8 +281,8 @@ def batch_rows(count, repeat, min_seconds):
             lambda: floor_closed_form(l1, l2, p),
         ),
         (
-            "ik.closed_form, residual read",
-            closed_form_and_residual,
+            "ik.closed_form, elbow='both' (beside the floor's one branch)",
+            lambda: ik.closed_form(arm, p, elbow="both"),
             lambda: floor_closed_form(l1, l2, p),
         ),
         (
@@ -319,7 +324,7 @@ def batch_rows(count, repeat, min_seconds):
         if name == "ik.closed_form":
             target = CLOSED_FORM_TARGET_RATIO
         elif name.startswith("ik.closed_form,"):
-            target = None
+            target = None  # two answers per target: for information
         else:
             target = TARGET_RATIO
         rows.append((name, t_twolink, t_floor, t_twolink / t_floor, target))
@@ -338,7 +343,8 @@ def main(argv=None):
     rows = batch_rows(count, repeat, min_seconds)
     print(
         f"# twolink, batches of {count} beside plain numpy ({platform.machine()}, "
-        f"{platform.python_implementation()} {platform.python_version()}, numpy {np.__version__})\n"
+        f"{platform.python_implementation()} {platform.python_version()}, numpy {np.__version__}; "
+        "CPU time of this process)\n"
     )
     table = [
         (

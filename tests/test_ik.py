@@ -357,8 +357,59 @@ def test_closed_form_returns_a_result_whose_residual_is_recomputed_from_q():
     p = np.array([[12.0, 9.0], [5.0, 12.0]])
     result = ik.closed_form(arms.ten, p)
     assert result.method == "closed-form" and np.all(result.iterations == 0)
-    assert np.array_equal(result.residual, np.hypot(*(arms.ten.fk(result.q) - p).T))
+    # forward kinematics of q (with q2's cosine and sine from the unit vector q2 is the atan2 of)
+    assert np.allclose(
+        result.residual, np.hypot(*(arms.ten.fk(result.q) - p).T), rtol=0, atol=1e-14
+    )
     assert result.all_success and np.all(result.residual < 1e-12)
+
+
+#: Link lengths as unequal as the arm allows them to be, both ways round.
+UNEQUAL = [
+    (1e-9, 1e9),
+    (1e9, 1e-9),
+    (1e-3, 1e9),
+    (1e9, 1e-3),
+    (1e-50, 1.0),
+    (1.0, 1e-50),
+]
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    lengths=st.sampled_from(UNEQUAL),
+    direction=st.floats(-np.pi, np.pi),
+    depth=st.floats(0.0, 1.0),
+    elbow=st.sampled_from(["down", "up", "both"]),
+    batch=st.booleans(),
+)
+def test_closed_form_reaches_every_target_of_very_unequal_arms(
+    lengths, direction, depth, elbow, batch
+):
+    """Links of 1e-9 and 1e9 m: the annulus is thinner than r^2's round-off; the closed form used to
+    report failure with the opposite point (1 - cos q2 and 1 + cos q2 both rounded to 0)."""
+    arm = TwoLinkArm(*lengths)
+    r_min, r_max = arm.reach
+    radius = r_min + depth * (r_max - r_min)
+    target = radius * np.array([np.cos(direction), np.sin(direction)])
+    result = ik.closed_form(arm, [target, target] if batch else target, elbow=elbow)
+    assert np.all(result.success), result.message
+    q = result.q.reshape(-1, 2)
+    tips = arm.fk(q)
+    assert np.all(np.hypot(*(tips - target).T) <= 1e-14 * r_max)
+    assert np.allclose(
+        np.ravel(result.residual),
+        np.hypot(*(tips - target).T),
+        rtol=0,
+        atol=1e-14 * r_max,
+    )
+
+
+def test_the_unequal_arm_of_the_finding_is_solved_not_sent_to_the_opposite_point():
+    arm = TwoLinkArm(1e-9, 1e9)
+    result = ik.closed_form(arm, [1e9, 0.0])
+    assert result.success and result.residual <= 1e-14 * sum(arm.reach)
+    assert arm.fk(result.q)[0] > 0.0  # the opposite point was (-1e9, 0)
 
 
 def test_assemble_result_judges_the_answers_by_forward_kinematics_when_built():

@@ -54,7 +54,9 @@ from ._validate import (
     torque_floats,
 )
 from .errors import SimulationError
-from .kinematics import link_trig
+from .kinematics import LARGE_ANGLE, reduced_angles, reduced_pair
+
+_LARGE = LARGE_ANGLE  # bound once for the one-state paths
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
@@ -145,6 +147,18 @@ def _gravity_terms(gamma1, gamma2, cos_q1, cos_q12):
     return gamma1 * cos_q1 + g2, g2
 
 
+def _mass_of_angle(alpha, beta, delta, q2):
+    """``(M11, M12, M21, M22)`` of a block of ``q2``, with numpy (:func:`_mass_terms`)."""
+    m11, m12, m22 = _mass_terms(alpha, beta, delta, np.cos(q2))
+    return m11, m12, m12, m22
+
+
+def _coriolis_of_state(beta, q2, qd1, qd2):
+    """``(C11, C12, C21, C22)`` of a block of states, with numpy (:func:`_coriolis_terms`)."""
+    c11, c12, c21 = _coriolis_terms(beta, np.sin(q2), qd1, qd2)
+    return c11, c12, c21, 0.0
+
+
 def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
     """Joint accelerations ``(qdd1, qdd2)``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays).
 
@@ -159,12 +173,11 @@ def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
     ``qdd2 = ((A1 + beta c2) r2 - (delta + beta c2) d1) / det``.
     """
     _, beta, delta, gamma1, gamma2, det_min, link1 = constants
-    c1, _, c2, s2, c12, _ = link_trig(q1, q2, cos, sin)
-    h = -beta * s2
+    h = -beta * sin(q2)
     qd12 = qd1 + qd2
-    r2 = tau2 + h * qd1 * qd1 - gamma2 * c12
-    d1 = tau1 - tau2 - h * qd12 * qd12 - gamma1 * c1
-    beta_cos = beta * c2
+    r2 = tau2 + h * qd1 * qd1 - gamma2 * cos(q1 + q2)
+    d1 = tau1 - tau2 - h * qd12 * qd12 - gamma1 * cos(q1)
+    beta_cos = beta * cos(q2)
     det = det_min + h * h
     return (
         (delta * d1 - beta_cos * r2) / det,
@@ -175,10 +188,9 @@ def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
 def _inverse(constants, cos, sin, q1, q2, qd1, qd2, qdd1, qdd2):
     """Joint torques ``(tau1, tau2) = M qdd + C qd + g``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays)."""
     alpha, beta, delta, gamma1, gamma2 = constants[:5]
-    cos_q1, _, cos_q2, sin_q2, cos_q12, _ = link_trig(q1, q2, cos, sin)
-    m11, m12, m22 = _mass_terms(alpha, beta, delta, cos_q2)
-    c11, c12, c21 = _coriolis_terms(beta, sin_q2, qd1, qd2)
-    g1, g2 = _gravity_terms(gamma1, gamma2, cos_q1, cos_q12)
+    m11, m12, m22 = _mass_terms(alpha, beta, delta, cos(q2))
+    c11, c12, c21 = _coriolis_terms(beta, sin(q2), qd1, qd2)
+    g1, g2 = _gravity_terms(gamma1, gamma2, cos(q1), cos(q1 + q2))
     return m11 * qdd1 + m12 * qdd2 + (
         c11 * qd1 + c12 * qd2 + g1
     ), m12 * qdd1 + m22 * qdd2 + (c21 * qd1 + g2)
@@ -194,7 +206,8 @@ def _blockwise(formula, constants, q, qd, last):
         **{"q": q, "qd": qd, "tau" if formula is _forward else "qdd": last}
     )
     q_flat, qd_flat, last_flat = (
-        np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last)
+        np.broadcast_to(array, shape).reshape(-1, 2)
+        for array in (reduced_angles(q), qd, last)
     )
     columns = (
         q_flat[:, 0],
@@ -255,11 +268,12 @@ def mass_matrix(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         return M_one
     q = as_pairs(q, "q")
     M = np.empty(q.shape[:-1] + (2, 2))
-    # written into M as they are formed: one temporary at a time (a batch's temporaries are large)
-    M[..., 0, 0], M[..., 0, 1], M[..., 1, 1] = _mass_terms(
-        alpha, beta, delta, np.cos(q[..., 1])
+    kinematics.evaluate_blockwise(
+        _mass_of_angle,
+        (alpha, beta, delta),
+        (q.reshape(-1, 2)[:, 1],),
+        M.reshape(-1, 4),
     )
-    M[..., 1, 0] = M[..., 0, 1]
     return M
 
 
@@ -298,11 +312,16 @@ def coriolis(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)
-    C = np.empty(shape[:-1] + (2, 2))
-    C[..., 0, 0], C[..., 0, 1], C[..., 1, 0] = _coriolis_terms(
-        _constants(arm).beta, np.sin(q[..., 1]), qd[..., 0], qd[..., 1]
+    q_flat, qd_flat = (
+        np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd)
     )
-    C[..., 1, 1] = 0.0
+    C = np.empty(shape[:-1] + (2, 2))
+    kinematics.evaluate_blockwise(
+        _coriolis_of_state,
+        (_constants(arm).beta,),
+        (q_flat[:, 1], qd_flat[:, 0], qd_flat[:, 1]),
+        C.reshape(-1, 4),
+    )
     return C
 
 
@@ -334,9 +353,12 @@ def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     constants = _constants(arm)
     angles = pair_floats(q)
     if angles is not None:  # one pose on floats: the same terms with math
-        c1_one, _, _, _, c12_one, _ = link_trig(*angles, math.cos, math.sin)
+        q1_one, q2_one = reduced_pair(*angles)
         g1_one, g2_one = _gravity_terms(
-            constants.gamma1, constants.gamma2, c1_one, c12_one
+            constants.gamma1,
+            constants.gamma2,
+            math.cos(q1_one),
+            math.cos(q1_one + q2_one),
         )
         torques_one = np.empty(
             2
@@ -344,10 +366,10 @@ def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         torques_one[0], torques_one[1] = g1_one, g2_one
         return torques_one
     q = as_pairs(q, "q")
-    c1, _, _, _, c12, _ = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
+    q1, q12 = kinematics.link_angles(q)
     torques = np.empty(q.shape)
     torques[..., 0], torques[..., 1] = _gravity_terms(
-        constants.gamma1, constants.gamma2, c1, c12
+        constants.gamma1, constants.gamma2, np.cos(q1), np.cos(q12)
     )
     return torques
 
@@ -425,10 +447,10 @@ def gravity_jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     constants = _constants(arm)
-    _, s1, _, _, _, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
-    by_q2 = -constants.gamma2 * s12
+    q1, q12 = kinematics.link_angles(q)
+    by_q2 = -constants.gamma2 * np.sin(q12)
     G = np.empty(q.shape[:-1] + (2, 2))
-    G[..., 0, 0] = -constants.gamma1 * s1 + by_q2
+    G[..., 0, 0] = -constants.gamma1 * np.sin(q1) + by_q2
     G[..., 0, 1] = by_q2
     G[..., 1, 0] = by_q2
     G[..., 1, 1] = by_q2
@@ -477,7 +499,12 @@ def inverse_dynamics(
     if force_by_tip is None:
         state = state_floats(q, qd, qdd)
         if state is not None:
-            tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
+            q1, q2, qd1, qd2, qdd1, qdd2 = state
+            if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+                q1, q2 = reduced_pair(q1, q2)
+            tau1, tau2 = _inverse(
+                _constants(arm), math.cos, math.sin, q1, q2, qd1, qd2, qdd1, qdd2
+            )
             if math.isfinite(tau1 + tau2):
                 tau = np.empty(
                     2
@@ -559,8 +586,19 @@ def forward_dynamics(
     if force_by_tip is None:
         state = state_floats(q, qd, tau)
         if state is not None:
+            q1, q2, qd1, qd2, tau1, tau2 = state
+            if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+                q1, q2 = reduced_pair(q1, q2)
             qdd1, qdd2 = _forward(
-                _invertible_constants(arm), math.cos, math.sin, *state
+                _invertible_constants(arm),
+                math.cos,
+                math.sin,
+                q1,
+                q2,
+                qd1,
+                qd2,
+                tau1,
+                tau2,
             )
             if math.isfinite(qdd1 + qdd2):
                 qdd = np.empty(
@@ -616,11 +654,13 @@ def energy(
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)[:-1]
     constants = _constants(arm)
-    _, s1, c2, _, _, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
-    m11, m12, m22 = _mass_terms(constants.alpha, constants.beta, constants.delta, c2)
+    m11, m12, m22 = _mass_terms(
+        constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1])
+    )
     qd1, qd2 = qd[..., 0], qd[..., 1]
+    q1, q12 = kinematics.link_angles(q)
     kinetic = 0.5 * (m11 * qd1 * qd1 + 2.0 * m12 * qd1 * qd2 + m22 * qd2 * qd2)
-    potential = constants.gamma1 * s1 + constants.gamma2 * s12
+    potential = constants.gamma1 * np.sin(q1) + constants.gamma2 * np.sin(q12)
     return np.broadcast_to(kinetic, shape).copy(), np.broadcast_to(
         potential, shape
     ).copy()
@@ -684,6 +724,8 @@ def state_derivative(
 
     def right_hand_side(t, state):
         q1, q2, qd1, qd2, state = read(t, state)
+        if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+            q1, q2 = reduced_pair(q1, q2)
         if torque is None:
             tau1 = tau2 = 0.0
         else:

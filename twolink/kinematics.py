@@ -7,11 +7,11 @@ joint angles in the DH / relative convention: ``q1`` is link 1 from the x-axis,
 
 Each formula is written once, as a function of the link angles' cosines and
 sines (:func:`tip_from_trig`, :func:`jacobian_from_trig`,
-:func:`torques_from_jacobian`), read beside the textbook.  Those of link 2's
-absolute angle ``q1 + q2`` come from the joint angles' own by the
-angle-addition formulas (:func:`link_trig`): the sum is never formed, so each
-angle, however large, is reduced exactly by ``cos`` and ``sin`` (a sum
-``1e17 + 0.5`` would round the ``0.5`` away).  One configuration
+:func:`torques_from_jacobian`), read beside the textbook.  Link 2's absolute angle
+is the sum ``q1 + q2``: joint angles larger than :data:`LARGE_ANGLE` are
+first reduced exactly (:func:`reduced_angles`), so that the sum never rounds
+a small angle away beside a large one (``1e17 + 0.5`` is ``1e17``) nor
+overflows.  One configuration
 (a pair of floats, shape ``(2,)``) evaluates it on Python floats with the
 :mod:`math` module (what a loop, a widget or a controller calls thousands of
 times); a batch evaluates the same function on numpy arrays, block by block
@@ -119,42 +119,94 @@ def torques_from_jacobian(
     return j11 * fx + j21 * fy, j12 * fx + j22 * fy
 
 
-def link_trig(
-    q1: Values, q2: Values, cos: Callable[[Any], Any], sin: Callable[[Any], Any]
-) -> tuple[Values, Values, Values, Values, Values, Values]:
-    """``(c1, s1, c2, s2, c12, s12)``: cosines and sines of ``q1``, ``q2`` and ``q1 + q2``.
+#: Joint angles up to this size (rad) are used as they are: their sum ``q1 + q2`` is then within
+#: 4e-15 rad of exact.  Larger ones are reduced exactly first (:func:`reduced_angles`).
+LARGE_ANGLE = 32.0
+_LARGE = LARGE_ANGLE  # bound once for the one-configuration paths
 
-    ``c12 = c1 c2 - s1 s2`` and ``s12 = s1 c2 + c1 s2`` (angle addition):
-    ``q1 + q2`` is never formed, so each angle is reduced exactly by
-    ``cos``/``sin`` (from :mod:`math` for floats, numpy for arrays) however
-    large it is, and no sum can overflow.
+
+def reduced_pair(q1: float, q2: float) -> tuple[float, float]:
+    """``(q1, q2)`` with each angle larger than :data:`LARGE_ANGLE` reduced exactly into ``(-pi, pi]``.
+
+    ``atan2(sin q, cos q)``: :mod:`math`'s ``sin`` and ``cos`` reduce an
+    angle exactly however large it is, so the reduced angle has its cosine
+    and sine to round-off.
 
     Examples
     --------
-    >>> c1, s1, c2, s2, c12, s12 = link_trig(1e17, 0.5, math.cos, math.sin)
-    >>> abs(c12 - math.cos(1e17 + 0.5)) > 0.1   # the sum rounds the 0.5 away; the formula keeps it
+    >>> q1, q2 = reduced_pair(1e17, 0.5)
+    >>> abs(math.cos(q1 + q2) - math.cos(1e17 + 0.5)) > 0.1   # the plain sum rounds the 0.5 away
     True
-    >>> round(c12 - (c1 * math.cos(0.5) - s1 * math.sin(0.5)), 15)
+    >>> round(math.cos(q1 + q2) - (math.cos(1e17) * math.cos(0.5) - math.sin(1e17) * math.sin(0.5)), 14)
     0.0
     """
-    c1, s1, c2, s2 = cos(q1), sin(q1), cos(q2), sin(q2)
-    return c1, s1, c2, s2, c1 * c2 - s1 * s2, s1 * c2 + c1 * s2
+    if -LARGE_ANGLE <= q1 <= LARGE_ANGLE and -LARGE_ANGLE <= q2 <= LARGE_ANGLE:
+        return q1, q2
+    if not -LARGE_ANGLE <= q1 <= LARGE_ANGLE:
+        q1 = math.atan2(math.sin(q1), math.cos(q1))
+    if not -LARGE_ANGLE <= q2 <= LARGE_ANGLE:
+        q2 = math.atan2(math.sin(q2), math.cos(q2))
+    return q1, q2
+
+
+def reduced_angles(q: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Angles ``q`` (any shape) with those larger than :data:`LARGE_ANGLE` reduced exactly, as :func:`reduced_pair`.
+
+    ``q`` itself (two passes over it: its largest and smallest entry) when none is.
+
+    Examples
+    --------
+    >>> reduced_angles(np.array([[0.5, 2.0], [3 * np.pi + 64 * np.pi, 1.0]])).round(12)
+    array([[0.5       , 2.        ],
+           [3.14159265, 1.        ]])
+    """
+    if not q.size or (-LARGE_ANGLE <= q.min() and q.max() <= LARGE_ANGLE):
+        return q
+    return np.where(np.abs(q) > LARGE_ANGLE, np.arctan2(np.sin(q), np.cos(q)), q)
+
+
+def link_angles(
+    q: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The link angles ``(q1, q1 + q2)`` of configurations ``q`` ``(..., 2)``, large angles reduced first.
+
+    Examples
+    --------
+    >>> link_angles(np.array([0.5, 0.25]))
+    (array(0.5), array(0.75))
+    """
+    q = reduced_angles(q)
+    q1 = q[..., 0]
+    return np.asarray(q1), np.asarray(q1 + q[..., 1])
+
+
+def angle_sum_trig(
+    c1: Values, s1: Values, c2: Values, s2: Values
+) -> tuple[Values, Values]:
+    """``(cos(a + b), sin(a + b)) = (c1 c2 - s1 s2, s1 c2 + c1 s2)`` from the cosines and sines of ``a`` and ``b``.
+
+    Examples
+    --------
+    >>> angle_sum_trig(0.0, 1.0, 0.0, 1.0)  # a = b = pi / 2
+    (-1.0, 0.0)
+    """
+    return c1 * c2 - s1 * s2, s1 * c2 + c1 * s2
 
 
 def _tip_of_angles(
     l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]
 ) -> tuple[Values, Values]:
-    """:func:`tip_from_trig` of a block of angles, evaluated with numpy."""
-    c1, s1, _, _, c12, s12 = link_trig(q1, q2, np.cos, np.sin)
-    return tip_from_trig(l1, l2, c1, s1, c12, s12)
+    """:func:`tip_from_trig` of a block of (reduced) angles, evaluated with numpy."""
+    q12 = q1 + q2
+    return tip_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
 
 
 def _jacobian_of_angles(
     l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]
 ) -> tuple[Values, Values, Values, Values]:
-    """:func:`jacobian_from_trig` of a block of angles, evaluated with numpy."""
-    c1, s1, _, _, c12, s12 = link_trig(q1, q2, np.cos, np.sin)
-    return jacobian_from_trig(l1, l2, c1, s1, c12, s12)
+    """:func:`jacobian_from_trig` of a block of (reduced) angles, evaluated with numpy."""
+    q12 = q1 + q2
+    return jacobian_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
 
 
 #: Rows per block of the vectorised paths: the temporaries of one block stay
@@ -213,14 +265,19 @@ def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     pair = pair_floats(q)
     if pair is not None:
         q1, q2 = pair
+        if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+            q1, q2 = reduced_pair(q1, q2)
+        q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        c1, s1, _, _, c12, s12 = link_trig(q1, q2, _cos, _sin)
         p_tip = _empty(2)  # then two item assignments: faster than np.array of a tuple
-        p_tip[0], p_tip[1] = tip_from_trig(l1, l2, c1, s1, c12, s12)
+        p_tip[0], p_tip[1] = tip_from_trig(
+            l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
+        )
         return p_tip
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
     p_tips = np.empty(q.shape)
+    q = reduced_angles(q)
     flat = q.reshape(-1, 2)
     evaluate_blockwise(
         _tip_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), p_tips.reshape(-1, 2)
@@ -252,11 +309,14 @@ def joint_positions(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    c1, s1, _, _, c12, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
+    q1, q12 = link_angles(q)
+    c1, s1 = np.cos(q1), np.sin(q1)
     points = np.zeros(q.shape[:-1] + (3, 2))
     points[..., 1, 0] = l1 * c1
     points[..., 1, 1] = l1 * s1
-    points[..., 2, 0], points[..., 2, 1] = tip_from_trig(l1, l2, c1, s1, c12, s12)
+    points[..., 2, 0], points[..., 2, 1] = tip_from_trig(
+        l1, l2, c1, s1, np.cos(q12), np.sin(q12)
+    )
     return points
 
 
@@ -290,16 +350,19 @@ def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     pair = pair_floats(q)
     if pair is not None:
         q1, q2 = pair
+        if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+            q1, q2 = reduced_pair(q1, q2)
+        q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        c1, s1, _, _, c12, s12 = link_trig(q1, q2, _cos, _sin)
         J = _empty((2, 2))  # then four item assignments: faster than np.array of a list
         J[0, 0], J[0, 1], J[1, 0], J[1, 1] = jacobian_from_trig(
-            l1, l2, c1, s1, c12, s12
+            l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
         )
         return J
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
     Js = np.empty(q.shape[:-1] + (2, 2))
+    q = reduced_angles(q)
     flat = q.reshape(-1, 2)
     evaluate_blockwise(
         _jacobian_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), Js.reshape(-1, 4)
@@ -352,10 +415,10 @@ def joint_torques(
     pair = pair_floats(q)
     force_pair = pair_floats(force_by_tip) if pair is not None else None
     if pair is not None and force_pair is not None:
-        q1, q2 = pair
+        q1, q2 = reduced_pair(*pair)
+        q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        c1, s1, _, _, c12, s12 = link_trig(q1, q2, _cos, _sin)
-        J_entries = jacobian_from_trig(l1, l2, c1, s1, c12, s12)
+        J_entries = jacobian_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
         tau = _empty(2)  # then two item assignments: faster than np.array of a tuple
         tau[0], tau[1] = torques_from_jacobian(*J_entries, *force_pair)
         return tau
@@ -410,11 +473,11 @@ def jacobian_derivative(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    c1, s1, _, _, c12, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
-    x2, y2 = l2 * c12, l2 * s12
+    q1, q12 = link_angles(q)
+    x2, y2 = l2 * np.cos(q12), l2 * np.sin(q12)
     dJ = np.empty(q.shape[:-1] + (2, 2, 2))
-    dJ[..., 0, 0, 0] = -(l1 * c1 + x2)
-    dJ[..., 1, 0, 0] = -(l1 * s1 + y2)
+    dJ[..., 0, 0, 0] = -(l1 * np.cos(q1) + x2)
+    dJ[..., 1, 0, 0] = -(l1 * np.sin(q1) + y2)
     for i, relative in ((0, x2), (1, y2)):
         dJ[..., i, 0, 1] = dJ[..., i, 1, 0] = dJ[..., i, 1, 1] = -relative
     return dJ
@@ -454,14 +517,14 @@ def jacobian_rate(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.fl
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)
     l1, l2 = arm_lengths(arm)
-    c1, s1, _, _, c12, s12 = link_trig(q[..., 0], q[..., 1], np.cos, np.sin)
-    x2, y2 = l2 * c12, l2 * s12
+    q1, q12 = link_angles(q)
+    x2, y2 = l2 * np.cos(q12), l2 * np.sin(q12)
     qd1, qd2 = qd[..., 0], qd[..., 1]
     qd12 = qd1 + qd2
     Jdot = np.empty(shape[:-1] + (2, 2))
-    Jdot[..., 0, 0] = -(l1 * c1 * qd1 + x2 * qd12)
+    Jdot[..., 0, 0] = -(l1 * np.cos(q1) * qd1 + x2 * qd12)
     Jdot[..., 0, 1] = -x2 * qd12
-    Jdot[..., 1, 0] = -(l1 * s1 * qd1 + y2 * qd12)
+    Jdot[..., 1, 0] = -(l1 * np.sin(q1) * qd1 + y2 * qd12)
     Jdot[..., 1, 1] = -y2 * qd12
     return Jdot
 

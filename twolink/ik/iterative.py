@@ -30,7 +30,6 @@ from ..kinematics import (
     REACH_RTOL,
     distance_outside_reach,
     jacobian_from_trig,
-    link_trig,
     tip_from_trig,
 )
 from .result import IKResult, assemble_result, one_answer_result
@@ -239,8 +238,8 @@ def _trig(
     cos: Callable[[Any], Any], sin: Callable[[Any], Any], q1: Any, q2: Any
 ) -> tuple[Any, Any, Any, Any, Any]:
     """``(cos q1, sin q1, cos q12, sin q12, sin q2)``; ``cos``/``sin`` from :mod:`math` or numpy."""
-    c1, s1, _, s2, c12, s12 = link_trig(q1, q2, cos, sin)
-    return c1, s1, c12, s12, s2
+    q12 = q1 + q2  # wrapped angles: a sum of two angles in [-pi, pi)
+    return cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
 
 
 def _lm_step(

@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._values import Value
-from ..kinematics import fk, link_trig, tip_from_trig
+from ..kinematics import fk, reduced_pair, tip_from_trig
 
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
@@ -62,7 +62,9 @@ class IKResult(Value):
         True where the residual is within the solver's threshold.
     residual : float, or numpy.ndarray of float, shape (...)
         ``|fk(q) - p|`` in metres, always recomputed from ``q`` by forward
-        kinematics, never taken from the solver's own bookkeeping.
+        kinematics, never taken from the solver's own bookkeeping (a batch
+        of the closed form takes ``cos q2`` and ``sin q2`` from the unit
+        vector its ``q2`` is the ``atan2`` of, which they equal to round-off).
     within_limits : bool, or numpy.ndarray of bool, shape (...)
         Whether each ``q`` respects the arm's joint limits (true for an
         arm without limits; ``arm.within_limits(q)``).
@@ -225,8 +227,11 @@ def one_answer_result(
     floats (the residual with :func:`twolink.kinematics.tip_from_trig`), with
     the values and the message a batch of one would get.
     """
-    c1, s1, _, _, c12, s12 = link_trig(q1, q2, _cos, _sin)
-    tip_x, tip_y = tip_from_trig(arm.l1, arm.l2, c1, s1, c12, s12)
+    q1_reduced, q2_reduced = reduced_pair(q1, q2)  # q1, q2 as found, for the result
+    q12 = q1_reduced + q2_reduced
+    tip_x, tip_y = tip_from_trig(
+        arm.l1, arm.l2, _cos(q1_reduced), _sin(q1_reduced), _cos(q12), _sin(q12)
+    )
     residual = _hypot(tip_x - x, tip_y - y)
     success = residual <= threshold
     if success:
@@ -256,6 +261,7 @@ def assemble_result(
     method: str,
     solved_message: str,
     failure_detail: FailureDetail | None = None,
+    residual: NDArray[np.float64] | None = None,
 ) -> IKResult:
     """The :class:`IKResult` of answers ``q`` to targets ``p``, judged by forward kinematics now.
 
@@ -283,6 +289,10 @@ def assemble_result(
     failure_detail : callable, optional
         ``failure_detail(flat_index, residual)`` describes the first failed
         answer for the message (None: its residual only).
+    residual : numpy.ndarray, optional
+        ``|fk(q) - p|`` of the answers (one per answer, flat or in their
+        shape), when the solver computed it by forward kinematics with
+        them (the closed form does, block by block); else computed here.
 
     Raises
     ------
@@ -320,9 +330,12 @@ def assemble_result(
         )
     shape = q.shape[:-1]
     q_flat = q.reshape(-1, 2)
-    tips = fk(arm, q_flat)
-    tips -= np.broadcast_to(p, q.shape).reshape(-1, 2)
-    residual = np.hypot(tips[:, 0], tips[:, 1])
+    if residual is None:
+        tips = fk(arm, q_flat)
+        tips -= np.broadcast_to(p, q.shape).reshape(-1, 2)
+        residual = np.hypot(tips[:, 0], tips[:, 1])
+    else:
+        residual = _flat(residual, q_flat.shape[0], "residual", float)
     success = residual <= _flat(threshold, residual.size, "threshold", float)
     within = np.asarray(arm.within_limits(q_flat), dtype=bool).reshape(-1)
     failures = int(np.count_nonzero(~success))
