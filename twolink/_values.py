@@ -167,7 +167,12 @@ class Value:
             )
         )
 
+    #: Whether the class keeps its arrays read-only (:func:`freeze`); a class that does not
+    #: (:class:`twolink.ik.IKResult`) defines a ``__hash__`` that refuses, saying why.
+    _freezes_arrays = True
+
     def __setstate__(self, state: dict[str, Any]) -> None:
         """Unpickling (and :func:`copy.copy`): the fields back, arrays read-only again."""
         self.__dict__.update(state)
-        freeze(self, owned=True)
+        if self._freezes_arrays:
+            freeze(self, owned=True)

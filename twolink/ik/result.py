@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .._values import Value
-from ..kinematics import fk, reduced_pair, tip_from_trig
+from ..kinematics import LARGE_ANGLE, fk, reduced_pair, tip_from_trig
 
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
@@ -30,6 +30,7 @@ __all__ = ["IKResult", "FailureDetail", "assemble_result", "one_answer_result"]
 FailureDetail = Callable[[int, float], str]
 
 _cos, _sin, _hypot, _empty = math.cos, math.sin, math.hypot, np.empty
+_LARGE = LARGE_ANGLE
 
 
 @dataclass(frozen=True, eq=False, repr=False, init=False)
@@ -49,10 +50,13 @@ class IKResult(Value):
     axis of 2 (the down branch first), so one target solved on both branches
     is a batch of two answers.
 
-    The result is a value: its arrays are read-only (the other fields
-    describe the angles the solver returned; change a copy of ``q``), two
-    results with the same fields are equal (``==``) and hash alike, and a
-    result pickles (to another process, for a parameter sweep).
+    Two results with the same fields are equal (``==``, arrays compared by
+    their values), and a result pickles (to another process, for a
+    parameter sweep).  ``q`` is the result's own array: change a copy of
+    it, not it (the other fields describe the angles the solver returned).
+    So a result has no hash (its arrays could change under it, and making
+    them read-only would cost a one-target call a tenth of its time):
+    ``hash(result)`` raises a ``TypeError`` that says so.
 
     Attributes
     ----------
@@ -125,11 +129,6 @@ class IKResult(Value):
         # dictionary rather than through one object.__setattr__ call each (a frozen dataclass's way,
         # which costs as much as the closed form itself).
         fields = self.__dict__
-        # the result owns its arrays (assemble_result's answers): read-only from now on, in place
-        q.setflags(write=False)
-        if type(success) is np.ndarray:  # a batch: the fields are arrays too
-            for values in (success, residual, within_limits, iterations):
-                values.setflags(write=False)  # type: ignore[union-attr]
         fields["q"] = q
         fields["success"] = success
         fields["residual"] = residual
@@ -147,6 +146,14 @@ class IKResult(Value):
         raise TypeError(
             "an IKResult is not an array of joint angles: use its .q (and check .success), "
             f"e.g. ik.closed_form(arm, p).q; this result came from {self.method!r}"
+        )
+
+    _freezes_arrays = False
+
+    def __hash__(self) -> int:
+        raise TypeError(
+            "an IKResult has no hash: its arrays (q, ...) can be changed in place; "
+            "hash what you need from it, e.g. tuple(result.q)"
         )
 
     def __repr__(self) -> str:
@@ -227,7 +234,12 @@ def one_answer_result(
     floats (the residual with :func:`twolink.kinematics.tip_from_trig`), with
     the values and the message a batch of one would get.
     """
-    q1_reduced, q2_reduced = reduced_pair(q1, q2)  # q1, q2 as found, for the result
+    if (
+        -_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE
+    ):  # the usual answer: as it is
+        q1_reduced, q2_reduced = q1, q2
+    else:
+        q1_reduced, q2_reduced = reduced_pair(q1, q2)
     q12 = q1_reduced + q2_reduced
     tip_x, tip_y = tip_from_trig(
         arm.l1, arm.l2, _cos(q1_reduced), _sin(q1_reduced), _cos(q12), _sin(q12)
