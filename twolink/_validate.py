@@ -25,6 +25,22 @@ _Arm = TypeVar("_Arm")
 #: Python and numpy scalar types accepted where a real number belongs (bool excluded).
 _REAL_TYPES = (int, float, np.integer, np.floating)
 
+#: Scalar types refused although they are among the above: booleans, and numpy's time
+#: deltas (a subclass of its integers: ``np.timedelta64(1, "s")`` would pass for 1).
+_NOT_NUMBERS = (bool, np.bool_, np.timedelta64)
+
+
+def is_real_number(value: object) -> bool:
+    """Whether ``value`` is one real number: a Python or numpy int or float, not a bool or a time delta.
+
+    Examples
+    --------
+    >>> is_real_number(2), is_real_number(np.float32(0.5)), is_real_number(True), is_real_number(np.timedelta64(1, "s"))
+    (True, True, False, False)
+    """
+    return isinstance(value, _REAL_TYPES) and not isinstance(value, _NOT_NUMBERS)
+
+
 __all__ = [
     "finite_result",
     "InputTypeError",
@@ -34,6 +50,7 @@ __all__ = [
     "pair_floats",
     "state_floats",
     "as_finite_scalar",
+    "is_real_number",
     "as_time_span",
     "TIME_RANGE",
     "as_count",
@@ -260,8 +277,8 @@ def as_finite_scalar(
     ...
     ValueError: l1 must be > 0.0; got 0.0
     """
-    if isinstance(value, _REAL_TYPES) and not isinstance(value, (bool, np.bool_)):
-        number = float(value)
+    if is_real_number(value):
+        number = float(value)  # type: ignore[arg-type]
     elif type(value) is np.ndarray and value.ndim == 0 and value.dtype.kind in "iuf":
         number = float(value)
     else:
@@ -326,7 +343,7 @@ def as_count(
     ...
     twolink.errors.InputTypeError: n must be an integer >= 1; got True (bool)
     """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, _REAL_TYPES):
+    if not is_real_number(value):
         raise InputTypeError(
             f"{name} must be an integer >= {minimum}; got {value!r} ({type(value).__name__})"
         )

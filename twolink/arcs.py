@@ -19,7 +19,7 @@ from .errors import InputTypeError
 #: Most points :meth:`Arc.points` makes (memory budget: 1e7 x 2 floats, 160 MB).
 MAX_POINTS = 10_000_000
 
-__all__ = ["Arc", "arc_distance", "circle_intersections"]
+__all__ = ["Arc"]
 
 _TWO_PI = 2.0 * np.pi
 

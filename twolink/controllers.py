@@ -66,14 +66,7 @@ from .references import JointReference
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
-__all__ = [
-    "gain_matrix",
-    "CartesianSpring",
-    "Impedance",
-    "JointReference",
-    "JointPD",
-    "ComputedTorque",
-]
+__all__ = ["CartesianSpring", "Impedance", "JointPD", "ComputedTorque"]
 
 #: Relative tolerance of the symmetry and positive-semi-definiteness checks
 #: of gain matrices (relative to the largest entry).

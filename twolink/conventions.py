@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ._validate import as_pairs, real_array
 
-__all__ = ["to_absolute", "to_relative", "wrap_angle", "ELBOW_WORDS", "check_elbow"]
+__all__ = ["to_absolute", "to_relative", "wrap_angle", "ELBOW_WORDS"]
 
 #: The words of every ``elbow`` parameter, with one meaning everywhere:
 #:

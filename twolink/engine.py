@@ -45,6 +45,7 @@ from . import export
 from ._optional import require
 from ._validate import (
     as_configuration,
+    as_count,
     as_finite_scalar,
     as_time_span,
     torque_floats,
@@ -360,14 +361,7 @@ def simulate_in_mujoco(
     start, rate_start = _one(q0, "q0"), _one(qd0, "qd0")
     t_end = as_time_span(t_end, "t_end (s)")
     timestep = as_time_span(timestep, "timestep (s)")
-    if (
-        isinstance(sample_every, bool)
-        or not isinstance(sample_every, (int, np.integer))
-        or sample_every < 1
-    ):
-        raise ValueError(
-            f"sample_every must be an integer >= 1 (steps); got {sample_every!r}"
-        )
+    sample_every = as_count(sample_every, "sample_every (steps)", minimum=1)
     n_steps = int(round(t_end / timestep))
     if not 1 <= n_steps <= MAX_STEPS:
         raise ValueError(

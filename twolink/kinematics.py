@@ -49,9 +49,7 @@ __all__ = [
     "reach",
     "REACH_RTOL",
     "distance_outside_reach",
-    "require_within_reach",
     "SINGULARITY_TOL",
-    "require_nonsingular",
 ]
 
 #: Points up to ``REACH_RTOL * (l1 + l2)`` outside the reach annulus count as

@@ -27,7 +27,7 @@ from ._values import Value, freeze
 #: A function of time giving a pair (radians, rad/s or rad/s^2).
 TimeFunction = Callable[[float], ArrayLike]
 
-__all__ = ["JointReference", "TimeFunction"]
+__all__ = ["JointReference"]
 
 
 def _pair_function(function: object, name: str) -> TimeFunction:

@@ -30,7 +30,7 @@ from .kinematics import REACH_RTOL, fk, joint_torques
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
-__all__ = ["Wall", "as_wall", "WallContact", "wall_contact"]
+__all__ = ["Wall", "WallContact", "wall_contact"]
 
 _POINT = {"what": "one (x, y) point", "unit": "metres"}
 

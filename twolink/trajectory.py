@@ -81,7 +81,6 @@ __all__ = [
     "JointTrajectory",
     "ik_trajectory",
     "resolved_rate_trajectory",
-    "path_positions",
 ]
 
 #: The time laws :func:`time_scaling` knows.

@@ -33,7 +33,6 @@ if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
 __all__ = [
-    "SINGULARITY_TOL",
     "tip_velocity",
     "joint_rates",
     "joint_rates_dls",

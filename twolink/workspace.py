@@ -63,12 +63,8 @@ if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
 __all__ = [
-    "LIMIT_TOL",
     "is_reachable",
-    "require_reachable",
-    "describe_limits",
     "sample_reachable",
-    "candidate_arcs",
     "boundary_arcs",
     "distance_to_arcs",
     "clearance",
@@ -288,12 +284,8 @@ def sample_reachable(
     """
     require_arm(arm)
     n = as_count(n, "n (samples)", minimum=1, maximum=MAX_SAMPLES)
-    if not (
-        seed is None
-        or isinstance(seed, (int, np.integer))
-        and not isinstance(seed, (bool, np.bool_))
-    ):
-        raise InputTypeError(f"seed must be an integer (or None); got {seed!r}")
+    if seed is not None:
+        seed = as_count(seed, "seed (None or an integer >= 0)", minimum=0)
     rng = np.random.default_rng(seed)
     if arm.has_limits:
         low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)

@@ -16,13 +16,7 @@ from .targets import reachable_targets
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = [
-    "brute_force",
-    "grid_axis",
-    "GRID_CHUNK",
-    "MAX_AXIS_POINTS",
-    "MAX_GRID_POINTS",
-]
+__all__ = ["brute_force", "MAX_AXIS_POINTS", "MAX_GRID_POINTS"]
 
 #: Grid points evaluated at once: bounds memory however fine the step, and keeps
 #: each chunk (a few 256 KB arrays) in cache; larger chunks measured 2-3x slower.

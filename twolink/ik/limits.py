@@ -24,7 +24,7 @@ from .turns import LIMIT_TOL, free_q1_at_base, move_into_limits
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = ["LIMIT_TOL", "move_into_limits", "solutions_within_limits"]
+__all__ = ["solutions_within_limits"]
 
 
 def solutions_within_limits(

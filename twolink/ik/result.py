@@ -23,7 +23,7 @@ from ..kinematics import LARGE_ANGLE, fk, reduced_pair, tip_from_trig
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = ["IKResult", "FailureDetail", "assemble_result", "one_answer_result"]
+__all__ = ["IKResult"]
 
 #: ``failure_detail(flat_index, residual)``: a phrase on why the answer at
 #: ``flat_index`` (of the flattened answers) failed, given its residual (m).
