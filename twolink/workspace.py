@@ -46,6 +46,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
+from ._values import same, value_key
 from .arcs import Arc, arc_distance, circle_intersections
 from .budgets import DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
 from .conventions import check_elbow, to_absolute, to_relative, wrap_angle
@@ -392,7 +393,8 @@ class BranchTable:
                 f"p holds {count} points; a BranchTable takes at most MAX_SAMPLES = {MAX_SAMPLES}"
             )
         self.l1, self.l2 = float(arm.l1), float(arm.l2)
-        self.points = points
+        self.points = points.copy()
+        self.points.setflags(write=False)
         links = (
             dataclasses.replace(arm, q_min=None, q_max=None) if arm.has_limits else arm
         )
@@ -411,6 +413,17 @@ class BranchTable:
         self._at_base: NDArray[np.bool_] = (
             free_q1_at_base(links, points)[0] & self._in_reach
         )
+
+    def __eq__(self, other: object) -> bool:
+        """Tables of the same link lengths and points are equal (the rest follows from them)."""
+        if type(other) is not BranchTable:
+            return NotImplemented
+        return (self.l1, self.l2) == (other.l1, other.l2) and same(
+            self.points, other.points
+        )
+
+    def __hash__(self) -> int:
+        return hash((self.l1, self.l2, value_key(self.points)))
 
     def _require_links(self, arm: TwoLinkArm) -> None:
         require_arm(arm)

@@ -31,7 +31,7 @@ what is meant.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from typing import TYPE_CHECKING, Any
 
@@ -40,6 +40,7 @@ import sympy as sp
 from numpy.typing import ArrayLike, NDArray
 
 from .._validate import as_configuration
+from .._values import Value
 from .kinematics import planar_symbols
 
 if TYPE_CHECKING:
@@ -367,8 +368,8 @@ def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
     )
 
 
-@dataclass(frozen=True)
-class NumericDynamics:
+@dataclass(frozen=True, eq=False)
+class NumericDynamics(Value):
     """Numeric ``M``, ``C`` and ``g`` lambdified from an :class:`EquationsOfMotion`.
 
     Each function evaluates one state (``q``, ``qd`` of shape ``(2,)``, in the
@@ -379,9 +380,13 @@ class NumericDynamics:
     """
 
     model: str
-    _mass_matrix: Callable[..., Any]
-    _coriolis: Callable[..., Any]
-    _gravity: Callable[..., Any]
+    _mass_matrix: Callable[..., Any] = field(compare=False, repr=False)
+    _coriolis: Callable[..., Any] = field(compare=False, repr=False)
+    _gravity: Callable[..., Any] = field(compare=False, repr=False)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickled as its model's name: lambdified functions do not pickle, and follow from it."""
+        return lambdify_dynamics, (self.model,)
 
     @staticmethod
     def _parameters(arm: TwoLinkArm) -> tuple[float, ...]:
