@@ -293,7 +293,9 @@ def test_every_arm_gives_an_mjcf_that_mujoco_loads_or_a_clear_refusal(arm):
     assert np.allclose(model.body_mass[1:], [arm.m1, arm.m2], rtol=1e-12, atol=0.0)
     radius = np.array([arm.l1, arm.l2]) / 100.0
     axial = np.minimum(np.array([arm.m1, arm.m2]) * radius**2 / 2.0, arm.inertias)
-    if min(*axial, *arm.inertias) > 2e-14:  # MuJoCo reads a URDF's inertia as fullinertia: 1e-14 at least
+    if (
+        min(*axial, *arm.inertias) > 2e-14
+    ):  # MuJoCo reads a URDF's inertia as fullinertia: 1e-14 at least
         urdf = mujoco.MjModel.from_xml_string(export.to_urdf(arm))
         assert urdf.nbody == 3
 

@@ -1123,3 +1123,27 @@ def test_a_grid_beyond_the_memory_budget_is_refused_up_front_naming_points_and_l
         match=r"grid of \d+ x \d+ = .* points per target, more than MAX_GRID_POINTS",
     ):
         ik.brute_force(arms.two_metre, [3.0, 1.0], step=1e-4)
+
+
+@pytest.mark.parametrize("convention", ["relative", "absolute"])
+@given(q1=angles, q2=st.floats(0.1, 3.0))
+@settings(max_examples=30, deadline=None)
+def test_brute_force_finds_joint_limits_that_are_a_single_angle(convention, q1, q2):
+    """Limits of one angle each hold no point of a grid of q2 for absolute limits
+    (link 2's absolute angle q1 + q2 falls between its grid values): link 2 is tried along them."""
+    relative = np.array([q1, q2])
+    limits = relative if convention == "relative" else np.array([q1, q1 + q2])
+    arm = TwoLinkArm(1.0, 0.7, q_min=limits, q_max=limits, limit_convention=convention)
+    result = ik.brute_force(arm, arm.fk(relative))
+    assert result.success and result.within_limits
+    assert np.allclose(wrap_angle(result.q - relative), 0.0, atol=1e-9)
+
+
+def test_minimize_constrained_with_limits_that_fix_every_joint():
+    """scipy fixes both joints and runs no iteration (its result has no ``nit``: it was an AttributeError)."""
+    arm = TwoLinkArm(1.0, 1.0, q_min=(0.3, 0.5), q_max=(0.3, 0.5))
+    result = ik.minimize(arm, arm.fk([0.3, 0.5]), constrained=True)
+    assert result.success and np.array_equal(result.q, [0.3, 0.5])
+    assert result.iterations == 0
+    missed = ik.minimize(arm, [1.0, 1.0], constrained=True)
+    assert not missed.success and "fixed by bounds" in missed.message

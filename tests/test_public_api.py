@@ -20,7 +20,6 @@ instance of each class) or the exemptions, with its reason.  Then:
 import copy
 import importlib
 import inspect
-import math
 import pathlib
 import pickle
 import pkgutil
@@ -246,7 +245,8 @@ def test_every_public_object_pickles_and_equals_its_copies(name):
     ):
         assert _same(other, value) and _same(value, other)
         assert type(other) is type(value)
-    if isinstance(value, BaseException):  # compared and hashed by identity, as every exception
+    # an exception is compared and hashed by identity, as every exception
+    if isinstance(value, BaseException):
         return
     try:
         hashed = hash(value)
@@ -1030,19 +1030,33 @@ def test_every_registered_call_is_valid_and_names_every_argument(name):
     function(**arguments)
 
 
-#: Free text: any string is a valid value (a control character is not: names go into XML).
+#: Free text: any string is a valid value.
 FREE_TEXT = {
     ("twolink.arcs.Arc", "label"),
-    ("twolink.arcs.Arc", "kind"),
     ("twolink.linearization.linearize", "name"),
     ("twolink.linearization.closed_loop_system", "name"),
+}
+
+#: Names that go into XML: any printable string (a control character cannot be written).
+XML_NAMES = {
     ("twolink.export.to_mjcf", "model_name"),
     ("twolink.export.to_urdf", "robot_name"),
 }
 
-#: Arguments that take any object: none is junk (the time of a controller that ignores it).
-ANY_OBJECT: set[tuple[str, str]] = set()
+#: Arrays of any shape (times, angles, fractions): a nested list is no junk there.
+ANY_SHAPE = {
+    ("twolink.trajectory.time_scaling", "t"),
+    ("twolink.trajectory.LinePath.at", "t"),
+    ("twolink.trajectory.CirclePath.at", "t"),
+    ("twolink.conventions.wrap_angle", "angle"),
+    ("twolink.arcs.Arc.point_at", "fraction"),
+}
 
+#: Symbolic entries that take a symbol's name (a Python identifier) as well as an expression.
+SYMBOL_NAMES = {
+    ("twolink.symbolic.kinematics.dh_matrix", name)
+    for name in ("theta", "d", "a", "alpha")
+}
 
 #: The words the package's arguments take (a generated string may happen to be one).
 WORDS = {
@@ -1062,7 +1076,7 @@ WORDS = {
 }
 
 
-def _junk(name, parameter, default):
+def _junk(name, parameter, default, optional):
     """Values no argument of this kind accepts."""
     values = [
         object(),
@@ -1070,18 +1084,30 @@ def _junk(name, parameter, default):
         float("inf"),
         np.timedelta64(1, "s"),
         1 + 2j,
-        [[[0.5]]],
         {"x": 1.0},
     ]
-    if (name, parameter) in FREE_TEXT:
-        values.append("a name\x01with a control character")
-    else:
-        values += ["junk", ""]
-    if default is not None:
+    if (name, parameter) not in ANY_SHAPE:
+        values.append([[[0.5]]])
+    if (name, parameter) in XML_NAMES:
+        values += ["a name\x01with a control character", "a<b", ""]
+    elif (name, parameter) not in FREE_TEXT:
+        values += ["not a name" if (name, parameter) in SYMBOL_NAMES else "junk"]
+        if default != "":  # the empty string is a valid value where it is the default
+            values.append("")
+    if not optional:
         values.append(None)
     if not isinstance(default, bool):
         values.append(True)
     return values
+
+
+def _valid_text(name, parameter, text, default):
+    """Whether a generated string is a valid value after all."""
+    if (name, parameter) in FREE_TEXT or text in WORDS or text == default:
+        return True
+    if (name, parameter) in XML_NAMES:
+        return text.isprintable() and not any(c in text for c in "<>&\"'")
+    return (name, parameter) in SYMBOL_NAMES and text.isidentifier()
 
 
 def _walked():
@@ -1090,15 +1116,18 @@ def _walked():
         try:
             function, arguments = CALLS[name]()
         except Exception:  # noqa: BLE001 - an optional engine missing: skipped in the test
-            arguments = {}
-            function = None
+            function, arguments = None, {}
         signature = inspect.signature(function) if function is not None else None
         for parameter in arguments:
-            default = signature.parameters[parameter].default if signature else None
+            declared = signature.parameters[parameter]
+            default = declared.default
             default = None if default is inspect.Parameter.empty else default
-            if (name, parameter) not in ANY_OBJECT:
-                cases.append((name, parameter, default))
+            optional = declared.default is None or "None" in str(declared.annotation)
+            cases.append((name, parameter, default, optional))
     return cases
+
+
+WALKED = _walked()
 
 
 def _raised_by_the_package(error):
@@ -1110,11 +1139,10 @@ def _raised_by_the_package(error):
 
 
 @pytest.mark.parametrize(
-    "name, parameter, default",
-    _walked(),
+    "name, parameter, default, optional",
+    WALKED,
     ids=[
-        f"{name.removeprefix('twolink.')}-{parameter}"
-        for name, parameter, _ in _walked()
+        f"{name.removeprefix('twolink.')}-{parameter}" for name, parameter, *_ in WALKED
     ],
 )
 @settings(
@@ -1124,20 +1152,18 @@ def _raised_by_the_package(error):
 )
 @given(data=st.data())
 def test_a_bad_value_of_any_argument_is_refused_naming_it(
-    name, parameter, default, data
+    name, parameter, default, optional, data
 ):
     function, arguments = _call(name)
-    bad = data.draw(
-        st.one_of(
-            st.sampled_from(_junk(name, parameter, default)),
+    junk = st.sampled_from(_junk(name, parameter, default, optional))
+    if (name, parameter) not in FREE_TEXT:  # no generated string is junk there
+        junk = st.one_of(
+            junk,
             st.text(min_size=1, max_size=5).filter(
-                lambda s: (name, parameter) not in FREE_TEXT
+                lambda text: not _valid_text(name, parameter, text, default)
             ),
-        ),
-        label="bad value",
-    )
-    if isinstance(bad, str) and bad in WORDS:  # a word some argument takes
-        return
+        )
+    bad = data.draw(junk, label="bad value")
     try:
         function(**{**arguments, parameter: bad})
     except (ValueError, TypeError) as error:
@@ -1151,3 +1177,38 @@ def test_a_bad_value_of_any_argument_is_refused_naming_it(
         )
     else:
         pytest.fail(f"{name}({parameter}={bad!r}) was accepted")
+
+
+README = PACKAGE.parent / "README.md"
+
+
+def _public_modules():
+    modules = [twolink]
+    for info in pkgutil.walk_packages(twolink.__path__, "twolink."):
+        if not any(part.startswith("_") for part in info.name.split(".")):
+            modules.append(importlib.import_module(info.name))
+    return modules
+
+
+def test_the_readme_lists_the_public_names_of_every_module():
+    """README's "Using twolink in your own code" names each module's ``__all__`` (for a module
+    inside a sub-package, what the sub-package does not export), no more, no less."""
+    text = README.read_text(encoding="utf-8")
+    section = text.split("## Using twolink in your own code", 1)[1].split("\n## ", 1)[0]
+    listed = {
+        line.split("`")[1]: set(line.split(":", 1)[1].replace("`", "").split(", "))
+        for line in section.splitlines()
+        if line.startswith("- `twolink")
+    }
+    expected = {}
+    for module in _public_modules():
+        names = set(module.__all__)
+        parent = module.__name__.rpartition(".")[0]
+        if parent not in ("", "twolink"):
+            names -= set(importlib.import_module(parent).__all__)
+        if names:
+            expected[module.__name__] = {name.strip() for name in names}
+    listed = {
+        module: {name.strip() for name in names} for module, names in listed.items()
+    }
+    assert listed == expected

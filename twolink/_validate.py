@@ -51,8 +51,12 @@ __all__ = [
     "state_floats",
     "as_finite_scalar",
     "is_real_number",
+    "as_time",
     "as_time_span",
     "TIME_RANGE",
+    "as_length",
+    "LENGTH_RANGE",
+    "require_callable",
     "as_count",
     "as_flag",
     "broadcast_start",
@@ -301,6 +305,27 @@ def as_finite_scalar(
 TIME_RANGE = (1e-50, 1e50)
 
 
+def as_time(t: object, name: str = "t (s)") -> float:
+    """A time ``t`` in seconds as a finite float: what a controller or a reference is called with.
+
+    A finite float (Python's or numpy's, as an ODE solver passes it) is
+    returned at once (a controller is called thousands of times a run);
+    anything else is checked by :func:`as_finite_scalar`, naming ``name``.
+
+    Examples
+    --------
+    >>> as_time(0.25), as_time(1)
+    (0.25, 1.0)
+    >>> as_time("now")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: t (s) must be a real number; got 'now' (str)
+    """
+    if isinstance(t, float) and -math.inf < t < math.inf:
+        return float(t)
+    return as_finite_scalar(t, name)
+
+
 def as_time_span(value: object, name: str) -> float:
     """``value`` as a duration in seconds within :data:`TIME_RANGE`, or an error naming ``name``.
 
@@ -319,6 +344,48 @@ def as_time_span(value: object, name: str) -> float:
             f"{name} must be in [{TIME_RANGE[0]:g}, {TIME_RANGE[1]:g}]; got {number:g}"
         )
     return number
+
+
+#: The lengths the package accepts, metres (links, radii): within them every square and product
+#: the kinematics and dynamics form stays a normal float64 number.
+LENGTH_RANGE = (1e-50, 1e50)
+
+
+def as_length(value: object, name: str) -> float:
+    """``value`` as a length in metres within :data:`LENGTH_RANGE`, or an error naming ``name``.
+
+    Examples
+    --------
+    >>> as_length(0.5, "radius (m)")
+    0.5
+    >>> as_length(1e-300, "radius (m)")
+    Traceback (most recent call last):
+    ...
+    ValueError: radius (m) must be in [1e-50, 1e+50]; got 1e-300
+    """
+    number = as_finite_scalar(value, name)
+    if not LENGTH_RANGE[0] <= number <= LENGTH_RANGE[1]:
+        raise ValueError(
+            f"{name} must be in [{LENGTH_RANGE[0]:g}, {LENGTH_RANGE[1]:g}]; got {number:g}"
+        )
+    return number
+
+
+def require_callable(value: object, name: str, what: str) -> Any:
+    """``value`` if it is callable, else an :class:`InputTypeError` naming ``name`` and saying ``what`` it must be.
+
+    Examples
+    --------
+    >>> require_callable(3, "controller", "a callable controller(t, q, qd) -> tau")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: controller must be a callable controller(t, q, qd) -> tau; got 3 (int)
+    """
+    if not callable(value):
+        raise InputTypeError(
+            f"{name} must be {what}; got {value!r} ({type(value).__name__})"
+        )
+    return value
 
 
 def as_count(
@@ -351,7 +418,7 @@ def as_count(
         math.isfinite(value) and float(value).is_integer()
     ):
         raise ValueError(f"{name} must be an integer >= {minimum}; got {value!r}")
-    count = int(value)
+    count = int(value)  # type: ignore[call-overload]
     if count < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}; got {count}")
     if maximum is not None and count > maximum:

@@ -38,6 +38,7 @@ from ._validate import (
     as_configuration,
     as_finite_scalar,
     as_pairs,
+    as_time,
     plain_state,
     require_arm,
 )
@@ -125,7 +126,8 @@ class SpringWall(Value):
         return -np.multiply.outer(magnitude, normal)
 
     def __call__(self, t: float, p: ArrayLike, v: ArrayLike) -> NDArray[np.float64]:
-        """:meth:`force_on_tip` at ``p`` and ``v`` (any time ``t``): what :class:`TipForce` calls."""
+        """:meth:`force_on_tip` at ``p`` and ``v`` (any time ``t``, checked): what :class:`TipForce` calls."""
+        as_time(t)
         return self.force_on_tip(p, v)
 
 
@@ -190,6 +192,7 @@ class TipForce(Value):
         self, t: float, q: ArrayLike, qd: ArrayLike
     ) -> NDArray[np.float64]:
         """The force acting on the tip, N, at one state (``q``, ``qd`` of shape ``(2,)``)."""
+        t = as_time(t)
         q, qd = _one_state(q, qd)
         force_on_tip = self.force_on_tip
         if not callable(force_on_tip):
@@ -208,9 +211,10 @@ class TipForce(Value):
         self, t: float, q: ArrayLike, qd: ArrayLike
     ) -> NDArray[np.float64]:
         """The controller's torques alone, N m (zeros without a controller)."""
+        t = as_time(t)
+        q, qd = _one_state(q, qd)
         if self.controller is None:
             return np.zeros(2)
-        q, qd = _one_state(q, qd)
         tau = as_pairs(self.controller(t, q, qd), "controller(t, q, qd)")
         if tau.shape != (2,):
             raise ValueError(

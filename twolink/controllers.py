@@ -53,6 +53,7 @@ from ._validate import (
     as_finite_scalar,
     as_flag,
     as_pairs,
+    as_time,
     broadcast_shape,
     plain_state,
     real_array,
@@ -223,7 +224,9 @@ class CartesianSpring(Value):
         return 0.5 * np.einsum("...i,ij,...j->...", stretch, self.stiffness, stretch)
 
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
-        """The motor torques at time ``t`` (unused) and state ``(q, qd)``, N m."""
+        """The motor torques at time ``t`` (unused: checked) and state ``(q, qd)``, N m."""
+        as_time(t)
+        q, qd = _state(q, qd)  # qd unused: checked
         return self.torque(q)
 
     def torque_derivatives(
@@ -248,6 +251,7 @@ class CartesianSpring(Value):
         >>> bool(np.allclose(by_q, -600.0 * J.T @ J)), bool(np.all(by_qd == 0.0))
         (True, True)
         """
+        as_time(t)
         q = as_configuration(q)
         return _spring_stiffness(
             self.arm, q, self.force_on_tip(q), self.stiffness
@@ -357,7 +361,8 @@ class Impedance(Value):
         return self.spring.potential_energy(q)
 
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
-        """The motor torques at time ``t`` (unused) and state ``(q, qd)``, N m."""
+        """The motor torques at time ``t`` (unused: checked) and state ``(q, qd)``, N m."""
+        as_time(t)
         return self.torque(q, qd)
 
     def torque_derivatives(
@@ -377,6 +382,7 @@ class Impedance(Value):
         >>> bool(np.allclose(by_qd, -50.0 * J.T @ J))
         True
         """
+        as_time(t)
         q = as_configuration(q)
         J = self.arm.jacobian(q)
         by_q = _spring_stiffness(
@@ -395,7 +401,7 @@ def _as_reference(reference: JointReference | ArrayLike) -> JointReference:
             "reference must be a JointReference (for a trajectory: JointReference(position, velocity, "
             "acceleration) or JointReference.from_samples(t, q)) or a fixed configuration q_ref of shape (2,)"
         )
-    return JointReference.constant(reference)
+    return JointReference.constant(as_configuration(reference, "reference"))
 
 
 @dataclass(frozen=True, eq=False, init=False)
@@ -466,7 +472,7 @@ class JointPD(Value):
         ValueError: q must have shape (..., 2) (two joint angles or an x, y pair per row); got shape (3,)
         """
         q, qd = _state(q, qd)
-        q_ref, qd_ref, _ = self.reference(t)
+        q_ref, qd_ref, _ = self.reference(as_time(t))
         # K e for each row e: e @ K^T
         tau = (q_ref - q) @ self.kp.T + (qd_ref - qd) @ self.kd.T
         if self.gravity_compensation:
@@ -487,6 +493,7 @@ class JointPD(Value):
                [  0., -10.]]), array([[-2.,  0.],
                [ 0., -2.]])]
         """
+        as_time(t)
         q = as_configuration(q)
         by_q = (
             -self.kp + gravity_jacobian(self.arm, q)
@@ -565,7 +572,7 @@ class ComputedTorque(Value):
     def _acceleration(
         self, t: float, q: NDArray[np.float64], qd: NDArray[np.float64]
     ) -> NDArray[np.float64]:
-        q_ref, qd_ref, qdd_ref = self.reference(t)
+        q_ref, qd_ref, qdd_ref = self.reference(as_time(t))
         # K e for each row e: e @ K^T
         return qdd_ref + (qd_ref - qd) @ self.kd.T + (q_ref - q) @ self.kp.T
 
@@ -594,6 +601,7 @@ class ComputedTorque(Value):
         >>> bool(np.allclose(by_q, -100.0 * M + dynamics.gravity_jacobian(arms.two_metre, [0.3, 0.6])))
         True
         """
+        as_time(t)
         q = as_configuration(q)
         acceleration = self._acceleration(t, q, np.zeros(2))
         M = self.model.mass_matrix(q)

@@ -47,7 +47,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import as_finite_scalar, as_flag, real_array, require_arm
+from ._validate import (
+    as_finite_scalar,
+    as_flag,
+    as_length,
+    as_time_span,
+    real_array,
+    require_arm,
+)
 from .statics import Wall, as_wall
 
 if TYPE_CHECKING:
@@ -243,10 +250,8 @@ def to_mjcf(
         ) from None
     reach = arm.l1 + arm.l2
     tip_radius = reach / 1000.0 if tip_radius is None else tip_radius
-    tip_radius = as_finite_scalar(
-        tip_radius, "tip_radius (m)", minimum=0.0, strictly=True
-    )
-    timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
+    tip_radius = as_length(tip_radius, "tip_radius (m)")
+    timestep = as_time_span(timestep, "timestep (s)")
     if not isinstance(integrator, str) or integrator not in INTEGRATORS:
         raise ValueError(f"integrator must be one of {INTEGRATORS}; got {integrator!r}")
     tip_site = as_flag(tip_site, "tip_site")

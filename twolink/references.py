@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import as_configuration, as_pairs, real_array
+from ._validate import as_configuration, as_pairs, as_time, real_array
 from ._values import Value, freeze
 
 #: A function of time giving a pair (radians, rad/s or rad/s^2).
@@ -79,6 +79,7 @@ class JointReference(Value):
         ValueError
             When one of the three functions does not return two numbers.
         """
+        t = as_time(t)
         return (
             _reference_pair(self.position(t), "position", "rad", t),
             _reference_pair(self.velocity(t), "velocity", "rad/s", t),

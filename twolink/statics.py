@@ -193,9 +193,9 @@ class WallContact(Value):
 
     def branch(self, elbow: str) -> int:
         """Row index of the configuration named ``elbow`` (``"down"``, ``"up"``, ...)."""
-        if elbow not in self.elbow:
+        if not isinstance(elbow, str) or elbow not in self.elbow:
             raise ValueError(
-                f"no {elbow!r} configuration here; this contact has {self.elbow}"
+                f"elbow must be one of this contact's configurations {self.elbow}; got {elbow!r}"
             )
         return self.elbow.index(elbow)
 

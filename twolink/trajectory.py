@@ -44,7 +44,10 @@ from ._validate import (
     as_configuration,
     as_count,
     as_finite_scalar,
+    as_flag,
+    as_length,
     as_pairs,
+    as_time_span,
     finite_result,
     real_array,
     require_arm,
@@ -158,9 +161,9 @@ def time_scaling(
     >>> time_scaling([0.5, 1.0], 2.0, "quintic", with_acceleration=True)[2]
     array([1.40625, 0.     ])
     """
-    duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
-    if law not in TIME_LAWS:
-        raise ValueError(f"law must be one of {TIME_LAWS}; got {law!r}")
+    duration = as_time_span(duration, "duration (s)")
+    _check_law(law)
+    with_acceleration = as_flag(with_acceleration, "with_acceleration")
     times = real_array(t, "t (s)")
     if not np.all(np.isfinite(times)):
         raise ValueError("t must be finite times in seconds")
@@ -182,6 +185,13 @@ def time_scaling(
     if not with_acceleration:
         return s, s_dot
     return s, s_dot, np.where(inside, dds / duration**2, 0.0)
+
+
+def _check_law(law: object) -> str:
+    """``law`` if it is one of :data:`TIME_LAWS`, else an error naming it and them."""
+    if not isinstance(law, str) or law not in TIME_LAWS:
+        raise ValueError(f"law must be one of {TIME_LAWS}; got {law!r}")
+    return law
 
 
 def _point(value: ArrayLike, name: str) -> _Array:
@@ -231,6 +241,7 @@ class _TimedPath:
         -------
         p, v[, a] : numpy.ndarray, each of shape ``t.shape + (2,)``
         """
+        with_acceleration = as_flag(with_acceleration, "with_acceleration")
         p, v, a = self._at(t)
         return (p, v, a) if with_acceleration else (p, v)
 
@@ -250,6 +261,7 @@ class _TimedPath:
         Shapes ``(n,)`` for ``t`` (s) and ``(n, 2)`` for ``p`` (m), ``v`` (m/s)
         and ``a`` (m/s^2, with ``with_acceleration=True``).
         """
+        with_acceleration = as_flag(with_acceleration, "with_acceleration")
         t = _sample_times(self.duration, n)
         p, v, a = self._at(t)
         return (t, p, v, a) if with_acceleration else (t, p, v)
@@ -297,7 +309,7 @@ class LinePath(_TimedPath):
         object.__setattr__(
             self,
             "duration",
-            as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True),
+            as_time_span(duration, "duration (s)"),
         )
         object.__setattr__(self, "law", law)
         time_scaling(0.0, self.duration, self.law)  # checks the law's name
@@ -388,12 +400,12 @@ class CirclePath(_TimedPath):
         object.__setattr__(
             self,
             "radius",
-            as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True),
+            as_length(radius, "radius (m)"),
         )
         object.__setattr__(
             self,
             "duration",
-            as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True),
+            as_time_span(duration, "duration (s)"),
         )
         object.__setattr__(self, "law", law)
         object.__setattr__(

@@ -45,7 +45,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
+from ._validate import (
+    InputTypeError,
+    as_count,
+    as_finite_scalar,
+    as_length,
+    as_pairs,
+    require_arm,
+)
 from ._values import same, value_key
 from .arcs import Arc, arc_distance, circle_intersections
 from .budgets import DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
@@ -722,7 +729,9 @@ def boundary_arcs(
     ``probe * (l1 + l2)``) is not.  Where two arcs touch tangentially (an
     edge arc meets a singular circle tangentially at a singular pose) their
     computed crossings are ``sqrt(eps)`` apart; pieces shorter than
-    ``1e-6 (l1 + l2)`` from such cuts are dropped.
+    ``1e-6 (l1 + l2)`` from such cuts are dropped, unless they are the whole
+    boundary (joint limits narrower than that: a workspace that small is
+    all slivers).
 
     Parameters
     ----------
@@ -785,14 +794,16 @@ def boundary_arcs(
     midpoints = np.array([piece.point_at(0.5) for piece in pieces])
     outside = ~is_reachable(arm, midpoints[:, None, :] + ring, elbow=elbow)
     on_edge = np.any(outside, axis=1) & is_reachable(arm, midpoints, elbow=elbow)
+    edge = [piece for piece, piece_on_edge in zip(pieces, on_edge) if piece_on_edge]
+    whole = [
+        piece
+        for piece in edge
+        if not 0.0 < piece.radius * abs(piece.sweep) < 1e-6 * scale
+    ]
     kept: list[Arc] = []
-    for piece, piece_on_edge in zip(pieces, on_edge):
-        sliver = 0.0 < piece.radius * abs(piece.sweep) < 1e-6 * scale
-        if (
-            piece_on_edge
-            and not sliver
-            and not any(_same_arc(piece, other, scale) for other in kept)
-        ):
+    # slivers are kept only when they are the whole boundary (limits narrower than 1e-6 of the reach)
+    for piece in whole or edge:
+        if not any(_same_arc(piece, other, scale) for other in kept):
             kept.append(piece)
     return kept
 
@@ -919,7 +930,11 @@ def clearance(
     """
     points: NDArray[np.float64] = as_pairs(p, "p")
     elbow = check_elbow(elbow)
-    arcs = boundary_arcs(arm, elbow=elbow) if arcs is None else arcs
+    if arcs is None:
+        arcs = boundary_arcs(arm, elbow=elbow)
+    else:
+        require_arm(arm)
+        _require_arcs(arcs)
     if not arcs:  # nothing is reachable (one branch may be entirely outside the limits)
         return np.full(points.shape[:-1], -np.inf)
     distance = distance_to_arcs(points, arcs)
@@ -1196,8 +1211,9 @@ def circle_points(
     centre_xy: NDArray[np.float64] = as_pairs(centre, "centre")
     if centre_xy.shape != (2,):
         raise ValueError(f"centre must be one (x, y) pair; got shape {centre_xy.shape}")
-    radius = as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True)
-    start_angle = as_finite_scalar(start_angle, "start_angle (rad)")
+    radius = as_length(radius, "radius (m)")
+    # reduced exactly first: added to a large start angle the steps would round away
+    start_angle = float(wrap_angle(as_finite_scalar(start_angle, "start_angle (rad)")))
     n = as_count(n, "n (points)", minimum=1, maximum=MAX_SAMPLES)
     angle = start_angle + _TWO_PI * np.arange(n) / n
     return centre_xy + radius * np.c_[np.cos(angle), np.sin(angle)]
