@@ -111,9 +111,9 @@ def dynamics_symbols() -> dict[str, sp.Symbol]:
     return symbols
 
 
-def _expression(value: object, name: str) -> sp.Expr:
-    """``value`` as a sympy expression: an expression or a real number, never a string (sympy would parse it)."""
-    if isinstance(value, sp.Expr):
+def _expression(value: object, name: str) -> sp.Expr | sp.MatrixBase:
+    """``value`` as a sympy expression (or matrix of them): an expression or a real number, never a string (sympy would parse it)."""
+    if isinstance(value, (sp.Expr, sp.MatrixBase)):
         return value
     if is_real_number(value) and math.isfinite(float(value)):  # type: ignore[arg-type]
         return sp.sympify(value, strict=True)
@@ -123,12 +123,15 @@ def _expression(value: object, name: str) -> sp.Expr:
 
 
 def _symbols(values: object, name: str, count: int | None = None) -> list[sp.Symbol]:
-    """``values`` as a list of sympy symbols (``count`` of them when given), or an error naming ``name``."""
-    if not isinstance(values, (list, tuple)) or not all(
+    """``values`` as a list of sympy symbols (``count`` of them when given), or an error naming ``name``.
+
+    A list, a tuple or a sympy vector (``Matrix([q1, q2])``) of symbols.
+    """
+    if not isinstance(values, (list, tuple, sp.MatrixBase)) or not all(
         isinstance(value, sp.Symbol) for value in values
     ):
         raise InputTypeError(
-            f"{name} must be a list or tuple of sympy symbols; got {values!r} ({type(values).__name__})"
+            f"{name} must be a list, tuple or sympy vector of sympy symbols; got {values!r} ({type(values).__name__})"
         )
     if count is not None and len(values) != count:
         raise ValueError(
@@ -167,7 +170,7 @@ def time_derivative(
     >>> time_derivative(x, [x], "v", [a])
     Traceback (most recent call last):
     ...
-    twolink.errors.InputTypeError: rates must be a list or tuple of sympy symbols; got 'v' (str)
+    twolink.errors.InputTypeError: rates must be a list, tuple or sympy vector of sympy symbols; got 'v' (str)
     """
     expr = _expression(expr, "expr")
     coordinates = _symbols(coordinates, "coordinates")
