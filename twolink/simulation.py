@@ -562,7 +562,7 @@ def simulate(
     >>> simulate(arm, q0, [0.0, 0.0], -1.0)
     Traceback (most recent call last):
     ...
-    ValueError: t_end (s) must be in [1e-50, 1e+50]; got -1.0
+    ValueError: t_end (s) must be in [1e-50, 1e+50]; got -1
     """
     start = _start_state(q0, qd0)
     t_end = as_time_span(t_end, "t_end (s)")
