@@ -38,7 +38,7 @@ help:
 	@echo "make install-dev  that and the developers' tools (requirements-dev.txt); every target below does it first"
 	@echo "make test       unit tests, doctests, notebook hygiene, every notebook under strict nbval and the"
 	@echo "                infrastructure tests (venvs, wheels, nested pytest, browser, whole editions); the quick part:"
-	@echo "                .venv/bin/python -m pytest -m \"not infrastructure and not browser\""
+	@echo "                .venv/bin/python -m pytest -m \"not infrastructure\""
 	@echo "make portable   every chapter (strict nbval) and doctest in several emulated numeric environments (CPU SIMD, BLAS kernels, threads)"
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables (bench-widgets included)"
@@ -188,7 +188,7 @@ site: $(STAMP)
 # the wheel from it (so a file missing from the sdist is missing from the wheel
 # too), each in an isolated environment with the build backend pyproject.toml
 # names; `twine check --strict` reads their metadata and README as PyPI would.
-# tests/test_dist.py checks what they hold.
+# tests/infrastructure/test_dist.py checks what they hold.
 DIST ?= dist
 dist: $(STAMP)
 	rm -f $(DIST)/twolink-*.tar.gz $(DIST)/twolink-*.whl

@@ -17,7 +17,7 @@ import pytest
 
 from .conftest import ROOT, SCREENSHOTS, lab_browser
 
-# The chapters (the start page, text only, is checked by tests/test_course_map.py and the site suite).
+# The chapters (the start page, text only, is checked by tests/notebooks/test_course_map.py and the site suite).
 NOTEBOOKS = course_map.chapters(ROOT / "notebooks")
 
 
