@@ -12,9 +12,16 @@ proves, and a new test file is marked by being put in its folder: there is no
 list of tests to keep.
 """
 
+import importlib.util
 import pathlib
 
 import pytest
+
+#: The chapter checks that ride along in nbval's run of each chapter (figures,
+#: exercises: tests/notebooks/chapter_checks.py); ``-p no:chapter_checks`` leaves them out.
+CHAPTER_CHECKS = (
+    pathlib.Path(__file__).parent / "tests" / "notebooks" / "chapter_checks.py"
+)
 
 #: The markers of the tests under each folder (relative to the root; the longest
 #: matching folder wins).  The doctests of a package count with its folder of tests.
@@ -50,6 +57,17 @@ def pytest_configure(config):
         from_root = pathlib.Path(config.rootpath) / sanitize
         if from_root.exists():
             config.option.nbval_sanitize_with = str(from_root)
+    if (
+        getattr(config.option, "nbval", False)
+        or getattr(config.option, "nbval_lax", False)
+    ) and not config.pluginmanager.is_blocked("chapter_checks"):
+        if CHAPTER_CHECKS.exists():  # a copy of this file elsewhere has no checks
+            spec = importlib.util.spec_from_file_location(
+                "chapter_checks", CHAPTER_CHECKS
+            )
+            module = importlib.util.module_from_spec(spec)
+            spec.loader.exec_module(module)
+            config.pluginmanager.register(module.ChapterChecks(), "chapter_checks")
 
 
 @pytest.hookimpl(tryfirst=True)

@@ -2,34 +2,32 @@
 
 For every exercise:
 
-- the worked solution passes: the solution cell is taken from the notebook and
-  run after the earlier cells it needs (a backward slice of the chapter), so
-  the notebook and its check cannot drift apart;
-- the student edition's stub reports "not solved yet" for every part;
 - the wrong answers of ``WRONG`` (the table of plausible mistakes) are rejected,
   each with the other parts still passing (no part blames a sibling);
 - the equivalent forms of ``EQUIVALENT`` are accepted;
 - a part left unsolved makes no sibling fail;
-- a function part's worked solution passes hidden cases (a seed the notebook never holds).
+- each check cell of a chapter is one ``selfcheck.check`` call on the answers' names.
+
+The chapters' worked solutions are checked in nbval's run of each chapter
+(``notebooks/NN_x.ipynb::exercises``, tests/notebooks/chapter_checks.py): each
+passes its self-check, its student-edition stub says "not solved yet", and a
+function part passes hidden cases (a seed the notebook never holds).
 
 The right answers are computed here from the package's primitives or by hand,
 never read from ``answers/``.
 """
 
 import ast
-import builtins
 import contextlib
 import dataclasses
 import io
 import json
-import os
 import pathlib
 import re
 import sys
 
 import numpy as np
 import pytest
-from IPython.core.inputtransformer2 import TransformerManager
 
 from twolink import (
     TwoLinkArm,
@@ -46,7 +44,6 @@ from twolink_course import (
     exercises,
     selfcheck,
 )
-from twolink_course.exercises import judging
 from twolink_course.sources import compsys726
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -54,12 +51,16 @@ sys.path.insert(0, str(ROOT / "tools"))
 sys.path.insert(0, str(ROOT))
 import editions  # noqa: E402
 
-import answers  # noqa: E402
-
 #: A seed the notebooks never hold (the grader has its own).
 HIDDEN_TEST_SEED = 5_318_008
 
 NUMBERS = [exercise.number for exercise in exercises.all_exercises()]
+FUNCTION_PARTS = [
+    (number, part.name)
+    for number in NUMBERS
+    for part in exercises.get(number).parts
+    if getattr(part, "kind", None) == "function"
+]
 
 
 def statuses(number, answers):
@@ -1358,128 +1359,6 @@ def test_references_are_computed_by_the_package():
 NOTEBOOKS = {
     path.name[:2]: path for path in sorted((ROOT / "notebooks").glob("*.ipynb"))
 }
-SETUP_NAMES = set(dir(builtins))
-
-
-def _cell_names(source):
-    tree = ast.parse(source)
-    stored, loaded = set(), set()
-    for node in ast.walk(tree):
-        if isinstance(node, ast.Name):
-            (stored if isinstance(node.ctx, ast.Store) else loaded).add(node.id)
-        elif isinstance(node, (ast.FunctionDef, ast.ClassDef, ast.AsyncFunctionDef)):
-            stored.add(node.name)
-        elif isinstance(node, (ast.Import, ast.ImportFrom)):
-            stored.update(
-                (alias.asname or alias.name).split(".")[0] for alias in node.names
-            )
-        elif isinstance(node, ast.arg):
-            stored.add(node.arg)
-    return stored, loaded
-
-
-def _exercise_cells(number):
-    path = NOTEBOOKS[f"0{number.split('.')[0]}"]
-    cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
-    for index, cell in enumerate(cells):
-        source = "".join(cell["source"])
-        if (
-            cell["cell_type"] == "code"
-            and source.startswith(f"# Exercise {number}")
-            and editions.BEGIN in source
-        ):
-            return path, cells, index
-    raise AssertionError(
-        f"{path.name} has no solution cell starting '# Exercise {number}'"
-    )
-
-
-def _backward_slice(cells, index):
-    """The code cells before ``cells[index]`` that define what it (transitively) reads, in order."""
-    _, needed = _cell_names("".join(cells[index]["source"]))
-    needed -= SETUP_NAMES
-    chosen = []
-    for cell in reversed(cells[:index]):
-        if cell["cell_type"] != "code":
-            continue
-        source = TransformerManager().transform_cell(
-            "".join(cell["source"])
-        )  # IPython syntax (%pip) as Python
-        if source.lstrip().startswith(("%", "!", "get_ipython()")):
-            continue
-        stored, loaded = _cell_names(source)
-        if stored & needed:
-            chosen.append(source)
-            needed = (needed - stored) | (loaded - SETUP_NAMES)
-    return chosen[::-1]
-
-
-def _run(sources, namespace):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    cwd = os.getcwd()
-    os.chdir(ROOT / "notebooks")
-    try:
-        with contextlib.redirect_stdout(io.StringIO()):
-            for source in sources:
-                exec(compile(source, "<notebook cell>", "exec"), namespace)
-    finally:
-        os.chdir(cwd)
-        plt.close("all")
-
-
-@pytest.mark.parametrize("number", NUMBERS)
-def test_notebook_solution_passes_and_its_stub_is_not_solved(number):
-    path, cells, index = _exercise_cells(number)
-    namespace = {}
-    try:
-        _run(_backward_slice(cells, index), namespace)
-    except Exception as error:  # pragma: no cover - reported with the chapter's name
-        pytest.fail(
-            f"{path.name}: the cells exercise {number} needs raise {type(error).__name__}: {error}"
-        )
-    setup = dict(namespace)
-    solution = "".join(cells[index]["source"])
-    _run([solution], namespace)
-    parts = [part.name for part in exercises.get(number).parts]
-    missing = [name for name in parts if name not in namespace]
-    assert not missing, (
-        f"{path.name}: the solution of exercise {number} does not set {missing}"
-    )
-    status, lines = statuses(number, {name: namespace[name] for name in parts})
-    assert set(status.values()) == {"correct"}, lines
-    stub = editions.stub_source(solution, set(parts))
-    assert editions.BEGIN not in stub
-    student = dict(setup)
-    _run([stub], student)
-    status, lines = statuses(number, {name: student.get(name, ...) for name in parts})
-    assert set(status.values()) == {"not solved yet"}, lines
-
-
-FUNCTION_PARTS = [
-    (number, part.name)
-    for number in NUMBERS
-    for part in exercises.get(number).parts
-    if getattr(part, "kind", None) == "function"
-]
-
-
-@pytest.mark.parametrize(
-    "number, name", FUNCTION_PARTS, ids=[f"{n}-{p}" for n, p in FUNCTION_PARTS]
-)
-def test_the_notebook_solution_function_passes_hidden_cases(number, name):
-    # graded on inputs the notebook never holds: a seed only the grader (here, the test) has
-    path, cells, index = _exercise_cells(number)
-    namespace = {}
-    _run(_backward_slice(cells, index), namespace)
-    _run(["".join(cells[index]["source"])], namespace)
-    part = next(part for part in exercises.get(number).parts if part.name == name)
-    hidden = answers.hidden_cases(number, name, seed=HIDDEN_TEST_SEED)
-    verdict = judging.judge_function(part, namespace[name], hidden)
-    assert verdict.right, f"{path.name} exercise {number}: {verdict.message}"
 
 
 def _check_cells(cells):

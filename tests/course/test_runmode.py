@@ -1,23 +1,16 @@
-"""twolink_course.runmode: the grading switch, read from TWOLINK_GRADING at each call, and
-chapters whose self-checks print the same lines with the switch on as off.
+"""twolink_course.runmode: the grading switch, read from TWOLINK_GRADING at each call.
 
 What each heavy function does with the switch on is tested with it:
 tests/course/test_plot.py (animation_html), tests/course/test_explorer.py, tests/course/test_inline.py
-(figures) and tests/course/test_timing.py (median_time).
+(figures) and tests/course/test_timing.py (median_time); a chapter whose
+self-checks print the same lines with the switch on as off, in
+tests/infrastructure/test_runmode_chapter.py.
 """
 
-import os
-import pathlib
-
-import nbformat
 import pytest
-from nbclient import NotebookClient
 
 from twolink.errors import InputTypeError
 from twolink_course import runmode
-
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-CHECK = "selfcheck.check("
 
 
 @pytest.mark.parametrize(
@@ -63,87 +56,3 @@ def test_the_skipped_note_names_what_and_the_switch():
     for junk in ("", "  ", None, 3):
         with pytest.raises(InputTypeError, match="what must be a non-empty str"):
             runmode.skipped_note(junk)
-
-
-class _Headless(NotebookClient):
-    """No widget front end, as the grader runs a chapter."""
-
-    def handle_comm_msg(self, outs, msg, cell_index):
-        return None
-
-
-def _run_to_last_check(path, switch):
-    """The chapter up to its last check cell, outputs cleared, run in a fresh kernel."""
-    notebook = nbformat.read(path, as_version=4)
-    last = max(
-        index
-        for index, cell in enumerate(notebook.cells)
-        if cell.cell_type == "code" and CHECK in cell.source
-    )
-    notebook.cells = notebook.cells[: last + 1]
-    for cell in notebook.cells:
-        if cell.cell_type == "code":
-            cell.outputs = []
-    env = {
-        key: value
-        for key, value in os.environ.items()
-        if key not in ("MPLBACKEND", runmode.VARIABLE)
-    }
-    if switch:
-        env[runmode.VARIABLE] = "1"
-    _Headless(
-        notebook,
-        timeout=300,
-        kernel_name="python3",
-        resources={"metadata": {"path": str(ROOT / "notebooks")}},
-    ).execute(env=env)
-    return notebook
-
-
-def _check_lines(notebook):
-    return [
-        line
-        for cell in notebook.cells
-        if cell.cell_type == "code" and CHECK in cell.source
-        for output in cell.outputs
-        if output.get("output_type") == "stream"
-        for line in "".join(output.get("text", "")).splitlines()
-    ]
-
-
-def _outputs_of(notebook, mime):
-    return [
-        output
-        for cell in notebook.cells
-        if cell.cell_type == "code"
-        for output in cell.outputs
-        if mime in output.get("data", {})
-    ]
-
-
-@pytest.mark.infrastructure
-@pytest.mark.parametrize(
-    "chapter",
-    [
-        "02_inverse_kinematics",
-        "07_workspace_trajectories",
-    ],  # timings, explorers, videos
-)
-def test_a_chapter_prints_the_same_self_check_lines_with_the_switch_on(chapter):
-    path = ROOT / "notebooks" / f"{chapter}.ipynb"
-    taught = _run_to_last_check(path, switch=False)
-    graded = _run_to_last_check(path, switch=True)
-    lines = _check_lines(taught)
-    assert any("Exercise" in line for line in lines), lines  # the checks did print
-    assert _check_lines(graded) == lines
-    # and the switch did skip the heavy work: no picture, no video, no explorer canvas
-    assert _outputs_of(taught, "image/png") and not _outputs_of(graded, "image/png")
-    htmls = [
-        "".join(output["data"]["text/html"])
-        for output in _outputs_of(graded, "text/html")
-    ]
-    assert not any("<video" in text for text in htmls)
-    assert any("interactive figure skipped while grading" in text for text in htmls)
-    if chapter.startswith("07"):
-        assert any("animation skipped while grading" in text for text in htmls)
-    assert not _outputs_of(graded, "application/vnd.jupyter.widget-view+json")

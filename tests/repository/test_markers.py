@@ -11,7 +11,7 @@ module, transitively) builds a virtual environment (``_venvs.bare_venv``,
 nested pytest (``python -m pytest``, ``portable.main``), drives the browser
 (the ``page``, ``browser`` or ``jupyterlab`` fixtures) or runs a whole edition
 (``grade.grade_folder``, ``editions.build_site``, a ``HeadlessClient``) lives
-in an infrastructure folder, or says so with ``@pytest.mark.infrastructure``.
+in an infrastructure folder (``tests/infrastructure``, ``tests/browser``).
 The source of every test file is read; nothing is run.
 """
 
@@ -155,16 +155,15 @@ def _found():
     }
 
 
-def test_infrastructure_work_is_in_an_infrastructure_folder_or_marked():
-    unmarked = [
+def test_infrastructure_work_is_in_an_infrastructure_folder():
+    elsewhere = [
         f"{test} ({', '.join(sorted(reasons))})"
-        for test, (reasons, marks) in _found().items()
-        if "infrastructure" not in marks
-        and not _in_an_infrastructure_folder(ROOT / test.split("::")[0])
+        for test, (reasons, _) in _found().items()
+        if not _in_an_infrastructure_folder(ROOT / test.split("::")[0])
     ]
-    assert not unmarked, (
-        "move these to tests/infrastructure/ (or mark them @pytest.mark.infrastructure: "
-        f"make test still runs them; the quick part leaves them out): {unmarked}"
+    assert not elsewhere, (
+        "move these to tests/infrastructure/ (its folder marks them infrastructure: "
+        f"make test runs them, the quick part leaves them out): {elsewhere}"
     )
 
 
