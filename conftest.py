@@ -36,6 +36,7 @@ FOLDER_MARKERS = {
     "tools": ("infrastructure",),
     "tests/browser": ("infrastructure", "browser"),
     "tests/repository": ("repository",),
+    "tests/benchmarks": ("benchmarks",),
 }
 
 

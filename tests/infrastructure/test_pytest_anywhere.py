@@ -54,17 +54,9 @@ def pytest_in(folder, *args):
 
 
 @pytest.mark.infrastructure
-@pytest.mark.parametrize(
-    "where, args",
-    [
-        ("notebooks", ["--nbval", "00_random_id.ipynb"]),
-        (".", ["--nbval", "notebooks/"]),
-        (".", ["--nbval-lax", "notebooks/"]),
-        (".", ["--nbval", "notebooks/00_random_id.ipynb"]),
-    ],
-)
-def test_pytest_nbval_runs_from(repository, where, args):
-    result = pytest_in(repository / where, *args)
+def test_pytest_nbval_runs_from_inside_notebooks(repository):
+    """From the root the relative path exists anyway (make test runs from there)."""
+    result = pytest_in(repository / "notebooks", "--nbval", "00_random_id.ipynb")
     assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
     assert "1 passed" in result.stdout
 

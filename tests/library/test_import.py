@@ -1,26 +1,31 @@
 """``import twolink`` is light: no scipy, sympy, matplotlib, control or mujoco until a function needs it.
 
-Each module imports scipy inside the function that calls it.  These tests run
-fresh Python processes (this process has long since imported everything):
-one checks what ``import twolink`` and each submodule load, the others check
-that every function that imports scipy late still works after the light
-import.  How long the import takes is measured by
-``benchmarks/bench_import.py``, not here.
+Each module imports scipy inside the function that calls it.  One walk of
+both packages' sources (:mod:`ast`, nothing imported) follows every import a
+module runs when it is imported (at module level, in class bodies, under
+``if`` and ``try``; not in functions, not under ``if TYPE_CHECKING:``),
+through the packages' own modules and their parent packages, to the heavy
+libraries it reaches: none for every module of the library but the one built
+on sympy (and of the course kit, but the modules built on matplotlib), and only
+its own library for each module built on one.  One fresh
+interpreter then imports twolink for real: no heavy library is loaded, and
+every public name is there without loading scipy.  A function that imports
+scipy late is run by its module's tests, each call running its import.  How
+long the import takes is measured by ``benchmarks/bench_import.py``, not here.
 """
 
+import ast
 import json
 import os
 import pathlib
-import pkgutil
 import subprocess
 import sys
 import textwrap
 
 import pytest
 
-import twolink
-
 ROOT = pathlib.Path(__file__).resolve().parents[2]
+PACKAGES = ("twolink", "twolink_course")
 HEAVY = ("scipy", "sympy", "matplotlib", "control", "mujoco")
 # The modules that exist to use a heavy library, and the one they load: chapters import them by name.
 HEAVY_BY_DESIGN = {
@@ -35,6 +40,151 @@ HEAVY_BY_DESIGN = {
 }
 
 
+def _module_name(path: pathlib.Path) -> str:
+    parts = path.relative_to(ROOT).with_suffix("").parts
+    return ".".join(parts[:-1] if parts[-1] == "__init__" else parts)
+
+
+def _sources() -> dict[str, pathlib.Path]:
+    return {
+        _module_name(path): path
+        for package in PACKAGES
+        for path in sorted((ROOT / package).rglob("*.py"))
+    }
+
+
+def _is_type_checking(node: ast.If) -> bool:
+    return ast.unparse(node.test) in ("TYPE_CHECKING", "typing.TYPE_CHECKING")
+
+
+def imports_at_import_time(tree: ast.Module) -> list[ast.Import | ast.ImportFrom]:
+    """The import statements a module runs when it is imported."""
+    found, todo = [], list(tree.body)
+    while todo:
+        node = todo.pop(0)
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            found.append(node)
+        elif isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda)):
+            continue  # runs when called
+        elif isinstance(node, ast.If) and _is_type_checking(node):
+            todo.extend(node.orelse)
+        else:
+            todo.extend(
+                child
+                for child in ast.iter_child_nodes(node)
+                if isinstance(child, ast.stmt)
+            )
+    return found
+
+
+def imported_names(module: str, node: ast.Import | ast.ImportFrom, modules) -> set[str]:
+    """The modules a statement imports: the packages' own by full name, others by top-level name."""
+    if isinstance(node, ast.Import):
+        names = [alias.name for alias in node.names]
+    else:
+        if node.level:
+            package = module.split(".")
+            is_package = _sources()[module].name == "__init__.py"
+            base = package[: len(package) - node.level + (1 if is_package else 0)]
+            source = ".".join(base + ([node.module] if node.module else []))
+        else:
+            source = node.module
+        names = [source] + [f"{source}.{alias.name}" for alias in node.names]
+    found = set()
+    for name in names:
+        if name.split(".")[0] in PACKAGES:
+            if name in modules:
+                found.add(name)
+        else:
+            found.add(name.split(".")[0])
+    return found
+
+
+def import_graph() -> dict[str, set[str]]:
+    """``{module: modules and libraries its import runs}``, parent packages included."""
+    sources = _sources()
+    graph = {}
+    for module, path in sources.items():
+        tree = ast.parse(path.read_text(encoding="utf-8"), filename=str(path))
+        edges = set()
+        for node in imports_at_import_time(tree):
+            edges |= imported_names(module, node, sources)
+        parts = module.split(".")
+        edges |= {".".join(parts[:end]) for end in range(1, len(parts))}  # parents
+        graph[module] = edges - {module}
+    return graph
+
+
+def heavy_libraries_of(module: str, graph: dict[str, set[str]]) -> set[str]:
+    """The heavy libraries importing ``module`` loads, through the packages' own modules."""
+    seen, todo, heavy = set(), [module], set()
+    while todo:
+        name = todo.pop()
+        if name in seen:
+            continue
+        seen.add(name)
+        for edge in graph.get(name, ()):
+            if edge in graph:
+                todo.append(edge)
+            elif edge in HEAVY:
+                heavy.add(edge)
+    return heavy
+
+
+def expected_heavy(module: str) -> set[str]:
+    for owner, library in HEAVY_BY_DESIGN.items():
+        if module == owner or module.startswith(owner + "."):
+            return {library}
+    return set()
+
+
+def test_every_module_loads_only_the_heavy_library_it_is_built_on():
+    graph = import_graph()
+    wrong = {
+        module: sorted(heavy_libraries_of(module, graph))
+        for module in graph
+        if heavy_libraries_of(module, graph) != expected_heavy(module)
+    }
+    assert not wrong, (
+        f"heavy libraries loaded at import: {wrong}; import them inside the "
+        "function that needs them (# here, not at the top: import twolink stays light)"
+    )
+
+
+def test_the_walk_sees_imports_where_they_run(tmp_path):
+    tree = ast.parse(
+        textwrap.dedent("""
+        import numpy
+        from typing import TYPE_CHECKING
+        if TYPE_CHECKING:
+            import scipy
+        try:
+            import matplotlib
+        except ImportError:
+            pass
+        class Plot:
+            import sympy
+        def late():
+            import mujoco
+        """)
+    )
+    names = {
+        alias.name for node in imports_at_import_time(tree) for alias in node.names
+    }
+    assert names == {"numpy", "TYPE_CHECKING", "matplotlib", "sympy"}
+
+
+def test_the_walk_follows_the_packages_own_imports_to_a_heavy_library():
+    graph = import_graph()
+    assert "twolink.ik" in graph["twolink.ik.analytic"]  # its parent package
+    assert "twolink" in graph["twolink.kinematics"]
+    assert heavy_libraries_of("twolink.symbolic.kinematics", graph) == {"sympy"}
+    graph["twolink.kinematics"] = graph["twolink.kinematics"] | {"twolink.symbolic"}
+    assert heavy_libraries_of("twolink.arm", graph) == {
+        "sympy"
+    }  # arm imports kinematics
+
+
 def run_fresh(code: str) -> str:
     """Run ``code`` in a fresh interpreter and return what it printed (the test fails on any error)."""
     env = dict(
@@ -43,7 +193,6 @@ def run_fresh(code: str) -> str:
             filter(None, [str(ROOT), os.environ.get("PYTHONPATH")])
         ),
     )
-    env.setdefault("MPLBACKEND", "Agg")
     done = subprocess.run(
         [sys.executable, "-c", textwrap.dedent(code)],
         capture_output=True,
@@ -56,114 +205,22 @@ def run_fresh(code: str) -> str:
     return done.stdout
 
 
-def heavy_modules_after(statement: str) -> list[str]:
-    """The heavy libraries in ``sys.modules`` of a fresh process after ``statement``."""
+def test_import_twolink_is_light_and_has_every_public_name():
     printed = run_fresh(f"""
         import json, sys
-        {statement}
-        print(json.dumps(sorted({{name.split(".")[0] for name in sys.modules}} & set({HEAVY!r}))))
-    """)
-    return json.loads(printed.splitlines()[-1])
-
-
-def test_import_twolink_loads_no_heavy_library():
-    assert heavy_modules_after("import twolink") == []
-
-
-def test_every_public_name_is_there_after_the_light_import():
-    printed = run_fresh("""
-        import json, sys
         import twolink
+        loaded = sorted({{name.split(".")[0] for name in sys.modules}} & set({HEAVY!r}))
         missing = [name for name in twolink.__all__ if not hasattr(twolink, name)]
-        print(json.dumps([missing, "scipy" in sys.modules]))
+        print(json.dumps([loaded, missing, "scipy" in sys.modules]))
     """)
-    missing, scipy_loaded = json.loads(printed.splitlines()[-1])
+    loaded, missing, scipy_after_lookup = json.loads(printed.splitlines()[-1])
+    assert loaded == [], f"import twolink loaded {loaded}"
     assert missing == [], (
         f"names in twolink.__all__ missing after import twolink: {missing}"
     )
-    assert not scipy_loaded, "looking up the public names loaded scipy"
+    assert not scipy_after_lookup, "looking up the public names loaded scipy"
 
 
-SUBMODULES = sorted(
-    module.name
-    for module in pkgutil.walk_packages(twolink.__path__, "twolink.")
-    if not any(
-        module.name == heavy or module.name.startswith(heavy + ".")
-        for heavy in HEAVY_BY_DESIGN
-    )
-)
-
-
-@pytest.mark.parametrize("module", SUBMODULES)
-def test_each_submodule_imports_without_a_heavy_library(module):
-    assert heavy_modules_after(f"import {module}") == []
-
-
-@pytest.mark.parametrize("module, library", sorted(HEAVY_BY_DESIGN.items()))
-def test_the_modules_built_on_a_heavy_library_load_only_theirs(module, library):
-    assert heavy_modules_after(f"import {module}") == [library]
-
-
-# One call per function that imports scipy late, each with a check that can fail; every snippet starts
-# from the light import, so the function must load what it needs itself.
-LATE_SCIPY_CALLS = {
-    "ik.minimize (scipy.optimize)": """
-        result = twolink.ik.minimize(arms.ten, [10.0, 10.0], q0=[0.4, 1.0])
-        assert result.success and np.allclose(arms.ten.fk(result.q), [10.0, 10.0], atol=1e-9), result
-        constrained = twolink.ik.minimize(arms.ten, [10.0, 10.0], constrained=True)
-        assert np.allclose(arms.ten.fk(constrained.q), [10.0, 10.0], atol=1e-9), constrained
-    """,
-    "simulate (scipy.integrate)": """
-        arm = arms.two_metre
-        q0 = [np.pi / 4, 0.3]
-        held = twolink.simulate(arm, q0, [0.0, 0.0], 1.0, torque=lambda t, q, qd: arm.gravity(q))
-        assert np.allclose(held.q[-1], q0, atol=1e-6), held.q[-1]
-        falling = twolink.simulate(arm, q0, [0.0, 0.0], 0.5)
-        assert falling.q[-1][0] < q0[0] - 0.1, falling.q[-1]
-    """,
-    "trajectory.resolved_rate_trajectory (scipy.integrate)": """
-        line = twolink.trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0)
-        motion = twolink.trajectory.resolved_rate_trajectory(arms.two_metre, line, n=50)
-        assert np.allclose(arms.two_metre.fk(motion.q[-1]), [-1.0, 3.5], atol=1e-6), motion.q[-1]
-    """,
-    "controllers.JointReference.from_samples (scipy.interpolate)": """
-        t = np.linspace(0.0, 2.0, 9)
-        q = np.column_stack([np.sin(t), t ** 2])
-        reference = twolink.JointReference.from_samples(t, q)
-        for time, sample in zip(t, q):
-            assert np.allclose(reference(time)[0], sample, atol=1e-12), (time, reference(time)[0], sample)
-    """,
-    "workspace.largest_inscribed_circle (scipy.optimize)": """
-        centre, radius = twolink.workspace.largest_inscribed_circle(arms.ten)
-        assert abs(radius - (10 - 5 * np.sqrt(2))) < 1e-6, radius
-    """,
-    "linearization.critical_damping and equilibrium (scipy.linalg, scipy.optimize)": """
-        arm = twolink.TwoLinkArm(l1=1.0, l2=1.0, m1=0.0, m2=1.0, g=0.0)
-        q = [0.0, np.pi / 2]
-        matrix = twolink.linearization.critical_damping(arm, q, 100.0, kind="matrix")
-        scalar = twolink.linearization.critical_damping(arm, q, 100.0)
-        assert np.allclose(matrix, matrix.T) and np.linalg.eigvalsh(matrix)[-1] <= scalar + 1e-9, (matrix, scalar)
-        spring = twolink.CartesianSpring(arms.two_metre, 600.0, [3.0, 1.0])
-        q_rest = twolink.ik.closed_form(arms.two_metre, [3.0, 1.0]).q
-        q_sag = twolink.linearization.equilibrium(arms.two_metre, spring, q_rest)
-        assert np.allclose(arms.two_metre.fk(q_sag), [3.0, 1.0], atol=0.05), q_sag
-    """,
-    "sources.mae6245.numerical_ik (scipy.optimize)": """
-        from twolink_course.sources import mae6245
-        run = mae6245.numerical_ik(acos="matlab")
-        assert run.success and abs(run.q[0] - np.pi / 4) < 1e-4, run
-    """,
-}
-
-
-@pytest.mark.parametrize("call", sorted(LATE_SCIPY_CALLS))
-def test_a_function_that_needs_scipy_works_after_the_light_import(call):
-    printed = run_fresh(
-        "import sys\nimport numpy as np\nimport twolink\nfrom twolink import arms\n"
-        "assert 'scipy' not in sys.modules\n"
-        + textwrap.dedent(LATE_SCIPY_CALLS[call])
-        + "print('scipy' in sys.modules)\n"
-    )
-    assert printed.strip() == "True", (
-        "the call did not need scipy: it no longer tests a late import"
-    )
+@pytest.mark.parametrize("module", sorted(HEAVY_BY_DESIGN))
+def test_each_module_built_on_a_heavy_library_exists(module):
+    assert module in _sources(), f"{module} is gone: drop it from HEAVY_BY_DESIGN"

@@ -222,6 +222,7 @@ def test_each_folder_maps_to_its_markers():
     assert markers("tests/browser/test_static_site.py") == ("infrastructure", "browser")
     assert markers("tests/infrastructure/test_grade.py") == ("infrastructure",)
     assert markers("tests/repository/test_markers.py") == ("repository",)
+    assert markers("tests/benchmarks/test_benchmarks_run.py") == ("benchmarks",)
     assert markers("tests/conftest.py") == ()
     assert markers("tests/libraryx/test_a.py") == ()  # a folder, not a prefix
 
@@ -244,9 +245,14 @@ def test_every_folder_marker_is_registered_and_every_registered_marker_used():
 
 def test_every_place_pytest_collects_from_is_marked():
     for path in PYTEST_OPTIONS["testpaths"]:
-        if path == "tests":
-            continue  # its folders are (tests/repository/test_layout.py)
         assert ROOT_CONFTEST.folder_markers(path), f"{path} has no markers"
+
+
+def test_make_test_collects_every_folder_of_tests_but_the_benchmarks():
+    folders = {
+        folder for folder in ROOT_CONFTEST.FOLDER_MARKERS if folder.startswith("tests/")
+    }
+    assert folders - set(PYTEST_OPTIONS["testpaths"]) == {"tests/benchmarks"}
 
 
 def test_the_quick_part_is_documented():

@@ -1,9 +1,13 @@
-"""The benchmark scripts run and print their tables (small sizes; timings are not tested).
+"""The benchmark scripts run and print their tables (``--quick`` sizes; timings are not tested).
 
 Speed is measured in ``benchmarks/`` (``make bench``), never asserted by a
 unit test: a loaded machine would make such a test flaky.  What a test can
 check is that every script still runs against the package and prints a
-markdown table naming the machine.
+markdown table naming the machine.  These runs are not part of ``make test``
+(pyproject.toml's ``testpaths`` leave ``tests/benchmarks`` out): ``make
+bench-quick`` runs them, and CI runs it as its own step after ``make test``, so
+a broken benchmark still fails CI without a contributor's test run waiting
+for it.
 """
 
 import os
