@@ -77,14 +77,14 @@ def imports_at_import_time(tree: ast.Module) -> list[ast.Import | ast.ImportFrom
     return found
 
 
-def imported_names(module: str, node: ast.Import | ast.ImportFrom, modules) -> set[str]:
+def imported_names(module: str, node: ast.Import | ast.ImportFrom, sources) -> set[str]:
     """The modules a statement imports: the packages' own by full name, others by top-level name."""
     if isinstance(node, ast.Import):
         names = [alias.name for alias in node.names]
     else:
         if node.level:
             package = module.split(".")
-            is_package = _sources()[module].name == "__init__.py"
+            is_package = sources[module].name == "__init__.py"
             base = package[: len(package) - node.level + (1 if is_package else 0)]
             source = ".".join(base + ([node.module] if node.module else []))
         else:
@@ -93,7 +93,7 @@ def imported_names(module: str, node: ast.Import | ast.ImportFrom, modules) -> s
     found = set()
     for name in names:
         if name.split(".")[0] in PACKAGES:
-            if name in modules:
+            if name in sources:
                 found.add(name)
         else:
             found.add(name.split(".")[0])
