@@ -577,7 +577,7 @@ def wall_push(
     duration: float = 0.2,
     timestep: float = DEFAULT_TIMESTEP,
     contact_solref: tuple[float, float] | None = None,
-    contact_solimp: Sequence[float] = WALL_SOLIMP,
+    contact_solimp: Sequence[float] | None = WALL_SOLIMP,
     impratio: float = 100.0,
 ) -> WallPush:
     """The course's wall problem in MuJoCo: statics torques applied, the contact force read back.
@@ -630,8 +630,8 @@ def wall_push(
     contact_solref : pair of float, optional
         ``(timeconst, dampratio)``; default ``(2 timestep, 1)`` (the stiffest
         MuJoCo allows for the step, critically damped).
-    contact_solimp : sequence of float
-        MuJoCo's ``solimp``; default :data:`WALL_SOLIMP`.
+    contact_solimp : sequence of float or None
+        MuJoCo's ``solimp``; default :data:`WALL_SOLIMP` (None: MuJoCo's own).
     impratio : float
         MuJoCo's ratio of frictional to normal constraint impedance (>= 1).
 

@@ -1049,6 +1049,7 @@ ANY_SHAPE = {
     ("twolink.trajectory.LinePath.at", "t"),
     ("twolink.trajectory.CirclePath.at", "t"),
     ("twolink.conventions.wrap_angle", "angle"),
+    ("twolink.dh.dh_matrix", "theta"),
     ("twolink.arcs.Arc.point_at", "fraction"),
 }
 
