@@ -63,6 +63,8 @@ __all__ = [
     "CIRCLE_STEP",
     "WORKSPACE_STEP",
     "PART_E_ANGLES",
+    "TASK_CIRCLE_POINTS",
+    "TASK_RANGES_DEG",
     "colon",
     "x_equation_roots",
     "closed_form_cosine",
@@ -90,6 +92,10 @@ PART_E_ANGLES = (0.7845, -0.7845)
 CIRCLE_CENTRE = (12.5, 12.5)
 CIRCLE_RADIUS = 2.0
 CIRCLE_STEP = 0.5
+#: How many points the task asks for on the circle: 10 to 20, "(preferably equi-distant)".
+TASK_CIRCLE_POINTS = (10, 20)
+#: The joint ranges the task sets for the brute-force function, degrees: q1, q2.
+TASK_RANGES_DEG = ((0.0, 90.0), (-90.0, 90.0))
 #: The step of its part (c) workspace grid, ``0:0.1:pi/2`` and ``-pi/2:0.1:pi/2`` (rad).
 WORKSPACE_STEP = 0.1
 
