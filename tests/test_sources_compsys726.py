@@ -1,7 +1,7 @@
 """COMPSYS726 reproduced (twolink_course.sources.compsys726), and the course's corrections.
 
-The printed numbers checked here are those COURSE.md section H quotes from the
-source: the angle columns' first and last rows and the rate at x = 10 (0.6132).
+The printed numbers checked here are those the course's source record
+(``notebooks/source_record.ipynb``, items H2.1 to H2.5) quotes from the source: the angle columns' first and last rows and the rate at x = 10 (0.6132).
 The printed angle table is derived as H2.4 describes it (every angle the
 reproduction rounded to whole degrees, the last q1 printed -3.3); the rest of
 the printed rate column is not quoted there, only that -10 x the vertical
@@ -178,8 +178,10 @@ def test_bad_input_is_named():
 
 def test_truncation_explains_the_printed_minus_3_3_and_49_09():
     q_last, q_first = source.ik_as_written(100.0), source.ik_as_written(10.0)
-    assert float(source.truncated(q_last[0], 1)) == -3.3 == float(
-        source.PRINTED_ANGLES_DEG[-1, 0]
+    assert (
+        float(source.truncated(q_last[0], 1))
+        == -3.3
+        == float(source.PRINTED_ANGLES_DEG[-1, 0])
     )
     assert round(float(q_last[0]), 1) == -3.4  # rounding would print -3.4
     assert source.WORKED_ROW_PRINTED_DEG == (49.09, 171.89)

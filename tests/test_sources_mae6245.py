@@ -1,6 +1,7 @@
 """MAE 6245, reproduced (twolink_course.sources.mae6245).
 
-For every number its solution printed (COURSE.md H1), the reproduction of its
+For every number its solution printed (the course's source record,
+``notebooks/source_record.ipynb``, items H1.1 to H1.9), the reproduction of its
 method must give it to the printed rounding; beside it, the corrected value
 computed by the package.
 """
