@@ -116,10 +116,20 @@ def _sag(k):
     )
 
 
+def _tip(arm, q):
+    """The tip (x, y) of ``arm`` at ``q`` by the formula, without the package's fk."""
+    return np.array(
+        [
+            arm.l1 * np.cos(q[0]) + arm.l2 * np.cos(q[0] + q[1]),
+            arm.l1 * np.sin(q[0]) + arm.l2 * np.sin(q[0] + q[1]),
+        ]
+    )
+
+
 def _right_answers():
     two, ten, osake = arms.two_metre, arms.ten, arms.osake
     answers = {}
-    q = np.radians([45.0, -30.0])
+    q = np.radians([50.0, -30.0])
     answers["1.1"] = {
         "p_tip_ex1": [
             osake.l1 * np.cos(q[0]) + osake.l2 * np.cos(q.sum()),
@@ -136,13 +146,13 @@ def _right_answers():
         "p_tip_ex3": two.l1 * np.array([np.cos(q_abs[0]), np.sin(q_abs[0])])
         + two.l2 * np.array([np.cos(q_abs[1]), np.sin(q_abs[1])]),
     }
-    answers["1.4"] = {
-        "tip_position": lambda arm, q: np.array(
-            [
-                arm.l1 * np.cos(q[0]) + arm.l2 * np.cos(q[0] + q[1]),
-                arm.l1 * np.sin(q[0]) + arm.l2 * np.sin(q[0] + q[1]),
-            ]
-        )
+    answers["1.4"] = {"tip_position": _tip}
+    # the bench arm (0.30 m, 0.20 m, its plane 0.05 m up) at (90, -90) deg: the elbow at
+    # (0, 0.30, 0.05), link 2 along q1 + q2 = 0
+    answers["1.5"] = {
+        "dh_ex5": [[0.05, 0.30, 0.0], [0.0, 0.20, 0.0]],
+        "o1_ex5": [0.0, 0.30, 0.05],
+        "x2_ex5": [1.0, 0.0, 0.0],
     }
     answers["2.1"] = {
         "q_elbow_up": ik.closed_form(ten, [12.0, 4.0], elbow="up").q,
@@ -368,7 +378,11 @@ WRONG = {
     "1.1": [
         (
             "degrees fed to cos/sin",
-            {"p_tip_ex1": lambda r: arms.osake.fk([45.0, -30.0])},
+            {"p_tip_ex1": lambda r: arms.osake.fk([50.0, -30.0])},
+        ),
+        (
+            "q2's sign flipped",
+            {"p_tip_ex1": lambda r: arms.osake.fk(np.radians([50.0, 30.0]))},
         ),
         (
             "sin and cos swapped",
@@ -377,12 +391,10 @@ WRONG = {
         (
             "l1 and l2 swapped",
             {
-                "p_tip_ex1": lambda r: [
-                    arms.osake.l2 * np.cos(np.pi / 4)
-                    + arms.osake.l1 * np.cos(np.pi / 12),
-                    arms.osake.l2 * np.sin(np.pi / 4)
-                    + arms.osake.l1 * np.sin(np.pi / 12),
-                ]
+                "p_tip_ex1": lambda r: _tip(
+                    TwoLinkArm(l1=arms.osake.l2, l2=arms.osake.l1),
+                    np.radians([50.0, -30.0]),
+                )
             },
         ),
     ],
@@ -428,22 +440,34 @@ WRONG = {
             "links swapped",
             {
                 "tip_position": lambda r: (
-                    lambda arm, q: TwoLinkArm(l1=arm.l2, l2=arm.l1).fk(q)
+                    lambda arm, q: _tip(TwoLinkArm(l1=arm.l2, l2=arm.l1), q)
                 )
             },
         ),
         (
             "the OSAKE arm's lengths",
-            {"tip_position": lambda r: lambda arm, q: arms.osake.fk(q)},
+            {"tip_position": lambda r: lambda arm, q: _tip(arms.osake, q)},
         ),
         (
             "q2 as absolute",
-            {"tip_position": lambda r: lambda arm, q: arm.fk(to_relative(q))},
+            {"tip_position": lambda r: lambda arm, q: _tip(arm, to_relative(q))},
         ),
         (
             "q converted to radians again",
-            {"tip_position": lambda r: lambda arm, q: arm.fk(np.radians(q))},
+            {"tip_position": lambda r: lambda arm, q: _tip(arm, np.radians(q))},
         ),
+    ],
+    "1.5": [
+        (
+            "d and a swapped",
+            {"dh_ex5": lambda r: [[0.30, 0.05, 0.0], [0.20, 0.0, 0.0]]},
+        ),
+        ("a twist of 90 deg", {"dh_ex5": lambda r: [[0.05, 0.3, 90], [0, 0.2, 90]]}),
+        ("centimetres", {"dh_ex5": lambda r: [[5.0, 30.0, 0.0], [0.0, 20.0, 0.0]]}),
+        ("the elbow at height 0", {"o1_ex5": lambda r: [0.0, 0.30, 0.0]}),
+        ("the tip for frame 1", {"o1_ex5": lambda r: [0.20, 0.30, 0.05]}),
+        ("x1 for x2", {"x2_ex5": lambda r: [0.0, 1.0, 0.0]}),
+        ("q2 read as absolute", {"x2_ex5": lambda r: [0.0, -1.0, 0.0]}),
     ],
     "2.1": [
         (
@@ -1051,7 +1075,17 @@ EQUIVALENT = {
     "1.4": [
         (
             "a tuple returned",
-            {"tip_position": lambda r: lambda arm, q: tuple(arm.fk(q))},
+            {"tip_position": lambda r: lambda arm, q: tuple(_tip(arm, q))},
+        )
+    ],
+    "1.5": [
+        (
+            "3 significant figures, lists and a tuple",
+            {
+                "dh_ex5": lambda r: [[0.05, 0.3, 0], [0, 0.2, 0]],
+                "o1_ex5": lambda r: (0, 0.3, 0.05),
+                "x2_ex5": lambda r: np.array([1, 0, 0]),
+            },
         )
     ],
     "2.1": [
