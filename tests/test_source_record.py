@@ -179,7 +179,9 @@ def _mae6245():
         "h1-7": {
             "1.0000000000000002": mae6245.closed_form_cosine(),
             "200.00000000000003": float(mae6245.TARGET[0]) ** 2,
-            "2.1e-8": abs(complex(np.emath.arccos(mae6245.closed_form_cosine())).imag),
+            "0.000000021": abs(
+                complex(np.emath.arccos(mae6245.closed_form_cosine())).imag
+            ),
             "-0.7854": roots[1],
         },
         "h1-8": {
@@ -376,7 +378,7 @@ FORMULA_NUMBERS = {
 #: Numbers checked by a test of their own below (a bound, or a comparison the repository
 #: can only check for consistency), by the test's name.
 CHECKED_APART = {
-    "h1-2": {"1e-8": "test_the_round_off_numbers_are_what_the_record_says_they_are"},
+    "h1-2": {"1e-7": "test_the_round_off_numbers_are_what_the_record_says_they_are"},
     "h2-4": {
         "0.16": "test_the_rate_column_comparisons_are_consistent_with_the_reproductions",
         "1.24": "test_the_rate_column_comparisons_are_consistent_with_the_reproductions",
@@ -417,9 +419,9 @@ def test_every_number_of_an_item_is_computed_by_the_sources(anchor):
 
 
 def test_the_round_off_numbers_are_what_the_record_says_they_are():
-    # H1.2: "a q2 of the order of 1e-8"; H1.7: the exact IEEE numbers
+    # H1.2: "a q2 below 1e-7" (about 2e-8); H1.7: the exact IEEE numbers
     q2 = mae6245.numerical_ik(acos="matlab").q[1]
-    assert 1e-8 <= abs(q2) < 1e-7
+    assert abs(q2) < 1e-7
     assert repr(mae6245.closed_form_cosine()) == "1.0000000000000002"
     assert repr(float(mae6245.TARGET[0]) ** 2) == "200.00000000000003"
     # H1.2: the numpy run ends with q2 = nan; H3.2: singular at every pose
