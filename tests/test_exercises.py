@@ -126,6 +126,54 @@ def _tip(arm, q):
     )
 
 
+def _elbow(arm, p, sign):
+    """The closed form's branch with q2 of ``sign`` (-1: up), by the cosine rule and atan2."""
+    c2 = (p[0] ** 2 + p[1] ** 2 - arm.l1**2 - arm.l2**2) / (2 * arm.l1 * arm.l2)
+    q2 = sign * np.arccos(np.clip(c2, -1.0, 1.0))
+    q1 = np.arctan2(p[1], p[0]) - np.arctan2(
+        arm.l2 * np.sin(q2), arm.l1 + arm.l2 * np.cos(q2)
+    )
+    return np.array([q1, q2])
+
+
+def _elbow_up(arm, p):
+    """The elbow-up angles, without the package's IK."""
+    return _elbow(arm, p, -1.0)
+
+
+def _jacobian(arm, q):
+    """J of ``arm`` at ``q`` by hand, without the package's jacobian."""
+    s1, c1, s12, c12 = (
+        np.sin(q[0]),
+        np.cos(q[0]),
+        np.sin(q[0] + q[1]),
+        np.cos(q[0] + q[1]),
+    )
+    return np.array(
+        [
+            [-arm.l1 * s1 - arm.l2 * s12, -arm.l2 * s12],
+            [arm.l1 * c1 + arm.l2 * c12, arm.l2 * c12],
+        ]
+    )
+
+
+def _solve_rates(arm, q, v_tip):
+    return np.linalg.solve(_jacobian(arm, q), v_tip)
+
+
+def _dls(lambda_squared, transpose=True, normal=False):
+    """Exercise 3.6's damped rates, written the ways a student might."""
+    q, v = (
+        np.radians([30.0, 3.0]),
+        0.1 * np.array([np.cos(np.radians(31.5)), np.sin(np.radians(31.5))]),
+    )
+    J = _jacobian(arms.two_metre, q)
+    if normal:
+        return np.linalg.solve(J.T @ J + lambda_squared * np.eye(2), J.T @ v)
+    w = np.linalg.solve(J @ J.T + lambda_squared * np.eye(2), v)
+    return J.T @ w if transpose else w
+
+
 def _right_answers():
     two, ten, osake = arms.two_metre, arms.ten, arms.osake
     answers = {}
@@ -154,14 +202,16 @@ def _right_answers():
         "o1_ex5": [0.0, 0.30, 0.05],
         "x2_ex5": [1.0, 0.0, 0.0],
     }
+    # at (14, 9) elbow up is q = (66.4, -67.4) deg, within [0, 90] x [-90, 90] deg; elbow
+    # down, (-0.9, 67.4) deg, is not
     answers["2.1"] = {
-        "q_elbow_up": ik.closed_form(ten, [12.0, 4.0], elbow="up").q,
-        "up_within_limits": False,
+        "q_elbow_up": _elbow_up(ten, [14.0, 9.0]),
+        "up_within_limits": True,
     }
     step = 2 * 0.01 / 30.0
     answers["2.2"] = {
-        "step_1cm_deg": np.degrees(step),
-        "grid_points_1cm": (np.ceil(np.pi / 2 / step) + 1)
+        "step_deg_ex2": np.degrees(step),
+        "grid_points_ex2": (np.ceil(np.pi / 2 / step) + 1)
         * (np.ceil(np.pi / step) + 1),
     }  # both ends on the grid
     try:
@@ -172,12 +222,16 @@ def _right_answers():
         "unreachable_message": message,
         "distance_beyond_reach": np.sqrt(481.0) - 20.0,
     }
-    answers["2.4"] = {
-        "elbow_up_angles": lambda arm, p: ik.closed_form(arm, p, elbow="up").q
+    answers["2.4"] = {"elbow_up_angles": _elbow_up}
+    seconds = np.array([3.2e-6, 9.7e-6, 9.4e-4, 2.9e-4, 2.7e-4])
+    answers["2.5"] = {
+        "margins_ex5": 1e-3 / seconds,  # closed form, newton, BFGS, SLSQP, brute force
+        "fit_with_margin_ex5": 4,  # all but BFGS fit 3 times over
+        "reason_ex5": "b",
     }
     answers["3.1"] = {
-        "joint_rates": lambda arm, q, v_tip: np.linalg.solve(arm.jacobian(q), v_tip),
-        "qd_ex1": np.linalg.solve(two.jacobian(np.radians([20.0, 70.0])), [0.0, 0.2]),
+        "joint_rates": _solve_rates,
+        "qd_ex1": _solve_rates(two, np.radians([20.0, 70.0]), [0.0, 0.2]),
     }
     answers["3.2"] = {"tip_speed_ex2": np.hypot(osake.l1, osake.l2) * np.radians(5.0)}
     q2_grid = np.radians(np.arange(0.5, 180.0, 0.5))
@@ -187,6 +241,33 @@ def _right_answers():
     answers["3.3"] = {
         "q2_best_deg_ex3": np.degrees(q2_grid[np.argmin(cond)]),
         "cond_best_ex3": cond.min(),
+    }
+    # exercise 3.4: column i stacks z x (o2 - o_(i-1)) over z, z = (0, 0, 1), on the OSAKE arm
+    q34 = np.radians([40.0, -70.0])
+    elbow, tip = osake.joint_positions(q34)[1:]
+    turn = np.array([[0.0, -1.0], [1.0, 0.0]])  # z x r in the plane
+    answers["3.4"] = {
+        "J_geo_ex4": np.vstack(
+            [
+                np.column_stack([turn @ tip, turn @ (tip - elbow)]),
+                np.zeros((3, 2)),
+                [1, 1],
+            ]
+        )
+    }
+    answers["3.5"] = {
+        "det_J_ex5": 0.06 * np.sin(np.radians(30.0)),
+        "singular_q2_deg_ex5": [0, 180],
+    }
+    q36 = np.radians([30.0, 3.0])
+    v36 = 0.1 * np.array([np.cos(np.radians(31.5)), np.sin(np.radians(31.5))])
+    J36 = _jacobian(two, q36)
+    U, sigma, Vt = np.linalg.svd(
+        J36
+    )  # DLS: each singular direction times sigma / (sigma^2 + 0.01)
+    answers["3.6"] = {
+        "qd_exact_ex6": np.linalg.solve(J36, v36),
+        "qd_dls_ex6": Vt.T @ (sigma / (sigma**2 + 0.1**2) * (U.T @ v36)),
     }
     answers["4.1"] = {
         "tau_ex1": two.jacobian(np.radians([30.0, 60.0])).T @ [0.0, -100.0]
@@ -474,7 +555,7 @@ WRONG = {
             "the elbow-down branch",
             {
                 "q_elbow_up": lambda r: (
-                    ik.closed_form(arms.ten, [12.0, 4.0], elbow="down").q
+                    ik.closed_form(arms.ten, [14.0, 9.0], elbow="down").q
                 )
             },
         ),
@@ -483,20 +564,20 @@ WRONG = {
             "atan for atan2 (q1 off by pi)",
             {"q_elbow_up": lambda r: np.asarray(r["q_elbow_up"]) + [np.pi, 0.0]},
         ),
-        ("within limits claimed", {"up_within_limits": lambda r: True}),
-        ("a string for a bool", {"up_within_limits": lambda r: "no"}),
+        ("the elbow-down branch's limits", {"up_within_limits": lambda r: False}),
+        ("a string for a bool", {"up_within_limits": lambda r: "yes"}),
     ],
     "2.2": [
         (
             "step left in radians",
-            {"step_1cm_deg": lambda r: np.radians(r["step_1cm_deg"])},
+            {"step_deg_ex2": lambda r: np.radians(r["step_deg_ex2"])},
         ),
-        ("factor 2 missing", {"step_1cm_deg": lambda r: r["step_1cm_deg"] / 2}),
-        ("a1 + a2 for a1 + 2 a2", {"step_1cm_deg": lambda r: r["step_1cm_deg"] * 1.5}),
+        ("factor 2 missing", {"step_deg_ex2": lambda r: r["step_deg_ex2"] / 2}),
+        ("a1 + a2 for a1 + 2 a2", {"step_deg_ex2": lambda r: r["step_deg_ex2"] * 1.5}),
         (
             "the missing +1",
             {
-                "grid_points_1cm": lambda r: (
+                "grid_points_ex2": lambda r: (
                     np.floor(np.pi / 2 / (0.02 / 30)) * np.floor(np.pi / (0.02 / 30))
                 )
             },
@@ -504,7 +585,7 @@ WRONG = {
         (
             "the upper ends missed (floor + 1)",
             {
-                "grid_points_1cm": lambda r: (
+                "grid_points_ex2": lambda r: (
                     (np.floor(np.pi / 2 / (0.02 / 30)) + 1)
                     * (np.floor(np.pi / (0.02 / 30)) + 1)
                 )
@@ -513,7 +594,7 @@ WRONG = {
         (
             "range / step, not whole",
             {
-                "grid_points_1cm": lambda r: (
+                "grid_points_ex2": lambda r: (
                     (np.pi / 2 / (0.02 / 30)) * (np.pi / (0.02 / 30))
                 )
             },
@@ -544,11 +625,7 @@ WRONG = {
     "2.4": [
         (
             "the elbow-down branch",
-            {
-                "elbow_up_angles": lambda r: (
-                    lambda arm, p: ik.closed_form(arm, p, elbow="down").q
-                )
-            },
+            {"elbow_up_angles": lambda r: lambda arm, p: _elbow(arm, p, +1.0)},
         ),
         (
             "atan(y / x) for atan2",
@@ -570,26 +647,36 @@ WRONG = {
             },
         ),
     ],
+    "2.5": [
+        ("shares of the budget", {"margins_ex5": lambda r: 1 / r["margins_ex5"]}),
+        ("every method that fits", {"fit_with_margin_ex5": lambda r: 5}),
+        ("fits as measured", {"reason_ex5": lambda r: "a"}),
+        ("only a closed form", {"reason_ex5": lambda r: "c"}),
+    ],
     "3.1": [
         (
             "J^T v",
             {
                 "qd_ex1": lambda r: (
-                    arms.two_metre.jacobian(np.radians([20.0, 70.0])).T @ [0.0, 0.2]
+                    _jacobian(arms.two_metre, np.radians([20.0, 70.0])).T @ [0.0, 0.2]
                 )
             },
         ),
         ("swapped sign", {"qd_ex1": lambda r: -np.asarray(r["qd_ex1"])}),
         (
             "a J^T v function",
-            {"joint_rates": lambda r: lambda arm, q, v_tip: arm.jacobian(q).T @ v_tip},
+            {
+                "joint_rates": lambda r: (
+                    lambda arm, q, v_tip: _jacobian(arm, q).T @ v_tip
+                )
+            },
         ),
         (
             "a function with l1 and l2 swapped",
             {
                 "joint_rates": lambda r: (
-                    lambda arm, q, v_tip: np.linalg.solve(
-                        TwoLinkArm(l1=arm.l2, l2=arm.l1).jacobian(q), v_tip
+                    lambda arm, q, v_tip: _solve_rates(
+                        TwoLinkArm(l1=arm.l2, l2=arm.l1), q, v_tip
                     )
                 )
             },
@@ -597,8 +684,8 @@ WRONG = {
         (
             "degrees in J",
             {
-                "qd_ex1": lambda r: np.linalg.solve(
-                    arms.two_metre.jacobian([20.0, 70.0]), [0.0, 0.2]
+                "qd_ex1": lambda r: _solve_rates(
+                    arms.two_metre, [20.0, 70.0], [0.0, 0.2]
                 )
             },
         ),
@@ -638,6 +725,42 @@ WRONG = {
                 )
             },
         ),
+    ],
+    "3.4": [
+        (
+            "both levers from the base",
+            {
+                "J_geo_ex4": lambda r: np.vstack(
+                    [
+                        np.repeat(np.asarray(r["J_geo_ex4"])[:, :1], 2, axis=1)[:3],
+                        np.asarray(r["J_geo_ex4"])[3:],
+                    ]
+                )
+            },
+        ),
+        (
+            "no angular rows",
+            {
+                "J_geo_ex4": lambda r: np.vstack(
+                    [np.asarray(r["J_geo_ex4"])[:3], np.zeros((3, 2))]
+                )
+            },
+        ),
+        (
+            "the 2x2 Jacobian only",
+            {"J_geo_ex4": lambda r: np.asarray(r["J_geo_ex4"])[:2]},
+        ),
+    ],
+    "3.5": [
+        ("cos q2", {"det_J_ex5": lambda r: 0.06 * np.cos(np.radians(30.0))}),
+        ("sin(q1 + q2)", {"det_J_ex5": lambda r: 0.06 * np.sin(np.radians(70.0))}),
+        ("where det J is largest", {"singular_q2_deg_ex5": lambda r: [-90.0, 90.0]}),
+        ("folded in radians", {"singular_q2_deg_ex5": lambda r: [0.0, np.pi]}),
+    ],
+    "3.6": [
+        ("the damped rates for the exact", {"qd_exact_ex6": lambda r: r["qd_dls_ex6"]}),
+        ("lambda, not lambda squared", {"qd_dls_ex6": lambda r: _dls(0.1)}),
+        ("J^T missing", {"qd_dls_ex6": lambda r: _dls(0.01, transpose=False)}),
     ],
     "4.1": [
         ("F up (swapped sign)", {"tau_ex1": lambda r: -np.asarray(r["tau_ex1"])}),
@@ -1098,13 +1221,13 @@ EQUIVALENT = {
                 ]
             },
         ),
-        ("numpy's bool", {"up_within_limits": lambda r: np.bool_(False)}),
+        ("numpy's bool", {"up_within_limits": lambda r: np.bool_(True)}),
     ],
     "2.2": [
-        ("an int count", {"grid_points_1cm": lambda r: int(r["grid_points_1cm"])}),
+        ("an int count", {"grid_points_ex2": lambda r: int(r["grid_points_ex2"])}),
         (
             "a numpy float step",
-            {"step_1cm_deg": lambda r: np.float64(r["step_1cm_deg"])},
+            {"step_deg_ex2": lambda r: np.float64(r["step_deg_ex2"])},
         ),
     ],
     "2.3": [
@@ -1122,6 +1245,16 @@ EQUIVALENT = {
                 )
             },
         )
+    ],
+    "2.5": [
+        (
+            "a list, and a spaced letter",
+            {
+                "margins_ex5": lambda r: list(r["margins_ex5"]),
+                "reason_ex5": lambda r: " b ",
+            },
+        ),
+        ("a numpy count", {"fit_with_margin_ex5": lambda r: np.int64(4)}),
     ],
     "3.1": [
         ("a list", {"qd_ex1": lambda r: list(r["qd_ex1"])}),
@@ -1143,6 +1276,24 @@ EQUIVALENT = {
             "to 3 significant figures",
             {"tip_speed_ex2": lambda r: float(f"{r['tip_speed_ex2']:.3g}")},
         ),
+    ],
+    "3.4": [
+        ("nested lists", {"J_geo_ex4": lambda r: np.asarray(r["J_geo_ex4"]).tolist()})
+    ],
+    "3.5": [
+        (
+            "3 significant figures, a tuple of ints",
+            {"det_J_ex5": lambda r: 0.03, "singular_q2_deg_ex5": lambda r: (0, 180)},
+        )
+    ],
+    "3.6": [
+        (
+            "the normal equations' form, (J^T J + lambda^2 I)^-1 J^T v, and lists",
+            {
+                "qd_dls_ex6": lambda r: list(_dls(0.01, normal=True)),
+                "qd_exact_ex6": lambda r: list(r["qd_exact_ex6"]),
+            },
+        )
     ],
     "3.3": [
         (
@@ -1261,21 +1412,32 @@ def _apply(right_answers, changes):
     return answers
 
 
+#: Each chapter's exercises: (how many, how many parts, the exercises with a function part).
+EXERCISE_COUNTS = {
+    1: (5, 10, ("1.4",)),
+    2: (5, 10, ("2.4",)),
+    3: (6, 10, ("3.1",)),
+    4: (4, 5, ("4.4",)),
+    5: (4, 9, ("5.4",)),
+    6: (4, 6, ("6.4",)),
+    7: (4, 5, ("7.4",)),
+}
+
+
 def test_every_exercise_has_wrong_and_equivalent_answers():
-    assert len(NUMBERS) == 27
     for number in NUMBERS:
         assert len(WRONG[number]) >= 2, number
         assert len(EQUIVALENT[number]) >= 1, number
-    assert sum(len(exercises.get(number).parts) for number in NUMBERS) == 44
-    assert [number for number, _ in FUNCTION_PARTS] == [
-        "1.4",
-        "2.4",
-        "3.1",
-        "4.4",
-        "5.4",
-        "6.4",
-        "7.4",
-    ]
+    counts = {
+        chapter: (
+            len(numbers := [n for n in NUMBERS if n.split(".")[0] == str(chapter)]),
+            sum(len(exercises.get(number).parts) for number in numbers),
+            tuple(n for n, _ in FUNCTION_PARTS if n in numbers),
+        )
+        for chapter in EXERCISE_COUNTS
+    }
+    assert counts == EXERCISE_COUNTS
+    assert len(NUMBERS) == sum(count for count, _, _ in EXERCISE_COUNTS.values())
 
 
 @pytest.mark.parametrize("number", NUMBERS)
@@ -1390,7 +1552,8 @@ def test_references_are_computed_by_the_package():
 # ------------------------------------------------------------- the notebooks' own solutions
 
 NOTEBOOKS = {
-    path.name[:2]: path for path in sorted((ROOT / "notebooks").glob("*.ipynb"))
+    path.name[:2]: path
+    for path in sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
 }
 SETUP_NAMES = set(dir(builtins))
 
