@@ -168,7 +168,7 @@ def code_lines(source: str) -> int:
 
     Examples
     --------
-    >>> code_lines("# a comment\n\nx = 1  # set x\n    y = 2\n")
+    >>> code_lines("# a comment\\n\\nx = 1  # set x\\n    y = 2\\n")
     2
     """
     return sum(
@@ -285,7 +285,7 @@ class ChapterTime:
         Examples
         --------
         >>> print(ChapterTime(Workload(3000, 300, 6, 2), Workload(900, 120)).paragraph())
-        **Time:** about 2 hours 10 minutes for the main line and its exercises; the casebook about 25 minutes more (the course's time rule, on the start page).
+        **Time:** about 2 hours 40 minutes for the main line and its exercises; the casebook about 25 minutes more (the course's time rule, on the start page).
         """
         return (
             f"**Time:** {time_text(self.main_minutes)} for the main line and its "
