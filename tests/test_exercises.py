@@ -20,6 +20,7 @@ import ast
 import builtins
 import contextlib
 import dataclasses
+import importlib
 import io
 import json
 import os
@@ -1731,3 +1732,131 @@ def test_check_cells_hold_no_reference(chapter):
     assert checked == chapter_numbers, (
         f"{path.name} checks {checked}, its exercises are {chapter_numbers}"
     )
+
+
+# ------------------------------------------------------------- value exercises graded on hidden inputs
+
+#: Every value exercise re-run on hidden inputs: its chapter module's RERUN entry.
+RERUNS = [
+    (number, rerun)
+    for name in answers.chapter_names()
+    for number, rerun in getattr(answers.chapter(name), "RERUN", {}).items()
+]
+
+
+def _inputs_cell(cells, index):
+    """The cell right before the solution cell, which must be the exercise's inputs cell."""
+    cell = cells[index - 1]
+    assert cell["cell_type"] == "code"
+    return "".join(cell["source"])
+
+
+def _same(a, b):
+    if isinstance(a, TwoLinkArm) or isinstance(b, TwoLinkArm):
+        return a == b
+    if isinstance(a, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    return np.allclose(
+        np.asarray(a, dtype=float), np.asarray(b, dtype=float), rtol=0, atol=0
+    )
+
+
+@pytest.mark.parametrize("number, rerun", RERUNS, ids=[n for n, _ in RERUNS])
+def test_the_inputs_cell_binds_exactly_the_rerun_inputs(number, rerun):
+    _, cells, index = _exercise_cells(number)
+    source = _inputs_cell(cells, index)
+    first, *lines = source.splitlines()
+    assert first == f"# Inputs of exercise {number}"
+    tree = ast.parse("\n".join(lines))
+    assert all(
+        isinstance(node, ast.Assign)
+        and len(node.targets) == 1
+        and isinstance(node.targets[0], ast.Name)
+        for node in tree.body
+    ), f"exercise {number}: the inputs cell holds only assignments name = expression"
+    bound = [node.targets[0].id for node in tree.body]
+    assert bound == list(rerun.inputs), (bound, list(rerun.inputs))
+    namespace = {}
+    _run(_backward_slice(cells, index - 1), namespace)
+    _run([source], namespace)
+    for name, value in rerun.inputs.items():
+        assert _same(namespace[name], value), (number, name)
+
+
+@pytest.mark.parametrize("number, rerun", RERUNS, ids=[n for n, _ in RERUNS])
+def test_the_solution_computes_from_the_inputs_on_hidden_ones(number, rerun):
+    # the worked solution, run on inputs the notebook never holds, gives the references
+    _, cells, index = _exercise_cells(number)
+    solution = "".join(cells[index]["source"])
+    parts = {part.name for part in exercises.get(number).parts}
+    visible = rerun.answers(rerun.inputs)
+    assert set(visible) <= parts and visible
+    status, lines = statuses(
+        number,
+        {
+            name: visible.get(name, ...)
+            for name in (p.name for p in exercises.get(number).parts)
+        },
+    )
+    assert all(status[name] == "correct" for name in visible), lines
+    setup = {}
+    _run(_backward_slice(cells, index), setup)  # the chapter's cells the solution needs
+    by_name = {part.name: part for part in exercises.get(number).parts}
+    for seed in range(3):
+        hidden = rerun.hidden(np.random.default_rng(HIDDEN_TEST_SEED + seed))
+        assert hidden.keys() == rerun.inputs.keys()
+        namespace = dict(setup, **hidden)
+        _run([solution], namespace)
+        for name, expected in rerun.answers(hidden).items():
+            # judged as the visible answer is, with the hidden reference in its place
+            part = dataclasses.replace(by_name[name], expected=expected, mistakes=())
+            verdict = judging.judge(part, namespace[name])
+            assert verdict.right, (number, name, seed, verdict.message)
+
+
+# ------------------------------------------------------------- function exercises' rules
+
+FORBIDDEN = [
+    (number, part, paths)
+    for name in answers.chapter_names()
+    for (number, part), paths in getattr(answers.chapter(name), "FORBIDDEN", {}).items()
+]
+
+
+def _resolve(dotted):
+    """The object a dotted import path names (a module's function or a class's method)."""
+    parts = dotted.split(".")
+    for cut in range(len(parts), 0, -1):
+        try:
+            found = importlib.import_module(".".join(parts[:cut]))
+        except ModuleNotFoundError:
+            continue
+        for attribute in parts[cut:]:
+            found = getattr(found, attribute)
+        return found
+    raise AssertionError(f"{dotted} names no module")
+
+
+@pytest.mark.parametrize(
+    "number, part, paths", FORBIDDEN, ids=[f"{n}-{p}" for n, p, _ in FORBIDDEN]
+)
+def test_forbidden_calls_exist_and_the_exercise_states_its_rules(number, part, paths):
+    assert part in {p.name for p in exercises.get(number).parts}
+    for dotted in paths:
+        assert callable(_resolve(dotted)), dotted
+    _, cells, index = _exercise_cells(number)
+    text = " ".join(
+        "".join(cell["source"])
+        for cell in cells[:index]
+        if cell["cell_type"] == "markdown"
+        and f"**Exercise {number}" in "".join(cell["source"])
+    )
+    assert "**Rules:**" in text and "switched off" in text, number
+    spec = next(p for p in exercises.get(number).parts if p.name == part)
+    for argument in spec.cases[0].arguments:
+        assert f"`{argument}`" in text, (
+            number,
+            argument,
+        )  # the parameter names, as given
+    called = {dotted.rsplit(".", 1)[-1] for dotted in paths}
+    assert any(f"{name}`" in text for name in called), number
