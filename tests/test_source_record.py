@@ -485,6 +485,23 @@ def test_every_link_to_the_record_finds_its_anchor(path):
         )
 
 
+@pytest.mark.parametrize(
+    "path", sorted(NOTEBOOKS.glob("*.ipynb")), ids=lambda path: path.name
+)
+def test_links_to_the_record_are_in_markdown_cells_which_the_site_rewrites(path):
+    # The static site turns `source_record.ipynb#h2-4` into `source_record.html#h2-4`
+    # in Markdown cells; a link written by a code cell would lead to a missing page.
+    in_code = [
+        index
+        for index, cell in enumerate(cells(path))
+        if cell["cell_type"] == "code" and RECORD_LINK.search(text(cell))
+    ]
+    assert not in_code, (
+        f"{path.name}: code cells {in_code} write links to the source record; "
+        "put the link in the Markdown cell beside them"
+    )
+
+
 @pytest.mark.parametrize("number", LINKED_CHAPTERS)
 def test_each_casebook_entry_links_the_items_it_names(number):
     (path,) = [path for path in outline.chapters() if path.name.startswith(number)]
