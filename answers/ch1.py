@@ -22,7 +22,8 @@ from twolink_course.exercises.spec import (
 )
 
 CHAPTER = "01_dh_forward_kinematics"
-Q_1_1_DEG = (50.0, -30.0)  # OSAKE arm: q1 != 45 deg, where a flipped q2 and swapped sine and cosine would coincide
+# OSAKE arm: q1 != 45 deg, where a flipped q2 and swapped sine and cosine would coincide
+Q_1_1_DEG = (50.0, -30.0)
 Q_1_2_DEG = (120.0, -45.0)  # OSAKE arm with link 2 raised on a spacer
 SPACER_1_2_M = 0.02  # the second DH row's offset d, m
 Q_ABS_1_3_DEG = (60.0, 150.0)  # 2 m arm, link angles from the x-axis
@@ -605,8 +606,7 @@ def exercise_1_5() -> ExerciseSpec:
                     ),
                 ),
                 hints=(
-                    "Reread 'The frames on the arm': which way does each x axis "
-                    "point?",
+                    "Reread 'The frames on the arm': which way does each x axis point?",
                     "x2 points along link 2, at the angle q1 + q2 from the base's x "
                     "axis; it is a unit vector in the plane (z = 0).",
                 ),

@@ -91,7 +91,9 @@ def test_explorers_are_built_in_one_short_cell_from_the_chapter_s_kit_module(num
         lines = course_map.code_lines(source)
         assert lines <= MAX_EXPLORER_CELL_LINES, (number, lines)
         assert "def " not in source and "plot." not in source, source
-        assert f"ch{int(number)}_" in source, "the figure comes from the chapter's module"
+        assert f"ch{int(number)}_" in source, (
+            "the figure comes from the chapter's module"
+        )
 
 
 @pytest.mark.parametrize("number", CHAPTERS)

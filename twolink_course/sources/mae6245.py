@@ -161,9 +161,7 @@ def x_equation_roots(
     return np.array([direction + half_angle, direction - half_angle])
 
 
-def closed_form_cosine(
-    p: ArrayLike = TARGET, a1: float = A1, a2: float = A2
-) -> float:
+def closed_form_cosine(p: ArrayLike = TARGET, a1: float = A1, a2: float = A2) -> float:
     """``(x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2)`` as its closed-form script computes it, in IEEE doubles.
 
     At its own target, (10 sqrt 2, 10 sqrt 2), the arm is stretched and the
