@@ -4,8 +4,7 @@ A chapter reads as a main line (numbered sections, Pitfalls, Exercises,
 Summary) followed by one last section, ``## Casebook: the coursework``, whose
 ``###`` entries reproduce and correct what the source coursework did; each
 entry names the item of the course's source record it rests on
-(``Source record: [H3.2](source_record.ipynb#h3-2).``, a link to the item in
-``notebooks/source_record.ipynb``; the plain ``Source record: H3.2.`` is read too).  This module finds those parts in a notebook's
+(``Source record: H3.2.``).  This module finds those parts in a notebook's
 JSON; ``tests/test_reading_structure.py`` checks them and this script prints
 them.
 
@@ -33,9 +32,11 @@ NOTEBOOK_DIR = ROOT / "notebooks"
 CASEBOOK_HEADING = "Casebook: the coursework"
 #: The largest share of a chapter's cells its casebook may take.
 MAX_CASEBOOK_SHARE = 0.25
-SOURCE_RECORD = re.compile(r"Source record: ((?:H\d\.\d+|G)(?:, (?:H\d\.\d+|G))*)")
-#: A link to an item of the source record, ``[H3.2](source_record.ipynb#h3-2)``: its label is group 1.
-RECORD_LINK = re.compile(r"\[(H\d\.\d+)\]\(source_record\.ipynb#h\d-\d+\)")
+#: One item of the source record, plain (``H3.2``) or linked to its anchor on the
+#: record's page (``[H3.2](source_record.ipynb#h3-2)``).
+_RECORD_ITEM = r"\[?(?:H\d\.\d+|G)\]?(?:\(source_record\.ipynb#[\w-]+\))?"
+SOURCE_RECORD = re.compile(rf"Source record: ({_RECORD_ITEM}(?:, {_RECORD_ITEM})*)")
+_RECORD_NAME = re.compile(r"H\d\.\d+|G")
 _HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*#*\s*$")
 _MARKUP = re.compile(r"[*_`]")
 
@@ -130,12 +131,11 @@ class Outline:
                 for cell in self.cells[heading.cell + 1 : end]
                 if cell["cell_type"] == "markdown"
             ][:1]
-            # "Source record: [H3.2](source_record.ipynb#h3-2)" names H3.2, as the plain form does
-            text = RECORD_LINK.sub(r"\1", "\n".join(source(cell) for cell in opening))
+            text = "\n".join(source(cell) for cell in opening)
             records = tuple(
-                item.strip()
+                name
                 for match in SOURCE_RECORD.finditer(text)
-                for item in match.group(1).split(",")
+                for name in _RECORD_NAME.findall(match.group(1))
             )
             found.append(Entry(heading, end, records))
         return found
