@@ -10,7 +10,7 @@ What each piece of coursework asked, computed, printed and got wrong is the
 course's source record, ``notebooks/source_record.ipynb`` (a page of the
 static site too): one anchor per fact, named after its item (``#h1-4``,
 ``#h3-2``, ...), which the modules' docstrings and the chapters' casebooks
-link; ``tests/test_source_record.py`` computes every number it gives with
+link; ``tests/notebooks/test_source_record.py`` computes every number it gives with
 these modules.
 
 - :mod:`twolink_course.sources.mae6245`: MAE 6245 (inverse kinematics three
