@@ -116,7 +116,7 @@ class Rerun:
     inputs : dict
         Exactly what the exercise's inputs cell (first line ``# Inputs of
         exercise N.M``) binds, by name: the arm, the angles, the target...
-        (``tests/test_exercises_rerun.py`` checks it against the chapter).
+        (``tests/course/test_exercises_rerun.py`` checks it against the chapter).
     hidden : callable
         ``hidden(rng) -> dict``: one draw of inputs the student never saw, the
         same names, valid for the exercise (reachable targets, non-singular

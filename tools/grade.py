@@ -100,7 +100,7 @@ import twolink_course  # noqa: E402
 from twolink_course import exercises  # noqa: E402
 
 #: The repository's references: the exercises as stored (the store holds what answers/
-#: computes, tests/test_exercises_stored.py; it decodes in milliseconds where computing the
+#: computes, tests/course/test_exercises_stored.py; it decodes in milliseconds where computing the
 #: references takes seconds), the hidden calls and inputs from answers/.
 REFERENCES = types.SimpleNamespace(
     all_exercises=exercises.all_exercises,

@@ -1,0 +1,182 @@
+"""One graded notebook, run isolated (tools/grade_run.py): what a kernel that misbehaves gets.
+
+Tiny notebooks (no chapter), so each case costs a kernel's start: a kernel
+that kills itself, stops itself, loops, floods its output, or runs well; the
+scratch folder (the grader's alone) removed after each.
+"""
+
+import pathlib
+import sys
+
+import nbformat
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+import grade_run  # noqa: E402
+import sandbox  # noqa: E402
+
+UNSAFE = sandbox.unavailable() is not None
+LIMITS = grade_run.Limits(cell_seconds=3, notebook_seconds=15)
+
+
+@pytest.fixture
+def setting():
+    scratch = grade_run.make_scratch()
+    isolation = None if UNSAFE else sandbox.Isolation.detect(scratch)
+    found = grade_run.Setting(scratch, isolation, LIMITS)
+    yield found
+    grade_run.remove_scratch(found)
+    assert not scratch.exists()
+
+
+def ran(setting, *sources):
+    notebook = nbformat.v4.new_notebook(
+        cells=[nbformat.v4.new_code_cell(source) for source in sources]
+    )
+    return grade_run.run_isolated(notebook, setting)
+
+
+def probe(number="1.1", draw=None):
+    data = {"exercise": number, "answers": {}}
+    if draw is not None:
+        data["draw"] = draw
+    cell = nbformat.v4.new_code_cell(
+        "from IPython.display import publish_display_data\n"
+        f"publish_display_data({{{grade_run.grading_probe.MIME!r}: {data!r}}})",
+        metadata={"tags": [grade_run.PROBE_TAG], "twolink_probe": number},
+    )
+    return cell
+
+
+@pytest.mark.infrastructure
+def test_a_kernel_that_runs_well_reports_its_probes_and_errors(setting):
+    notebook = nbformat.v4.new_notebook(
+        cells=[
+            nbformat.v4.new_code_cell("x = 1"),
+            probe("1.1"),
+            nbformat.v4.new_code_cell("1 / 0"),
+            probe("1.2"),
+        ]
+    )
+    notebook.cells[3].source += "\n" + probe("1.2", draw=0).source.splitlines()[-1]
+    result = grade_run.Runner(setting).run(notebook, [1, None, 5, None])
+    assert result["failure"] is None
+    assert result["reports"]["1.1"] == {
+        "visible": {"exercise": "1.1", "answers": {}},
+        "draws": {},
+    }
+    # the error did not stop the run; a draw's report is kept apart
+    assert result["reports"]["1.2"]["visible"]["exercise"] == "1.2"
+    assert result["reports"]["1.2"]["draws"] == {
+        0: {"exercise": "1.2", "answers": {}, "draw": 0}
+    }
+    assert result["errors"] == ["cell 5: ZeroDivisionError: division by zero"]
+    if not UNSAFE:
+        assert result["cpu_seconds"] > 0 and result["limits"] == []
+
+
+@pytest.mark.infrastructure
+@pytest.mark.skipif(
+    UNSAFE,
+    reason="without a sandbox a kernel that kills its process group kills the test",
+)
+def test_a_kernel_that_kills_itself_is_reported_dead(setting):
+    assert (
+        ran(setting, "import os, signal\nos.killpg(0, signal.SIGKILL)", "print(2)")[
+            "failure"
+        ]
+        == "the kernel died"
+    )
+
+
+@pytest.mark.infrastructure
+@pytest.mark.skipif(
+    UNSAFE,
+    reason="a stopped kernel outside a sandbox would stop the test's process group",
+)
+def test_a_stopped_kernel_is_stopped_at_the_notebook_limit(setting):
+    result = ran(
+        setting, "import os, signal\nos.kill(os.getpid(), signal.SIGSTOP)", "print(2)"
+    )
+    assert result["failure"] == "stopped after 15 s (the notebook's time limit)"
+
+
+@pytest.mark.infrastructure
+def test_a_loop_is_interrupted_at_the_cell_limit_and_the_run_goes_on(setting):
+    notebook = nbformat.v4.new_notebook(
+        cells=[nbformat.v4.new_code_cell("while True:\n    pass"), probe("1.1")]
+    )
+    result = grade_run.run_isolated(notebook, setting)
+    assert result["failure"] is None
+    assert result["reports"]["1.1"]["visible"]["exercise"] == "1.1"
+    assert result["errors"][0].startswith("cell 1: KeyboardInterrupt")
+
+
+@pytest.mark.infrastructure
+def test_an_output_flood_is_stopped_at_the_output_limit(setting):
+    result = ran(setting, "for _ in range(60):\n    print('x' * 1_000_000)")
+    assert (
+        result["failure"]
+        == f"its outputs passed {grade_run.HeadlessClient.max_output_bytes} bytes (the output limit)"
+    )
+
+
+def test_a_process_that_answers_nothing_is_reported(monkeypatch):
+    class Silent:
+        closed = False
+
+        def send(self, task):
+            pass
+
+        def poll(self, timeout):
+            return True
+
+        def recv(self):
+            raise EOFError
+
+        def close(self):
+            self.closed = True
+
+    monkeypatch.setattr(grade_run.CONTEXT, "Pipe", lambda: (Silent(), Silent()))
+
+    class Died:
+        exitcode = -11
+
+        def __init__(self, **kwargs):
+            pass
+
+        def start(self):
+            pass
+
+        def is_alive(self):
+            return False
+
+        def join(self, timeout):
+            pass
+
+    monkeypatch.setattr(grade_run.CONTEXT, "Process", Died)
+    result = grade_run.run_isolated(
+        nbformat.v4.new_notebook(),
+        grade_run.Setting(pathlib.Path("/nonexistent"), None, LIMITS),
+    )
+    assert result == {"failure": "the grader's process for it ended with code -11"}
+
+
+@pytest.mark.infrastructure
+def test_a_runner_reuses_its_workers_and_replaces_a_stopped_one(tmp_path):
+    runner = grade_run.Runner(grade_run.Setting(tmp_path, None, LIMITS))
+    notebook = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell("x = 1")])
+    try:
+        first = runner.run(notebook)
+        second = runner.run(notebook)
+        assert first["failure"] is None and second["failure"] is None
+        assert len(runner._all) == 1  # one worker, used twice
+        runner._all[0].stop()
+        third = runner.run(notebook)
+        assert third["failure"] is None and len(runner._all) == 2
+        workers = list(runner._all)
+    finally:
+        runner.close()
+    assert not any(worker.process.is_alive() for worker in workers)
+    assert runner.run(notebook) == {"failure": "grading was stopped (Ctrl-C)"}
