@@ -8,9 +8,9 @@ quantity with a unit in brackets, and a figure that draws velocity ellipses or
 velocity arrows on position axes says in its own text how many metres of
 figure one m/s is.  An explorer (``twolink_course.explorer.Explorer``) is checked as
 it is built, after every control was moved to its ends (and every option
-chosen) without an error.  Cells marked ``# NBVAL_IGNORE_OUTPUT`` (sliders and
-timings: they redraw what a checked cell already drew, or only measure) are
-skipped.
+chosen) without an error.  Cells nbval ignores (``# NBVAL_IGNORE_OUTPUT`` or the
+tag ``nbval-ignore-output``: sliders and timings, which redraw what a checked
+cell already drew, or only measure) are skipped.
 """
 
 import json
@@ -42,11 +42,15 @@ SCALE_STATEMENT = re.compile(r"\d+(\.\d+)? m per \S+|(=|drawn as)\s*\d+(\.\d+)?\
 
 
 def code_sources(name):
+    """The chapter's code cells that nbval compares: a cell it ignores (a first-line
+    ``# NBVAL_IGNORE_OUTPUT`` or the tag ``nbval-ignore-output``) is left out."""
     content = json.loads((NOTEBOOK_DIR / name).read_text(encoding="utf-8"))
     return [
         "".join(cell["source"])
         for cell in content["cells"]
         if cell["cell_type"] == "code"
+        and "nbval-ignore-output" not in cell.get("metadata", {}).get("tags", [])
+        and not "".join(cell["source"]).startswith("# NBVAL_IGNORE_OUTPUT")
     ]
 
 
@@ -158,8 +162,6 @@ def run_chapter(name, monkeypatch):
     to_python = TransformerManager().transform_cell
     namespace = {"__name__": "__chapter__", "get_ipython": lambda: None}
     for index, source in enumerate(code_sources(name)):
-        if source.startswith("# NBVAL_IGNORE_OUTPUT"):
-            continue
         where["cell"] = index
         exec(compile(to_python(source), f"{name} code cell {index}", "exec"), namespace)  # noqa: S102
     where["cell"] = "end"
