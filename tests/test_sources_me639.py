@@ -6,7 +6,6 @@ them, and compares with the package's correct answer.
 """
 
 import re
-
 from decimal import ROUND_HALF_UP, Decimal
 
 import numpy as np
