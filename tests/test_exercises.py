@@ -200,6 +200,13 @@ def _right_answers():
             arm.jacobian(q).T @ np.asarray(force_by_tip)
         )
     }
+    # at (0, 90) deg: s1 = 0, c1 = 1, s12 = 1, c12 = 0; J J^T = [[8, -4], [-4, 4]] has
+    # the eigenvalues 6 +- 2 sqrt(5) = (sqrt(5) +- 1)^2, so sigma = sqrt(5) +- 1
+    answers["4.5"] = {
+        "J_ex5": [[-2.0, -2.0], [2.0, 0.0]],
+        "force_axes_ex5": [1 / (np.sqrt(5) - 1), 1 / (np.sqrt(5) + 1)],
+        "reason_ex5": "b",
+    }
     q51 = np.radians([30.0, 45.0])
     answers["5.1"] = {
         "tau_hold_ex1": two.inverse_dynamics(q51, [0.0, 0.0], [0.0, 0.0]),
@@ -707,6 +714,26 @@ WRONG = {
             },
         ),
     ],
+    "4.5": [
+        ("J transposed", {"J_ex5": lambda r: np.transpose(r["J_ex5"])}),
+        (
+            "the singular values",
+            {"force_axes_ex5": lambda r: [np.sqrt(5) + 1, np.sqrt(5) - 1]},
+        ),
+        ("the shortest first", {"force_axes_ex5": lambda r: r["force_axes_ex5"][::-1]}),
+        (
+            "1 / lambda",
+            {
+                "force_axes_ex5": lambda r: [
+                    1 / (6 - np.sqrt(20)),
+                    1 / (6 + np.sqrt(20)),
+                ]
+            },
+        ),
+        ("stronger motors", {"reason_ex5": lambda r: "a"}),
+        ("det J largest", {"reason_ex5": lambda r: "c"}),
+        ("the right letter in a list", {"reason_ex5": lambda r: ["b"]}),
+    ],
     "5.1": [
         ("-g(q)", {"tau_hold_ex1": lambda r: -np.asarray(r["tau_hold_ex1"])}),
         (
@@ -1141,6 +1168,16 @@ EQUIVALENT = {
             },
         )
     ],
+    "4.5": [
+        (
+            "3 significant figures",
+            {
+                "force_axes_ex5": lambda r: [0.809, 0.309],
+                "J_ex5": lambda r: [[-2, -2], [2, 0]],
+            },
+        ),
+        ("spaces around the letter", {"reason_ex5": lambda r: " b "}),
+    ],
     "5.1": [
         (
             "lists",
@@ -1227,21 +1264,32 @@ def _apply(right_answers, changes):
     return answers
 
 
+#: Each chapter's exercises: (how many, how many parts, the exercises with a function part).
+EXERCISE_COUNTS = {
+    1: (4, 7, ("1.4",)),
+    2: (4, 7, ("2.4",)),
+    3: (3, 5, ("3.1",)),
+    4: (5, 8, ("4.4",)),
+    5: (4, 9, ("5.4",)),
+    6: (4, 6, ("6.4",)),
+    7: (4, 5, ("7.4",)),
+}
+
+
 def test_every_exercise_has_wrong_and_equivalent_answers():
-    assert len(NUMBERS) == 27
     for number in NUMBERS:
         assert len(WRONG[number]) >= 2, number
         assert len(EQUIVALENT[number]) >= 1, number
-    assert sum(len(exercises.get(number).parts) for number in NUMBERS) == 44
-    assert [number for number, _ in FUNCTION_PARTS] == [
-        "1.4",
-        "2.4",
-        "3.1",
-        "4.4",
-        "5.4",
-        "6.4",
-        "7.4",
-    ]
+    counts = {
+        chapter: (
+            len(numbers := [n for n in NUMBERS if n.split(".")[0] == str(chapter)]),
+            sum(len(exercises.get(number).parts) for number in numbers),
+            tuple(n for n, _ in FUNCTION_PARTS if n in numbers),
+        )
+        for chapter in EXERCISE_COUNTS
+    }
+    assert counts == EXERCISE_COUNTS
+    assert len(NUMBERS) == sum(count for count, _, _ in EXERCISE_COUNTS.values())
 
 
 @pytest.mark.parametrize("number", NUMBERS)
