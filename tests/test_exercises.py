@@ -136,6 +136,23 @@ def _moments(arm, q, force_by_tip):
     )
 
 
+def _reachable_by_hand(arm, p, elbows=("down", "up")):
+    """Within the limits on one of ``elbows``: closed-form IK, angles taken modulo 2 pi."""
+    if not arm.reach[0] <= np.hypot(*p) <= arm.reach[1]:
+        return False
+    low, high = np.array(arm.q_min), np.array(arm.q_max)
+    for elbow in elbows:
+        q = ik.closed_form(arm, np.asarray(p, dtype=float), elbow=elbow).q
+        angles = (
+            np.array([q[0], q[0] + q[1]]) if arm.limit_convention == "absolute" else q
+        )
+        # each angle's offset past its low limit, on the turn that starts there
+        offset = np.mod(angles - low + 1e-9, 2 * np.pi) - 1e-9
+        if np.all(offset <= high - low + 1e-9):
+            return True
+    return False
+
+
 def _right_answers():
     two, ten, osake = arms.two_metre, arms.ten, arms.osake
     answers = {}
@@ -317,8 +334,14 @@ def _right_answers():
         n=4001,
     )
     answers["7.3"] = {"max_joint_rate": np.abs(fine.qd).max()}
-    answers["7.4"] = {
-        "reachable": lambda arm, p: bool(workspace.is_reachable(arm, np.asarray(p)))
+    answers["7.4"] = {"reachable": _reachable_by_hand}
+    # 1 kHz on the 4 s quintic circle: the joints' largest change between samples
+    circle = trajectory.CirclePath([12.5, 12.5], 2.0, duration=4.0, law="quintic")
+    q_dense = ik.closed_form(ten, circle.sample(4001)[1], elbow="down").q
+    answers["7.5"] = {
+        "largest_step_ex5": np.abs(np.diff(q_dense, axis=0)).max(),
+        "budget_share_ex5": (20 + 6 * 6) / 1000,  # us at the slowest point, of 1 ms
+        "reason_ex5": "a",
     }
     return answers
 
@@ -1047,22 +1070,23 @@ WRONG = {
             "elbow down only",
             {
                 "reachable": lambda r: (
-                    lambda arm, p: bool(
-                        workspace.is_reachable(arm, np.asarray(p), elbow="down")
-                    )
+                    lambda arm, p: _reachable_by_hand(arm, p, ("down",))
                 )
             },
         ),
         (
             "elbow up only",
-            {
-                "reachable": lambda r: (
-                    lambda arm, p: bool(
-                        workspace.is_reachable(arm, np.asarray(p), elbow="up")
-                    )
-                )
-            },
+            {"reachable": lambda r: lambda arm, p: _reachable_by_hand(arm, p, ("up",))},
         ),
+    ],
+    "7.5": [
+        (
+            "in degrees",
+            {"largest_step_ex5": lambda r: np.degrees(r["largest_step_ex5"])},
+        ),
+        ("one iteration only", {"budget_share_ex5": lambda r: 0.026}),
+        ("a percentage", {"budget_share_ex5": lambda r: 5.6}),
+        ("the points too far apart", {"reason_ex5": lambda r: "b"}),
     ],
 }
 
@@ -1302,6 +1326,15 @@ EQUIVALENT = {
             {"reachable": lambda r: lambda arm, p: np.bool_(r["reachable"](arm, p))},
         )
     ],
+    "7.5": [
+        (
+            "a numpy float and the letter spaced",
+            {
+                "largest_step_ex5": lambda r: np.float64(r["largest_step_ex5"]),
+                "reason_ex5": lambda r: "a ",
+            },
+        )
+    ],
 }
 
 
@@ -1320,7 +1353,7 @@ EXERCISE_COUNTS = {
     4: (5, 8, ("4.4",)),
     5: (6, 13, ("5.4",)),
     6: (5, 9, ("6.4",)),
-    7: (4, 5, ("7.4",)),
+    7: (5, 8, ("7.4",)),
 }
 
 
