@@ -13,6 +13,7 @@ import numpy as np
 import scipy.optimize
 from numpy.typing import NDArray
 
+from answers._draws import first_valid
 from answers._rerun import Rerun
 from twolink import arms, controllers, ik, linearization
 from twolink.arm import TwoLinkArm
@@ -353,22 +354,23 @@ def _answers_6_3(inputs: dict) -> dict[str, object]:
     return {"k_ex3": math.ceil(boundary)}
 
 
+def _draw_6_3(rng: np.random.Generator) -> dict[str, object] | None:
+    q = np.array([rng.uniform(-1.0, 1.5), rng.uniform(np.radians(40), np.radians(140))])
+    inputs = {
+        "arm_ex3": _arm(),
+        "p_rest_ex3": _arm().fk(q).round(3),
+        "sag_limit_ex3": round(float(rng.uniform(0.002, 0.02)), 3),
+    }
+    try:
+        _answers_6_3(inputs)
+    except ValueError:  # the boundary outside the bracket (or no resting pose)
+        return None
+    return inputs
+
+
 def _hidden_6_3(rng: np.random.Generator) -> dict[str, object]:
     """The chapter's arm resting elsewhere, with another limit: its boundary inside the bracket."""
-    while True:
-        q = np.array(
-            [rng.uniform(-1.0, 1.5), rng.uniform(np.radians(40), np.radians(140))]
-        )
-        inputs = {
-            "arm_ex3": _arm(),
-            "p_rest_ex3": _arm().fk(q).round(3),
-            "sag_limit_ex3": round(float(rng.uniform(0.002, 0.02)), 3),
-        }
-        try:
-            _answers_6_3(inputs)
-        except ValueError:  # the boundary outside the bracket (or no resting pose)
-            continue
-        return inputs
+    return first_valid(_draw_6_3, rng, what="exercise 6.3's hidden inputs")
 
 
 def exercise_6_3() -> ExerciseSpec:

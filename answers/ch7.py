@@ -14,6 +14,7 @@ from collections.abc import Callable
 import numpy as np
 import scipy.optimize
 
+from answers._draws import first_valid
 from answers._rerun import Rerun
 from twolink import TwoLinkArm, arms, ik, trajectory, workspace
 from twolink_course.exercises.spec import (
@@ -147,22 +148,25 @@ def _answers_7_2(inputs: dict) -> dict[str, object]:
     return {"radius_up": radius, "largest_step_deg": step}
 
 
+def _draw_7_2(rng: np.random.Generator) -> dict[str, object] | None:
+    inputs = {
+        "arm_ex2": arms.ten,
+        "centre_ex2": rng.uniform(2.0, 18.0, 2).round(2),
+        "duration_ex2": round(float(rng.uniform(2.0, 5.0)), 1),
+        "samples_ex2": int(rng.integers(40, 100)),
+    }
+    if workspace.clearance(arms.ten, inputs["centre_ex2"], elbow="up") < 1.0:
+        return None
+    try:
+        _answers_7_2(inputs)
+    except ValueError:  # a circle the branch cannot trace whole
+        return None
+    return inputs
+
+
 def _hidden_7_2(rng: np.random.Generator) -> dict[str, object]:
     """Another centre with room on the elbow-up branch of arms.ten, and another timing."""
-    while True:
-        inputs = {
-            "arm_ex2": arms.ten,
-            "centre_ex2": rng.uniform(2.0, 18.0, 2).round(2),
-            "duration_ex2": round(float(rng.uniform(2.0, 5.0)), 1),
-            "samples_ex2": int(rng.integers(40, 100)),
-        }
-        if workspace.clearance(arms.ten, inputs["centre_ex2"], elbow="up") < 1.0:
-            continue
-        try:
-            _answers_7_2(inputs)
-        except ValueError:  # a circle the branch cannot trace whole
-            continue
-        return inputs
+    return first_valid(_draw_7_2, rng, what="exercise 7.2's hidden inputs")
 
 
 def exercise_7_2() -> ExerciseSpec:
@@ -308,32 +312,35 @@ def _answers_7_3(inputs: dict) -> dict[str, object]:
     }
 
 
+def _draw_7_3(rng: np.random.Generator) -> dict[str, object] | None:
+    arm = arms.two_metre
+    ends = [
+        arm.fk([rng.uniform(-np.pi, np.pi), rng.uniform(0.6, 2.2)]) for _ in range(2)
+    ]
+    start, end = (np.round(point, 2) for point in ends)
+    inputs = {
+        "arm_ex3": arm,
+        "line_start_ex3": start,
+        "line_end_ex3": end,
+        "duration_ex3": round(float(rng.uniform(2.0, 6.0)), 1),
+    }
+    path = _line("quintic", (start, end), inputs["duration_ex3"])
+    try:  # on one branch, and the chapter's 2001 samples meet the 1e-6 asked
+        sampled = trajectory.ik_trajectory(arm, path, n=2001)
+        peak = _answers_7_3(inputs)["max_joint_rate"]
+    except ValueError:
+        return None
+    if (
+        np.linalg.norm(end - start) > 1.0
+        and abs(np.abs(sampled.qd).max() - peak) < 1e-7 * peak
+    ):
+        return inputs
+    return None
+
+
 def _hidden_7_3(rng: np.random.Generator) -> dict[str, object]:
     """Another line well inside the 2 m arm's reach, away from its base, another duration."""
-    arm = arms.two_metre
-    while True:
-        ends = [
-            arm.fk([rng.uniform(-np.pi, np.pi), rng.uniform(0.6, 2.2)])
-            for _ in range(2)
-        ]
-        start, end = (np.round(point, 2) for point in ends)
-        inputs = {
-            "arm_ex3": arm,
-            "line_start_ex3": start,
-            "line_end_ex3": end,
-            "duration_ex3": round(float(rng.uniform(2.0, 6.0)), 1),
-        }
-        path = _line("quintic", (start, end), inputs["duration_ex3"])
-        try:  # on one branch, and the chapter's 2001 samples meet the 1e-6 asked
-            sampled = trajectory.ik_trajectory(arm, path, n=2001)
-            peak = _answers_7_3(inputs)["max_joint_rate"]
-        except ValueError:
-            continue
-        if (
-            np.linalg.norm(end - start) > 1.0
-            and abs(np.abs(sampled.qd).max() - peak) < 1e-7 * peak
-        ):
-            return inputs
+    return first_valid(_draw_7_3, rng, what="exercise 7.3's hidden inputs")
 
 
 def exercise_7_3() -> ExerciseSpec:
@@ -614,24 +621,27 @@ def _answers_7_5(inputs: dict) -> dict[str, object]:
     }
 
 
+def _draw_7_5(rng: np.random.Generator) -> dict[str, object] | None:
+    centre = rng.uniform(4.0, 16.0, 2).round(2)
+    room = float(workspace.clearance(arms.ten, centre))
+    if room < 1.0:
+        return None
+    inputs = {
+        "arm_ex5": arms.ten,
+        "centre_ex5": centre,
+        "radius_ex5": round(float(rng.uniform(0.5, room * 0.9)), 2),
+        "samples_ex5": int(rng.integers(1000, 5000)),
+    }
+    try:
+        _answers_7_5(inputs)
+    except ValueError:  # no branch traces it whole
+        return None
+    return inputs
+
+
 def _hidden_7_5(rng: np.random.Generator) -> dict[str, object]:
     """Another circle traced whole on one branch of arms.ten, at another sampling rate."""
-    while True:
-        centre = rng.uniform(4.0, 16.0, 2).round(2)
-        room = float(workspace.clearance(arms.ten, centre))
-        if room < 1.0:
-            continue
-        inputs = {
-            "arm_ex5": arms.ten,
-            "centre_ex5": centre,
-            "radius_ex5": round(float(rng.uniform(0.5, room * 0.9)), 2),
-            "samples_ex5": int(rng.integers(1000, 5000)),
-        }
-        try:
-            _answers_7_5(inputs)
-        except ValueError:  # no branch traces it whole
-            continue
-        return inputs
+    return first_valid(_draw_7_5, rng, what="exercise 7.5's hidden inputs")
 
 
 def exercise_7_5() -> ExerciseSpec:
