@@ -492,8 +492,9 @@ def exercise_4_5() -> ExerciseSpec:
                 mistakes=(
                     Mistake(
                         sigma,
-                        "these are the singular values sigma of J (the velocity "
-                        "ellipse's semi-axes); the force ellipse's are 1 / sigma",
+                        "these are the singular values sigma = sqrt(lambda) of J (the "
+                        "velocity ellipse's semi-axes); the force ellipse's are their "
+                        "inverses, 1 / sigma",
                     ),
                     Mistake(
                         axes[::-1],
@@ -503,11 +504,6 @@ def exercise_4_5() -> ExerciseSpec:
                         1.0 / eigenvalues[::-1],
                         "these are 1 / lambda, with lambda the eigenvalues of J J^T; "
                         "the singular values are their square roots, sigma = sqrt(lambda)",
-                    ),
-                    Mistake(
-                        np.sqrt(eigenvalues),
-                        "these are the singular values, sqrt(lambda); the force "
-                        "ellipse's semi-axes are their inverses, 1 / sigma",
                     ),
                 ),
                 hints=(
