@@ -11,6 +11,9 @@ For every exercise:
 - the equivalent forms of ``EQUIVALENT`` are accepted;
 - a part left unsolved makes no sibling fail;
 - a function part's worked solution passes hidden cases (a seed the notebook never holds).
+- (chapters 4 to 7) a value exercise's inputs cell binds its ``RERUN`` inputs just
+  before the solution, and the solution, re-run on hidden draws, gives their
+  references (and the visible answers typed in do not).
 
 The right answers are computed here from the package's primitives or by hand,
 never read from ``answers/``.
@@ -1663,3 +1666,86 @@ def test_check_cells_hold_no_reference(chapter):
     assert checked == chapter_numbers, (
         f"{path.name} checks {checked}, its exercises are {chapter_numbers}"
     )
+
+
+# ------------------------------------------------- value exercises re-run on hidden inputs
+# Chapters 4 to 7's entries (answers/chN.py, RERUN); each chapter's owner tests its own.
+
+RERUN_CHAPTERS = ("ch4", "ch5", "ch6", "ch7")
+RERUNS = {
+    number: rerun
+    for name in RERUN_CHAPTERS
+    for number, rerun in getattr(answers.chapter(name), "RERUN", {}).items()
+}
+
+
+def _same_input(given, expected):
+    if isinstance(expected, np.ndarray) or isinstance(given, np.ndarray):
+        return np.array_equal(np.asarray(given), np.asarray(expected))
+    return given == expected
+
+
+def _judged(part, answer, expected):
+    return judging.judge(dataclasses.replace(part, expected=expected), answer)
+
+
+@pytest.mark.parametrize("number", sorted(RERUNS))
+def test_the_inputs_cell_binds_the_rerun_inputs_just_before_the_solution(number):
+    rerun = RERUNS[number]
+    path, cells, index = _exercise_cells(number)
+    inputs_cell = cells[index - 1]
+    first, *rest = "".join(inputs_cell["source"]).splitlines()
+    assert (
+        inputs_cell["cell_type"] == "code" and first == f"# Inputs of exercise {number}"
+    ), (
+        f"{path.name}: the cell before exercise {number}'s solution is not its inputs cell"
+    )
+    body = ast.parse("\n".join(rest)).body
+    assert all(
+        isinstance(node, ast.Assign)
+        and len(node.targets) == 1
+        and isinstance(node.targets[0], ast.Name)
+        for node in body
+    ), (
+        f"{path.name}: exercise {number}'s inputs cell holds only name = expression lines"
+    )
+    assert sorted(node.targets[0].id for node in body) == sorted(rerun.inputs)
+    namespace = {}
+    _run(_backward_slice(cells, index - 1) + ["\n".join(rest)], namespace)
+    for name, value in rerun.inputs.items():
+        assert _same_input(namespace[name], value), (number, name)
+    references = rerun.answers(dict(rerun.inputs))
+    parts = exercises.get(number).parts
+    assert set(references) == {part.name for part in parts}
+    for (
+        part
+    ) in parts:  # the re-run's references on the cell's inputs are the stored ones
+        assert judging.judge(part, references[part.name]).right, (number, part.name)
+
+
+@pytest.mark.parametrize("number", sorted(RERUNS))
+def test_the_notebook_solution_computes_from_its_inputs_on_hidden_draws(number):
+    # the grader's way: the answer cell re-run with inputs the notebook never holds
+    rerun = RERUNS[number]
+    path, cells, index = _exercise_cells(number)
+    setup = {}
+    _run(_backward_slice(cells, index), setup)
+    solution = "".join(cells[index]["source"])
+    visible = rerun.answers(dict(rerun.inputs))
+    parts = exercises.get(number).parts
+    rng = np.random.default_rng([HIDDEN_TEST_SEED, int(number.replace(".", ""))])
+    for _ in range(2):
+        hidden = rerun.hidden(rng)
+        assert set(hidden) == set(rerun.inputs)
+        assert not all(_same_input(hidden[n], rerun.inputs[n]) for n in hidden)
+        expected = rerun.answers(hidden)
+        namespace = {**setup, **hidden}
+        _run([solution], namespace)
+        for part in parts:
+            verdict = _judged(part, namespace[part.name], expected[part.name])
+            assert verdict.right, f"{path.name} {number} {part.name}: {verdict.message}"
+        # the answers of the visible inputs, typed in, do not pass on this draw
+        assert not all(
+            _judged(part, visible[part.name], expected[part.name]).right
+            for part in parts
+        ), f"{number}: a hidden draw whose references equal the visible ones"
