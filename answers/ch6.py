@@ -155,7 +155,7 @@ def _answers_6_2(inputs: dict) -> dict[str, object]:
     return {
         "Lambda_ex2": Lambda,
         "masses_ex2": masses,
-        "d_critical_ex2": float(d_c),
+        "d_c_ex2": float(d_c),
         "zeta_light_ex2": float(d_c / (2.0 * np.sqrt(inputs["k_ex2"] * masses[0]))),
     }
 
@@ -188,7 +188,7 @@ def exercise_6_2() -> ExerciseSpec:
     inputs = _inputs_6_2()
     reference = _answers_6_2(inputs)
     Lambda, masses = reference["Lambda_ex2"], reference["masses_ex2"]
-    d_c, zeta = reference["d_critical_ex2"], reference["zeta_light_ex2"]
+    d_c, zeta = reference["d_c_ex2"], reference["zeta_light_ex2"]
     q = _q_rest()
     J, M = _arm().jacobian(q), _arm().mass_matrix(q)
     by_hand = Tolerance(significant=3)
@@ -255,7 +255,7 @@ def exercise_6_2() -> ExerciseSpec:
                 ),
             ),
             PartSpec(
-                "d_critical_ex2",
+                "d_c_ex2",
                 "critical damping",
                 "number",
                 expected=d_c,

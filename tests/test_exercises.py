@@ -295,7 +295,7 @@ def _right_answers():
     answers["6.2"] = {
         "Lambda_ex2": Lambda,
         "masses_ex2": [light, heavy],
-        "d_critical_ex2": 2 * np.sqrt(600.0 * heavy),
+        "d_c_ex2": 2 * np.sqrt(600.0 * heavy),
         "zeta_light_ex2": np.sqrt(heavy / light),  # 2 sqrt(k heavy) / (2 sqrt(k light))
     }
     import scipy.optimize
@@ -909,9 +909,9 @@ WRONG = {
         ("heavy first", {"masses_ex2": lambda r: r["masses_ex2"][::-1]}),
         (
             "the light direction's d",
-            {"d_critical_ex2": lambda r: 2 * np.sqrt(600.0 * r["masses_ex2"][0])},
+            {"d_c_ex2": lambda r: 2 * np.sqrt(600.0 * r["masses_ex2"][0])},
         ),
-        ("the factor 2 missing", {"d_critical_ex2": lambda r: r["d_critical_ex2"] / 2}),
+        ("the factor 2 missing", {"d_c_ex2": lambda r: r["d_c_ex2"] / 2}),
         ("zeta = 1 for both", {"zeta_light_ex2": lambda r: 1.0}),
     ],
     "6.3": [
@@ -1279,7 +1279,7 @@ EQUIVALENT = {
             "3 significant figures",
             {
                 "masses_ex2": lambda r: [float(f"{m:.3g}") for m in r["masses_ex2"]],
-                "d_critical_ex2": lambda r: float(f"{r['d_critical_ex2']:.3g}"),
+                "d_c_ex2": lambda r: float(f"{r['d_c_ex2']:.3g}"),
                 "zeta_light_ex2": lambda r: float(f"{r['zeta_light_ex2']:.3g}"),
             },
         ),
