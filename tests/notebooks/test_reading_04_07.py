@@ -16,7 +16,8 @@
   runs ("this run") carries nbval's tag ``nbval-ignore-output`` instead.
 
 (The forward use of names is checked for every chapter in
-``tests/test_reading_structure.py``; the figures in ``tests/test_figures.py``.)
+``tests/notebooks/test_reading_structure.py``; the figures in nbval's run of each
+chapter, ``notebooks/NN_x.ipynb::figures`` (``tests/notebooks/chapter_checks.py``).)
 """
 
 import json

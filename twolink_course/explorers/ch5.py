@@ -7,7 +7,7 @@ the release set by the controls (start angles in degrees, link masses in kg).
 How it keeps up with the hand: each move simulates with
 :func:`twolink.simulation.simulate_quick` (scipy's compiled ``odeint``, LSODA,
 on the right-hand side :func:`twolink.simulate` uses) at a looser tolerance
-than the chapter's exact runs; ``tests/test_explorers_ch5.py`` checks it
+than the chapter's exact runs; ``tests/course/test_explorers_ch5.py`` checks it
 against the exact run (DOP853 at ``1e-10``) across the sliders' ranges.  The
 button :attr:`Release.exact_button` runs the exact simulation for the current
 release and shows it until the next move.  The energies are drawn in units of

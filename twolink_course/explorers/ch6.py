@@ -19,7 +19,7 @@ looser tolerance and with a budget of evaluations.  A stiff spring with little
 damping swings too fast for that budget: the figure then says so, and the
 button :attr:`ImpedanceRelease.exact_button` simulates the current values with
 :func:`twolink.simulate` and :class:`twolink.controllers.Impedance` at a tight
-tolerance.  ``tests/test_explorers_ch6.py`` holds the live run to the exact one.
+tolerance.  ``tests/course/test_explorers_ch6.py`` holds the live run to the exact one.
 The distance axis holds every release: the spring's energy never exceeds what
 it held at the release (the damper only takes energy out), so the curve stays
 below 1.

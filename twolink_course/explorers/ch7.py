@@ -20,7 +20,7 @@ is a grid search (:func:`twolink.workspace.largest_circle_on_grid`), always a
 circle that fits but possibly a little short of the largest, marked with
 "≈"; the button :attr:`LimitsExplorer.exact_button` runs the optimiser,
 :func:`twolink.workspace.largest_inscribed_circle`, instead.
-``tests/test_explorers_ch7.py`` checks the shortcuts against the package.
+``tests/course/test_explorers_ch7.py`` checks the shortcuts against the package.
 
 Examples
 --------
