@@ -19,7 +19,7 @@ WALL_A, WALL_B = (4.0, 0.0), (0.0, 4.0)
 def view():
     arm = arms.two_metre
     contacts = wall_contact(arm, Wall.through(WALL_A, WALL_B), 500.0)
-    return ch4.WallPush(arm, WALL_A, WALL_B, contacts)
+    return ch4.WallPushView(arm, WALL_A, WALL_B, contacts)
 
 
 def test_the_start_is_the_step_nearest_the_elbow_down_contact(view):
@@ -74,5 +74,5 @@ def test_the_description_says_the_ellipse_is_unbounded_at_full_stretch(view):
 def test_an_arm_of_unequal_links_is_named_by_both():
     arm = TwoLinkArm(2.5, 1.5)
     contacts = wall_contact(arm, Wall.through(WALL_A, WALL_B), 100.0)
-    view = ch4.WallPush(arm, WALL_A, WALL_B, contacts)
+    view = ch4.WallPushView(arm, WALL_A, WALL_B, contacts)
     assert view.describe(0.5, 100.0, "down").startswith("The 1.5 m + 2.5 m arm")

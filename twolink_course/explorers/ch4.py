@@ -1,6 +1,6 @@
 """Chapter 4's explorer: the arm pushing on a wall, its force ellipse and its torques.
 
-:class:`WallPush` draws the wall, the contacts of :func:`twolink.wall_contact`
+:class:`WallPushView` draws the wall, the contacts of :func:`twolink.wall_contact`
 (rings), the arm, its force ellipse, the push ``F`` and the two motor torques
 once, and moves them for a tip position along the wall, a push and an elbow
 branch.  Every move is the closed-form inverse kinematics and ``J^T F``:
@@ -11,7 +11,7 @@ Examples
 >>> import numpy as np
 >>> from twolink import Wall, arms, wall_contact
 >>> wall = Wall.through([4.0, 0.0], [0.0, 4.0])
->>> view = WallPush(arms.two_metre, [4.0, 0.0], [0.0, 4.0], wall_contact(arms.two_metre, wall, 500.0))
+>>> view = WallPushView(arms.two_metre, [4.0, 0.0], [0.0, 4.0], wall_contact(arms.two_metre, wall, 500.0))
 >>> view.start_position(0.005)
 0.18
 >>> view.update(position=0.18, force=500.0, elbow="down")
@@ -36,7 +36,7 @@ from twolink.statics import WallContact
 from .. import explorer, figure_style, plot
 from ..display import rounded, significant
 
-__all__ = ["WallPush"]
+__all__ = ["WallPushView"]
 
 #: Figure metres per newton of the force ellipse (|tau| <= 1 N m), and its longest drawn semi-axis.
 ELLIPSE_SCALE, ELLIPSE_CLIP = 1.0, 1.5
@@ -48,7 +48,7 @@ LIMITS = (-2.6, 5.6)
 ZERO_TORQUE = 1e-9
 
 
-class WallPush:
+class WallPushView:
     """The wall explorer's figure: drawn once, moved by :meth:`update`.
 
     Parameters
@@ -131,7 +131,7 @@ class WallPush:
 
         >>> from twolink import Wall, arms, wall_contact
         >>> wall = Wall.through([4.0, 0.0], [0.0, 4.0])
-        >>> WallPush(arms.two_metre, [4, 0], [0, 4], wall_contact(arms.two_metre, wall, 1.0)).start_position(0.1)
+        >>> WallPushView(arms.two_metre, [4, 0], [0, 4], wall_contact(arms.two_metre, wall, 1.0)).start_position(0.1)
         0.2
         """
         along = self.wall_end - self.wall_start

@@ -38,10 +38,10 @@ from twolink.simulation import SimulationResult, simulate_quick
 from .. import explorer, plot
 from ..display import below, rounded, significant
 
-__all__ = ["Release", "EXACT", "FAST", "FAST_DRIFT_BOUND"]
+__all__ = ["Release", "EXACT_RELEASE", "FAST", "FAST_DRIFT_BOUND"]
 
 #: The chapter's exact run: DOP853 at tight tolerances (energy drift below 1e-8).
-EXACT: dict[str, Any] = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
+EXACT_RELEASE: dict[str, Any] = {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
 #: The explorer's quick run: simulate_quick's tolerances, and the drift it stays under.
 FAST: dict[str, float] = {"rtol": 1e-6, "atol": 1e-6}
 FAST_DRIFT_BOUND = 1e-3
@@ -105,7 +105,7 @@ class Release:
         self._exact = False
         widgets = require("ipywidgets", "twolink_course.explorers.ch5.Release")
         self.exact_button = widgets.Button(
-            description=f"exact run ({EXACT['method']}, {significant(EXACT['rtol'], 1)})",
+            description=f"exact run ({EXACT_RELEASE['method']}, {significant(EXACT_RELEASE['rtol'], 1)})",
             tooltip="simulate the current release with the chapter's tolerances",
             layout=widgets.Layout(width="16em"),
         )
@@ -125,7 +125,9 @@ class Release:
         """The release at rest from ``(q1, q2)`` degrees: the quick run, or the exact one."""
         arm, q0 = self.arm_with(m1, m2), np.radians([q1, q2])
         if exact:
-            return simulate(arm, q0, np.zeros(2), self.t[-1], t_eval=self.t, **EXACT)
+            return simulate(
+                arm, q0, np.zeros(2), self.t[-1], t_eval=self.t, **EXACT_RELEASE
+            )
         return simulate_quick(
             arm, q0, np.zeros(2), self.t, rtol=FAST["rtol"], atol=FAST["atol"]
         )
@@ -172,8 +174,8 @@ class Release:
             )
         name = f"{self.arm.l1:g} m" if self.arm.l1 == self.arm.l2 else "two-link"
         opening = (
-            f"Exact run ({EXACT['method']} at rtol = atol = "
-            f"{significant(EXACT['rtol'], 1)}) of the {name}"
+            f"Exact run ({EXACT_RELEASE['method']} at rtol = atol = "
+            f"{significant(EXACT_RELEASE['rtol'], 1)}) of the {name}"
             if self._exact
             else f"The {name}"
         )

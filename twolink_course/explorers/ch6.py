@@ -60,13 +60,19 @@ from twolink.simulation import simulate_quick
 from .. import explorer, figure_style, plot
 from ..display import below, rounded, significant
 
-__all__ = ["ImpedanceRelease", "impedance_law", "LIVE", "EXACT", "LIVE_EVALUATIONS"]
+__all__ = [
+    "ImpedanceRelease",
+    "impedance_law",
+    "LIVE",
+    "EXACT_IMPEDANCE",
+    "LIVE_EVALUATIONS",
+]
 
 #: The live run's tolerances (simulate_quick's LSODA) and its budget of evaluations.
 LIVE: dict[str, float] = {"rtol": 1e-3, "atol": 1e-4}
 LIVE_EVALUATIONS = 400
 #: The exact run's tolerances (simulate, DOP853's default method RK45 replaced by the chapter's).
-EXACT: dict[str, float] = {"rtol": 1e-8, "atol": 1e-8}
+EXACT_IMPEDANCE: dict[str, float] = {"rtol": 1e-8, "atol": 1e-8}
 
 TorqueLaw = Callable[[float, NDArray[np.float64], NDArray[np.float64]], list[float]]
 
@@ -179,7 +185,7 @@ class ImpedanceRelease:
         widgets = require("ipywidgets", "twolink_course.explorers.ch6.ImpedanceRelease")
         self.exact_button = widgets.Button(
             description="exact run",
-            tooltip=f"simulate the current values at tolerance {significant(EXACT['rtol'], 1)}",
+            tooltip=f"simulate the current values at tolerance {significant(EXACT_IMPEDANCE['rtol'], 1)}",
         )
 
     def smallest_damping_ratio(self, k: float, d: float) -> float:
@@ -220,8 +226,8 @@ class ImpedanceRelease:
             self.t_exact[-1],
             torque=controller,
             t_eval=self.t_exact,
-            rtol=EXACT["rtol"],
-            atol=EXACT["atol"],
+            rtol=EXACT_IMPEDANCE["rtol"],
+            atol=EXACT_IMPEDANCE["atol"],
         )
         return run.q
 
