@@ -123,6 +123,8 @@ def _ipympl_backend() -> Any:
     """
     if "ipympl.backend_nbagg" in sys.modules:
         return sys.modules["ipympl.backend_nbagg"]
+    # the backend as configured, or matplotlib's "auto" sentinel (not resolved:
+    # resolving it would choose and load a backend)
     saved = dict.__getitem__(matplotlib.rcParams, "backend")
     module = require("ipympl.backend_nbagg", "twolink_course.explorer")
     if dict.__getitem__(matplotlib.rcParams, "backend") != saved:
