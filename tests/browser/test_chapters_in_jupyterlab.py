@@ -492,3 +492,74 @@ def test_slider_handles_are_named_by_their_description_in_jupyterlab(jupyterlab,
         assert [len(v["nodes"]) for v in found] == [1]  # q1, now without a description
     finally:
         lab_browser.shut_down_kernels(jupyterlab)
+
+
+# --- animations: described, and still for readers who ask for reduced motion ------------
+
+
+def video_probe_notebook():
+    """One animation of the course's kit, as a chapter shows it."""
+    import nbformat
+
+    source = (
+        "import numpy as np\n"
+        "from twolink import arms\n"
+        "from twolink_course import plot\n"
+        "plot.animation_html(plot.animate_arm(arms.two_metre, np.linspace([0.0, 0.0], [1.0, 1.0], 8)))"
+    )
+    kernel = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    return nbformat.v4.new_notebook(
+        cells=[nbformat.v4.new_code_cell(source)], metadata={"kernelspec": kernel}
+    )
+
+
+VIDEO_STATES = """() => [...document.querySelectorAll(
+    '.jp-NotebookPanel:not(.lm-mod-hidden) .jp-OutputArea-output video'
+)].map(video => ({
+    paused: video.paused, time: video.currentTime, autoplay: video.autoplay,
+    label: video.closest('[role=figure]') && video.closest('[role=figure]').getAttribute('aria-label'),
+}))"""
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+@pytest.mark.parametrize("reduced_motion", ["reduce", "no-preference"])
+def test_videos_are_described_and_hold_still_for_reduced_motion_in_jupyterlab(
+    jupyterlab, browser, reduced_motion
+):
+    import nbformat
+
+    name = f"video_probe_{reduced_motion}.ipynb"
+    nbformat.write(video_probe_notebook(), jupyterlab["notebooks"] / name)
+    context = browser.new_context(
+        viewport={"width": 1400, "height": 1000}, reduced_motion=reduced_motion
+    )
+    try:
+        page = context.new_page()
+        page.goto(
+            f"{jupyterlab['url']}/lab/workspaces/video-{reduced_motion}/tree/{name}"
+            f"?reset&token={jupyterlab['token']}"
+        )
+        panel = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden)")
+        panel.locator(".jp-Cell").first.wait_for(timeout=90_000)
+        accept_kernel_dialog(page)
+        wait_until_idle(page, 90_000)
+        run_all_cells(page)
+        panel.locator(".jp-OutputArea-output video").first.wait_for(timeout=120_000)
+        page.wait_for_timeout(1500)
+        (video,) = page.evaluate(VIDEO_STATES)
+        # the text alternative, generated from the animation's data
+        assert (
+            video["label"] and "An animation of the arm in 8 frames" in video["label"]
+        )
+        if reduced_motion == "reduce":
+            assert video["paused"] and video["time"] == 0 and not video["autoplay"], (
+                video
+            )
+        else:
+            assert video["autoplay"] and not video["paused"] and video["time"] > 0, (
+                video
+            )
+    finally:
+        context.close()
+        lab_browser.shut_down_kernels(jupyterlab)
