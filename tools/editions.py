@@ -49,6 +49,9 @@ import zipfile
 from collections.abc import Sequence
 from typing import Any
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import install_cell  # noqa: E402  (tools/install_cell.py: the chapters' first cell)
+
 BEGIN = "### BEGIN SOLUTION"
 END = "### END SOLUTION"
 STUB_COMMENT = "# your code here"
@@ -285,6 +288,30 @@ def without_hidden_tests(notebook: dict[str, Any]) -> dict[str, Any]:
     return shown
 
 
+def with_student_install_cell(notebook: dict[str, Any]) -> dict[str, Any]:
+    """``notebook`` whose install cell (``tools/install_cell.py``) is the student edition's.
+
+    The edition's cell installs the wheel beside it at the course's versions
+    (``constraints.txt`` beside it) and says when the page must be reloaded
+    for the sliders (:func:`install_cell.student_install_cell_source`).
+
+    >>> cell = {"cell_type": "code", "source": install_cell.MARKER + "\\n%pip install x",
+    ...         "outputs": [], "execution_count": 1}
+    >>> student = with_student_install_cell({"cells": [cell]})["cells"][0]
+    >>> student["source"] == install_cell.student_install_cell_source(), student["execution_count"]
+    (True, None)
+    """
+    edition = copy.deepcopy(notebook)
+    for cell in edition["cells"]:
+        source = cell["source"]
+        text = "".join(source) if isinstance(source, list) else source
+        if cell["cell_type"] == "code" and text.startswith(install_cell.MARKER):
+            cell["source"] = install_cell.student_install_cell_source()
+            cell["outputs"] = []
+            cell["execution_count"] = None
+    return edition
+
+
 def build_student(
     source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
 ) -> list[pathlib.Path]:
@@ -296,7 +323,12 @@ def build_student(
         notebook = json.loads(path.read_text(encoding="utf-8"))
         target = out_dir / path.name
         target.write_text(
-            json.dumps(student_notebook(notebook), indent=1, ensure_ascii=False) + "\n",
+            json.dumps(
+                with_student_install_cell(student_notebook(notebook)),
+                indent=1,
+                ensure_ascii=False,
+            )
+            + "\n",
             encoding="utf-8",
         )
         written.append(target)
@@ -397,6 +429,10 @@ def build_student_edition(
         stale.unlink()
     written = build_student(source_dir, out_dir)
     written.append(build_wheel(out_dir))
+    # the course's versions, which the install cell installs with the wheel
+    constraints = out_dir / install_cell.CONSTRAINTS
+    shutil.copyfile(ROOT / "constraints.txt", constraints)
+    written.append(constraints)
     archive = out_dir.with_name(out_dir.name + ".zip")
     partial = archive.with_name(archive.name + ".partial")
     with zipfile.ZipFile(partial, "w", compression=zipfile.ZIP_DEFLATED) as bundle:
