@@ -103,6 +103,8 @@ PIXELS_PER_STEP = 2
 TRACK_MIN_PX, TRACK_MAX_PX = 280, 640
 #: Width of every control's label, so that the tracks line up.
 LABEL_WIDTH = "9em"
+#: Width of each button of a choice.
+CHOICE_BUTTON_WIDTH = "6em"
 #: The CSS class of an explorer's box in the page.
 CSS_CLASS = "twolink-explorer"
 #: Seconds the sentence under the figure waits for the hand to stop (a drag
@@ -427,12 +429,17 @@ def choice(label: str, options: Sequence[str], value: str) -> Any:
         raise InputTypeError(f"{description}: options must be words; got {options!r}")
     if value not in names:
         raise ValueError(f"{description}: value must be one of {names}; got {value!r}")
-    return widgets.ToggleButtons(
+    # laid out as the sliders are (ipywidgets' inline row: the label right-aligned
+    # in its column, the buttons beside it); ToggleButtons alone is a block, whose
+    # label stood above the buttons, outside the column the sliders' labels share
+    toggle = widgets.ToggleButtons(
         options=names,
         value=value,
         description=description,
-        style={"description_width": LABEL_WIDTH, "button_width": "6em"},
+        style={"description_width": LABEL_WIDTH, "button_width": CHOICE_BUTTON_WIDTH},
     )
+    toggle.add_class("widget-inline-hbox")
+    return toggle
 
 
 class Explorer:

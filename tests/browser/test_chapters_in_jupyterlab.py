@@ -577,3 +577,56 @@ def test_videos_are_described_and_hold_still_for_reduced_motion_in_jupyterlab(
     finally:
         context.close()
         lab_browser.shut_down_kernels(jupyterlab)
+
+
+# --- choices: their labels in the label column, their buttons on the same row ------------
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_a_choices_label_sits_in_the_label_column_beside_its_buttons(jupyterlab, page):
+    import nbformat
+
+    source = (
+        "import ipywidgets\n"
+        "from twolink_course import explorer\n"
+        "ipywidgets.VBox([explorer.slider('q1', 'deg', 0, -90, 90, 5), "
+        "explorer.choice('elbow', ['either', 'down', 'up'], 'either')])"
+    )
+    kernel = {"name": "python3", "display_name": "Python 3", "language": "python"}
+    notebook = nbformat.v4.new_notebook(
+        cells=[nbformat.v4.new_code_cell(source)], metadata={"kernelspec": kernel}
+    )
+    nbformat.write(notebook, jupyterlab["notebooks"] / "choice_probe.ipynb")
+    try:
+        page.goto(
+            f"{jupyterlab['url']}/lab/workspaces/choice-probe/tree/choice_probe.ipynb"
+            f"?reset&token={jupyterlab['token']}"
+        )
+        panel = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden)")
+        panel.locator(".jp-Cell").first.wait_for(timeout=90_000)
+        accept_kernel_dialog(page)
+        wait_until_idle(page, 90_000)
+        run_all_cells(page)
+        panel.locator(".widget-toggle-buttons button").last.wait_for(timeout=60_000)
+        boxes = page.evaluate(
+            """() => {
+                const box = e => { const r = e.getBoundingClientRect(); return {left: r.left, right: r.right, top: r.top, bottom: r.bottom}; };
+                const slider = document.querySelector('.widget-slider .widget-label');
+                const choice = document.querySelector('.widget-toggle-buttons .widget-label');
+                const buttons = [...document.querySelectorAll('.widget-toggle-buttons button')].map(box);
+                return {slider: box(slider), choice: box(choice), buttons};
+            }"""
+        )
+        slider, choice, buttons = boxes["slider"], boxes["choice"], boxes["buttons"]
+        assert abs(choice["right"] - slider["right"]) <= 2, (
+            boxes
+        )  # one label column (2 px: margins)
+        assert all(button["left"] >= choice["right"] - 1 for button in buttons), boxes
+        rows = {round(button["top"]) for button in buttons}
+        assert len(rows) == 1, boxes  # the buttons on one row
+        assert choice["bottom"] > min(rows) and choice["top"] < buttons[0]["bottom"], (
+            boxes
+        )
+    finally:
+        lab_browser.shut_down_kernels(jupyterlab)
