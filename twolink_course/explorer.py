@@ -158,9 +158,9 @@ def _draw_lock(figure: Figure) -> threading.RLock:
 def _whole_pixels(width: float, height: float, dpi: float) -> tuple[float, float]:
     """``width`` x ``height`` inches rounded to whole pixels at ``dpi``.
 
-    The page's canvas has whole pixels: a figure of 633.6 pixels is resized
-    to 633 by the page after its first picture, and ipympl's page code then
-    clears the canvas it had drawn (chapter 5's explorer stayed blank).
+    The page draws the picture into a canvas of whole pixels; a figure of
+    6.6 inches at 96 dpi is 633.6 pixels, which the kernel and the page
+    would round differently.  Made at whole pixels, both agree.
 
     >>> _whole_pixels(6.6, 3.0, 96.0)
     (6.604166666666667, 3.0)
@@ -233,10 +233,10 @@ def explorer_figure(
         canvas = backend.Canvas(figure)
         backend.FigureManager(canvas, next(_figure_numbers))
     # ipympl keeps a copy of every picture it sends, as a data URL, until the
-    # page's canvas says it is ready; its copy lacks the URL's "data:" prefix, and
-    # a page that builds the canvas from it draws nothing (a blank explorer after
-    # Run All).  The first picture reaches the page as the pictures after it do,
-    # and static renderers get the Explorer's own PNG.
+    # page's canvas says it is ready; its copy lacks the URL's "data:" prefix, so
+    # a page that builds the canvas from it loads a broken image (the console's
+    # "drawImage ... 'broken' state").  The first picture reaches the page as the
+    # pictures after it do, and static renderers get the Explorer's own PNG.
     canvas.syncing_data_url = False
     lock = _draw_lock(figure)
     draw = canvas.draw
