@@ -74,6 +74,7 @@ def _serve(python, folder, home):
             "--LabApp.news_url=",
         ],
         env=env,
+        cwd=home,
         stdout=log,
         stderr=subprocess.STDOUT,
     )
@@ -101,12 +102,19 @@ def test_the_editions_first_run_installs_then_says_to_reload_and_then_shows_slid
         bundle.extractall(tmp_path / "away")
     edition = tmp_path / "away" / "student"
     python = _venvs.bare_venv(tmp_path, ["jupyterlab", "pip"])
+    # away from the repository, whose folder would put its twolink on sys.path
     probe = subprocess.run(
-        [str(python), "-c", "import twolink"], capture_output=True, text=True
+        [str(python), "-c", "import twolink"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
     )
     assert "No module named 'twolink'" in probe.stderr
     widgets = subprocess.run(
-        [str(python), "-c", "import jupyterlab_widgets"], capture_output=True, text=True
+        [str(python), "-c", "import jupyterlab_widgets"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
     )
     assert widgets.returncode != 0, "the student's Jupyter must lack the widgets"
 
