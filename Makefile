@@ -28,7 +28,7 @@ INSTALL := $(BIN)/python -m pip install --quiet --no-compile
 COMPILE := $(BIN)/python -m compileall -q -j 0 "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_path("purelib"))')" >/dev/null || echo "make: some files did not compile (Python compiles them when imported)"
 endif
 
-.PHONY: help install install-dev lock lab fresh test portable notebooks bench bench-widgets bench-peers bench-first-lab student grade site dist browser-test clean
+.PHONY: help install install-dev lock lab fresh test portable notebooks bench bench-quick bench-widgets bench-peers bench-first-lab student grade site dist browser-test clean
 
 help:
 	@echo "make lab        open the course in JupyterLab, on the start page notebooks/$(START_PAGE);"
@@ -38,12 +38,14 @@ help:
 	@echo "make fresh NOTEBOOK=03_jacobian_velocity.ipynb  the course's version of a chapter in work/ again (yours kept as .ipynb~)"
 	@echo "make install    install (or, after git pull, update) what make lab needs, without starting JupyterLab"
 	@echo "make install-dev  that and the developers' tools (requirements-dev.txt); every target below does it first"
-	@echo "make test       unit tests, doctests, notebook hygiene, every notebook under strict nbval and the"
-	@echo "                infrastructure tests (venvs, wheels, nested pytest, browser, whole editions); the quick part:"
-	@echo "                .venv/bin/python -m pytest -m \"not infrastructure and not browser\""
+	@echo "make test       import layers, ruff, mypy, then pytest: unit tests, doctests, every chapter once under strict"
+	@echo "                nbval (with its figure and exercise checks), the infrastructure tests (venvs, wheels, grading,"
+	@echo "                editions, browser); while working: .venv/bin/python -m pytest tests/library (or tests/course, ...);"
+	@echo "                all but the infrastructure: .venv/bin/python -m pytest -m \"not infrastructure\""
 	@echo "make portable   every chapter (strict nbval) and doctest in several emulated numeric environments (CPU SIMD, BLAS kernels, threads)"
 	@echo "make notebooks  re-execute and normalise every notebook (after editing one)"
 	@echo "make bench      print the speed benchmark tables (bench-widgets included)"
+	@echo "make bench-quick  every benchmark at its --quick sizes, checked to print its table (CI's step after make test)"
 	@echo "make bench-widgets  key press to a changed picture for every explorer, in JupyterLab in Chromium"
 	@echo "make bench-first-lab  a fresh clone's first make lab until the start page is served (pip, and uv if on the PATH)"
 	@echo "make bench-peers  twolink beside roboticstoolbox (ik_LM) and pinocchio (aba, rnea), in build/peers-venv"
@@ -170,10 +172,16 @@ fresh:
 
 # Options for pytest (doctests, strict nbval, sanitize file, xdist) live in
 # pyproject.toml so that a plain `pytest` in the venv behaves the same.
-# The layers (import-linter's contracts in pyproject.toml: the library never imports the
-# course kit, no import cycle in either) are checked first: a second, not minutes.
+# First the static checks, once each and in seconds, leaving no cache in the checkout:
+# the layers (import-linter's contracts in pyproject.toml: the library never imports
+# the course kit, no import cycle in either), ruff's lint and format, mypy.  Then
+# pytest: every folder of tests/ but tests/benchmarks, the doctests, each chapter once
+# under strict nbval with its figure and exercise checks.
 test: $(STAMP)
 	$(BIN)/lint-imports --no-cache
+	$(BIN)/ruff check --no-cache --quiet .
+	$(BIN)/ruff format --check --no-cache --quiet .
+	$(BIN)/mypy --cache-dir=/dev/null
 	$(BIN)/python -m pytest
 
 # Stored outputs must read the same on every CPU, BLAS kernel and OS: strict
@@ -203,6 +211,11 @@ notebooks: $(STAMP)
 # bench_first_lab.py (a fresh clone's first `make lab`: minutes, and the package index) runs alone.
 bench: $(STAMP)
 	@for script in $(filter-out benchmarks/bench_first_lab.py,$(sort $(wildcard benchmarks/bench_*.py))); do $(BIN)/python "$$script" || exit 1; done
+
+# Every benchmark script at its --quick sizes, checked to print its table (tests/benchmarks/):
+# not part of make test; CI runs it as its own step after make test.
+bench-quick: $(STAMP)
+	$(BIN)/python -m pytest tests/benchmarks --dist load
 
 bench-first-lab: $(STAMP)
 	$(BIN)/python benchmarks/bench_first_lab.py
@@ -236,7 +249,7 @@ site: $(STAMP)
 # the wheel from it (so a file missing from the sdist is missing from the wheel
 # too), each in an isolated environment with the build backend pyproject.toml
 # names; `twine check --strict` reads their metadata and README as PyPI would.
-# tests/test_dist.py checks what they hold.
+# tests/infrastructure/test_dist.py checks what they hold.
 DIST ?= dist
 dist: $(STAMP)
 	rm -f $(DIST)/twolink-*.tar.gz $(DIST)/twolink-*.whl

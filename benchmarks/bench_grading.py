@@ -32,7 +32,7 @@ with ``--all``; the real grader adds its sandbox and its probes).
 
 Run with ``.venv/bin/python benchmarks/bench_grading.py`` (``--chapters 03 07``
 for some, ``--runs 5``, ``--cells``; ``--quick``: chapter 1, one run, off and
-on).  Timings are printed, never asserted (``tests/test_runmode.py`` checks
+on).  Timings are printed, never asserted (``tests/course/test_runmode.py`` checks
 that the switch leaves every self-check line unchanged).
 """
 

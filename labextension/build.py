@@ -11,7 +11,7 @@
    in this Python, so the shared packages (@jupyterlab/rendermime ...) are
    taken from that JupyterLab, never bundled;
 4. records in the built package.json the SHA-256 of the sources (src/*.ts) and the
-   JupyterLab version it was built against (tests/test_labextension.py
+   JupyterLab version it was built against (tests/infrastructure/test_labextension.py
    compares both: a stale bundle fails the tests), and writes install.json
    (``jupyter labextension list`` then names the Python package that
    installed it).
@@ -42,7 +42,7 @@ INSTALL_JSON = {
 
 
 def source_sha256() -> str:
-    """The hash recorded in the built package.json (tests/test_labextension.py recomputes it).
+    """The hash recorded in the built package.json (tests/infrastructure/test_labextension.py recomputes it).
 
     Over every src/*.ts in name order, each as its name, NUL, its bytes, NUL.
     """

@@ -77,7 +77,7 @@ def dynamic_arms(draw):
     return TwoLinkArm(l1=l1, l2=l2, m1=m1, m2=m2, g=g, **inertias)
 
 
-# --- checks against MuJoCo (tests/test_export.py, tests/test_mujoco_engine.py)
+# --- checks against MuJoCo (tests/library/test_export.py, tests/test_mujoco_engine.py)
 
 
 def acceleration_scale(arm, q, qd, tau):
@@ -109,19 +109,19 @@ def acceleration_scale(arm, q, qd, tau):
 #: here follow in their usual order.
 SLOW_FILES_SECONDS = {
     "tests/browser/test_chapters_in_jupyterlab.py": 280,
-    "tests/test_student_edition.py": 110,
+    "tests/infrastructure/test_student_edition.py": 110,
     "tests/browser/test_static_site.py": 80,
-    "tests/test_pytest_anywhere.py": 70,
-    "tests/test_grade_attacks.py": 150,
-    "tests/test_nbgrader.py": 50,
-    "tests/test_grade.py": 45,
-    "tests/test_import.py": 38,
-    "tests/test_figures.py": 34,
-    "tests/test_install_cell.py": 25,
-    "tests/test_exercises.py": 25,
-    "tests/test_benchmarks_run.py": 21,
-    "tests/test_trajectory.py": 18,
-    "tests/test_portable.py": 18,
+    "tests/infrastructure/test_pytest_anywhere.py": 70,
+    "tests/infrastructure/test_grade_attacks.py": 150,
+    "tests/infrastructure/test_nbgrader.py": 50,
+    "tests/infrastructure/test_grade.py": 45,
+    "tests/library/test_import.py": 38,
+    "tests/notebooks/test_figures.py": 34,
+    "tests/infrastructure/test_install_cell.py": 25,
+    "tests/course/test_exercises.py": 25,
+    "tests/infrastructure/test_benchmarks_run.py": 21,
+    "tests/library/test_trajectory.py": 18,
+    "tests/infrastructure/test_portable.py": 18,
 }
 
 

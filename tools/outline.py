@@ -5,7 +5,7 @@ Summary) followed by one last section, ``## Casebook: the coursework``, whose
 ``###`` entries reproduce and correct what the source coursework did; each
 entry names the item of the course's source record it rests on
 (``Source record: H3.2.``).  This module finds those parts in a notebook's
-JSON; ``tests/test_reading_structure.py`` checks them and this script prints
+JSON; ``tests/notebooks/test_reading_structure.py`` checks them and this script prints
 them.
 
 Usage::

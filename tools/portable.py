@@ -161,6 +161,9 @@ def run_nbval(
         "-q",
         "-n",
         workers,
+        # stored outputs only: the chapter checks (figures, exercises) ran in make test
+        "-p",
+        "no:chapter_checks",
     ]
     result = subprocess.run(
         command,

@@ -10,7 +10,7 @@ with the roles below whether or not it was called.
   black and grey): the largest set of the palette whose every pair stays at
   least :data:`MIN_DISTANCE` apart in CAM02-UCS for normal vision and for
   simulated deuteranopia, protanopia and tritanopia
-  (``tests/test_figure_style.py`` checks it).
+  (``tests/course/test_figure_style.py`` checks it).
 - **Roles**: each thing a figure shows (the arm, a target, the reach, a
   force, the elbow-up branch, ...) is a :class:`Role` with a colour, a line
   style and a marker, and no two roles share all three of line style and

@@ -35,7 +35,7 @@ set it at any time.  With the switch on:
 
 Everything else runs as usual: solvers, simulations, symbolic algebra, the
 figures' artists and the animations' frames as data.  A self-check prints
-the same lines either way (``tests/test_runmode.py`` runs chapters both ways
+the same lines either way (``tests/course/test_runmode.py`` runs chapters both ways
 and compares them).
 
 Examples

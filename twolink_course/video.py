@@ -7,7 +7,7 @@ artists its frame function returns; :class:`BlittingFFMpegWriter` draws the
 rest of the figure once and, for every frame, restores that picture and draws
 over it only the artists at or above the lowest layer (zorder) of the moving
 ones, in the order a full draw would use.  The frames are the same pixels a
-full draw gives (``tests/test_video.py`` compares the videos byte for byte),
+full draw gives (``tests/course/test_video.py`` compares the videos byte for byte),
 in a fraction of the time.  Anything the writer cannot prove the same (a
 moving artist outside an axes, overlapping axes, a resolution other than the
 figure's, other save options) takes matplotlib's full draw.

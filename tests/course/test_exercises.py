@@ -1,0 +1,1415 @@
+"""The exercises (twolink_course.exercises) through their self-checks, tested.
+
+For every exercise:
+
+- the wrong answers of ``WRONG`` (the table of plausible mistakes) are rejected,
+  each with the other parts still passing (no part blames a sibling);
+- the equivalent forms of ``EQUIVALENT`` are accepted;
+- a part left unsolved makes no sibling fail;
+- each check cell of a chapter is one ``selfcheck.check`` call on the answers' names.
+
+The chapters' worked solutions are checked in nbval's run of each chapter
+(``notebooks/NN_x.ipynb::exercises``, tests/notebooks/chapter_checks.py): each
+passes its self-check, its student-edition stub says "not solved yet", and a
+function part passes hidden cases (a seed the notebook never holds).
+
+The right answers are computed here from the package's primitives or by hand,
+never read from ``answers/``.
+"""
+
+import ast
+import contextlib
+import dataclasses
+import io
+import json
+import pathlib
+import re
+import sys
+
+import numpy as np
+import pytest
+
+from twolink import (
+    TwoLinkArm,
+    arms,
+    controllers,
+    ik,
+    linearization,
+    simulate,
+    to_relative,
+    trajectory,
+    workspace,
+)
+from twolink_course import (
+    exercises,
+    selfcheck,
+)
+from twolink_course.sources import compsys726
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+sys.path.insert(0, str(ROOT))
+import editions  # noqa: E402
+
+#: A seed the notebooks never hold (the grader has its own).
+HIDDEN_TEST_SEED = 5_318_008
+
+NUMBERS = [exercise.number for exercise in exercises.all_exercises()]
+FUNCTION_PARTS = [
+    (number, part.name)
+    for number in NUMBERS
+    for part in exercises.get(number).parts
+    if getattr(part, "kind", None) == "function"
+]
+
+
+def statuses(number, answers):
+    with contextlib.redirect_stdout(io.StringIO()) as printed:
+        report = selfcheck.check(number, **answers)
+    lines = printed.getvalue().splitlines()
+    assert len(lines) == len(report) == len(exercises.get(number).parts)
+    return {
+        exercises.get(number).parts[i].name: result.status
+        for i, result in enumerate(report)
+    }, lines
+
+
+# ------------------------------------------------------------- right answers, computed here independently
+
+
+def _hanging_stiffness():
+    """K = dg/dq of the 2 m arm hanging at (-90, 0) deg, by hand from its uniform rods."""
+    two = arms.two_metre
+    s1, s12 = np.sin(np.radians(-90.0)), np.sin(np.radians(-90.0))
+    # g1 = g ((m1/2 + m2) l1 cos q1 + m2 l2/2 cos(q1 + q2)), g2 = g m2 l2/2 cos(q1 + q2)
+    b = two.g * (two.m1 / 2 + two.m2) * two.l1 * s1
+    c = two.g * two.m2 * two.l2 / 2 * s12
+    return -np.array([[b + c, c], [c, c]])
+
+
+def _kinetic_energy(arm, q, qd):
+    """T (J) of two uniform rods, by hand: centres at mid-link, m l^2/12 about them."""
+    (c1, s1), (c12, s12) = (
+        (np.cos(q[0]), np.sin(q[0])),
+        (
+            np.cos(q[0] + q[1]),
+            np.sin(q[0] + q[1]),
+        ),
+    )
+    w1, w2 = qd[0], qd[0] + qd[1]
+    v1 = arm.l1 / 2 * w1 * np.array([-s1, c1])
+    v2 = arm.l1 * w1 * np.array([-s1, c1]) + arm.l2 / 2 * w2 * np.array([-s12, c12])
+    return 0.5 * (
+        arm.m1 * v1 @ v1
+        + arm.m1 * arm.l1**2 / 12 * w1**2
+        + arm.m2 * v2 @ v2
+        + arm.m2 * arm.l2**2 / 12 * w2**2
+    )
+
+
+def _sag(k):
+    """How far (m) the vertical 2 m arm's tip rests from (3, 1) under a spring k, no gravity compensation."""
+    two, rest = arms.two_metre, np.array([3.0, 1.0])
+    controller = controllers.Impedance(two, k, 0.0, rest, gravity_compensation=False)
+    q_rest = ik.closed_form(two, rest).q
+    return np.linalg.norm(
+        two.fk(linearization.equilibrium(two, controller, q_rest)) - rest
+    )
+
+
+def _right_answers():
+    two, ten, osake = arms.two_metre, arms.ten, arms.osake
+    answers = {}
+    q = np.radians([45.0, -30.0])
+    answers["1.1"] = {
+        "p_tip_ex1": [
+            osake.l1 * np.cos(q[0]) + osake.l2 * np.cos(q.sum()),
+            osake.l1 * np.sin(q[0]) + osake.l2 * np.sin(q.sum()),
+        ]
+    }
+    # link 2 on a 2 cm spacer: the second row's d lifts the tip along the base's z
+    T = osake.transforms(np.radians([120.0, -45.0]))[1].copy()
+    T[2, 3] += 0.02
+    answers["1.2"] = {"T_02_ex2": T, "z_tip_ex2": T[2, 3], "x_axis_ex2": T[:3, 0]}
+    q_abs = np.radians([60.0, 150.0])
+    answers["1.3"] = {
+        "q_rel_ex3": [q_abs[0], q_abs[1] - q_abs[0]],
+        "p_tip_ex3": two.l1 * np.array([np.cos(q_abs[0]), np.sin(q_abs[0])])
+        + two.l2 * np.array([np.cos(q_abs[1]), np.sin(q_abs[1])]),
+    }
+    answers["1.4"] = {
+        "tip_position": lambda arm, q: np.array(
+            [
+                arm.l1 * np.cos(q[0]) + arm.l2 * np.cos(q[0] + q[1]),
+                arm.l1 * np.sin(q[0]) + arm.l2 * np.sin(q[0] + q[1]),
+            ]
+        )
+    }
+    answers["2.1"] = {
+        "q_elbow_up": ik.closed_form(ten, [12.0, 4.0], elbow="up").q,
+        "up_within_limits": False,
+    }
+    step = 2 * 0.01 / 30.0
+    answers["2.2"] = {
+        "step_1cm_deg": np.degrees(step),
+        "grid_points_1cm": (np.ceil(np.pi / 2 / step) + 1)
+        * (np.ceil(np.pi / step) + 1),
+    }  # both ends on the grid
+    try:
+        ik.closed_form(ten, [15.0, 16.0])
+    except ValueError as error:
+        message = str(error)
+    answers["2.3"] = {
+        "unreachable_message": message,
+        "distance_beyond_reach": np.sqrt(481.0) - 20.0,
+    }
+    answers["2.4"] = {
+        "elbow_up_angles": lambda arm, p: ik.closed_form(arm, p, elbow="up").q
+    }
+    answers["3.1"] = {
+        "joint_rates": lambda arm, q, v_tip: np.linalg.solve(arm.jacobian(q), v_tip),
+        "qd_ex1": np.linalg.solve(two.jacobian(np.radians([20.0, 70.0])), [0.0, 0.2]),
+    }
+    answers["3.2"] = {"tip_speed_ex2": np.hypot(osake.l1, osake.l2) * np.radians(5.0)}
+    q2_grid = np.radians(np.arange(0.5, 180.0, 0.5))
+    cond = np.linalg.cond(
+        osake.jacobian(np.stack([np.zeros_like(q2_grid), q2_grid], -1))
+    )
+    answers["3.3"] = {
+        "q2_best_deg_ex3": np.degrees(q2_grid[np.argmin(cond)]),
+        "cond_best_ex3": cond.min(),
+    }
+    answers["4.1"] = {
+        "tau_ex1": two.jacobian(np.radians([30.0, 60.0])).T @ [0.0, -100.0]
+    }
+    # the tip at (3, 1) on the wall x = 3 m: the cosine rule for q2, then q1
+    c2 = (3.0**2 + 1.0**2 - 2 * 2.0**2) / (2 * 2.0 * 2.0)
+    q2_down = np.arccos(c2)
+    q1_down = np.arctan2(1.0, 3.0) - np.arctan2(2.0 * np.sin(q2_down), 2.0 + 2.0 * c2)
+    elbow = 2.0 * np.array([np.cos(q1_down), np.sin(q1_down)])
+    answers["4.2"] = {
+        "q_down_ex2": np.array([q1_down, q2_down]),
+        # moments of (200, 0) N at the tip about the base and about the elbow
+        "tau_down_ex2": np.array([-1.0 * 200.0, -(1.0 - elbow[1]) * 200.0]),
+    }
+    q43 = np.radians([30.0, -60.0])
+    answers["4.3"] = {
+        "tau_ex3": two.jacobian(q43).T @ [0.0, 20.0 * two.g] + two.gravity(q43)
+    }
+    answers["4.4"] = {
+        "wall_torques": lambda arm, q, force_by_tip: (
+            arm.jacobian(q).T @ np.asarray(force_by_tip)
+        )
+    }
+    q51 = np.radians([30.0, 45.0])
+    answers["5.1"] = {
+        "tau_hold_ex1": two.inverse_dynamics(q51, [0.0, 0.0], [0.0, 0.0]),
+        "qdd_ex1": np.linalg.solve(two.mass_matrix(q51), [0.0, -two.gravity(q51)[1]]),
+    }
+    K = _hanging_stiffness()
+    answers["5.2"] = {
+        "K_ex2": K,
+        "omega_ex2": np.sort(
+            np.sqrt(
+                np.linalg.eigvals(
+                    np.linalg.solve(two.mass_matrix(np.radians([-90.0, 0.0])), K)
+                ).real
+            )
+        ),
+    }
+    horizontal = dataclasses.replace(two, g=0.0)
+    q0, qd0 = np.radians([0.0, 90.0]), np.array([2.0, 0.0])
+    spin = simulate(horizontal, q0, qd0, 5.0, method="DOP853", rtol=1e-10, atol=1e-10)
+    assert spin.energy_drift() < 1e-8
+    answers["5.3"] = {
+        "q_end_ex3": spin.q[-1],
+        "qd_end_ex3": spin.qd[-1],
+        "p1_end_ex3": (horizontal.mass_matrix(spin.q[-1]) @ spin.qd[-1])[0],
+    }
+    answers["5.4"] = {
+        "T_ex4": _kinetic_energy(two, np.radians([30.0, 45.0]), np.array([1.0, -2.0])),
+        "kinetic_energy": _kinetic_energy,
+    }
+    q_up = ik.closed_form(two, [2.6, 0.3], elbow="up").q
+    answers["6.1"] = {
+        "tau_ex1": two.jacobian(q_up).T
+        @ np.diag([600.0, 200.0])
+        @ (np.array([3.0, 1.0]) - two.fk(q_up))
+    }
+    q_rest = ik.closed_form(two, [3.0, 1.0]).q
+    Lambda = linearization.tip_mass(two, q_rest)
+    w, V = np.linalg.eigh(Lambda)
+    D = (
+        2.0 * np.sqrt(600.0) * (V * np.sqrt(w)) @ V.T
+    )  # 2 Lambda^1/2 (k Lambda^-1)^1/2 Lambda^1/2 = 2 sqrt(k) Lambda^1/2
+    control = pytest.importorskip("control")
+    loop = linearization.linearize(
+        two,
+        controllers.Impedance(two, 600.0, (D + D.T) / 2, np.array([3.0, 1.0])),
+        q_rest,
+    )
+    answers["6.2"] = {
+        "D_ex2": D,
+        "poles_ex2": np.sort(control.poles(loop).real),
+        # the scalar critical damping's ratio in each eigen-direction, light first
+        "zeta_modes_ex2": linearization.critical_damping(two, q_rest, 600.0)
+        / (2.0 * np.sqrt(600.0 * w)),
+    }
+    import scipy.optimize
+
+    answers["6.3"] = {
+        "k_ex3": scipy.optimize.brentq(
+            lambda k: _sag(k) - 0.005, 600.0, 20000.0, xtol=1e-6
+        )
+    }
+    answers["6.4"] = {
+        "spring_torques": lambda arm, q, p_rest, k: (
+            arm.jacobian(q).T @ (k * (np.asarray(p_rest) - arm.fk(q)))
+        )
+    }
+    answers["7.1"] = {
+        "rho_two_metre": workspace.largest_inscribed_circle(arms.two_metre_limited)[1]
+    }
+    radius = float(workspace.clearance(ten, [11.5, 12.0], elbow="up"))
+    motion = trajectory.ik_trajectory(
+        ten,
+        trajectory.CirclePath(
+            [11.5, 12.0], 0.999 * radius, duration=3.0, law="quintic"
+        ),
+        n=60,
+        elbow="up",
+    )
+    answers["7.2"] = {
+        "radius_up": radius,
+        "largest_step_deg": np.degrees(motion.joint_steps.max()),
+    }
+    fine = trajectory.ik_trajectory(
+        two,
+        trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0, law="quintic"),
+        n=4001,
+    )
+    answers["7.3"] = {"max_joint_rate": np.abs(fine.qd).max()}
+    answers["7.4"] = {
+        "reachable": lambda arm, p: bool(workspace.is_reachable(arm, np.asarray(p)))
+    }
+    return answers
+
+
+@pytest.fixture(scope="module")
+def right():
+    return _right_answers()
+
+
+def _coarse_rate(n):
+    motion = trajectory.ik_trajectory(
+        arms.two_metre,
+        trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0, law="quintic"),
+        n=n,
+    )
+    return float(np.abs(motion.qd).max())
+
+
+def _loose_spin():
+    horizontal = dataclasses.replace(arms.two_metre, g=0.0)
+    return simulate(
+        horizontal, np.radians([0.0, 90.0]), [2.0, 0.0], 5.0, rtol=1e-6, atol=1e-6
+    )  # RK45, loose: drift above 1e-8
+
+
+def _roundest_osake():
+    """The OSAKE arm's roundest elbow angle (rad), exact: cos q2 = -2 l1 l2 / (l1^2 + 2 l2^2)."""
+    l1, l2 = arms.osake.l1, arms.osake.l2
+    return np.arccos(-2 * l1 * l2 / (l1**2 + 2 * l2**2))
+
+
+def _kinetic_energy_relative(arm, q, qd):
+    """The typical slip: link 2's rotation at its relative rate qd2, not qd1 + qd2."""
+    slip = arm.m2 * arm.l2**2 / 12 / 2 * (qd[1] ** 2 - (qd[0] + qd[1]) ** 2)
+    return _kinetic_energy(arm, q, qd) + slip
+
+
+def _exact_peak_rate():
+    """The line task's peak |joint rate|, refined between samples (bounded search on t)."""
+    import scipy.optimize
+
+    two = arms.two_metre
+    path = trajectory.LinePath([-3.5, 1.0], [-1.0, 3.5], duration=5.0, law="quintic")
+    motion = trajectory.ik_trajectory(two, path, n=4001)
+
+    def rate(t):
+        p, v = path.at(np.atleast_1d(t))
+        q = ik.closed_form(two, p, elbow=motion.elbow).q
+        return float(np.abs(two.joint_rates(q, v)).max())
+
+    i = int(np.argmax(np.abs(motion.qd).max(axis=1)))
+    best = scipy.optimize.minimize_scalar(
+        lambda t: -rate(t),
+        bounds=(motion.t[max(i - 1, 0)], motion.t[min(i + 1, len(motion.t) - 1)]),
+        method="bounded",
+        options={"xatol": 1e-10},
+    )
+    return -best.fun
+
+
+def _scalar_damping_poles():
+    control = pytest.importorskip("control")
+    q_rest = ik.closed_form(arms.two_metre, [3.0, 1.0]).q
+    d = linearization.critical_damping(arms.two_metre, q_rest, 600.0)
+    return control.poles(
+        linearization.linearize(
+            arms.two_metre,
+            controllers.Impedance(arms.two_metre, 600.0, d, np.array([3.0, 1.0])),
+            q_rest,
+        )
+    )
+
+
+#: exercise -> [(what the mistake is, {part: wrong value (a function of the right answers)})]
+WRONG = {
+    "1.1": [
+        (
+            "degrees fed to cos/sin",
+            {"p_tip_ex1": lambda r: arms.osake.fk([45.0, -30.0])},
+        ),
+        (
+            "sin and cos swapped",
+            {"p_tip_ex1": lambda r: np.asarray(r["p_tip_ex1"])[::-1]},
+        ),
+        (
+            "l1 and l2 swapped",
+            {
+                "p_tip_ex1": lambda r: [
+                    arms.osake.l2 * np.cos(np.pi / 4)
+                    + arms.osake.l1 * np.cos(np.pi / 12),
+                    arms.osake.l2 * np.sin(np.pi / 4)
+                    + arms.osake.l1 * np.sin(np.pi / 12),
+                ]
+            },
+        ),
+    ],
+    "1.2": [
+        (
+            "A2 @ A1",
+            {
+                "T_02_ex2": lambda r: (
+                    np.linalg.solve(
+                        arms.osake.transforms(np.radians([120.0, -45.0]))[0],
+                        r["T_02_ex2"],
+                    )
+                    @ arms.osake.transforms(np.radians([120.0, -45.0]))[0]
+                )
+            },
+        ),
+        ("the z axis for the x axis", {"x_axis_ex2": lambda r: r["T_02_ex2"][:3, 2]}),
+        (
+            "the spacer left out",
+            {
+                "T_02_ex2": lambda r: arms.osake.transforms(np.radians([120.0, -45.0]))[
+                    1
+                ],
+                "z_tip_ex2": lambda r: arms.osake.d,
+            },
+        ),
+        ("height from the wrong entry", {"z_tip_ex2": lambda r: r["T_02_ex2"][1, 3]}),
+        ("a 3x3 rotation for T_02", {"T_02_ex2": lambda r: r["T_02_ex2"][:3, :3]}),
+    ],
+    "1.3": [
+        (
+            "to_absolute for to_relative",
+            {"q_rel_ex3": lambda r: [np.pi / 3, np.pi / 3 + 5 * np.pi / 6]},
+        ),
+        ("degrees", {"q_rel_ex3": lambda r: [60.0, 90.0]}),
+        (
+            "fk of the absolute angles",
+            {"p_tip_ex3": lambda r: arms.two_metre.fk(np.radians([60.0, 150.0]))},
+        ),
+    ],
+    "1.4": [
+        (
+            "links swapped",
+            {
+                "tip_position": lambda r: (
+                    lambda arm, q: TwoLinkArm(l1=arm.l2, l2=arm.l1).fk(q)
+                )
+            },
+        ),
+        (
+            "the OSAKE arm's lengths",
+            {"tip_position": lambda r: lambda arm, q: arms.osake.fk(q)},
+        ),
+        (
+            "q2 as absolute",
+            {"tip_position": lambda r: lambda arm, q: arm.fk(to_relative(q))},
+        ),
+        (
+            "q converted to radians again",
+            {"tip_position": lambda r: lambda arm, q: arm.fk(np.radians(q))},
+        ),
+    ],
+    "2.1": [
+        (
+            "the elbow-down branch",
+            {
+                "q_elbow_up": lambda r: (
+                    ik.closed_form(arms.ten, [12.0, 4.0], elbow="down").q
+                )
+            },
+        ),
+        ("degrees", {"q_elbow_up": lambda r: np.degrees(r["q_elbow_up"])}),
+        (
+            "atan for atan2 (q1 off by pi)",
+            {"q_elbow_up": lambda r: np.asarray(r["q_elbow_up"]) + [np.pi, 0.0]},
+        ),
+        ("within limits claimed", {"up_within_limits": lambda r: True}),
+        ("a string for a bool", {"up_within_limits": lambda r: "no"}),
+    ],
+    "2.2": [
+        (
+            "step left in radians",
+            {"step_1cm_deg": lambda r: np.radians(r["step_1cm_deg"])},
+        ),
+        ("factor 2 missing", {"step_1cm_deg": lambda r: r["step_1cm_deg"] / 2}),
+        ("a1 + a2 for a1 + 2 a2", {"step_1cm_deg": lambda r: r["step_1cm_deg"] * 1.5}),
+        (
+            "the missing +1",
+            {
+                "grid_points_1cm": lambda r: (
+                    np.floor(np.pi / 2 / (0.02 / 30)) * np.floor(np.pi / (0.02 / 30))
+                )
+            },
+        ),
+        (
+            "the upper ends missed (floor + 1)",
+            {
+                "grid_points_1cm": lambda r: (
+                    (np.floor(np.pi / 2 / (0.02 / 30)) + 1)
+                    * (np.floor(np.pi / (0.02 / 30)) + 1)
+                )
+            },
+        ),
+        (
+            "range / step, not whole",
+            {
+                "grid_points_1cm": lambda r: (
+                    (np.pi / 2 / (0.02 / 30)) * (np.pi / (0.02 / 30))
+                )
+            },
+        ),
+    ],
+    "2.3": [
+        (
+            "the error object",
+            {"unreachable_message": lambda r: ValueError(r["unreachable_message"])},
+        ),
+        (
+            "another target's message",
+            {
+                "unreachable_message": lambda r: r["unreachable_message"].replace(
+                    "21.9", "22.9"
+                )
+            },
+        ),
+        (
+            "swapped sign",
+            {"distance_beyond_reach": lambda r: -r["distance_beyond_reach"]},
+        ),
+        (
+            "one link's reach",
+            {"distance_beyond_reach": lambda r: np.sqrt(481.0) - 10.0},
+        ),
+    ],
+    "2.4": [
+        (
+            "the elbow-down branch",
+            {
+                "elbow_up_angles": lambda r: (
+                    lambda arm, p: ik.closed_form(arm, p, elbow="down").q
+                )
+            },
+        ),
+        (
+            "atan(y / x) for atan2",
+            {
+                "elbow_up_angles": lambda r: (
+                    lambda arm, p: (
+                        r["elbow_up_angles"](arm, p)
+                        + [np.arctan(p[1] / p[0]) - np.arctan2(p[1], p[0]), 0.0]
+                    )
+                )
+            },
+        ),
+        (
+            "arms.ten's lengths for every arm",
+            {
+                "elbow_up_angles": lambda r: (
+                    lambda arm, p: r["elbow_up_angles"](arms.ten, p)
+                )
+            },
+        ),
+    ],
+    "3.1": [
+        (
+            "J^T v",
+            {
+                "qd_ex1": lambda r: (
+                    arms.two_metre.jacobian(np.radians([20.0, 70.0])).T @ [0.0, 0.2]
+                )
+            },
+        ),
+        ("swapped sign", {"qd_ex1": lambda r: -np.asarray(r["qd_ex1"])}),
+        (
+            "a J^T v function",
+            {"joint_rates": lambda r: lambda arm, q, v_tip: arm.jacobian(q).T @ v_tip},
+        ),
+        (
+            "a function with l1 and l2 swapped",
+            {
+                "joint_rates": lambda r: (
+                    lambda arm, q, v_tip: np.linalg.solve(
+                        TwoLinkArm(l1=arm.l2, l2=arm.l1).jacobian(q), v_tip
+                    )
+                )
+            },
+        ),
+        (
+            "degrees in J",
+            {
+                "qd_ex1": lambda r: np.linalg.solve(
+                    arms.two_metre.jacobian([20.0, 70.0]), [0.0, 0.2]
+                )
+            },
+        ),
+    ],
+    "3.2": [
+        (
+            "omega in deg/s",
+            {"tip_speed_ex2": lambda r: np.hypot(arms.osake.l1, arms.osake.l2) * 5.0},
+        ),
+        (
+            "l1 + l2 for |p|",
+            {
+                "tip_speed_ex2": lambda r: (
+                    (arms.osake.l1 + arms.osake.l2) * np.radians(5.0)
+                )
+            },
+        ),
+        ("mm/s", {"tip_speed_ex2": lambda r: 1000 * r["tip_speed_ex2"]}),
+    ],
+    "3.3": [
+        ("90 deg (largest manipulability)", {"q2_best_deg_ex3": lambda r: 90.0}),
+        ("radians", {"q2_best_deg_ex3": lambda r: np.radians(r["q2_best_deg_ex3"])}),
+        (
+            "the equal-link arm's angle",
+            {"q2_best_deg_ex3": lambda r: np.degrees(np.arccos(-2 / 3))},
+        ),
+        (
+            "sigma_min / sigma_max",
+            {"cond_best_ex3": lambda r: 1.0 / r["cond_best_ex3"]},
+        ),
+        ("cond of J J^T", {"cond_best_ex3": lambda r: r["cond_best_ex3"] ** 2}),
+        (
+            "the condition number at 90 deg",
+            {
+                "cond_best_ex3": lambda r: np.linalg.cond(
+                    arms.osake.jacobian([0.0, np.pi / 2])
+                )
+            },
+        ),
+    ],
+    "4.1": [
+        ("F up (swapped sign)", {"tau_ex1": lambda r: -np.asarray(r["tau_ex1"])}),
+        (
+            "J F for J^T F",
+            {
+                "tau_ex1": lambda r: (
+                    arms.two_metre.jacobian(np.radians([30.0, 60.0])) @ [0.0, -100.0]
+                )
+            },
+        ),
+        (
+            "degrees",
+            {
+                "tau_ex1": lambda r: arms.two_metre.joint_torques(
+                    [30.0, 60.0], [0.0, -100.0]
+                )
+            },
+        ),
+    ],
+    "4.2": [
+        (
+            "the elbow-up branch",
+            {
+                "q_down_ex2": lambda r: (
+                    ik.closed_form(arms.two_metre, [3.0, 1.0], elbow="up").q
+                )
+            },
+        ),
+        ("degrees", {"q_down_ex2": lambda r: np.degrees(r["q_down_ex2"])}),
+        ("the pull", {"tau_down_ex2": lambda r: -np.asarray(r["tau_down_ex2"])}),
+        ("force times reach", {"tau_down_ex2": lambda r: [200.0 * 4.0, 200.0 * 2.0]}),
+    ],
+    "4.3": [
+        (
+            "load pushed down",
+            {
+                "tau_ex3": lambda r: (
+                    arms.two_metre.joint_torques(
+                        np.radians([30.0, -60.0]), [0.0, -20.0 * 9.81]
+                    )
+                    + arms.two_metre.gravity(np.radians([30.0, -60.0]))
+                )
+            },
+        ),
+        (
+            "arm's weight missing",
+            {
+                "tau_ex3": lambda r: arms.two_metre.joint_torques(
+                    np.radians([30.0, -60.0]), [0.0, 20.0 * 9.81]
+                )
+            },
+        ),
+        (
+            "load in kg, not N (g missing)",
+            {
+                "tau_ex3": lambda r: (
+                    arms.two_metre.joint_torques(np.radians([30.0, -60.0]), [0.0, 20.0])
+                    + arms.two_metre.gravity(np.radians([30.0, -60.0]))
+                )
+            },
+        ),
+    ],
+    "4.4": [
+        (
+            "the force on the tip",
+            {
+                "wall_torques": lambda r: (
+                    lambda arm, q, force_by_tip: -arm.joint_torques(q, force_by_tip)
+                )
+            },
+        ),
+        (
+            "J F",
+            {
+                "wall_torques": lambda r: (
+                    lambda arm, q, force_by_tip: (
+                        arm.jacobian(q) @ np.asarray(force_by_tip)
+                    )
+                )
+            },
+        ),
+        (
+            "degrees",
+            {
+                "wall_torques": lambda r: (
+                    lambda arm, q, force_by_tip: arm.joint_torques(
+                        np.radians(q), force_by_tip
+                    )
+                )
+            },
+        ),
+    ],
+    "5.1": [
+        ("-g(q)", {"tau_hold_ex1": lambda r: -np.asarray(r["tau_hold_ex1"])}),
+        (
+            "M^-1 missing",
+            {
+                "qdd_ex1": lambda r: [
+                    0.0,
+                    -arms.two_metre.gravity(np.radians([30.0, 45.0]))[1],
+                ]
+            },
+        ),
+        (
+            "both motors off",
+            {
+                "qdd_ex1": lambda r: arms.two_metre.forward_dynamics(
+                    np.radians([30.0, 45.0]), [0, 0], [0, 0]
+                )
+            },
+        ),
+    ],
+    "5.2": [
+        ("K = -dg/dq", {"K_ex2": lambda r: -np.asarray(r["K_ex2"])}),
+        (
+            "omega^2 not square-rooted",
+            {"omega_ex2": lambda r: np.asarray(r["omega_ex2"]) ** 2},
+        ),
+        ("descending", {"omega_ex2": lambda r: np.asarray(r["omega_ex2"])[::-1]}),
+        (
+            "eigenvalues of K alone",
+            {
+                "omega_ex2": lambda r: np.sort(
+                    np.sqrt(np.abs(np.linalg.eigvals(r["K_ex2"])))
+                )
+            },
+        ),
+        ("nan from a negative K", {"omega_ex2": lambda r: [np.nan, 1.0]}),
+    ],
+    "5.3": [
+        (
+            "loose tolerances (drift too large)",
+            {
+                "q_end_ex3": lambda r: _loose_spin().q[-1],
+                "qd_end_ex3": lambda r: _loose_spin().qd[-1],
+            },
+        ),
+        (
+            "the vertical arm",
+            {
+                "q_end_ex3": lambda r: simulate(
+                    arms.two_metre,
+                    np.radians([0.0, 90.0]),
+                    [2.0, 0.0],
+                    5.0,
+                    method="DOP853",
+                    rtol=1e-10,
+                    atol=1e-10,
+                ).q[-1]
+            },
+        ),
+        ("end angles in degrees", {"q_end_ex3": lambda r: np.degrees(r["q_end_ex3"])}),
+        (
+            "start state for the end",
+            {
+                "q_end_ex3": lambda r: np.radians([0.0, 90.0]),
+                "qd_end_ex3": lambda r: [2.0, 0.0],
+            },
+        ),
+        (
+            "p1 from the second row",
+            {
+                "p1_end_ex3": lambda r: (
+                    dataclasses.replace(arms.two_metre, g=0.0).mass_matrix(
+                        r["q_end_ex3"]
+                    )
+                    @ r["qd_end_ex3"]
+                )[1]
+            },
+        ),
+    ],
+    "5.4": [
+        (
+            "omega2 = qd2 in T",
+            {
+                "T_ex4": lambda r: _kinetic_energy_relative(
+                    arms.two_metre, np.radians([30.0, 45.0]), np.array([1.0, -2.0])
+                )
+            },
+        ),
+        (
+            "the relative rate in the function",
+            {"kinetic_energy": lambda r: _kinetic_energy_relative},
+        ),
+        (
+            "arm.energy's tuple",
+            {"kinetic_energy": lambda r: lambda arm, q, qd: arm.energy(q, qd)},
+        ),
+    ],
+    "6.1": [
+        (
+            "the elbow-down branch",
+            {
+                "tau_ex1": lambda r: controllers.CartesianSpring(
+                    arms.two_metre, np.diag([600.0, 200.0]), np.array([3.0, 1.0])
+                ).torque(ik.closed_form(arms.two_metre, [2.6, 0.3]).q)
+            },
+        ),
+        ("F = K (x - x0)", {"tau_ex1": lambda r: -np.asarray(r["tau_ex1"])}),
+        (
+            "scalar k = 600",
+            {
+                "tau_ex1": lambda r: controllers.CartesianSpring(
+                    arms.two_metre, 600.0, np.array([3.0, 1.0])
+                ).torque(ik.closed_form(arms.two_metre, [2.6, 0.3], elbow="up").q)
+            },
+        ),
+    ],
+    "6.2": [
+        (
+            "scalar critical damping times I",
+            {
+                "D_ex2": lambda r: (
+                    linearization.critical_damping(
+                        arms.two_metre,
+                        ik.closed_form(arms.two_metre, [3.0, 1.0]).q,
+                        600.0,
+                    )
+                    * np.eye(2)
+                )
+            },
+        ),
+        (
+            "poles of the scalar damping",
+            {"poles_ex2": lambda r: np.sort(_scalar_damping_poles().real)},
+        ),
+        (
+            "the natural frequencies |p| (the sign lost)",
+            {"poles_ex2": lambda r: -np.asarray(r["poles_ex2"])},
+        ),
+        (
+            "sorted from the least negative",
+            {"poles_ex2": lambda r: np.asarray(r["poles_ex2"])[::-1]},
+        ),
+        (
+            "two poles only",
+            {"poles_ex2": lambda r: np.unique(np.round(np.real(r["poles_ex2"]), 6))},
+        ),
+        ("control.damp's ratios", {"zeta_modes_ex2": lambda r: np.ones(2)}),
+        ("heavy first", {"zeta_modes_ex2": lambda r: r["zeta_modes_ex2"][::-1]}),
+    ],
+    "6.3": [
+        ("the source's k = 600", {"k_ex3": lambda r: 600.0}),
+        ("ten times too stiff", {"k_ex3": lambda r: 10 * r["k_ex3"]}),
+        ("for a 5 cm sag", {"k_ex3": lambda r: r["k_ex3"] / 10}),
+        ("negative", {"k_ex3": lambda r: -r["k_ex3"]}),
+    ],
+    "6.4": [
+        (
+            "the sign reversed",
+            {
+                "spring_torques": lambda r: (
+                    lambda arm, q, p_rest, k: (
+                        arm.jacobian(q).T @ (k * (arm.fk(q) - np.asarray(p_rest)))
+                    )
+                )
+            },
+        ),
+        (
+            "J for J^T",
+            {
+                "spring_torques": lambda r: (
+                    lambda arm, q, p_rest, k: (
+                        arm.jacobian(q) @ (k * (np.asarray(p_rest) - arm.fk(q)))
+                    )
+                )
+            },
+        ),
+    ],
+    "7.1": [
+        (
+            "degrees in cos/sin",
+            {
+                "rho_two_metre": lambda r: float(
+                    ((2 * np.cos(35)) ** 2 + (4 - 2 * np.sin(35)) ** 2 - 4)
+                    / (2 * (4 - 2 * np.sin(35)) + 4)
+                )
+            },
+        ),
+        (
+            "internal tangency (2 - rho)",
+            {
+                "rho_two_metre": lambda r: float(
+                    (
+                        (2 * np.cos(np.radians(35))) ** 2
+                        + (4 - 2 * np.sin(np.radians(35))) ** 2
+                        - 4
+                    )
+                    / (2 * (4 - 2 * np.sin(np.radians(35))) - 4)
+                )
+            },
+        ),
+        ("the unlimited arm's reach", {"rho_two_metre": lambda r: 2.0}),
+    ],
+    "7.2": [
+        (
+            "the outer gap, limits ignored",
+            {"radius_up": lambda r: arms.ten.reach[1] - np.hypot(11.5, 12.0)},
+        ),
+        (
+            "the elbow-down room",
+            {
+                "radius_up": lambda r: float(
+                    workspace.clearance(arms.ten, [11.5, 12.0], elbow="down")
+                )
+            },
+        ),
+        (
+            "the either-branch room",
+            {"radius_up": lambda r: float(workspace.clearance(arms.ten, [11.5, 12.0]))},
+        ),
+        (
+            "step in radians",
+            {"largest_step_deg": lambda r: np.radians(r["largest_step_deg"])},
+        ),
+        (
+            "61 samples",
+            {
+                "largest_step_deg": lambda r: np.degrees(
+                    trajectory.ik_trajectory(
+                        arms.ten,
+                        trajectory.CirclePath(
+                            [11.5, 12.0],
+                            0.999 * r["radius_up"],
+                            duration=3.0,
+                            law="quintic",
+                        ),
+                        n=61,
+                        elbow="up",
+                    ).joint_steps.max()
+                )
+            },
+        ),
+    ],
+    "7.3": [
+        ("too few samples (201)", {"max_joint_rate": lambda r: _coarse_rate(201)}),
+        ("too few samples (501)", {"max_joint_rate": lambda r: _coarse_rate(501)}),
+        ("deg/s", {"max_joint_rate": lambda r: np.degrees(r["max_joint_rate"])}),
+        (
+            "the other joint's peak",
+            {
+                "max_joint_rate": lambda r: float(
+                    np.abs(
+                        trajectory.ik_trajectory(
+                            arms.two_metre,
+                            trajectory.LinePath(
+                                [-3.5, 1.0], [-1.0, 3.5], duration=5.0, law="quintic"
+                            ),
+                            n=4001,
+                        ).qd
+                    )
+                    .max(axis=0)
+                    .min()
+                )
+            },
+        ),
+        (
+            "qd.max() without abs",
+            {
+                "max_joint_rate": lambda r: float(
+                    trajectory.ik_trajectory(
+                        arms.two_metre,
+                        trajectory.LinePath(
+                            [-3.5, 1.0], [-1.0, 3.5], duration=5.0, law="quintic"
+                        ),
+                        n=4001,
+                    ).qd.min()
+                )
+            },
+        ),
+    ],
+    "7.4": [
+        (
+            "the limits ignored",
+            {
+                "reachable": lambda r: (
+                    lambda arm, p: arm.reach[0] <= np.hypot(*p) <= arm.reach[1]
+                )
+            },
+        ),
+        (
+            "elbow down only",
+            {
+                "reachable": lambda r: (
+                    lambda arm, p: bool(
+                        workspace.is_reachable(arm, np.asarray(p), elbow="down")
+                    )
+                )
+            },
+        ),
+        (
+            "elbow up only",
+            {
+                "reachable": lambda r: (
+                    lambda arm, p: bool(
+                        workspace.is_reachable(arm, np.asarray(p), elbow="up")
+                    )
+                )
+            },
+        ),
+    ],
+}
+
+#: exercise -> [(the form, {part: an equivalent right value})]
+EQUIVALENT = {
+    "1.1": [
+        ("a list", {"p_tip_ex1": lambda r: list(map(float, r["p_tip_ex1"]))}),
+        ("a tuple", {"p_tip_ex1": lambda r: tuple(r["p_tip_ex1"])}),
+    ],
+    "1.2": [
+        (
+            "nested lists and a list",
+            {
+                "T_02_ex2": lambda r: np.asarray(r["T_02_ex2"]).tolist(),
+                "x_axis_ex2": lambda r: list(r["x_axis_ex2"]),
+            },
+        ),
+        (
+            "a 1x1 array for the height",
+            {"z_tip_ex2": lambda r: np.array([r["z_tip_ex2"]])},
+        ),
+    ],
+    "1.3": [
+        (
+            "q1 + 2 pi, q2 - 2 pi",
+            {
+                "q_rel_ex3": lambda r: (
+                    np.asarray(r["q_rel_ex3"]) + [2 * np.pi, -2 * np.pi]
+                )
+            },
+        ),
+        ("a tuple", {"p_tip_ex3": lambda r: tuple(r["p_tip_ex3"])}),
+    ],
+    "1.4": [
+        (
+            "a tuple returned",
+            {"tip_position": lambda r: lambda arm, q: tuple(arm.fk(q))},
+        )
+    ],
+    "2.1": [
+        (
+            "q1 - 2 pi, as a list",
+            {
+                "q_elbow_up": lambda r: [
+                    r["q_elbow_up"][0] - 2 * np.pi,
+                    r["q_elbow_up"][1],
+                ]
+            },
+        ),
+        ("numpy's bool", {"up_within_limits": lambda r: np.bool_(False)}),
+    ],
+    "2.2": [
+        ("an int count", {"grid_points_1cm": lambda r: int(r["grid_points_1cm"])}),
+        (
+            "a numpy float step",
+            {"step_1cm_deg": lambda r: np.float64(r["step_1cm_deg"])},
+        ),
+    ],
+    "2.3": [
+        (
+            "trailing newline",
+            {"unreachable_message": lambda r: r["unreachable_message"] + "\n"},
+        )
+    ],
+    "2.4": [
+        (
+            "a list, q1 a whole turn on",
+            {
+                "elbow_up_angles": lambda r: (
+                    lambda arm, p: list(r["elbow_up_angles"](arm, p) + [2 * np.pi, 0.0])
+                )
+            },
+        )
+    ],
+    "3.1": [
+        ("a list", {"qd_ex1": lambda r: list(r["qd_ex1"])}),
+        (
+            "a function returning a list",
+            {
+                "joint_rates": lambda r: (
+                    lambda arm, q, v_tip: list(r["joint_rates"](arm, q, v_tip))
+                )
+            },
+        ),
+    ],
+    "3.2": [
+        (
+            "a size-one array",
+            {"tip_speed_ex2": lambda r: np.array([r["tip_speed_ex2"]])},
+        ),
+        (
+            "to 3 significant figures",
+            {"tip_speed_ex2": lambda r: float(f"{r['tip_speed_ex2']:.3g}")},
+        ),
+    ],
+    "3.3": [
+        (
+            "the exact optimum",
+            {
+                "q2_best_deg_ex3": lambda r: np.degrees(_roundest_osake()),
+                "cond_best_ex3": lambda r: np.linalg.cond(
+                    arms.osake.jacobian([0.0, _roundest_osake()])
+                ),
+            },
+        ),
+    ],
+    "4.1": [("a tuple", {"tau_ex1": lambda r: tuple(r["tau_ex1"])})],
+    "4.2": [
+        (
+            "q1 + 2 pi",
+            {"q_down_ex2": lambda r: np.asarray(r["q_down_ex2"]) + [2 * np.pi, 0.0]},
+        )
+    ],
+    "4.3": [("a list", {"tau_ex3": lambda r: list(r["tau_ex3"])})],
+    "4.4": [
+        (
+            "a list",
+            {
+                "wall_torques": lambda r: (
+                    lambda arm, q, force_by_tip: list(
+                        arm.joint_torques(q, force_by_tip)
+                    )
+                )
+            },
+        )
+    ],
+    "5.1": [
+        (
+            "lists",
+            {
+                "tau_hold_ex1": lambda r: list(r["tau_hold_ex1"]),
+                "qdd_ex1": lambda r: list(r["qdd_ex1"]),
+            },
+        )
+    ],
+    "5.2": [
+        (
+            "K from the symbolic g (exact)",
+            {"K_ex2": lambda r: np.asarray(r["K_ex2"]).T},
+        ),
+        ("a list", {"omega_ex2": lambda r: list(r["omega_ex2"])}),
+    ],
+    "5.3": [
+        (
+            "end angles + 2 pi",
+            {"q_end_ex3": lambda r: np.asarray(r["q_end_ex3"]) + 2 * np.pi},
+        ),
+        ("a list of rates", {"qd_end_ex3": lambda r: list(r["qd_end_ex3"])}),
+    ],
+    "5.4": [
+        ("3 significant figures", {"T_ex4": lambda r: float(f"{r['T_ex4']:.3g}")}),
+        (
+            "arm.energy's T",
+            {"kinetic_energy": lambda r: lambda arm, q, qd: arm.energy(q, qd)[0]},
+        ),
+    ],
+    "6.1": [("a list", {"tau_ex1": lambda r: list(r["tau_ex1"])})],
+    "6.2": [
+        ("poles as a list", {"poles_ex2": lambda r: list(r["poles_ex2"])}),
+        (
+            "the symmetrised D",
+            {
+                "D_ex2": lambda r: (
+                    (np.asarray(r["D_ex2"]) + np.asarray(r["D_ex2"]).T) / 2
+                )
+            },
+        ),
+    ],
+    "6.3": [
+        ("to 4 significant figures", {"k_ex3": lambda r: float(f"{r['k_ex3']:.4g}")})
+    ],
+    "6.4": [
+        (
+            "a list",
+            {
+                "spring_torques": lambda r: (
+                    lambda arm, q, p_rest, k: list(
+                        r["spring_torques"](arm, q, p_rest, k)
+                    )
+                )
+            },
+        )
+    ],
+    "7.1": [
+        ("a numpy float", {"rho_two_metre": lambda r: np.float64(r["rho_two_metre"])})
+    ],
+    "7.2": [
+        (
+            "numpy floats",
+            {
+                "radius_up": lambda r: np.float64(r["radius_up"]),
+                "largest_step_deg": lambda r: np.array(r["largest_step_deg"]),
+            },
+        )
+    ],
+    "7.3": [("the exact peak", {"max_joint_rate": lambda r: _exact_peak_rate()})],
+    "7.4": [
+        (
+            "numpy's bool",
+            {"reachable": lambda r: lambda arm, p: np.bool_(r["reachable"](arm, p))},
+        )
+    ],
+}
+
+
+def _apply(right_answers, changes):
+    answers = dict(right_answers)
+    for name, make in changes.items():
+        answers[name] = make(right_answers)
+    return answers
+
+
+def test_every_exercise_has_wrong_and_equivalent_answers():
+    assert len(NUMBERS) == 27
+    for number in NUMBERS:
+        assert len(WRONG[number]) >= 2, number
+        assert len(EQUIVALENT[number]) >= 1, number
+    assert sum(len(exercises.get(number).parts) for number in NUMBERS) == 44
+    assert [number for number, _ in FUNCTION_PARTS] == [
+        "1.4",
+        "2.4",
+        "3.1",
+        "4.4",
+        "5.4",
+        "6.4",
+        "7.4",
+    ]
+
+
+@pytest.mark.parametrize("number", NUMBERS)
+def test_right_answers_pass(number, right):
+    status, lines = statuses(number, right[number])
+    assert set(status.values()) == {"correct"}, lines
+
+
+@pytest.mark.parametrize("number", NUMBERS)
+def test_unsolved_parts_say_not_solved_and_blame_no_sibling(number, right):
+    parts = [part.name for part in exercises.get(number).parts]
+    status, lines = statuses(number, {name: ... for name in parts})
+    assert set(status.values()) == {"not solved yet"}, lines
+    assert all("replace the ..." in line for line in lines)
+    for missing in parts:  # one part unsolved (None or ...), the others right
+        answers = dict(right[number], **{missing: None})
+        status, lines = statuses(number, answers)
+        assert status[missing] == "not solved yet", lines
+        assert all(status[name] == "correct" for name in parts if name != missing), (
+            lines
+        )
+
+
+@pytest.mark.parametrize(
+    "number, mistake",
+    [(n, m) for n in NUMBERS for m in range(len(WRONG[n]))],
+    ids=[f"{n}-{WRONG[n][m][0]}" for n in NUMBERS for m in range(len(WRONG[n]))],
+)
+def test_wrong_answers_are_rejected(number, mistake, right):
+    what, changes = WRONG[number][mistake]
+    status, lines = statuses(number, _apply(right[number], changes))
+    for name in changes:
+        assert status[name] == "wrong", f"{number}, {what}: {lines}"
+    wrong_lines = [line for line in lines if ": wrong: " in line]
+    assert all(
+        re.search(r" Hint( \d+ of \d+)?: ", line) and "\n" not in line
+        for line in wrong_lines
+    )
+    assert all("could not use" not in line for line in wrong_lines), (
+        lines
+    )  # a reason, not a crash
+
+
+@pytest.mark.parametrize(
+    "number, form",
+    [(n, m) for n in NUMBERS for m in range(len(EQUIVALENT[n]))],
+    ids=[
+        f"{n}-{EQUIVALENT[n][m][0]}" for n in NUMBERS for m in range(len(EQUIVALENT[n]))
+    ],
+)
+def test_equivalent_forms_are_accepted(number, form, right):
+    what, changes = EQUIVALENT[number][form]
+    status, lines = statuses(number, _apply(right[number], changes))
+    assert set(status.values()) == {"correct"}, f"{number}, {what}: {lines}"
+
+
+def test_references_are_computed_by_the_package():
+    # the test's closed forms agree with the numerical tools they stand in for
+    q2 = np.radians(np.linspace(1.0, 179.0, 3561))
+    cond = np.linalg.cond(
+        arms.osake.jacobian(np.stack([np.zeros_like(q2), q2], axis=-1))
+    )
+    assert abs(np.degrees(q2[np.argmin(cond)] - _roundest_osake())) < 0.05
+    # the table's arm (compsys726) has the equal-link arm's condition-number curve,
+    # so "the equal-link arm's angle" of 3.3 is also the table arm's
+    table = TwoLinkArm(l1=compsys726.A1 / 100, l2=compsys726.A2 / 100)
+    equal = TwoLinkArm(l1=1.0, l2=1.0)
+    for arm in (table, equal):
+        curve = np.linalg.cond(arm.jacobian(np.stack([np.zeros_like(q2), q2], -1)))
+        assert (
+            abs(np.degrees(q2[np.argmin(curve)]) - np.degrees(np.arccos(-2 / 3))) < 0.05
+        )
+    c, s = np.cos(np.radians(35.0)), np.sin(np.radians(35.0))
+    rho = ((2 * c) ** 2 + (4 - 2 * s) ** 2 - 4) / (2 * (4 - 2 * s) + 4)
+    assert np.isclose(
+        rho,
+        workspace.largest_inscribed_circle(arms.two_metre_limited)[1],
+        atol=1e-6,
+    )  # the closed form the 7.1 mistakes of WRONG vary
+    K = _hanging_stiffness()
+    q_hang, h = np.radians([-90.0, 0.0]), 1e-6
+    central = np.column_stack(
+        [
+            (
+                arms.two_metre.gravity(q_hang + h * e)
+                - arms.two_metre.gravity(q_hang - h * e)
+            )
+            / (2 * h)
+            for e in np.eye(2)
+        ]
+    )
+    assert np.allclose(K, central, atol=1e-6)
+    rng = np.random.default_rng(HIDDEN_TEST_SEED)
+    for _ in range(
+        5
+    ):  # the hand-written T is arm.energy's, on arms and states drawn here
+        arm = TwoLinkArm(*rng.uniform(0.3, 3.0, 2), *rng.uniform(0.2, 5.0, 2))
+        q, qd = rng.uniform(-np.pi, np.pi, 2), rng.uniform(-3.0, 3.0, 2)
+        assert np.isclose(_kinetic_energy(arm, q, qd), arm.energy(q, qd)[0])
+    assert _exact_peak_rate() >= _coarse_rate(4001)
+    assert abs(_sag(600.0)) > 0.005  # the source's spring sags more than 5 mm
+    for number in NUMBERS:  # no check cell needs a reference: every part is specified
+        for part in exercises.get(number).parts:
+            assert isinstance(part, exercises.spec.PartSpec)
+            assert part.name.isidentifier()
+            assert len(part.hints) >= 2, (number, part.name)
+            if part.kind == "function":
+                assert part.output is not None and len(part.cases) >= 3
+                assert len(part.mistakes) >= 2, (number, part.name)
+
+
+# ------------------------------------------------------------- the notebooks' own solutions
+
+NOTEBOOKS = {
+    path.name[:2]: path for path in sorted((ROOT / "notebooks").glob("*.ipynb"))
+}
+
+
+def _check_cells(cells):
+    return [
+        (index, "".join(cell["source"]))
+        for index, cell in enumerate(cells)
+        if cell["cell_type"] == "code" and "selfcheck." in "".join(cell["source"])
+    ]
+
+
+@pytest.mark.parametrize(
+    "chapter", sorted(NOTEBOOKS), ids=[NOTEBOOKS[c].name for c in sorted(NOTEBOOKS)]
+)
+def test_check_cells_hold_no_reference(chapter):
+    """Each check cell is one ``selfcheck.check("N.M", answer, ...)`` on the answers' names, nothing computed."""
+    path = NOTEBOOKS[chapter]
+    cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+    checked = []
+    for index, source in _check_cells(cells):
+        # the hidden score line nbgrader reads (tools/nbgrader_cells.py) aside
+        source = editions.strip_hidden_tests(source)
+        tree = ast.parse(source)
+        assert len(tree.body) == 1, (
+            f"{path.name} cell {index}: a check cell is one call, got:\n{source}"
+        )
+        statement = tree.body[0]
+        call = (
+            statement.value if isinstance(statement, (ast.Assign, ast.Expr)) else None
+        )
+        assert (
+            isinstance(call, ast.Call) and ast.unparse(call.func) == "selfcheck.check"
+        ), f"{path.name} cell {index}: {source}"
+        if isinstance(statement, ast.Expr):
+            assert source.rstrip().endswith(";"), (
+                f"{path.name} cell {index}: end the check with ; (no stray output)"
+            )
+        number, *answers = call.args
+        assert isinstance(number, ast.Constant) and number.value in NUMBERS, (
+            f"{path.name} cell {index}: {source}"
+        )
+        assert (
+            all(isinstance(answer, ast.Name) for answer in answers)
+            and not call.keywords
+        ), (
+            f"{path.name} cell {index}: the check passes the answers' names only, nothing computed: {source}"
+        )
+        assert [answer.id for answer in answers] == [
+            part.name for part in exercises.get(number.value).parts
+        ], f"{path.name} cell {index}: exercise {number.value}'s parts in order"
+        checked.append(number.value)
+    chapter_numbers = [n for n in NUMBERS if n.split(".")[0] == str(int(chapter))]
+    assert checked == chapter_numbers, (
+        f"{path.name} checks {checked}, its exercises are {chapter_numbers}"
+    )
