@@ -1,8 +1,11 @@
-"""Chapter 2 (inverse kinematics): the references of exercises 2.1 to 2.4, with typical mistakes and hints.
+"""Chapter 2 (inverse kinematics): the references of exercises 2.1 to 2.5, with typical mistakes and hints.
 
-Exercise 2.4 asks for a function, ``elbow_up_angles(arm, p)``: the notebook's
-self-check calls it on the visible cases below; the grader calls it on the
-cases :data:`HIDDEN` draws from a seed the notebook never holds.
+Exercises 2.1, 2.2, 2.3 and 2.5 read their data from an inputs cell and are
+graded on hidden inputs too (``RERUN``).  Exercise 2.4 asks for a function,
+``elbow_up_angles(arm, p)``: the notebook's self-check calls it on the visible
+cases below; the grader calls it on the cases :data:`HIDDEN` draws from a seed
+the notebook never holds, with the package's IK solvers switched off
+(``FORBIDDEN``).  2.5's choice of reason is worked on paper (``PEN_AND_PAPER``).
 """
 
 from __future__ import annotations
@@ -11,6 +14,7 @@ from collections.abc import Callable
 
 import numpy as np
 
+from answers._rerun import Rerun
 from twolink import TwoLinkArm, UnreachableError, arms, ik
 from twolink.ik.grid_search import grid_axis
 from twolink_course.exercises.spec import (
@@ -22,7 +26,7 @@ from twolink_course.exercises.spec import (
 )
 
 CHAPTER = "02_inverse_kinematics"
-TARGET_2_1 = (12.0, 4.0)  # on arms.ten
+TARGET_2_1 = (14.0, 9.0)  # on arms.ten: elbow up within the limits, elbow down not
 ERROR_BOUND_2_2 = 0.01  # m
 Q1_RANGE_DEG_2_2, Q2_RANGE_DEG_2_2 = (0.0, 90.0), (-90.0, 90.0)
 TARGET_2_3 = (15.0, 16.0)  # out of arms.ten's reach
@@ -61,10 +65,42 @@ def _down(arm: TwoLinkArm, p: tuple[float, float]) -> np.ndarray:
     return np.asarray(ik.closed_form(arm, p, elbow="down").q, dtype=float)
 
 
+def _inputs_2_1() -> dict[str, object]:
+    return {"arm_ex1": arms.ten, "p_ex1": np.array(TARGET_2_1)}
+
+
+def _answers_2_1(inputs: dict) -> dict[str, object]:
+    arm, p = inputs["arm_ex1"], tuple(inputs["p_ex1"])
+    q_up = _up(arm, p)
+    return {"q_elbow_up": q_up, "up_within_limits": bool(arm.within_limits(q_up))}
+
+
+def _ten_like(l1: float, l2: float) -> TwoLinkArm:
+    """An arm with arms.ten's joint limits and the given link lengths."""
+    return TwoLinkArm(l1=l1, l2=l2, q_min=arms.ten.q_min, q_max=arms.ten.q_max)
+
+
+def _hidden_2_1(rng: np.random.Generator) -> dict[str, object]:
+    """A target where one branch respects the limits and the other does not (the bool tells them apart)."""
+    while True:
+        arm = _ten_like(*(round(float(v), 1) for v in rng.uniform(5.0, 15.0, 2)))
+        low, high = arm.reach
+        distance = rng.uniform(low + 0.1 * (high - low), high - 0.1 * (high - low))
+        direction = rng.uniform(-0.5, 2.0)
+        p = np.round(distance * np.array([np.cos(direction), np.sin(direction)]), 2)
+        q_both = ik.closed_form(arm, p, elbow="both").q
+        if len(set(arm.within_limits(q_both).tolist())) == 2:
+            return {"arm_ex1": arm, "p_ex1": p}
+
+
 def exercise_2_1() -> ExerciseSpec:
+    inputs = _inputs_2_1()
     arm, p = arms.ten, TARGET_2_1
     q_up, q_down = _up(arm, p), _down(arm, p)
-    within = bool(arm.within_limits(q_up))
+    within = bool(_answers_2_1(inputs)["up_within_limits"])
+    assert within != bool(
+        arm.within_limits(q_down)
+    )  # the bool tells the branches apart
     return ExerciseSpec(
         "2.1",
         CHAPTER,
@@ -108,7 +144,7 @@ def exercise_2_1() -> ExerciseSpec:
                     "Reread 'Why the branches are named by the sign of q2': which "
                     "sign of q2 is elbow up?",
                     "ik.closed_form takes the branch as elbow=...; put the angles "
-                    "you find through arms.ten.fk and compare with the target.",
+                    "you find through arm_ex1.fk and compare with the target.",
                 ),
             ),
             PartSpec(
@@ -119,35 +155,54 @@ def exercise_2_1() -> ExerciseSpec:
                 mistakes=(
                     Mistake(
                         not within,
-                        "not so: compare each elbow-up angle with arms.ten's limits "
-                        "(arms.ten.q_min and arms.ten.q_max, radians, q2 relative to "
-                        "link 1), or let arms.ten.within_limits judge them",
+                        "not so for the elbow-up branch (the elbow-down branch gives "
+                        "this answer): compare each elbow-up angle with the arm's "
+                        "limits (arm_ex1.q_min and arm_ex1.q_max, radians, q2 relative "
+                        "to link 1), or let arm_ex1.within_limits judge them",
                     ),
                 ),
                 hints=(
                     "Reread the chapter's introduction, where it gives the arm's "
                     "joint limits, and compare them with the angles you found.",
                     "Compare q1 with joint 1's limits and q2 with joint 2's, all in "
-                    "radians (arms.ten.within_limits does exactly that); the answer "
-                    "is a bool.",
+                    "radians (arm_ex1.within_limits does exactly that), for the "
+                    "elbow-up angles; the answer is a bool.",
                 ),
             ),
         ),
     )
 
 
-def _grid_counts(step: float) -> tuple[int, int]:
-    (q1_low, q1_high), (q2_low, q2_high) = (
-        np.radians(Q1_RANGE_DEG_2_2),
-        np.radians(Q2_RANGE_DEG_2_2),
-    )
+def _grid_counts(arm: TwoLinkArm, step: float) -> tuple[int, int]:
+    """The points of ik.brute_force's grid along each joint's range (the arm's limits)."""
+    assert arm.q_min is not None and arm.q_max is not None
+    (q1_low, q2_low), (q1_high, q2_high) = arm.q_min, arm.q_max
     return len(grid_axis(q1_low, q1_high, step)), len(grid_axis(q2_low, q2_high, step))
+
+
+def _inputs_2_2() -> dict[str, object]:
+    return {"arm_ex2": arms.ten, "error_bound_ex2": ERROR_BOUND_2_2}
+
+
+def _answers_2_2(inputs: dict) -> dict[str, object]:
+    arm, bound = inputs["arm_ex2"], inputs["error_bound_ex2"]
+    step = 2 * bound / (arm.l1 + 2 * arm.l2)
+    count_1, count_2 = _grid_counts(arm, step)
+    return {"step_deg_ex2": np.degrees(step), "grid_points_ex2": count_1 * count_2}
+
+
+def _hidden_2_2(rng: np.random.Generator) -> dict[str, object]:
+    lengths = (round(float(v), 1) for v in rng.uniform(5.0, 15.0, 2))
+    return {
+        "arm_ex2": _ten_like(*lengths),
+        "error_bound_ex2": round(float(rng.uniform(0.005, 0.05)), 3),
+    }
 
 
 def exercise_2_2() -> ExerciseSpec:
     arm = arms.ten
     step = 2 * ERROR_BOUND_2_2 / (arm.l1 + 2 * arm.l2)  # rad
-    count_1, count_2 = _grid_counts(step)
+    count_1, count_2 = _grid_counts(arm, step)
     range_1, range_2 = (
         np.radians(np.ptp(Q1_RANGE_DEG_2_2)),
         np.radians(np.ptp(Q2_RANGE_DEG_2_2)),
@@ -157,7 +212,7 @@ def exercise_2_2() -> ExerciseSpec:
         CHAPTER,
         (
             PartSpec(
-                "step_1cm_deg",
+                "step_deg_ex2",
                 "grid step",
                 "number",
                 expected=np.degrees(step),
@@ -170,8 +225,8 @@ def exercise_2_2() -> ExerciseSpec:
                     ),
                     Mistake(
                         np.degrees(step / 2),
-                        "this step makes (a1 + 2 a2) times the step equal 1 cm: the "
-                        "error bound is half of that, so the step can be larger",
+                        "this step makes (a1 + 2 a2) times the step equal the bound: "
+                        "the error bound is half of that, so the step can be larger",
                     ),
                     Mistake(
                         np.degrees(2 * ERROR_BOUND_2_2 / (arm.l1 + arm.l2)),
@@ -181,19 +236,19 @@ def exercise_2_2() -> ExerciseSpec:
                     Mistake(
                         np.degrees(2 * 1.0 / (arm.l1 + 2 * arm.l2)),
                         "this bound is 1 m, not 1 cm: the arm's lengths are in "
-                        "metres, so write the bound in metres too",
+                        "metres, and so is error_bound_ex2",
                     ),
                 ),
                 hints=(
                     "Reread 'How brute-force cost grows with resolution': the error "
-                    "bound is a formula in the step; set it equal to 1 cm.",
-                    "Solve the bound for the step with the lengths and the bound in "
-                    "metres: the step comes out in radians, and the exercise asks "
-                    "for degrees.",
+                    "bound is a formula in the step; set it equal to error_bound_ex2.",
+                    "Solve the bound for the step with the lengths (arm_ex2.l1, "
+                    "arm_ex2.l2) and error_bound_ex2, all in metres: the step comes "
+                    "out in radians, and the exercise asks for degrees.",
                 ),
             ),
             PartSpec(
-                "grid_points_1cm",
+                "grid_points_ex2",
                 "number of grid points",
                 "number",
                 expected=count_1 * count_2,
@@ -231,26 +286,47 @@ def exercise_2_2() -> ExerciseSpec:
                 hints=(
                     "Reread 'How brute-force cost grows with resolution': count the "
                     "points along each joint's axis, then combine the two axes.",
-                    "Along one axis the grid holds the lower end, each step after it "
-                    "below the upper end, and the upper end itself; ranges and step "
-                    "in the same unit.",
+                    "Along one axis (from arm_ex2.q_min to arm_ex2.q_max) the grid "
+                    "holds the lower end, each step after it below the upper end, and "
+                    "the upper end itself; ranges and step in the same unit.",
                 ),
             ),
         ),
     )
 
 
-def _message_2_3() -> str:
+def _message_2_3(arm: TwoLinkArm, p: tuple[float, float]) -> str:
     try:
-        ik.closed_form(arms.ten, TARGET_2_3)
+        ik.closed_form(arm, p)
     except UnreachableError as error:
         return str(error)
-    raise AssertionError(f"{TARGET_2_3} should be out of reach of arms.ten")
+    raise AssertionError(f"{p} should be out of reach of {arm}")
+
+
+def _inputs_2_3() -> dict[str, object]:
+    return {"arm_ex3": arms.ten, "p_ex3": np.array(TARGET_2_3)}
+
+
+def _answers_2_3(inputs: dict) -> dict[str, object]:
+    arm, p = inputs["arm_ex3"], inputs["p_ex3"]
+    return {
+        "unreachable_message": _message_2_3(arm, tuple(p)),
+        "distance_beyond_reach": float(np.hypot(*p)) - arm.reach[1],
+    }
+
+
+def _hidden_2_3(rng: np.random.Generator) -> dict[str, object]:
+    """A target 5 % to 50 % beyond the reach of an arm like arms.ten, in any direction."""
+    arm = _ten_like(*(round(float(v), 1) for v in rng.uniform(5.0, 15.0, 2)))
+    distance = arm.reach[1] * rng.uniform(1.05, 1.5)
+    direction = rng.uniform(-np.pi, np.pi)
+    p = np.round(distance * np.array([np.cos(direction), np.sin(direction)]), 1)
+    return {"arm_ex3": arm, "p_ex3": p}
 
 
 def exercise_2_3() -> ExerciseSpec:
     arm = arms.ten
-    message = _message_2_3()
+    message = _message_2_3(arm, TARGET_2_3)
     distance = float(np.hypot(*TARGET_2_3))
     beyond = distance - arm.reach[1]
     return ExerciseSpec(
@@ -277,8 +353,9 @@ def exercise_2_3() -> ExerciseSpec:
                 hints=(
                     "Reread the pitfall on acos of a number outside its domain: it "
                     "shows how the package reports a target out of reach.",
-                    "Call ik.closed_form inside try / except UnreachableError as "
-                    "error, and keep str(error): a str, not the error itself.",
+                    "Call ik.closed_form(arm_ex3, p_ex3) inside try / except "
+                    "UnreachableError as error, and keep str(error): a str, not the "
+                    "error itself.",
                 ),
             ),
             PartSpec(
@@ -313,7 +390,7 @@ def exercise_2_3() -> ExerciseSpec:
                 hints=(
                     "Reread 'A double root and a two-branch target': how far from the "
                     "base does the arm reach when it is straight?",
-                    "Subtract the arm's largest reach (arms.ten.reach holds it) from "
+                    "Subtract the arm's largest reach (arm_ex3.reach holds it) from "
                     "the target's distance from the base; out of reach, the "
                     "difference is positive.",
                 ),
@@ -433,7 +510,8 @@ def exercise_2_4() -> ExerciseSpec:
                     "any arm what exercise 2.1 did for one.",
                     "Take the lengths from the arm you are given (arm.l1, arm.l2), "
                     "choose the sign of q2 that puts the elbow up, and use atan2, "
-                    "which keeps the quadrant of every target.",
+                    "which keeps the quadrant of every target; the package's IK "
+                    "solvers are switched off while your function runs.",
                     "Test it yourself on targets in every quadrant and on arms with "
                     "unequal links: arm.fk of what it returns must land on p.",
                 ),
@@ -470,10 +548,188 @@ def hidden_2_4(rng: np.random.Generator, count: int) -> list[Case]:
     return cases
 
 
+#: Exercise 2.5: one machine's time per solve of each method (s), and the loop's budget (s).
+SECONDS_2_5 = {
+    "closed form": 3.2e-6,
+    "newton": 9.7e-6,
+    "minimize (BFGS)": 9.4e-4,
+    "minimize (SLSQP)": 2.9e-4,
+    "brute force, 1° grid": 2.7e-4,
+}
+BUDGET_2_5 = 1e-3
+#: The margin a real-time verdict asks for: the time fits the budget this many times over.
+MARGIN_2_5 = 3.0
+#: 2.5's stated reasons, by letter, and the right one.
+REASONS_2_5 = {
+    "a": "yes: it fits the budget, as measured",
+    "b": "not as measured: a margin that small vanishes on a slower machine or in a "
+    "slow cycle, so a real-time verdict asks for the time to fit several times over",
+    "c": "no: only a closed form can ever run in real time",
+}
+REASON_2_5 = "b"
+
+
+def _inputs_2_5() -> dict[str, object]:
+    return {
+        "seconds_per_solve_ex5": dict(SECONDS_2_5),
+        "budget_ex5": BUDGET_2_5,
+        "margin_ex5": MARGIN_2_5,
+    }
+
+
+def _answers_2_5(inputs: dict) -> dict[str, object]:
+    seconds = np.array(list(inputs["seconds_per_solve_ex5"].values()))
+    margins = inputs["budget_ex5"] / seconds
+    return {
+        "margins_ex5": margins,
+        "fit_with_margin_ex5": int(np.count_nonzero(margins >= inputs["margin_ex5"])),
+    }
+
+
+def _hidden_2_5(rng: np.random.Generator) -> dict[str, object]:
+    """Other times per solve (1 us to 10 ms), none within 5 % of the margin's edge."""
+    while True:
+        seconds = {
+            name: float(f"{10.0 ** rng.uniform(-6.0, -2.0):.2g}")
+            for name in SECONDS_2_5
+        }
+        margins = BUDGET_2_5 / np.array(list(seconds.values()))
+        if np.all(np.abs(margins / MARGIN_2_5 - 1.0) > 0.05):
+            return {
+                "seconds_per_solve_ex5": seconds,
+                "budget_ex5": BUDGET_2_5,
+                "margin_ex5": MARGIN_2_5,
+            }
+
+
+def exercise_2_5() -> ExerciseSpec:
+    answers = _answers_2_5(_inputs_2_5())
+    margins = np.asarray(answers["margins_ex5"])
+    seconds = np.array(list(SECONDS_2_5.values()))
+    count = int(answers["fit_with_margin_ex5"])
+    return ExerciseSpec(
+        "2.5",
+        CHAPTER,
+        (
+            PartSpec(
+                "margins_ex5",
+                "margins",
+                "vector",
+                expected=margins,
+                shape=(len(SECONDS_2_5),),
+                components=tuple(SECONDS_2_5),
+                mistakes=(
+                    Mistake(
+                        seconds / BUDGET_2_5,
+                        "these are the shares of the budget (time / budget); the "
+                        "margin is how many times the time fits the budget, budget / "
+                        "time",
+                    ),
+                    Mistake(
+                        100 * seconds / BUDGET_2_5,
+                        "these are the shares of the budget in percent; the margin is "
+                        "budget / time",
+                    ),
+                    Mistake(
+                        margins * 1e6,
+                        "the times are in seconds and the budget too: divide them as "
+                        "they are, without converting one of them",
+                    ),
+                ),
+                hints=(
+                    "Reread 'Which method can run in real time?': a margin says how "
+                    "many times one solve fits into the budget.",
+                    "Divide budget_ex5 by each time of seconds_per_solve_ex5, in the "
+                    "dict's order (list(seconds_per_solve_ex5.values())).",
+                ),
+            ),
+            PartSpec(
+                "fit_with_margin_ex5",
+                "methods with the margin",
+                "number",
+                expected=count,
+                unit="methods",
+                mistakes=(
+                    Mistake(
+                        int(np.count_nonzero(margins >= 1.0)),
+                        "this counts every method that fits the budget at all; the "
+                        "question asks for those that fit margin_ex5 times over",
+                    ),
+                    Mistake(
+                        len(SECONDS_2_5) - count,
+                        "this counts the methods without the margin",
+                    ),
+                ),
+                hints=(
+                    "Reread 'Which method can run in real time?': a method counts "
+                    "when its margin is at least margin_ex5.",
+                    "Count the margins you computed that are >= margin_ex5 "
+                    "(np.count_nonzero of the comparison).",
+                ),
+            ),
+            PartSpec(
+                "reason_ex5",
+                "reason",
+                "text",
+                expected=REASON_2_5,
+                mistakes=(
+                    Mistake(
+                        "a",
+                        "it fits on the machine that measured it, once; a control "
+                        "loop must meet every deadline, on the machine it runs on",
+                    ),
+                    Mistake(
+                        "c",
+                        "too strong: iterative solvers do run in real time on real "
+                        "robots, when their time fits the budget with room to spare",
+                    ),
+                ),
+                hints=(
+                    "Reread 'Which method can run in real time?' and the margin the "
+                    "chapter asks for.",
+                    "Think of the same code on a machine three times slower, or in a "
+                    "cycle where the computer is busy with something else.",
+                ),
+            ),
+        ),
+    )
+
+
+#: The visible inputs of each value exercise, a draw of hidden ones, and the references for any.
+RERUN = {
+    "2.1": Rerun(inputs=_inputs_2_1(), hidden=_hidden_2_1, answers=_answers_2_1),
+    "2.2": Rerun(inputs=_inputs_2_2(), hidden=_hidden_2_2, answers=_answers_2_2),
+    "2.3": Rerun(inputs=_inputs_2_3(), hidden=_hidden_2_3, answers=_answers_2_3),
+    "2.5": Rerun(inputs=_inputs_2_5(), hidden=_hidden_2_5, answers=_answers_2_5),
+}
+
 #: The grader's hidden cases, by (exercise, part): generator(rng, count) -> cases.
 HIDDEN = {("2.4", "elbow_up_angles"): hidden_2_4}
+
+#: The package's one-liners a function part must not call (dotted paths): switched off while it runs.
+FORBIDDEN = {
+    ("2.4", "elbow_up_angles"): (
+        "twolink.ik.closed_form",
+        "twolink.ik.analytic.closed_form",
+        "twolink.ik.newton",
+        "twolink.ik.iterative.newton",
+        "twolink.ik.minimize",
+        "twolink.ik.optimize.minimize",
+        "twolink.ik.brute_force",
+        "twolink.ik.grid_search.brute_force",
+    ),
+}
+
+#: Parts worked on paper (a choice among stated reasons): checked on the visible value only.
+PEN_AND_PAPER = (("2.5", "reason_ex5"),)
 
 
 def exercises() -> list[ExerciseSpec]:
     """The chapter's exercises, computed from their data."""
-    return [exercise_2_1(), exercise_2_2(), exercise_2_3(), exercise_2_4()]
+    return [
+        exercise_2_1(),
+        exercise_2_2(),
+        exercise_2_3(),
+        exercise_2_4(),
+        exercise_2_5(),
+    ]

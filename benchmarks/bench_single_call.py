@@ -24,16 +24,24 @@ What each side does, so the ratios compare like with like:
   ``(q1, q2, residual, success)`` as Python numbers.
 - ``ik.newton``: both iterate to the same tolerance from the same start;
   twolink returns an ``IKResult``, the plain version the two angles.
+- ``mass_matrix``, ``forward_dynamics``, ``inverse_dynamics``: the plain
+  versions take the arm's constants (``alpha, beta, delta, gamma1,
+  gamma2``) computed once, outside the timed call, as a user's own code
+  would (twolink keeps them on the arm); they return floats, twolink an
+  array, after checking its input.
 
 Run with ``make bench`` or ``.venv/bin/python benchmarks/bench_single_call.py``
 (``--quick`` for a smoke run with tiny sizes, used by the test suite).
-Each pair (twolink, plain) is timed in alternating batches, so that both
-see the same load on a shared machine; the table gives the medians.
+Each pair (twolink, plain) is timed in alternating batches, in CPU seconds
+of this process (``time.process_time``), so that both see the same load on a
+shared machine and other processes do not enter the ratio; the table gives
+the medians.
 """
 
 import argparse
 import math
 import platform
+import time
 import timeit
 
 import numpy as np
@@ -50,6 +58,7 @@ TARGET_RATIO = {
     "ik.closed_form": 4.0,
     "ik.closed_form, judged alike": None,
     "ik.newton": 3.0,
+    "mass_matrix": 4.5,  # a 2x2 array (0.4 us to make) against four floats in tuples
     "forward_dynamics": 2.0,
     "inverse_dynamics": 2.0,
 }
@@ -121,40 +130,65 @@ def plain_newton(l1, l2, x, y, q1=0.5, q2=1.0, tol=1e-12, max_iter=100):
     return q1, q2
 
 
-def plain_dynamics_terms(arm, q1, q2, qd1, qd2):
-    """M, the Coriolis/centrifugal vector and gravity of the uniform-rod model (floats)."""
+def plain_constants(arm):
+    """The arm's constants of the uniform-rod model, computed once per arm (as a user's own code does).
+
+    ``(alpha, beta, delta, gamma1, gamma2)``: ``M11 = alpha + 2 beta cos q2``,
+    ``M12 = delta + beta cos q2``, ``M22 = delta``, ``h = beta sin q2``,
+    ``g1 = gamma1 cos q1 + gamma2 cos q12``, ``g2 = gamma2 cos q12``.
+    """
     I1, I2 = arm.inertias
     lc1, lc2 = arm.l1 / 2.0, arm.l2 / 2.0
     m1, m2, l1, g = arm.m1, arm.m2, arm.l1, arm.g
+    return (
+        I1 + I2 + m1 * lc1 * lc1 + m2 * (l1 * l1 + lc2 * lc2),
+        m2 * l1 * lc2,
+        I2 + m2 * lc2 * lc2,
+        (m1 * lc1 + m2 * l1) * g,
+        m2 * lc2 * g,
+    )
+
+
+def plain_dynamics_terms(constants, q1, q2, qd1, qd2):
+    """M, the Coriolis/centrifugal vector and gravity of the uniform-rod model (floats)."""
+    alpha, beta, delta, gamma1, gamma2 = constants
     c2, s2 = math.cos(q2), math.sin(q2)
-    m11 = I1 + I2 + m1 * lc1 * lc1 + m2 * (l1 * l1 + lc2 * lc2 + 2.0 * l1 * lc2 * c2)
-    m12 = I2 + m2 * (lc2 * lc2 + l1 * lc2 * c2)
-    m22 = I2 + m2 * lc2 * lc2
-    h = m2 * l1 * lc2 * s2
+    m11 = alpha + 2.0 * beta * c2
+    m12 = delta + beta * c2
+    h = beta * s2
     bias1 = -h * (2.0 * qd1 * qd2 + qd2 * qd2)
     bias2 = h * qd1 * qd1
     c1, c12 = math.cos(q1), math.cos(q1 + q2)
-    gravity1 = (m1 * lc1 + m2 * l1) * g * c1 + m2 * lc2 * g * c12
-    gravity2 = m2 * lc2 * g * c12
-    return m11, m12, m22, bias1 + gravity1, bias2 + gravity2
+    gravity2 = gamma2 * c12
+    return m11, m12, delta, bias1 + gamma1 * c1 + gravity2, bias2 + gravity2
 
 
-def plain_forward_dynamics(arm, q1, q2, qd1, qd2, tau1, tau2):
-    m11, m12, m22, n1, n2 = plain_dynamics_terms(arm, q1, q2, qd1, qd2)
+def plain_mass_matrix(constants, q2):
+    """``M(q)`` as four floats: ``((M11, M12), (M12, M22))``."""
+    alpha, beta, delta = constants[:3]
+    beta_cos = beta * math.cos(q2)
+    m12 = delta + beta_cos
+    return ((alpha + 2.0 * beta_cos, m12), (m12, delta))
+
+
+def plain_forward_dynamics(constants, q1, q2, qd1, qd2, tau1, tau2):
+    m11, m12, m22, n1, n2 = plain_dynamics_terms(constants, q1, q2, qd1, qd2)
     rhs1, rhs2 = tau1 - n1, tau2 - n2
     det = m11 * m22 - m12 * m12
     return ((m22 * rhs1 - m12 * rhs2) / det, (m11 * rhs2 - m12 * rhs1) / det)
 
 
-def plain_inverse_dynamics(arm, q1, q2, qd1, qd2, qdd1, qdd2):
-    m11, m12, m22, n1, n2 = plain_dynamics_terms(arm, q1, q2, qd1, qd2)
+def plain_inverse_dynamics(constants, q1, q2, qd1, qd2, qdd1, qdd2):
+    m11, m12, m22, n1, n2 = plain_dynamics_terms(constants, q1, q2, qd1, qd2)
     return (m11 * qdd1 + m12 * qdd2 + n1, m12 * qdd1 + m22 * qdd2 + n2)
 
 
 def plain_state_derivative(arm):
+    constants = plain_constants(arm)
+
     def free_motion(t, state):
         q1, q2, qd1, qd2 = state
-        qdd1, qdd2 = plain_forward_dynamics(arm, q1, q2, qd1, qd2, 0.0, 0.0)
+        qdd1, qdd2 = plain_forward_dynamics(constants, q1, q2, qd1, qd2, 0.0, 0.0)
         return [qd1, qd2, qdd1, qdd2]
 
     return free_motion
@@ -178,17 +212,24 @@ def check_references_agree(arm, q, qd, tau, p):
         and bool(result.success)
         and abs(plain_residual - float(result.residual)) <= 1e-12
     )
+    assert np.allclose(
+        plain_mass_matrix(plain_constants(arm), q[1]),
+        dynamics.mass_matrix(arm, q),
+        rtol=1e-12,
+        atol=0,
+    )
     q_newton = plain_newton(arm.l1, arm.l2, *p)
     assert np.allclose(plain_fk(arm.l1, arm.l2, *q_newton), p, atol=1e-9)
+    constants = plain_constants(arm)
     assert np.allclose(
-        plain_forward_dynamics(arm, *q, *qd, *tau),
+        plain_forward_dynamics(constants, *q, *qd, *tau),
         dynamics.forward_dynamics(arm, q, qd, tau),
         rtol=1e-9,
         atol=1e-9,
     )
     qdd = dynamics.forward_dynamics(arm, q, qd, tau)
     assert np.allclose(
-        plain_inverse_dynamics(arm, *q, *qd, *qdd), tau, rtol=1e-9, atol=1e-9
+        plain_inverse_dynamics(constants, *q, *qd, *qdd), tau, rtol=1e-9, atol=1e-9
     )
 
 
@@ -197,10 +238,13 @@ def interleaved_medians(first, second, repeat, min_seconds):
 
     On a shared machine the load changes from second to second; timing the
     two one after the other in alternating batches (each lasting about
-    ``min_seconds``) lets both see the same load, so their ratio is steadier
-    than that of two separate :func:`median_time` runs.
+    ``min_seconds``), in CPU time, lets both see the same load, so their
+    ratio is steadier than that of two separate :func:`median_time` runs.
     """
-    timers = [timeit.Timer(first), timeit.Timer(second)]
+    timers = [
+        timeit.Timer(first, timer=time.process_time),
+        timeit.Timer(second, timer=time.process_time),
+    ]
     numbers = []
     for timer in timers:  # calls per batch, calibrated as median_time does
         number = 1
@@ -229,6 +273,7 @@ def single_call_rows(arm, repeat, min_seconds, batch):
     check_references_agree(arm, q, qd, tau, p)
     q_list, p_list = q.tolist(), p.tolist()
     l1, l2 = arm.l1, arm.l2
+    constants = plain_constants(arm)  # once, outside the timed calls
 
     q_batch = rng.uniform(-np.pi, np.pi, (batch, 2))
     qd_batch = rng.uniform(-2.0, 2.0, (batch, 2))
@@ -267,15 +312,25 @@ def single_call_rows(arm, repeat, min_seconds, batch):
             lambda: ik.newton(arm, p_batch, q0=(0.5, 1.0)),
         ),
         (
+            "mass_matrix",
+            lambda: dynamics.mass_matrix(arm, q_list),
+            lambda: plain_mass_matrix(constants, q_list[1]),
+            lambda: dynamics.mass_matrix(arm, q_batch),
+        ),
+        (
             "forward_dynamics",
             lambda: dynamics.forward_dynamics(arm, q_list, qd.tolist(), tau.tolist()),
-            lambda: plain_forward_dynamics(arm, *q_list, *qd.tolist(), *tau.tolist()),
+            lambda: plain_forward_dynamics(
+                constants, *q_list, *qd.tolist(), *tau.tolist()
+            ),
             lambda: dynamics.forward_dynamics(arm, q_batch, qd_batch, tau_batch),
         ),
         (
             "inverse_dynamics",
             lambda: dynamics.inverse_dynamics(arm, q_list, qd.tolist(), qdd.tolist()),
-            lambda: plain_inverse_dynamics(arm, *q_list, *qd.tolist(), *qdd.tolist()),
+            lambda: plain_inverse_dynamics(
+                constants, *q_list, *qd.tolist(), *qdd.tolist()
+            ),
             lambda: dynamics.inverse_dynamics(arm, q_batch, qd_batch, tau_batch),
         ),
     ]

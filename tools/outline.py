@@ -32,7 +32,11 @@ NOTEBOOK_DIR = ROOT / "notebooks"
 CASEBOOK_HEADING = "Casebook: the coursework"
 #: The largest share of a chapter's cells its casebook may take.
 MAX_CASEBOOK_SHARE = 0.25
-SOURCE_RECORD = re.compile(r"Source record: ((?:H\d\.\d+|G)(?:, (?:H\d\.\d+|G))*)")
+#: One item of the source record, plain (``H3.2``) or linked to its anchor on the
+#: record's page (``[H3.2](source_record.ipynb#h3-2)``).
+_RECORD_ITEM = r"\[?(?:H\d\.\d+|G)\]?(?:\(source_record\.ipynb#[\w-]+\))?"
+SOURCE_RECORD = re.compile(rf"Source record: ({_RECORD_ITEM}(?:, {_RECORD_ITEM})*)")
+_RECORD_NAME = re.compile(r"H\d\.\d+|G")
 _HEADING = re.compile(r"^(#{1,6})\s+(.+?)\s*#*\s*$")
 _MARKUP = re.compile(r"[*_`]")
 
@@ -129,9 +133,9 @@ class Outline:
             ][:1]
             text = "\n".join(source(cell) for cell in opening)
             records = tuple(
-                item.strip()
+                name
                 for match in SOURCE_RECORD.finditer(text)
-                for item in match.group(1).split(",")
+                for name in _RECORD_NAME.findall(match.group(1))
             )
             found.append(Entry(heading, end, records))
         return found

@@ -25,6 +25,22 @@ _Arm = TypeVar("_Arm")
 #: Python and numpy scalar types accepted where a real number belongs (bool excluded).
 _REAL_TYPES = (int, float, np.integer, np.floating)
 
+#: Scalar types refused although they are among the above: booleans, and numpy's time
+#: deltas (a subclass of its integers: ``np.timedelta64(1, "s")`` would pass for 1).
+_NOT_NUMBERS = (bool, np.bool_, np.timedelta64)
+
+
+def is_real_number(value: object) -> bool:
+    """Whether ``value`` is one real number: a Python or numpy int or float, not a bool or a time delta.
+
+    Examples
+    --------
+    >>> is_real_number(2), is_real_number(np.float32(0.5)), is_real_number(True), is_real_number(np.timedelta64(1, "s"))
+    (True, True, False, False)
+    """
+    return isinstance(value, _REAL_TYPES) and not isinstance(value, _NOT_NUMBERS)
+
+
 __all__ = [
     "finite_result",
     "InputTypeError",
@@ -32,13 +48,21 @@ __all__ = [
     "require_arm",
     "as_pairs",
     "pair_floats",
+    "state_floats",
     "as_finite_scalar",
+    "is_real_number",
+    "as_time",
+    "as_time_span",
+    "TIME_RANGE",
+    "as_length",
+    "LENGTH_RANGE",
+    "require_callable",
     "as_count",
     "as_flag",
     "broadcast_start",
     "broadcast_shape",
     "frozen_array",
-    "public_torque_floats",
+    "torque_floats",
 ]
 
 #: Scalar types the one-input fast path converts itself (``float`` is tested
@@ -183,6 +207,55 @@ def pair_floats(values: object) -> tuple[float, float] | None:
     return None
 
 
+def state_floats(
+    first: object, second: object, third: object
+) -> tuple[float, float, float, float, float, float] | None:
+    """Six finite Python floats when each argument is plainly one pair of real numbers, else ``None``.
+
+    The fast path of the one-state dynamics (``q``, ``qd`` and ``qdd`` or
+    ``tau``), in one step for the usual calls: three lists (or tuples) of
+    two floats, or three float64 arrays of shape ``(2,)``.  Other mixes go
+    through :func:`pair_floats` pair by pair; anything it refuses returns
+    ``None``, for the caller's vectorised path and its messages.
+
+    Examples
+    --------
+    >>> state_floats([0.1, 0.2], [0.0, 1.0], [2.0, 3.0])
+    (0.1, 0.2, 0.0, 1.0, 2.0, 3.0)
+    >>> state_floats(np.zeros(2), [0.0, 1.0], (2, 3))
+    (0.0, 0.0, 0.0, 1.0, 2.0, 3.0)
+    >>> state_floats([0.1, True], [0.0, 1.0], [2.0, 3.0]) is None
+    True
+    """
+    kind: Any = type(first)
+    items: Any = (first, second, third)
+    if kind is type(second) and kind is type(third):
+        if kind is list or kind is tuple:
+            if len(first) == len(second) == len(third) == 2:  # type: ignore[arg-type]
+                (a, b), (c, d), (e, f) = items
+                if (
+                    type(a) is float
+                    and type(b) is float
+                    and type(c) is float
+                    and type(d) is float
+                    and type(e) is float
+                    and type(f) is float
+                    and math.isfinite(a + b + c + d + e + f)
+                ):
+                    return a, b, c, d, e, f
+        elif kind is np.ndarray:
+            arrays: tuple[NDArray[Any], ...] = items
+            if all(array.shape == (2,) and array.dtype is _FLOAT64 for array in arrays):
+                (a, b), (c, d), (e, f) = (array.tolist() for array in arrays)
+                if math.isfinite(a + b + c + d + e + f):
+                    return a, b, c, d, e, f
+    pairs = [pair_floats(item) for item in items]
+    if None in pairs:
+        return None
+    (a, b), (c, d), (e, f) = pairs  # type: ignore[misc]
+    return a, b, c, d, e, f
+
+
 def as_finite_scalar(
     value: object, name: str, *, minimum: float | None = None, strictly: bool = False
 ) -> float:
@@ -208,8 +281,8 @@ def as_finite_scalar(
     ...
     ValueError: l1 must be > 0.0; got 0.0
     """
-    if isinstance(value, _REAL_TYPES) and not isinstance(value, (bool, np.bool_)):
-        number = float(value)
+    if is_real_number(value):
+        number = float(value)  # type: ignore[arg-type]
     elif type(value) is np.ndarray and value.ndim == 0 and value.dtype.kind in "iuf":
         number = float(value)
     else:
@@ -224,6 +297,95 @@ def as_finite_scalar(
         if not strictly and not number >= minimum:
             raise ValueError(f"{name} must be >= {minimum}; got {number}")
     return number
+
+
+#: The durations and end times the package accepts, seconds: within them a time's square,
+#: its inverse and the accelerations of a path run over it stay normal float64 numbers
+#: (a duration of 1e-308 s would make them overflow; one of 1e300 s has no meaning).
+TIME_RANGE = (1e-50, 1e50)
+
+
+def as_time(t: object, name: str = "t (s)") -> float:
+    """A time ``t`` in seconds as a finite float: what a controller or a reference is called with.
+
+    A finite float (Python's or numpy's, as an ODE solver passes it) is
+    returned at once (a controller is called thousands of times a run);
+    anything else is checked by :func:`as_finite_scalar`, naming ``name``.
+
+    Examples
+    --------
+    >>> as_time(0.25), as_time(1)
+    (0.25, 1.0)
+    >>> as_time("now")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: t (s) must be a real number; got 'now' (str)
+    """
+    if isinstance(t, float) and -math.inf < t < math.inf:
+        return float(t)
+    return as_finite_scalar(t, name)
+
+
+def as_time_span(value: object, name: str) -> float:
+    """``value`` as a duration in seconds within :data:`TIME_RANGE`, or an error naming ``name``.
+
+    Examples
+    --------
+    >>> as_time_span(2, "duration (s)")
+    2.0
+    >>> as_time_span(5e-324, "duration (s)")
+    Traceback (most recent call last):
+    ...
+    ValueError: duration (s) must be in [1e-50, 1e+50]; got 5e-324
+    """
+    number = as_finite_scalar(value, name)
+    if not TIME_RANGE[0] <= number <= TIME_RANGE[1]:
+        raise ValueError(
+            f"{name} must be in [{TIME_RANGE[0]:g}, {TIME_RANGE[1]:g}]; got {number:g}"
+        )
+    return number
+
+
+#: The lengths the package accepts, metres (links, radii): within them every square and product
+#: the kinematics and dynamics form stays a normal float64 number.
+LENGTH_RANGE = (1e-50, 1e50)
+
+
+def as_length(value: object, name: str) -> float:
+    """``value`` as a length in metres within :data:`LENGTH_RANGE`, or an error naming ``name``.
+
+    Examples
+    --------
+    >>> as_length(0.5, "radius (m)")
+    0.5
+    >>> as_length(1e-300, "radius (m)")
+    Traceback (most recent call last):
+    ...
+    ValueError: radius (m) must be in [1e-50, 1e+50]; got 1e-300
+    """
+    number = as_finite_scalar(value, name)
+    if not LENGTH_RANGE[0] <= number <= LENGTH_RANGE[1]:
+        raise ValueError(
+            f"{name} must be in [{LENGTH_RANGE[0]:g}, {LENGTH_RANGE[1]:g}]; got {number:g}"
+        )
+    return number
+
+
+def require_callable(value: object, name: str, what: str) -> Any:
+    """``value`` if it is callable, else an :class:`InputTypeError` naming ``name`` and saying ``what`` it must be.
+
+    Examples
+    --------
+    >>> require_callable(3, "controller", "a callable controller(t, q, qd) -> tau")
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: controller must be a callable controller(t, q, qd) -> tau; got 3 (int)
+    """
+    if not callable(value):
+        raise InputTypeError(
+            f"{name} must be {what}; got {value!r} ({type(value).__name__})"
+        )
+    return value
 
 
 def as_count(
@@ -248,7 +410,7 @@ def as_count(
     ...
     twolink.errors.InputTypeError: n must be an integer >= 1; got True (bool)
     """
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, _REAL_TYPES):
+    if not is_real_number(value):
         raise InputTypeError(
             f"{name} must be an integer >= {minimum}; got {value!r} ({type(value).__name__})"
         )
@@ -256,7 +418,7 @@ def as_count(
         math.isfinite(value) and float(value).is_integer()
     ):
         raise ValueError(f"{name} must be an integer >= {minimum}; got {value!r}")
-    count = int(value)
+    count = int(value)  # type: ignore[call-overload]
     if count < minimum:
         raise ValueError(f"{name} must be an integer >= {minimum}; got {count}")
     if maximum is not None and count > maximum:
@@ -513,22 +675,13 @@ def as_configuration(
     return values
 
 
-class NonFiniteTorque(ValueError):
-    """A torque callable returned NaN or infinity (the message names the time)."""
-
-
 def torque_floats(value: object, t: float) -> tuple[float, float]:
-    """A torque callable's result ``torque(t, q, qd)`` as two finite floats, or a clear error.
+    """A torque callable's result ``torque(t, q, qd)`` as two finite floats, or a ``ValueError`` naming the time.
 
-    Shared by :func:`twolink.dynamics.state_derivative`, :func:`twolink.simulate`
-    and :func:`twolink.engine.simulate_in_mujoco`.
-
-    Raises
-    ------
-    ValueError
-        When the result is not two numbers.
-    NonFiniteTorque
-        (a ``ValueError``) when one is NaN or infinite.
+    The one check of what a torque function returns, for
+    :func:`twolink.dynamics.state_derivative`, :func:`twolink.simulate` and
+    :func:`twolink.engine.simulate_in_mujoco` (which, past the start, report
+    a non-finite torque as the motion blowing up).
 
     Examples
     --------
@@ -537,7 +690,7 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
     >>> torque_floats([1.0, float("nan")], 0.25)
     Traceback (most recent call last):
     ...
-    twolink._validate.NonFiniteTorque: torque(t, q, qd) returned non-finite torques [ 1. nan] at t = 0.25
+    ValueError: torque(t, q, qd) returned non-finite torques [ 1. nan] at t = 0.25
     """
     if type(value) is not np.ndarray and isinstance(value, np.ma.MaskedArray):
         raise ValueError(
@@ -555,24 +708,10 @@ def torque_floats(value: object, t: float) -> tuple[float, float]:
         )
     tau1, tau2 = array.tolist()
     if not (math.isfinite(tau1) and math.isfinite(tau2)):
-        raise NonFiniteTorque(
+        raise ValueError(
             f"torque(t, q, qd) returned non-finite torques {array} at t = {t}"
         )
     return tau1, tau2
-
-
-def public_torque_floats(value: object, t: float) -> tuple[float, float]:
-    """:func:`torque_floats` for a public function: a non-finite torque raises a plain ``ValueError``.
-
-    >>> public_torque_floats([1.0, float("inf")], 0.5)
-    Traceback (most recent call last):
-    ...
-    ValueError: torque(t, q, qd) returned non-finite torques [ 1. inf] at t = 0.5
-    """
-    try:
-        return torque_floats(value, t)
-    except NonFiniteTorque as exc:
-        raise ValueError(str(exc)) from None
 
 
 def frozen_array(array: object) -> NDArray[np.float64]:

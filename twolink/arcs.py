@@ -14,12 +14,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._validate import as_count, as_finite_scalar, as_pairs, real_array
+from .conventions import wrap_angle
 from .errors import InputTypeError
+from .kinematics import LARGE_ANGLE
 
 #: Most points :meth:`Arc.points` makes (memory budget: 1e7 x 2 floats, 160 MB).
 MAX_POINTS = 10_000_000
 
-__all__ = ["Arc", "arc_distance", "circle_intersections"]
+__all__ = ["Arc"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -40,7 +42,7 @@ def arc_distance(
     once): inside the arc's angular span (every angle for a full circle) the
     nearest point is the radial projection onto the circle, outside it the
     nearer end point.  A zero radius needs no case of its own: its ends are
-    its centre.  No checks: the callers check their inputs.
+    its centre; nor does a zero sweep: its span is its one point.  No checks: the callers check their inputs.
 
     Examples
     --------
@@ -54,8 +56,10 @@ def arc_distance(
     )
     offset = p - centre
     from_centre = np.hypot(offset[..., 0], offset[..., 1])
+    # the direction of travel: +1 for a zero sweep too (np.sign's 0 put every point on its span)
+    direction = np.where(sweep < 0.0, -1.0, 1.0)
     along = np.mod(
-        (np.arctan2(offset[..., 1], offset[..., 0]) - start) * np.sign(sweep), _TWO_PI
+        (np.arctan2(offset[..., 1], offset[..., 0]) - start) * direction, _TWO_PI
     )
     to_ends = np.minimum(
         np.hypot(*np.moveaxis(p - end_a, -1, 0)),
@@ -63,6 +67,10 @@ def arc_distance(
     )
     on_span = (along <= np.abs(sweep)) | (np.abs(sweep) >= _TWO_PI)
     return np.where(on_span, np.abs(from_centre - radius), to_ends)
+
+
+#: The kinds of arc of a workspace's boundary (``""``: none said).
+ARC_KINDS = ("", "joint limit", "singular", "reach")
 
 
 @dataclass(frozen=True)
@@ -82,8 +90,8 @@ class Arc:
         Signed angle swept, radians, ``|sweep| <= 2 pi`` (``2 pi``: a full circle).
     label : str
         What traces the arc, e.g. ``"q1 = 0 deg"``.
-    kind : str
-        ``"joint limit"``, ``"singular"`` or ``"reach"``.
+    kind : {"", "joint limit", "singular", "reach"}
+        What kind of boundary it is (:data:`ARC_KINDS`; ``""``: none said).
 
     Examples
     --------
@@ -113,16 +121,20 @@ class Arc:
         object.__setattr__(
             self, "radius", as_finite_scalar(self.radius, "radius (m)", minimum=0.0)
         )
-        object.__setattr__(self, "start", as_finite_scalar(self.start, "start (rad)"))
+        start = as_finite_scalar(self.start, "start (rad)")
+        if (
+            not -LARGE_ANGLE <= start <= LARGE_ANGLE
+        ):  # reduced exactly: a sweep added to it would round away
+            start = float(wrap_angle(start))
+        object.__setattr__(self, "start", start)
         sweep = as_finite_scalar(self.sweep, "sweep (rad)")
         if abs(sweep) > _TWO_PI * (1.0 + 1e-12):
             raise ValueError(f"sweep must satisfy |sweep| <= 2 pi; got {sweep}")
         object.__setattr__(self, "sweep", sweep)
-        for name in ("label", "kind"):
-            if not isinstance(getattr(self, name), str):
-                raise InputTypeError(
-                    f"{name} must be a string; got {getattr(self, name)!r}"
-                )
+        if not isinstance(self.label, str):
+            raise InputTypeError(f"label must be a string; got {self.label!r}")
+        if not isinstance(self.kind, str) or self.kind not in ARC_KINDS:
+            raise ValueError(f"kind must be one of {ARC_KINDS}; got {self.kind!r}")
 
     def point_at(self, fraction: ArrayLike) -> NDArray[np.float64]:
         """Points at ``fraction`` (0 = start, 1 = end) along the arc, shape ``(..., 2)``.
@@ -199,7 +211,7 @@ class Arc:
     def split(self, fractions: ArrayLike) -> list[Arc]:
         """Cut the arc at the given fractions into consecutive pieces.
 
-        Fractions lie in ``[0, 1]`` (0 = start, 1 = end), in any order;
+        Fractions (a number or a flat list) lie in ``[0, 1]`` (0 = start, 1 = end), in any order;
         cuts at the ends or repeated (within 1e-9) cut nothing.  NaN,
         infinity and fractions outside ``[0, 1]`` are refused.
 
@@ -213,7 +225,12 @@ class Arc:
         ...
         ValueError: fractions must be finite numbers (0 = start, 1 = end of the arc); entry (0,) is nan
         """
-        cuts = _finite_fractions(fractions, "fractions").ravel()
+        cuts = _finite_fractions(fractions, "fractions")
+        if cuts.ndim > 1:
+            raise ValueError(
+                f"fractions must be a number or a flat list of numbers; got shape {cuts.shape}"
+            )
+        cuts = cuts.ravel()
         if np.any((cuts < 0.0) | (cuts > 1.0)):
             outside = cuts[(cuts < 0.0) | (cuts > 1.0)][0]
             raise ValueError(

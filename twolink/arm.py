@@ -14,7 +14,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from . import dh, dynamics, kinematics, velocity
 from ._derived import attach_cache
-from ._validate import as_finite_scalar, as_pairs, pair_floats, real_array
+from ._validate import (
+    LENGTH_RANGE,
+    as_finite_scalar,
+    as_pairs,
+    pair_floats,
+    real_array,
+)
 
 __all__ = ["TwoLinkArm"]
 
@@ -22,8 +28,8 @@ _LIMIT_CONVENTIONS = ("relative", "absolute")
 
 #: Representable ranges of the parameters: within them every square and
 #: product the kinematics and dynamics form (up to l^4 m^2) stays a normal
-#: float64, so nothing overflows to inf or underflows to 0.
-LENGTH_RANGE = (1e-50, 1e50)
+#: float64, so nothing overflows to inf or underflows to 0 (LENGTH_RANGE,
+#: [1e-50, 1e50] m, is the package's for every length).
 MASS_MAX = 1e50
 INERTIA_MAX = 1e150
 G_MAX = 1e50

@@ -25,12 +25,7 @@ from typing import Literal
 
 from ._validate import as_count, as_finite_scalar
 
-__all__ = [
-    "DEFAULT_MAX_EVALUATIONS",
-    "DEFAULT_MAX_WALL_TIME",
-    "MAX_SAMPLES",
-    "EvaluationBudget",
-]
+__all__ = ["DEFAULT_MAX_EVALUATIONS", "DEFAULT_MAX_WALL_TIME", "MAX_SAMPLES"]
 
 #: Most samples a path is cut into or a workspace helper makes (memory budget:
 #: 1e7 x 2 floats, 160 MB per array).

@@ -38,9 +38,11 @@ from ._validate import (
     as_configuration,
     as_finite_scalar,
     as_pairs,
+    as_time,
     plain_state,
     require_arm,
 )
+from ._values import Value
 from .kinematics import joint_torques
 from .statics import Wall, as_wall
 
@@ -58,7 +60,7 @@ TorqueFunction = Callable[[float, NDArray[np.float64], NDArray[np.float64]], Arr
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class SpringWall:
+class SpringWall(Value):
     """A wall modelled as a stiff spring and damper that only pushes.
 
     With ``n`` the unit normal pointing from the base's side into the wall
@@ -124,12 +126,13 @@ class SpringWall:
         return -np.multiply.outer(magnitude, normal)
 
     def __call__(self, t: float, p: ArrayLike, v: ArrayLike) -> NDArray[np.float64]:
-        """:meth:`force_on_tip` at ``p`` and ``v`` (any time ``t``): what :class:`TipForce` calls."""
+        """:meth:`force_on_tip` at ``p`` and ``v`` (any time ``t``, checked): what :class:`TipForce` calls."""
+        as_time(t)
         return self.force_on_tip(p, v)
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class TipForce:
+class TipForce(Value):
     """A controller's torques plus a force acting on the tip: ``tau + J(q)^T force_on_tip``.
 
     Pass it to :func:`twolink.simulate` as the ``torque``: the arm then moves
@@ -189,6 +192,7 @@ class TipForce:
         self, t: float, q: ArrayLike, qd: ArrayLike
     ) -> NDArray[np.float64]:
         """The force acting on the tip, N, at one state (``q``, ``qd`` of shape ``(2,)``)."""
+        t = as_time(t)
         q, qd = _one_state(q, qd)
         force_on_tip = self.force_on_tip
         if not callable(force_on_tip):
@@ -207,9 +211,10 @@ class TipForce:
         self, t: float, q: ArrayLike, qd: ArrayLike
     ) -> NDArray[np.float64]:
         """The controller's torques alone, N m (zeros without a controller)."""
+        t = as_time(t)
+        q, qd = _one_state(q, qd)
         if self.controller is None:
             return np.zeros(2)
-        q, qd = _one_state(q, qd)
         tau = as_pairs(self.controller(t, q, qd), "controller(t, q, qd)")
         if tau.shape != (2,):
             raise ValueError(

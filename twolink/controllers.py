@@ -53,11 +53,13 @@ from ._validate import (
     as_finite_scalar,
     as_flag,
     as_pairs,
+    as_time,
     broadcast_shape,
     plain_state,
     real_array,
     require_arm,
 )
+from ._values import Value
 from .dynamics import gravity_jacobian, mass_matrix_derivative
 from .kinematics import jacobian_derivative, joint_torques
 from .references import JointReference
@@ -65,14 +67,7 @@ from .references import JointReference
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
-__all__ = [
-    "gain_matrix",
-    "CartesianSpring",
-    "Impedance",
-    "JointReference",
-    "JointPD",
-    "ComputedTorque",
-]
+__all__ = ["CartesianSpring", "Impedance", "JointPD", "ComputedTorque"]
 
 #: Relative tolerance of the symmetry and positive-semi-definiteness checks
 #: of gain matrices (relative to the largest entry).
@@ -166,7 +161,7 @@ def _state(
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class CartesianSpring:
+class CartesianSpring(Value):
     """A virtual spring between the tip and a rest point: ``tau = J(q)^T K (x0 - x)``.
 
     The force on the tip is ``force_on_tip = K (x0 - x)``, pulling it towards the rest
@@ -229,7 +224,9 @@ class CartesianSpring:
         return 0.5 * np.einsum("...i,ij,...j->...", stretch, self.stiffness, stretch)
 
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
-        """The motor torques at time ``t`` (unused) and state ``(q, qd)``, N m."""
+        """The motor torques at time ``t`` (unused: checked) and state ``(q, qd)``, N m."""
+        as_time(t)
+        q, qd = _state(q, qd)  # qd unused: checked
         return self.torque(q)
 
     def torque_derivatives(
@@ -254,6 +251,7 @@ class CartesianSpring:
         >>> bool(np.allclose(by_q, -600.0 * J.T @ J)), bool(np.all(by_qd == 0.0))
         (True, True)
         """
+        as_time(t)
         q = as_configuration(q)
         return _spring_stiffness(
             self.arm, q, self.force_on_tip(q), self.stiffness
@@ -273,7 +271,7 @@ def _spring_stiffness(
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class Impedance:
+class Impedance(Value):
     """Impedance control: a tip spring, Cartesian damping and gravity compensation.
 
     ``tau = J(q)^T (K (x0 - x) - D J(q) qd) [+ g(q)]``, the joint torques
@@ -363,7 +361,8 @@ class Impedance:
         return self.spring.potential_energy(q)
 
     def __call__(self, t: float, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64]:
-        """The motor torques at time ``t`` (unused) and state ``(q, qd)``, N m."""
+        """The motor torques at time ``t`` (unused: checked) and state ``(q, qd)``, N m."""
+        as_time(t)
         return self.torque(q, qd)
 
     def torque_derivatives(
@@ -383,6 +382,7 @@ class Impedance:
         >>> bool(np.allclose(by_qd, -50.0 * J.T @ J))
         True
         """
+        as_time(t)
         q = as_configuration(q)
         J = self.arm.jacobian(q)
         by_q = _spring_stiffness(
@@ -401,11 +401,11 @@ def _as_reference(reference: JointReference | ArrayLike) -> JointReference:
             "reference must be a JointReference (for a trajectory: JointReference(position, velocity, "
             "acceleration) or JointReference.from_samples(t, q)) or a fixed configuration q_ref of shape (2,)"
         )
-    return JointReference.constant(reference)
+    return JointReference.constant(as_configuration(reference, "reference"))
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class JointPD:
+class JointPD(Value):
     """Joint-space PD control with gravity compensation.
 
     ``tau = Kp (q_ref - q) + Kd (qd_ref - qd) [+ g(q)]``: a spring and a
@@ -472,7 +472,7 @@ class JointPD:
         ValueError: q must have shape (..., 2) (two joint angles or an x, y pair per row); got shape (3,)
         """
         q, qd = _state(q, qd)
-        q_ref, qd_ref, _ = self.reference(t)
+        q_ref, qd_ref, _ = self.reference(as_time(t))
         # K e for each row e: e @ K^T
         tau = (q_ref - q) @ self.kp.T + (qd_ref - qd) @ self.kd.T
         if self.gravity_compensation:
@@ -493,6 +493,7 @@ class JointPD:
                [  0., -10.]]), array([[-2.,  0.],
                [ 0., -2.]])]
         """
+        as_time(t)
         q = as_configuration(q)
         by_q = (
             -self.kp + gravity_jacobian(self.arm, q)
@@ -503,7 +504,7 @@ class JointPD:
 
 
 @dataclass(frozen=True, eq=False, init=False)
-class ComputedTorque:
+class ComputedTorque(Value):
     """Computed-torque control (feedback linearisation) tracking a joint reference.
 
     ``tau = M(q) v + C(q, qd) qd + g(q)`` with
@@ -571,7 +572,7 @@ class ComputedTorque:
     def _acceleration(
         self, t: float, q: NDArray[np.float64], qd: NDArray[np.float64]
     ) -> NDArray[np.float64]:
-        q_ref, qd_ref, qdd_ref = self.reference(t)
+        q_ref, qd_ref, qdd_ref = self.reference(as_time(t))
         # K e for each row e: e @ K^T
         return qdd_ref + (qd_ref - qd) @ self.kd.T + (q_ref - q) @ self.kp.T
 
@@ -600,6 +601,7 @@ class ComputedTorque:
         >>> bool(np.allclose(by_q, -100.0 * M + dynamics.gravity_jacobian(arms.two_metre, [0.3, 0.6])))
         True
         """
+        as_time(t)
         q = as_configuration(q)
         acceleration = self._acceleration(t, q, np.zeros(2))
         M = self.model.mass_matrix(q)

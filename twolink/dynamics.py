@@ -44,16 +44,19 @@ from numpy.typing import ArrayLike, NDArray
 from . import kinematics
 from ._derived import derived
 from ._validate import (
-    NonFiniteTorque,
     as_pairs,
     broadcast_shape,
     finite_result,
     pair_floats,
     real_array,
     require_arm,
+    state_floats,
     torque_floats,
 )
 from .errors import SimulationError
+from .kinematics import LARGE_ANGLE, reduced_angles, reduced_pair
+
+_LARGE = LARGE_ANGLE  # bound once for the one-state paths
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
@@ -144,6 +147,18 @@ def _gravity_terms(gamma1, gamma2, cos_q1, cos_q12):
     return gamma1 * cos_q1 + g2, g2
 
 
+def _mass_of_angle(alpha, beta, delta, q2):
+    """``(M11, M12, M21, M22)`` of a block of ``q2``, with numpy (:func:`_mass_terms`)."""
+    m11, m12, m22 = _mass_terms(alpha, beta, delta, np.cos(q2))
+    return m11, m12, m12, m22
+
+
+def _coriolis_of_state(beta, q2, qd1, qd2):
+    """``(C11, C12, C21, C22)`` of a block of states, with numpy (:func:`_coriolis_terms`)."""
+    c11, c12, c21 = _coriolis_terms(beta, np.sin(q2), qd1, qd2)
+    return c11, c12, c21, 0.0
+
+
 def _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2):
     """Joint accelerations ``(qdd1, qdd2)``; ``cos``/``sin`` from :mod:`math` (floats) or numpy (arrays).
 
@@ -190,9 +205,9 @@ def _blockwise(formula, constants, q, qd, last):
     shape = broadcast_shape(
         **{"q": q, "qd": qd, "tau" if formula is _forward else "qdd": last}
     )
-    kinematics.require_finite_angle_sum(q)
     q_flat, qd_flat, last_flat = (
-        np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd, last)
+        np.broadcast_to(array, shape).reshape(-1, 2)
+        for array in (reduced_angles(q), qd, last)
     )
     columns = (
         q_flat[:, 0],
@@ -210,25 +225,6 @@ def _blockwise(formula, constants, q, qd, last):
             formula, (constants, np.cos, np.sin), columns, result.reshape(-1, 2)
         )
     return result
-
-
-# ---------------------------------------------------------------- input checks
-def _single_state(q, qd, last):
-    """Six floats when each argument is one pair of finite real numbers, else None.
-
-    Anything unusual (other shapes or types, a NaN, an infinity) returns None
-    and goes down the vectorised path, whose checks raise the clear errors.
-    """
-    q_pair = pair_floats(q)
-    if q_pair is None:
-        return None
-    qd_pair = pair_floats(qd)
-    if qd_pair is None:
-        return None
-    last_pair = pair_floats(last)
-    if last_pair is None:
-        return None
-    return q_pair + qd_pair + last_pair
 
 
 # ---------------------------------------------------------------- public functions
@@ -257,16 +253,27 @@ def mass_matrix(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     array([[32., 10.],
            [10.,  4.]])
     """
-    q = as_pairs(q, "q")
     constants = _constants(arm)
-    m11, m12, m22 = _mass_terms(
-        constants.alpha, constants.beta, constants.delta, np.cos(q[..., 1])
-    )
+    alpha, beta, delta = constants.alpha, constants.beta, constants.delta
+    angles = pair_floats(q)
+    if angles is not None:  # one pose on floats: the same terms with math
+        m11_one, m12_one, m22_one = _mass_terms(alpha, beta, delta, math.cos(angles[1]))
+        M_one = np.empty((2, 2))  # then four item assignments: faster than np.array
+        M_one[0, 0], M_one[0, 1], M_one[1, 0], M_one[1, 1] = (
+            m11_one,
+            m12_one,
+            m12_one,
+            m22_one,
+        )
+        return M_one
+    q = as_pairs(q, "q")
     M = np.empty(q.shape[:-1] + (2, 2))
-    M[..., 0, 0] = m11
-    M[..., 0, 1] = m12
-    M[..., 1, 0] = m12
-    M[..., 1, 1] = m22
+    kinematics.evaluate_blockwise(
+        _mass_of_angle,
+        (alpha, beta, delta),
+        (q.reshape(-1, 2)[:, 1],),
+        M.reshape(-1, 4),
+    )
     return M
 
 
@@ -305,13 +312,16 @@ def coriolis(arm: TwoLinkArm, q: ArrayLike, qd: ArrayLike) -> NDArray[np.float64
     q = as_pairs(q, "q")
     qd = as_pairs(qd, "qd")
     shape = broadcast_shape(q=q, qd=qd)
-    c11, c12, c21 = _coriolis_terms(
-        _constants(arm).beta, np.sin(q[..., 1]), qd[..., 0], qd[..., 1]
+    q_flat, qd_flat = (
+        np.broadcast_to(array, shape).reshape(-1, 2) for array in (q, qd)
     )
-    C = np.zeros(shape[:-1] + (2, 2))
-    C[..., 0, 0] = c11
-    C[..., 0, 1] = c12
-    C[..., 1, 0] = c21
+    C = np.empty(shape[:-1] + (2, 2))
+    kinematics.evaluate_blockwise(
+        _coriolis_of_state,
+        (_constants(arm).beta,),
+        (q_flat[:, 1], qd_flat[:, 0], qd_flat[:, 1]),
+        C.reshape(-1, 4),
+    )
     return C
 
 
@@ -342,13 +352,13 @@ def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """
     constants = _constants(arm)
     angles = pair_floats(q)
-    if angles is not None and math.isfinite(angles[0] + angles[1]):
-        # one pose on floats: the same terms with math
+    if angles is not None:  # one pose on floats: the same terms with math
+        q1_one, q2_one = reduced_pair(*angles)
         g1_one, g2_one = _gravity_terms(
             constants.gamma1,
             constants.gamma2,
-            math.cos(angles[0]),
-            math.cos(angles[0] + angles[1]),
+            math.cos(q1_one),
+            math.cos(q1_one + q2_one),
         )
         torques_one = np.empty(
             2
@@ -357,10 +367,10 @@ def gravity(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
         return torques_one
     q = as_pairs(q, "q")
     q1, q12 = kinematics.link_angles(q)
-    g1, g2 = _gravity_terms(constants.gamma1, constants.gamma2, np.cos(q1), np.cos(q12))
     torques = np.empty(q.shape)
-    torques[..., 0] = g1
-    torques[..., 1] = g2
+    torques[..., 0], torques[..., 1] = _gravity_terms(
+        constants.gamma1, constants.gamma2, np.cos(q1), np.cos(q12)
+    )
     return torques
 
 
@@ -487,14 +497,14 @@ def inverse_dynamics(
     array([  0., -10.])
     """
     if force_by_tip is None:
-        state = _single_state(q, qd, qdd)
+        state = state_floats(q, qd, qdd)
         if state is not None:
-            try:
-                tau1, tau2 = _inverse(_constants(arm), math.cos, math.sin, *state)
-            except (
-                ValueError
-            ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-                tau1 = tau2 = math.inf
+            q1, q2, qd1, qd2, qdd1, qdd2 = state
+            if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+                q1, q2 = reduced_pair(q1, q2)
+            tau1, tau2 = _inverse(
+                _constants(arm), math.cos, math.sin, q1, q2, qd1, qd2, qdd1, qdd2
+            )
             if math.isfinite(tau1 + tau2):
                 tau = np.empty(
                     2
@@ -574,16 +584,22 @@ def forward_dynamics(
     array([0., 0.])
     """
     if force_by_tip is None:
-        state = _single_state(q, qd, tau)
+        state = state_floats(q, qd, tau)
         if state is not None:
-            try:
-                qdd1, qdd2 = _forward(
-                    _invertible_constants(arm), math.cos, math.sin, *state
-                )
-            except (
-                ValueError
-            ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-                qdd1 = qdd2 = math.inf
+            q1, q2, qd1, qd2, tau1, tau2 = state
+            if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+                q1, q2 = reduced_pair(q1, q2)
+            qdd1, qdd2 = _forward(
+                _invertible_constants(arm),
+                math.cos,
+                math.sin,
+                q1,
+                q2,
+                qd1,
+                qd2,
+                tau1,
+                tau2,
+            )
             if math.isfinite(qdd1 + qdd2):
                 qdd = np.empty(
                     2
@@ -699,84 +715,54 @@ def state_derivative(
     ...
     ValueError: torque(t, q, qd) returned non-finite torques [nan  0.] at t = 0.5
     """
-    return solver_state_derivative(arm, torque, signal_non_finite=False)
-
-
-def solver_state_derivative(
-    arm: TwoLinkArm,
-    torque: Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLike]
-    | None,
-    signal_non_finite: bool,
-) -> Callable[[float, NDArray[np.float64]], list[float]]:
-    """:func:`state_derivative` for :func:`twolink.simulate` (not in ``__all__``): with ``signal_non_finite``
-    a non-finite torque raises the private
-    ``NonFiniteTorque`` (for :func:`twolink.simulate`, which turns it into a clear error), else a ``ValueError``."""
     constants = _invertible_constants(arm)
-    cos, sin, state_array = math.cos, math.sin, _state_array
-    if torque is None:
-
-        def free_motion(t, state):
-            try:  # a float array of four, as a solver passes: no checks
-                q1, q2, qd1, qd2 = state.tolist()
-                finite = math.isfinite(q1 + q2 + qd1 + qd2)
-            except (
-                AttributeError,
-                TypeError,
-                ValueError,
-            ):  # a list, or an array of another shape or type
-                state = state_array(state)
-                q1, q2, qd1, qd2 = state.tolist()
-                finite = True
-            if not finite:
-                _raise_blow_up(t, state)
-            qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, 0.0, 0.0)
-            return [qd1, qd2, qdd1, qdd2]
-
-        return free_motion
-    if not callable(torque):
+    if torque is not None and not callable(torque):
         raise ValueError(
             f"torque must be None or a callable torque(t, q, qd) -> tau; got {torque!r}"
         )
+    cos, sin, read = math.cos, math.sin, _state_floats
 
-    def driven_motion(t, state):
-        try:  # a float array of four, as a solver passes: no checks
-            q1, q2, qd1, qd2 = state.tolist()
-            finite = math.isfinite(q1 + q2 + qd1 + qd2)
-        except (
-            AttributeError,
-            TypeError,
-            ValueError,
-        ):  # a list, or an array of another shape or type
-            state = state_array(state)
-            q1, q2, qd1, qd2 = state.tolist()
-            finite = True
-        if not finite:
-            _raise_blow_up(t, state)
-        try:
+    def right_hand_side(t, state):
+        q1, q2, qd1, qd2, state = read(t, state)
+        if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+            q1, q2 = reduced_pair(q1, q2)
+        if torque is None:
+            tau1 = tau2 = 0.0
+        else:
             tau1, tau2 = torque_floats(torque(t, state[:2].copy(), state[2:].copy()), t)
-        except NonFiniteTorque as exc:
-            if signal_non_finite:
-                raise
-            raise ValueError(
-                str(exc)
-            ) from None  # the private class never reaches users
         qdd1, qdd2 = _forward(constants, cos, sin, q1, q2, qd1, qd2, tau1, tau2)
         return [qd1, qd2, qdd1, qdd2]
 
-    return driven_motion
+    return right_hand_side
 
 
 _STATE_WORDS = "four finite real numbers (q1, q2, qd1, qd2), shape (4,)"
 
 
-def _state_array(state: object) -> NDArray[np.float64]:
-    """The state of :func:`state_derivative` as a float array of shape ``(4,)``, or a clear error naming ``state``."""
-    values = real_array(state, "state", _STATE_WORDS)
-    if values.shape != (4,):
-        raise ValueError(f"state must be {_STATE_WORDS}; got shape {values.shape}")
-    if not np.all(np.isfinite(values)):
-        raise ValueError(f"state must be {_STATE_WORDS}; got {state!r}")
-    return values
+def _state_floats(t, state):
+    """``(q1, q2, qd1, qd2, state)``: the state of :func:`state_derivative` as four floats and a float array.
+
+    A float array of four, as a solver passes it, is read without checks; a
+    non-finite one is the motion blowing up (:class:`twolink.SimulationError`
+    naming the time and the state).  Anything else (a list, an array of
+    another shape or type) is checked, with an error naming ``state``.
+    """
+    try:
+        q1, q2, qd1, qd2 = state.tolist()
+        finite = math.isfinite(q1 + q2 + qd1 + qd2)
+    except (AttributeError, TypeError, ValueError):
+        values = real_array(state, "state", _STATE_WORDS)
+        if values.shape != (4,):
+            raise ValueError(
+                f"state must be {_STATE_WORDS}; got shape {values.shape}"
+            ) from None
+        if not np.all(np.isfinite(values)):
+            raise ValueError(f"state must be {_STATE_WORDS}; got {state!r}") from None
+        q1, q2, qd1, qd2 = values.tolist()
+        return q1, q2, qd1, qd2, values
+    if not finite:
+        _raise_blow_up(t, state)
+    return q1, q2, qd1, qd2, state
 
 
 def _raise_blow_up(t, state):

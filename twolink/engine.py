@@ -45,13 +45,17 @@ from . import export
 from ._optional import require
 from ._validate import (
     as_configuration,
+    as_count,
     as_finite_scalar,
-    frozen_array,
-    public_torque_floats,
+    as_time_span,
+    torque_floats,
 )
+from ._values import Value, freeze
+from .budgets import DEFAULT_MAX_WALL_TIME, EvaluationBudget
 from .conventions import check_elbow
+from .errors import SimulationError
 from .kinematics import jacobian
-from .simulation import SimulationError, SimulationResult
+from .simulation import SimulationResult
 from .statics import Wall, as_wall, wall_contact
 
 if TYPE_CHECKING:
@@ -196,7 +200,7 @@ def joint_accelerations(
     return data.qacc.copy()
 
 
-@dataclass(frozen=True, kw_only=True)
+@dataclass(frozen=True, kw_only=True, eq=False)
 class EngineResult(SimulationResult):
     """A motion computed by MuJoCo: a :class:`twolink.SimulationResult` plus the tip and the contact.
 
@@ -281,6 +285,7 @@ def simulate_in_mujoco(
     timestep: float = DEFAULT_TIMESTEP,
     sample_every: int = 1,
     integrator: str = "RK4",
+    max_wall_time: float = DEFAULT_MAX_WALL_TIME,
     **mjcf_options: Any,
 ) -> EngineResult:
     """Move the arm in MuJoCo from ``(q0, qd0)`` at ``t = 0`` to ``t_end``, fixed step.
@@ -313,6 +318,10 @@ def simulate_in_mujoco(
         ``sample_every * timestep``.
     integrator : str
         MuJoCo's integrator (see :func:`twolink.export.to_mjcf`).
+    max_wall_time : float
+        Budget of wall-clock seconds (default ``DEFAULT_MAX_WALL_TIME`` =
+        30), read at every step as :func:`twolink.simulate` reads it: a slow
+        torque function stops there, named as the cause.
     **mjcf_options
         More :func:`~twolink.export.to_mjcf` options, e.g. ``wall``.
 
@@ -326,9 +335,10 @@ def simulate_in_mujoco(
     ------
     ValueError
         For bad arguments (also a torque callable returning other than two
-        finite numbers), or more than :data:`MAX_STEPS` steps.
+        finite numbers at the start), or more than :data:`MAX_STEPS` steps.
     SimulationError
-        When MuJoCo's state blows up (NaN); the message names the time.
+        When MuJoCo's state blows up (NaN), the torque callable fails past
+        the start, or the wall time runs out; the message names the time.
     ImportError
         Without MuJoCo installed.
 
@@ -349,21 +359,15 @@ def simulate_in_mujoco(
     """
     mujoco = _mujoco("simulate_in_mujoco")
     start, rate_start = _one(q0, "q0"), _one(qd0, "qd0")
-    t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
-    timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
-    if (
-        isinstance(sample_every, bool)
-        or not isinstance(sample_every, (int, np.integer))
-        or sample_every < 1
-    ):
-        raise ValueError(
-            f"sample_every must be an integer >= 1 (steps); got {sample_every!r}"
-        )
+    t_end = as_time_span(t_end, "t_end (s)")
+    timestep = as_time_span(timestep, "timestep (s)")
+    sample_every = as_count(sample_every, "sample_every (steps)", minimum=1)
     n_steps = int(round(t_end / timestep))
     if not 1 <= n_steps <= MAX_STEPS:
         raise ValueError(
             f"t_end / timestep = {t_end:.6g} / {timestep:.6g} s gives {n_steps} steps; allowed 1 to {MAX_STEPS}"
         )
+    budget = EvaluationBudget(n_steps + 1, max_wall_time)
     constant: tuple[float, float] | None = None
     if torque is None:
         constant = (0.0, 0.0)
@@ -395,10 +399,31 @@ def simulate_in_mujoco(
             force[row] = _force_by_tip(mujoco, model, data, wall_id, buffer)
 
     def torques_now(t: float) -> tuple[float, float]:
+        spent = budget.spend()
+        if spent is not None:
+            raise SimulationError(
+                f"engine.simulate_in_mujoco used up its budget of {budget.describe(spent)} at t = {t:.6g} s "
+                f"of {t_end:.6g} s after {budget.evaluations - 1} steps: "
+                + (
+                    "torque(t, q, qd) is slow; make it faster or raise max_wall_time"
+                    if constant is None
+                    else "take fewer steps (a larger timestep, a shorter t_end) or raise max_wall_time"
+                )
+            )
         if constant is not None:
             return constant
         assert callable(torque)  # constant is None only for a callable torque
-        return public_torque_floats(torque(t, data.qpos.copy(), data.qvel.copy()), t)
+        try:
+            return torque_floats(torque(t, data.qpos.copy(), data.qvel.copy()), t)
+        except ValueError as exc:
+            if (
+                budget.evaluations == 1
+            ):  # at the start: the torque function, not the motion
+                raise
+            raise SimulationError(
+                f"the motion failed at t = {t:.6g} s in the state q = ({data.qpos[0]:.6g}, "
+                f"{data.qpos[1]:.6g}) rad, qd = ({data.qvel[0]:.6g}, {data.qvel[1]:.6g}) rad/s: {exc}"
+            ) from None
 
     if wall_id is None and not arm.has_limits:
         # no limit, no wall: nothing for MuJoCo's constraint solver to do (halves the cost of a step)
@@ -417,6 +442,7 @@ def simulate_in_mujoco(
             mujoco.mj_step(model, data, sample_every)
             t = row * sample_every * timestep
             _check_state(data, t, "engine.simulate_in_mujoco")
+            torques_now(t)  # reads the clock
             refresh(model, data)
             record(row, t, constant)
     else:
@@ -433,21 +459,21 @@ def simulate_in_mujoco(
                 record(step // sample_every, t, tau_now)
     return EngineResult(
         arm=arm,
-        t=frozen_array(times),
-        q=frozen_array(q),
-        qd=frozen_array(qd),
-        tau=frozen_array(tau),
+        t=times,
+        q=q,
+        qd=qd,
+        tau=tau,
         status=0,
         message=f"MuJoCo {integrator}, fixed step {timestep:.6g} s, {(n_samples - 1) * sample_every} steps",
         nfev=(n_samples - 1) * sample_every,
-        p_tip_mujoco=frozen_array(p_tip),
-        force_by_tip=frozen_array(force),
+        p_tip_mujoco=p_tip,
+        force_by_tip=force,
         timestep=timestep,
     )
 
 
-@dataclass(frozen=True)
-class WallPush:
+@dataclass(frozen=True, eq=False)
+class WallPush(Value):
     """The arm pushing on a wall in MuJoCo, settled (see :func:`wall_push`).
 
     All forces are ``force_by_tip``: what the tip exerts on the wall (the
@@ -496,6 +522,9 @@ class WallPush:
     penetration: float
     normal_drift: float
     steps: int
+
+    def __post_init__(self) -> None:
+        freeze(self)
 
     @property
     def normal(self) -> NDArray[np.float64]:
@@ -548,7 +577,7 @@ def wall_push(
     duration: float = 0.2,
     timestep: float = DEFAULT_TIMESTEP,
     contact_solref: tuple[float, float] | None = None,
-    contact_solimp: Sequence[float] = WALL_SOLIMP,
+    contact_solimp: Sequence[float] | None = WALL_SOLIMP,
     impratio: float = 100.0,
 ) -> WallPush:
     """The course's wall problem in MuJoCo: statics torques applied, the contact force read back.
@@ -601,8 +630,8 @@ def wall_push(
     contact_solref : pair of float, optional
         ``(timeconst, dampratio)``; default ``(2 timestep, 1)`` (the stiffest
         MuJoCo allows for the step, critically damped).
-    contact_solimp : sequence of float
-        MuJoCo's ``solimp``; default :data:`WALL_SOLIMP`.
+    contact_solimp : sequence of float or None
+        MuJoCo's ``solimp``; default :data:`WALL_SOLIMP` (None: MuJoCo's own).
     impratio : float
         MuJoCo's ratio of frictional to normal constraint impedance (>= 1).
 
@@ -635,8 +664,8 @@ def wall_push(
         elbow, ("down", "up", "auto"), why="wall_push simulates one configuration"
     )
     the_wall = as_wall(wall)
-    duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
-    timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
+    duration = as_time_span(duration, "duration (s)")
+    timestep = as_time_span(timestep, "timestep (s)")
     impratio = as_finite_scalar(impratio, "impratio", minimum=1.0)
     n_steps = int(round(duration / timestep))
     if not 10 <= n_steps <= MAX_STEPS:

@@ -10,8 +10,11 @@ the same dynamics (the tests check MuJoCo's joint accelerations against
   radians in twolink's relative (DH) convention;
 * each link is a rod with its centre of mass at mid-link, its mass and its
   inertia ``arm.inertias`` about the centre of mass about z (and y); the
-  inertia about the rod's own axis (x), which no planar motion feels, is
-  ``1e-6`` of that (engines refuse exactly zero);
+  inertia about the rod's own axis (x), which no planar motion feels but
+  engines need positive, is derived from the link's shape in the file, a
+  solid cylinder of radius ``l / 100``: ``m (l / 100)^2 / 2``, at most the
+  inertia about z (so the three satisfy the triangle inequality however a
+  custom ``I1``, ``I2`` is chosen);
 * gravity of magnitude ``arm.g`` along -y (a vertical arm; ``g = 0`` is a
   horizontal arm).  MJCF carries it; URDF has no gravity (see
   :func:`to_urdf`);
@@ -38,27 +41,37 @@ True
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from ._validate import as_finite_scalar, require_arm
+from ._validate import (
+    as_finite_scalar,
+    as_flag,
+    as_length,
+    as_time_span,
+    real_array,
+    require_arm,
+)
 from .statics import Wall, as_wall
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
-__all__ = ["to_mjcf", "to_urdf", "INTEGRATORS", "AXIAL_INERTIA_RATIO"]
+__all__ = ["to_mjcf", "to_urdf", "INTEGRATORS"]
 
 #: MuJoCo's integrators (``<option integrator=...>``).
 INTEGRATORS = ("Euler", "RK4", "implicit", "implicitfast")
 
-#: The inertia about a rod's own axis, as a fraction of its inertia about z:
-#: no planar motion feels it, but MuJoCo needs it positive.
-AXIAL_INERTIA_RATIO = 1e-6
+#: A link's radius in the models, as a fraction of its length: the capsule or cylinder drawn,
+#: and the solid cylinder its axial inertia is derived from.
+RADIUS_RATIO = 1e-2
+
+#: MuJoCo's smallest mass and inertia of a moving body (its ``mjMINVAL``): below it MuJoCo
+#: refuses the model.
+MUJOCO_MINIMUM = 1e-15
 
 
 def _num(value: float) -> str:
@@ -73,30 +86,61 @@ def _nums(*values: float) -> str:
     return " ".join(_num(v) for v in values)
 
 
-def _link_inertias(arm: TwoLinkArm, who: str) -> list[tuple[float, float]]:
-    """``[(mass, inertia), (mass, inertia)]``, checked positive (engines refuse massless moving bodies)."""
+def _link_inertias(
+    arm: TwoLinkArm, who: str, minimum: float = 0.0
+) -> list[tuple[float, float, float]]:
+    """``[(mass, axial inertia, inertia), ...]`` of both links, each above ``minimum`` (engines refuse less).
+
+    The axial inertia (about the rod's own axis) is that of a solid cylinder
+    of radius ``RADIUS_RATIO * l``, ``m r^2 / 2``, at most the inertia about
+    z: a body symmetric about its axis has an axial inertia of at most
+    twice its transverse one (the triangle inequality engines check).
+    """
     links = []
-    for k, (mass, inertia) in enumerate(zip((arm.m1, arm.m2), arm.inertias), start=1):
-        if not (mass > 0.0 and inertia > 0.0):
-            raise ValueError(
-                f"{who}: link {k} has mass {mass!r} kg and inertia {inertia!r} kg m^2; MuJoCo (and most "
-                f"engines) need every moving link to have mass > 0 and inertia > 0: give m{k} > 0 "
-                f"(and I{k} > 0 or None for a uniform rod)"
+    for k, (length, mass, inertia) in enumerate(
+        zip((arm.l1, arm.l2), (arm.m1, arm.m2), arm.inertias), start=1
+    ):
+        radius = RADIUS_RATIO * length
+        axial = min(mass * radius * radius / 2.0, inertia)
+        if not (mass > minimum and axial > minimum):
+            smallest = (
+                "exactly 0" if minimum == 0.0 else f"{minimum:.0e} (MuJoCo's mjMINVAL)"
             )
-        links.append((mass, inertia))
+            raise ValueError(
+                f"{who}: link {k} has mass {mass:.6g} kg and inertias {axial:.6g} (about its own axis, "
+                f"m (l/100)^2 / 2 for l{k} = {length:.6g} m) and {inertia:.6g} kg m^2; the engine needs each "
+                f"above {smallest}: give m{k} > 0 (and I{k} > 0 or None for a uniform rod), or, for a "
+                "link this light and small, choose units in which its numbers are larger (grams, "
+                "centimetres)"
+            )
+        links.append((mass, axial, inertia))
     return links
 
 
-def _pair(value: Iterable[float], name: str) -> tuple[float, ...]:
-    try:
-        pair = tuple(float(v) for v in value)
-    except TypeError as exc:
+def _xml_name(value: object, name: str) -> str:
+    """``value`` as a name in XML: a non-empty string of printable characters, without < > & or quotes."""
+    if (
+        not isinstance(value, str)
+        or not value
+        or not value.isprintable()
+        or any(c in value for c in "<>&\"'")
+    ):
         raise ValueError(
-            f"{name} must be None or a sequence of numbers; got {value!r}"
-        ) from exc
-    if not all(math.isfinite(v) for v in pair):
-        raise ValueError(f"{name} must be finite numbers; got {pair}")
-    return pair
+            f"{name} must be a non-empty string of printable characters without <, >, &, \" or '; got {value!r}"
+        )
+    return value
+
+
+def _numbers(value: object, name: str) -> tuple[float, ...]:
+    """``value`` as a tuple of finite floats from a 1-D sequence of real numbers (a string is no sequence of numbers)."""
+    numbers = real_array(value, name, "None or a sequence of real numbers")
+    if numbers.ndim != 1:
+        raise ValueError(
+            f"{name} must be None or a sequence of real numbers; got shape {numbers.shape}"
+        )
+    if not np.all(np.isfinite(numbers)):
+        raise ValueError(f"{name} must be finite numbers; got {numbers.tolist()}")
+    return tuple(numbers.tolist())
 
 
 def to_mjcf(
@@ -129,8 +173,12 @@ def to_mjcf(
     Parameters
     ----------
     arm : TwoLinkArm
-        Both links need mass > 0 and inertia > 0 (MuJoCo refuses massless
-        moving bodies).
+        Each link needs a mass and inertias (about its axis, ``m (l/100)^2
+        / 2`` at most its inertia about z, and about z) above MuJoCo's
+        smallest, 1e-15 (it refuses lighter moving bodies): a link of 1 mm
+        and 1 g has 5e-14 kg m^2 about its axis; one much smaller is
+        refused with an error that says so (choose units in which its
+        numbers are larger).
     wall : Wall or array_like of shape (2, 2), optional
         A straight wall in the arm's plane (:class:`twolink.statics.Wall`,
         or two points on it).  It becomes an infinite plane geom ``wall``
@@ -157,7 +205,8 @@ def to_mjcf(
         0.95, 0.001, 0.5, 2)``).  See :func:`twolink.engine.wall_push` for
         what they do to a contact force.
     model_name : str
-        The model's name.
+        The model's name: printable characters, without ``<``, ``>``,
+        ``&`` or quotes (a control character cannot be written in XML).
 
     Returns
     -------
@@ -179,7 +228,7 @@ def to_mjcf(
     >>> from twolink import arms, export
     >>> mjcf = export.to_mjcf(arms.two_metre, wall=[[4.0, 0.0], [0.0, 4.0]])
     >>> print([line.strip() for line in mjcf.splitlines() if "inertial" in line][0])
-    <inertial pos="1.0 0 0" mass="1.0" diaginertia="3.333333333333333e-07 0.3333333333333333 0.3333333333333333"/>
+    <inertial pos="1.0 0 0" mass="1.0" diaginertia="0.0002 0.3333333333333333 0.3333333333333333"/>
     >>> print([line.strip() for line in mjcf.splitlines() if 'name="wall"' in line][0])
     <geom name="wall" type="plane" pos="2.002828427124746 2.002828427124746 0" zaxis="-0.7071067811865475 -0.7071067811865475 0" size="0 0 0.1" contype="0" conaffinity="1" rgba="0.6 0.6 0.6 0.5"/>
     >>> export.to_mjcf(arms.two_metre, integrator="rk4")
@@ -188,7 +237,9 @@ def to_mjcf(
     ValueError: integrator must be one of ('Euler', 'RK4', 'implicit', 'implicitfast'); got 'rk4'
     """
     require_arm(arm)
-    (m1, inertia_1), (m2, inertia_2) = _link_inertias(arm, "to_mjcf")
+    (m1, axial_1, inertia_1), (m2, axial_2, inertia_2) = _link_inertias(
+        arm, "to_mjcf", MUJOCO_MINIMUM
+    )
     try:
         wall_line = None if wall is None else as_wall(wall)
     except (
@@ -199,37 +250,27 @@ def to_mjcf(
         ) from None
     reach = arm.l1 + arm.l2
     tip_radius = reach / 1000.0 if tip_radius is None else tip_radius
-    tip_radius = as_finite_scalar(
-        tip_radius, "tip_radius (m)", minimum=0.0, strictly=True
-    )
-    timestep = as_finite_scalar(timestep, "timestep (s)", minimum=0.0, strictly=True)
-    if integrator not in INTEGRATORS:
+    tip_radius = as_length(tip_radius, "tip_radius (m)")
+    timestep = as_time_span(timestep, "timestep (s)")
+    if not isinstance(integrator, str) or integrator not in INTEGRATORS:
         raise ValueError(f"integrator must be one of {INTEGRATORS}; got {integrator!r}")
-    if not isinstance(tip_site, (bool, np.bool_)):
-        raise ValueError(f"tip_site must be True or False; got {tip_site!r}")
+    tip_site = as_flag(tip_site, "tip_site")
     contact = ""
     if contact_solref is not None:
-        solref = _pair(contact_solref, "contact_solref")
+        solref = _numbers(contact_solref, "contact_solref")
         if len(solref) != 2:
             raise ValueError(
                 f"contact_solref must be 2 numbers (timeconst, dampratio); got {solref}"
             )
         contact += f' solref="{_nums(*solref)}"'
     if contact_solimp is not None:
-        solimp = _pair(contact_solimp, "contact_solimp")
+        solimp = _numbers(contact_solimp, "contact_solimp")
         if len(solimp) not in (3, 5):
             raise ValueError(
                 f"contact_solimp must be 3 or 5 numbers (dmin, dmax, width[, midpoint, power]); got {solimp}"
             )
         contact += f' solimp="{_nums(*solimp)}"'
-    if (
-        not isinstance(model_name, str)
-        or not model_name
-        or any(c in model_name for c in '<>&"')
-    ):
-        raise ValueError(
-            f'model_name must be a non-empty string without <, >, & or "; got {model_name!r}'
-        )
+    model_name = _xml_name(model_name, "model_name")
 
     joint_ranges = ['limited="false"', 'limited="false"']
     tendon = ""
@@ -247,7 +288,7 @@ def to_mjcf(
                 "    </fixed>\n"
                 "  </tendon>\n"
             )
-    rod_radius = reach / 100.0
+    rod_radius = (RADIUS_RATIO * arm.l1, RADIUS_RATIO * arm.l2)
     site = (
         f'        <site name="tip" pos="{_num(arm.l2)} 0 0" size="{_num(2 * tip_radius)}"/>\n'
         if tip_site
@@ -263,10 +304,10 @@ def to_mjcf(
             f'contype="0" conaffinity="1"{contact} rgba="0.6 0.6 0.6 0.5"/>\n'
         )
 
-    def inertial(length: float, mass: float, inertia: float) -> str:
+    def inertial(length: float, mass: float, axial: float, inertia: float) -> str:
         return (
             f'<inertial pos="{_num(length / 2.0)} 0 0" mass="{_num(mass)}" '
-            f'diaginertia="{_nums(AXIAL_INERTIA_RATIO * inertia, inertia, inertia)}"/>'
+            f'diaginertia="{_nums(axial, inertia, inertia)}"/>'
         )
 
     return (
@@ -276,13 +317,15 @@ def to_mjcf(
         "  <worldbody>\n"
         f'    <body name="link1" pos="{_nums(0.0, 0.0, arm.d)}">\n'
         f'      <joint name="q1" type="hinge" axis="0 0 1" {joint_ranges[0]}/>\n'
-        f"      {inertial(arm.l1, m1, inertia_1)}\n"
-        f'      <geom name="link1" type="capsule" fromto="0 0 0 {_num(arm.l1)} 0 0" size="{_num(rod_radius)}" '
+        f"      {inertial(arm.l1, m1, axial_1, inertia_1)}\n"
+        f'      <geom name="link1" type="capsule" pos="{_num(arm.l1 / 2.0)} 0 0" zaxis="1 0 0" '
+        f'size="{_nums(rod_radius[0], arm.l1 / 2.0)}" '
         'contype="0" conaffinity="0" rgba="0.2 0.4 0.8 1"/>\n'
         f'      <body name="link2" pos="{_num(arm.l1)} 0 0">\n'
         f'        <joint name="q2" type="hinge" axis="0 0 1" {joint_ranges[1]}/>\n'
-        f"        {inertial(arm.l2, m2, inertia_2)}\n"
-        f'        <geom name="link2" type="capsule" fromto="0 0 0 {_num(arm.l2)} 0 0" size="{_num(rod_radius)}" '
+        f"        {inertial(arm.l2, m2, axial_2, inertia_2)}\n"
+        f'        <geom name="link2" type="capsule" pos="{_num(arm.l2 / 2.0)} 0 0" zaxis="1 0 0" '
+        f'size="{_nums(rod_radius[1], arm.l2 / 2.0)}" '
         'contype="0" conaffinity="0" rgba="0.8 0.4 0.2 1"/>\n'
         f'        <geom name="tip" type="sphere" pos="{_num(arm.l2)} 0 0" size="{_num(tip_radius)}" '
         'contype="1" conaffinity="0" rgba="0.1 0.1 0.1 1"/>\n'
@@ -315,7 +358,8 @@ def to_urdf(
     revolute about z (``continuous`` when the arm has no limits), with the
     arm's relative joint limits as ``<limit lower upper>``.  Inertias are
     given about each link's centre of mass at mid-link, as in the module's
-    notes.  Visual and collision elements: a thin box per link.
+    notes.  Visual and collision elements: the cylinder of radius ``l / 100``
+    the axial inertia is derived from.
 
     **Gravity is not part of a URDF**: the simulator sets it.  With the
     default ``z_up=False`` the arm moves in the x-y plane and twolink's
@@ -335,7 +379,8 @@ def to_urdf(
     Parameters
     ----------
     arm : TwoLinkArm
-        Its limits must be relative (URDF limits are per joint; an arm with
+        Its links need mass and inertia (> 0).  Its limits must be relative
+        (URDF limits are per joint; an arm with
         ``limit_convention="absolute"`` bounds ``q1 + q2``, which URDF cannot say).
     z_up : bool
         Turn the arm's plane upright as described above.
@@ -344,7 +389,8 @@ def to_urdf(
         element, which URDF requires and twolink does not have: large
         numbers by default.  Only written for limited joints.
     robot_name : str
-        The robot's name.
+        The robot's name: printable characters, without ``<``, ``>``,
+        ``&`` or quotes.
 
     Returns
     -------
@@ -370,46 +416,41 @@ def to_urdf(
     ValueError: to_urdf: this arm's limits bound the absolute angles (q1, q1 + q2), which URDF's per-joint limits cannot express; use an arm with relative limits (or none) and enforce the absolute ones elsewhere
     """
     require_arm(arm)
-    (m1, inertia_1), (m2, inertia_2) = _link_inertias(arm, "to_urdf")
+    (m1, axial_1, inertia_1), (m2, axial_2, inertia_2) = _link_inertias(arm, "to_urdf")
     if arm.has_limits and arm.limit_convention != "relative":
         raise ValueError(
             "to_urdf: this arm's limits bound the absolute angles (q1, q1 + q2), which URDF's per-joint "
             "limits cannot express; use an arm with relative limits (or none) and enforce the absolute ones "
             "elsewhere"
         )
-    if not isinstance(z_up, (bool, np.bool_)):
-        raise ValueError(f"z_up must be True or False; got {z_up!r}")
+    z_up = as_flag(z_up, "z_up")
     effort_limit = as_finite_scalar(
         effort_limit, "effort_limit (N m)", minimum=0.0, strictly=True
     )
     velocity_limit = as_finite_scalar(
         velocity_limit, "velocity_limit (rad/s)", minimum=0.0, strictly=True
     )
-    if (
-        not isinstance(robot_name, str)
-        or not robot_name
-        or any(c in robot_name for c in '<>&"')
-    ):
-        raise ValueError(
-            f'robot_name must be a non-empty string without <, >, & or "; got {robot_name!r}'
-        )
-    thickness = (arm.l1 + arm.l2) / 50.0
+    robot_name = _xml_name(robot_name, "robot_name")
 
-    def link(name: str, length: float, mass: float, inertia: float) -> str:
-        box = (
-            f'<geometry><box size="{_nums(length, thickness, thickness)}"/></geometry>'
+    def link(
+        name: str, length: float, mass: float, axial: float, inertia: float
+    ) -> str:
+        # the solid cylinder the axial inertia is derived from, along x (a URDF cylinder is along z)
+        cylinder = f'<geometry><cylinder radius="{_num(RADIUS_RATIO * length)}" length="{_num(length)}"/></geometry>'
+        centre = f'<origin xyz="{_num(length / 2.0)} 0 0" rpy="0 0 0"/>'
+        along_x = (
+            f'<origin xyz="{_num(length / 2.0)} 0 0" rpy="0 {_num(np.pi / 2.0)} 0"/>'
         )
-        origin = f'<origin xyz="{_num(length / 2.0)} 0 0" rpy="0 0 0"/>'
         return (
             f'  <link name="{name}">\n'
             "    <inertial>\n"
-            f"      {origin}\n"
+            f"      {centre}\n"
             f'      <mass value="{_num(mass)}"/>\n'
-            f'      <inertia ixx="{_num(AXIAL_INERTIA_RATIO * inertia)}" ixy="0" ixz="0" '
+            f'      <inertia ixx="{_num(axial)}" ixy="0" ixz="0" '
             f'iyy="{_num(inertia)}" iyz="0" izz="{_num(inertia)}"/>\n'
             "    </inertial>\n"
-            f"    <visual>{origin}{box}</visual>\n"
-            f"    <collision>{origin}{box}</collision>\n"
+            f"    <visual>{along_x}{cylinder}</visual>\n"
+            f"    <collision>{along_x}{cylinder}</collision>\n"
             "  </link>\n"
         )
 
@@ -439,9 +480,9 @@ def to_urdf(
         f'<robot name="{robot_name}">\n'
         '  <link name="base"/>\n'
         f"{joint('q1', 'base', 'link1', base_xyz, base_rpy, 0)}"
-        f"{link('link1', arm.l1, m1, inertia_1)}"
+        f"{link('link1', arm.l1, m1, axial_1, inertia_1)}"
         f"{joint('q2', 'link1', 'link2', f'{_num(arm.l1)} 0 0', '0 0 0', 1)}"
-        f"{link('link2', arm.l2, m2, inertia_2)}"
+        f"{link('link2', arm.l2, m2, axial_2, inertia_2)}"
         '  <joint name="tip" type="fixed">\n'
         '    <parent link="link2"/>\n'
         '    <child link="tip"/>\n'

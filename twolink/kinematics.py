@@ -7,7 +7,11 @@ joint angles in the DH / relative convention: ``q1`` is link 1 from the x-axis,
 
 Each formula is written once, as a function of the link angles' cosines and
 sines (:func:`tip_from_trig`, :func:`jacobian_from_trig`,
-:func:`torques_from_jacobian`), read beside the textbook.  One configuration
+:func:`torques_from_jacobian`), read beside the textbook.  Link 2's absolute angle
+is the sum ``q1 + q2``: joint angles larger than :data:`LARGE_ANGLE` are
+first reduced exactly (:func:`reduced_angles`), so that the sum never rounds
+a small angle away beside a large one (``1e17 + 0.5`` is ``1e17``) nor
+overflows.  One configuration
 (a pair of floats, shape ``(2,)``) evaluates it on Python floats with the
 :mod:`math` module (what a loop, a widget or a controller calls thousands of
 times); a batch evaluates the same function on numpy arrays, block by block
@@ -36,11 +40,6 @@ if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
 __all__ = [
-    "tip_from_trig",
-    "jacobian_from_trig",
-    "torques_from_jacobian",
-    "link_angles",
-    "require_finite_angle_sum",
     "fk",
     "joint_positions",
     "jacobian",
@@ -50,9 +49,7 @@ __all__ = [
     "reach",
     "REACH_RTOL",
     "distance_outside_reach",
-    "require_within_reach",
     "SINGULARITY_TOL",
-    "require_nonsingular",
 ]
 
 #: Points up to ``REACH_RTOL * (l1 + l2)`` outside the reach annulus count as
@@ -120,10 +117,84 @@ def torques_from_jacobian(
     return j11 * fx + j21 * fy, j12 * fx + j22 * fy
 
 
+#: Joint angles up to this size (rad) are used as they are: their sum ``q1 + q2`` is then within
+#: 4e-15 rad of exact.  Larger ones are reduced exactly first (:func:`reduced_angles`).
+LARGE_ANGLE = 32.0
+_LARGE = LARGE_ANGLE  # bound once for the one-configuration paths
+
+
+def reduced_pair(q1: float, q2: float) -> tuple[float, float]:
+    """``(q1, q2)`` with each angle larger than :data:`LARGE_ANGLE` reduced exactly into ``(-pi, pi]``.
+
+    ``atan2(sin q, cos q)``: :mod:`math`'s ``sin`` and ``cos`` reduce an
+    angle exactly however large it is, so the reduced angle has its cosine
+    and sine to round-off.
+
+    Examples
+    --------
+    >>> q1, q2 = reduced_pair(1e17, 0.5)
+    >>> abs(math.cos(q1 + q2) - math.cos(1e17 + 0.5)) > 0.1   # the plain sum rounds the 0.5 away
+    True
+    >>> round(math.cos(q1 + q2) - (math.cos(1e17) * math.cos(0.5) - math.sin(1e17) * math.sin(0.5)), 14)
+    0.0
+    """
+    if -LARGE_ANGLE <= q1 <= LARGE_ANGLE and -LARGE_ANGLE <= q2 <= LARGE_ANGLE:
+        return q1, q2
+    if not -LARGE_ANGLE <= q1 <= LARGE_ANGLE:
+        q1 = math.atan2(math.sin(q1), math.cos(q1))
+    if not -LARGE_ANGLE <= q2 <= LARGE_ANGLE:
+        q2 = math.atan2(math.sin(q2), math.cos(q2))
+    return q1, q2
+
+
+def reduced_angles(q: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Angles ``q`` (any shape) with those larger than :data:`LARGE_ANGLE` reduced exactly, as :func:`reduced_pair`.
+
+    ``q`` itself (two passes over it: its largest and smallest entry) when none is.
+
+    Examples
+    --------
+    >>> reduced_angles(np.array([[0.5, 2.0], [3 * np.pi + 64 * np.pi, 1.0]])).round(12)
+    array([[0.5       , 2.        ],
+           [3.14159265, 1.        ]])
+    """
+    if not q.size or (-LARGE_ANGLE <= q.min() and q.max() <= LARGE_ANGLE):
+        return q
+    return np.where(np.abs(q) > LARGE_ANGLE, np.arctan2(np.sin(q), np.cos(q)), q)
+
+
+def link_angles(
+    q: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The link angles ``(q1, q1 + q2)`` of configurations ``q`` ``(..., 2)``, large angles reduced first.
+
+    Examples
+    --------
+    >>> link_angles(np.array([0.5, 0.25]))
+    (array(0.5), array(0.75))
+    """
+    q = reduced_angles(q)
+    q1 = q[..., 0]
+    return np.asarray(q1), np.asarray(q1 + q[..., 1])
+
+
+def angle_sum_trig(
+    c1: Values, s1: Values, c2: Values, s2: Values
+) -> tuple[Values, Values]:
+    """``(cos(a + b), sin(a + b)) = (c1 c2 - s1 s2, s1 c2 + c1 s2)`` from the cosines and sines of ``a`` and ``b``.
+
+    Examples
+    --------
+    >>> angle_sum_trig(0.0, 1.0, 0.0, 1.0)  # a = b = pi / 2
+    (-1.0, 0.0)
+    """
+    return c1 * c2 - s1 * s2, s1 * c2 + c1 * s2
+
+
 def _tip_of_angles(
     l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]
 ) -> tuple[Values, Values]:
-    """:func:`tip_from_trig` of a block of angles, evaluated with numpy."""
+    """:func:`tip_from_trig` of a block of (reduced) angles, evaluated with numpy."""
     q12 = q1 + q2
     return tip_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
 
@@ -131,7 +202,7 @@ def _tip_of_angles(
 def _jacobian_of_angles(
     l1: float, l2: float, q1: NDArray[np.float64], q2: NDArray[np.float64]
 ) -> tuple[Values, Values, Values, Values]:
-    """:func:`jacobian_from_trig` of a block of angles, evaluated with numpy."""
+    """:func:`jacobian_from_trig` of a block of (reduced) angles, evaluated with numpy."""
     q12 = q1 + q2
     return jacobian_from_trig(l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12))
 
@@ -168,66 +239,6 @@ def evaluate_blockwise(
     return out
 
 
-#: Angles at least this large in size may overflow float64 in ``q1 + q2``.
-_HALF_MAX = float(np.finfo(np.float64).max) / 2.0
-
-
-def link_angles(
-    q: NDArray[np.float64],
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The link angles ``(q1, q1 + q2)`` from the x-axis of checked configurations ``q`` ``(..., 2)``.
-
-    Raises
-    ------
-    ValueError
-        Naming the first configuration whose ``q1 + q2`` overflows float64
-        (angles near 1e308 rad: finite, but without a finite sum); see
-        :func:`require_finite_angle_sum`.
-
-    Examples
-    --------
-    >>> link_angles(np.array([0.5, 0.25]))
-    (array(0.5), array(0.75))
-    """
-    require_finite_angle_sum(q)
-    q1 = q[..., 0]
-    return np.asarray(q1), np.asarray(q1 + q[..., 1])
-
-
-def require_finite_angle_sum(q: NDArray[np.float64]) -> None:
-    """Raise ValueError naming the first configuration of ``q`` ``(..., 2)`` whose ``q1 + q2`` overflows float64.
-
-    Two passes over ``q`` (its largest and smallest entry) when nothing is
-    near the float64 limit.
-
-    Examples
-    --------
-    >>> require_finite_angle_sum(np.array([[0.5, 0.25], [1e308, -1e308]]))  # finite sums
-    >>> require_finite_angle_sum(np.array([1e308, 1e308]))
-    Traceback (most recent call last):
-    ...
-    ValueError: q = (1e+308, 1e+308) rad: q1 + q2 overflows float64; the joint angles must have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)
-    """
-    if not q.size or -_HALF_MAX < q.min() and q.max() < _HALF_MAX:
-        return
-    with np.errstate(over="ignore"):
-        overflowed = ~np.isfinite(q[..., 0] + q[..., 1])
-    if np.any(overflowed):
-        index = (
-            tuple(int(i) for i in np.argwhere(overflowed)[0]) if overflowed.ndim else ()
-        )
-        where = (
-            f" (index {index}, first of {int(np.count_nonzero(overflowed))})"
-            if overflowed.ndim
-            else ""
-        )
-        first, second = q[index]
-        raise ValueError(
-            f"q = ({first:.6g}, {second:.6g}) rad{where}: q1 + q2 overflows float64; the joint angles must "
-            "have a finite sum (|q1 + q2| <= 1.8e308 rad; wrap them into [-pi, pi) with twolink.wrap_angle)"
-        )
-
-
 def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     """Tip position ``x = l1 c1 + l2 c12``, ``y = l1 s1 + l2 s12``.
 
@@ -252,25 +263,19 @@ def fk(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     pair = pair_floats(q)
     if pair is not None:
         q1, q2 = pair
+        if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+            q1, q2 = reduced_pair(q1, q2)
         q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        try:
-            x, y = tip_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
-        except (
-            ValueError
-        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-            pass
-        else:
-            p_tip = _empty(
-                2
-            )  # then two item assignments: faster than np.array of a tuple
-            p_tip[0] = x
-            p_tip[1] = y
-            return p_tip
+        p_tip = _empty(2)  # then two item assignments: faster than np.array of a tuple
+        p_tip[0], p_tip[1] = tip_from_trig(
+            l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
+        )
+        return p_tip
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    require_finite_angle_sum(q)
     p_tips = np.empty(q.shape)
+    q = reduced_angles(q)
     flat = q.reshape(-1, 2)
     evaluate_blockwise(
         _tip_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), p_tips.reshape(-1, 2)
@@ -343,29 +348,19 @@ def jacobian(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     pair = pair_floats(q)
     if pair is not None:
         q1, q2 = pair
+        if not (-_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE):
+            q1, q2 = reduced_pair(q1, q2)
         q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        try:
-            j11, j12, j21, j22 = jacobian_from_trig(
-                l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
-            )
-        except (
-            ValueError
-        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-            pass
-        else:
-            J = _empty(
-                (2, 2)
-            )  # then four item assignments: faster than np.array of a list
-            J[0, 0] = j11
-            J[0, 1] = j12
-            J[1, 0] = j21
-            J[1, 1] = j22
-            return J
+        J = _empty((2, 2))  # then four item assignments: faster than np.array of a list
+        J[0, 0], J[0, 1], J[1, 0], J[1, 1] = jacobian_from_trig(
+            l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
+        )
+        return J
     q = as_pairs(q, "q")
     l1, l2 = arm_lengths(arm)
-    require_finite_angle_sum(q)
     Js = np.empty(q.shape[:-1] + (2, 2))
+    q = reduced_angles(q)
     flat = q.reshape(-1, 2)
     evaluate_blockwise(
         _jacobian_of_angles, (l1, l2), (flat[:, 0], flat[:, 1]), Js.reshape(-1, 4)
@@ -418,23 +413,13 @@ def joint_torques(
     pair = pair_floats(q)
     force_pair = pair_floats(force_by_tip) if pair is not None else None
     if pair is not None and force_pair is not None:
-        q1, q2 = pair
+        q1, q2 = reduced_pair(*pair)
         q12 = q1 + q2
         l1, l2 = arm_lengths(arm)
-        try:
-            J_entries = jacobian_from_trig(
-                l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
-            )
-        except (
-            ValueError
-        ):  # math.cos(inf): q1 + q2 overflows, and the vectorised path says so
-            pass
-        else:
-            tau = _empty(
-                2
-            )  # then two item assignments: faster than np.array of a tuple
-            tau[0], tau[1] = torques_from_jacobian(*J_entries, *force_pair)
-            return tau
+        J_entries = jacobian_from_trig(l1, l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12))
+        tau = _empty(2)  # then two item assignments: faster than np.array of a tuple
+        tau[0], tau[1] = torques_from_jacobian(*J_entries, *force_pair)
+        return tau
     q = as_pairs(q, "q")
     force_by_tip = as_pairs(force_by_tip, "force_by_tip")
     shape = broadcast_shape(q=q, force_by_tip=force_by_tip)

@@ -40,7 +40,14 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._optional import require
-from ._validate import as_configuration, as_finite_scalar
+from ._validate import (
+    InputTypeError,
+    as_configuration,
+    as_finite_scalar,
+    require_arm,
+    require_callable,
+    torque_floats,
+)
 from .controllers import gain_matrix
 from .dynamics import gravity_jacobian
 from .kinematics import joint_torques, require_nonsingular
@@ -177,15 +184,32 @@ def critical_damping(
     return (D + D.T) / 2.0
 
 
+_CONTROLLER = "a callable controller(t, q, qd) -> tau (two torques, N m)"
+
+
+def _controller(controller: object) -> Controller:
+    return require_callable(controller, "controller", _CONTROLLER)
+
+
 def _net_torque(
     arm: TwoLinkArm, controller: Controller, t: float, q: NDArray[np.float64]
 ) -> NDArray[np.float64]:
-    tau = np.asarray(controller(t, q, np.zeros(2)), dtype=float)
-    if tau.shape != (2,) or not np.all(np.isfinite(tau)):
+    try:
+        tau = torque_floats(controller(t, q, np.zeros(2)), t)
+    except ValueError as error:
         raise ValueError(
-            f"the controller must return two finite torques (N m); got {tau!r} at q = {q}"
+            f"the controller {str(error).removeprefix('torque(t, q, qd) ')} at q = {q}"
+        ) from None
+    return np.array(tau) - arm.gravity(q)
+
+
+def _name(name: object) -> str | None:
+    """A system's ``name``: None or a string (python-control would take anything and print it)."""
+    if name is not None and not isinstance(name, str):
+        raise InputTypeError(
+            f"name must be None or a string (the system's name); got {name!r} ({type(name).__name__})"
         )
-    return tau - arm.gravity(q)
+    return name
 
 
 def equilibrium(
@@ -230,8 +254,11 @@ def equilibrium(
     >>> arms.two_metre.fk(q_sag).round(4)      # gravity pulls the tip about 2 cm below the rest point
     array([2.9912, 0.9787])
     """
+    require_arm(arm)
+    controller = _controller(controller)
     start = as_configuration(q0, "q0")
     t = as_finite_scalar(t, "t (s)")
+    tol = as_finite_scalar(tol, "tol", minimum=0.0, strictly=True)
     import scipy.optimize
 
     solution = scipy.optimize.root(
@@ -336,6 +363,8 @@ def closed_loop_matrices(
     ...
     ValueError: q_eq = (0, 0.5) rad is not an equilibrium of the closed loop: at rest there the arm accelerates at qdd = (-3.83, 12.6) rad/s^2 (tolerance 1e-06); find one with twolink.linearization.equilibrium
     """
+    require_arm(arm)
+    controller = _controller(controller)
     q_eq = as_configuration(q_eq, "q_eq")
     t = as_finite_scalar(t, "t (s)")
     tol = as_finite_scalar(tol, "tol (rad/s^2)", minimum=0.0)
@@ -400,7 +429,7 @@ def linearize(
            [0.      , 0.001667]])
     """
     control = require("control", "twolink.linearization.linearize")
-
+    name = _name(name)
     A, B, C, D = closed_loop_matrices(arm, controller, q_eq, t=t, tol=tol)
     options: dict[str, Any] = {
         "states": list(STATES),
@@ -408,7 +437,7 @@ def linearize(
         "outputs": list(OUTPUTS),
     }
     if name is not None:
-        options["name"] = str(name)
+        options["name"] = name
     return control.ss(A, B, C, D, **options)
 
 
@@ -434,6 +463,9 @@ def closed_loop_system(
     True
     """
     control = require("control", "twolink.linearization.closed_loop_system")
+    require_arm(arm)
+    controller = _controller(controller)
+    name = _name(name)
 
     def update(
         t: float,
@@ -462,5 +494,5 @@ def closed_loop_system(
         "outputs": list(OUTPUTS),
     }
     if name is not None:
-        options["name"] = str(name)
+        options["name"] = name
     return control.nlsys(update, output, **options)

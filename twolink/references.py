@@ -15,18 +15,19 @@ Examples
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import as_configuration, as_pairs, real_array
+from ._validate import as_configuration, as_pairs, as_time, real_array
+from ._values import Value, freeze
 
 #: A function of time giving a pair (radians, rad/s or rad/s^2).
 TimeFunction = Callable[[float], ArrayLike]
 
-__all__ = ["JointReference", "TimeFunction"]
+__all__ = ["JointReference"]
 
 
 def _pair_function(function: object, name: str) -> TimeFunction:
@@ -38,7 +39,7 @@ def _pair_function(function: object, name: str) -> TimeFunction:
 
 
 @dataclass(frozen=True, eq=False)
-class JointReference:
+class JointReference(Value):
     """A joint-space reference ``q_ref(t)`` with its rate and acceleration.
 
     Build one from three callables of time (each ``t -> array (2,)``), from
@@ -78,6 +79,7 @@ class JointReference:
         ValueError
             When one of the three functions does not return two numbers.
         """
+        t = as_time(t)
         return (
             _reference_pair(self.position(t), "position", "rad", t),
             _reference_pair(self.velocity(t), "velocity", "rad/s", t),
@@ -94,10 +96,7 @@ class JointReference:
         array([0.5, 1. ])
         """
         held = as_configuration(q_ref, "q_ref").copy()
-        held.setflags(write=False)
-        zeros = np.zeros(2)
-        zeros.setflags(write=False)
-        return cls(lambda t: held, lambda t: zeros, lambda t: zeros)
+        return cls(_Held(held), _Held(np.zeros(2)), _Held(np.zeros(2)))
 
     @classmethod
     def from_samples(
@@ -130,57 +129,160 @@ class JointReference:
         >>> reference(2.0)[0], reference(2.0)[1]
         (array([ 1., -1.]), array([0., 0.]))
         """
-        times = real_array(t, "t (s)")
-        if (
-            times.ndim != 1
-            or len(times) < 2
-            or not np.all(np.isfinite(times))
-            or not np.all(np.diff(times) > 0)
-        ):
-            raise ValueError(
-                "t must be a 1-D array of at least 2 finite, strictly increasing times (s)"
-            )
-        samples = as_pairs(q, "q samples")
-        if samples.shape != (len(times), 2):
-            raise ValueError(
-                f"q must have shape ({len(times)}, 2), one configuration per time; got {samples.shape}"
-            )
-        # here, not at the top: import twolink stays light
-        from scipy.interpolate import CubicSpline
-
+        times, samples = _samples(t, q, "q samples")
         if qd is None:
             if len(times) < 4:
                 raise ValueError(
                     "a not-a-knot spline needs at least 4 samples; give more, or the end rates qd"
                 )
-            spline = CubicSpline(times, samples, axis=0)
+            rates = None
         else:
-            rates = as_pairs(qd, "qd samples")
-            if rates.shape != samples.shape:
-                raise ValueError(
-                    f"qd must have the shape of q, {samples.shape}; got {rates.shape}"
-                )
-            spline = CubicSpline(
-                times, samples, axis=0, bc_type=((1, rates[0]), (1, rates[-1]))
+            rates = _like(qd, "qd", samples.shape)
+        return cls(
+            *(
+                _Interpolant("cubic spline", times, samples, rates, None, k)
+                for k in range(3)
             )
-        rate, acceleration = spline.derivative(1), spline.derivative(2)
-        start, end = float(times[0]), float(times[-1])
-        q_start, q_end = samples[0].copy(), samples[-1].copy()
+        )
 
-        def position(time: float) -> NDArray[np.float64]:
+    @classmethod
+    def from_derivatives(
+        cls, t: ArrayLike, q: ArrayLike, qd: ArrayLike, qdd: ArrayLike
+    ) -> JointReference:
+        """The piecewise quintic through samples of ``q``, ``qd`` and ``qdd``, matching all three at every sample.
+
+        On each interval the one quintic with the samples' angles, rates and
+        accelerations at both ends (scipy's
+        :meth:`scipy.interpolate.BPoly.from_derivatives`): continuous rate
+        and acceleration, no fit.  Outside ``[t[0], t[-1]]`` it holds the end
+        positions at rest.
+
+        Parameters
+        ----------
+        t : array_like, shape (n,)
+            Strictly increasing times, seconds (n >= 2).
+        q, qd, qdd : array_like, shape (n, 2)
+            Joint angles (rad), rates (rad/s) and accelerations (rad/s^2).
+
+        Examples
+        --------
+        >>> t = np.array([0.0, 1.0])
+        >>> reference = JointReference.from_derivatives(t, [[0.0, 0.0], [1.0, 2.0]], np.zeros((2, 2)), np.zeros((2, 2)))
+        >>> [value.round(12) + 0.0 for value in reference(0.5)]
+        [array([0.5, 1. ]), array([1.875, 3.75 ]), array([0., 0.])]
+        """
+        times, samples = _samples(t, q, "q samples")
+        rates, accelerations = (
+            _like(values, name, samples.shape)
+            for values, name in ((qd, "qd"), (qdd, "qdd"))
+        )
+        return cls(
+            *(
+                _Interpolant("quintic Hermite", times, samples, rates, accelerations, k)
+                for k in range(3)
+            )
+        )
+
+
+def _samples(
+    t: ArrayLike, q: ArrayLike, name: str
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Checked sample times ``(n,)`` and configurations ``(n, 2)`` of a reference."""
+    times = real_array(t, "t (s)")
+    if (
+        times.ndim != 1
+        or len(times) < 2
+        or not np.all(np.isfinite(times))
+        or not np.all(np.diff(times) > 0)
+    ):
+        raise ValueError(
+            "t must be a 1-D array of at least 2 finite, strictly increasing times (s)"
+        )
+    samples = as_pairs(q, name)
+    if samples.shape != (len(times), 2):
+        raise ValueError(
+            f"q must have shape ({len(times)}, 2), one configuration per time; got {samples.shape}"
+        )
+    return times, samples
+
+
+def _like(values: ArrayLike, name: str, shape: tuple[int, ...]) -> NDArray[np.float64]:
+    """``values`` (samples of a derivative) as pairs of the samples' ``shape``, or an error naming ``name``."""
+    pairs = as_pairs(values, f"{name} samples")
+    if pairs.shape != shape:
+        raise ValueError(f"{name} must have the shape of q, {shape}; got {pairs.shape}")
+    return pairs
+
+
+@dataclass(frozen=True, eq=False)
+class _Held(Value):
+    """``t -> value`` for every time (a constant reference's functions)."""
+
+    value: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        freeze(self)
+
+    def __call__(self, t: float) -> NDArray[np.float64]:
+        return self.value
+
+
+@dataclass(frozen=True, eq=False)
+class _Interpolant(Value):
+    """The ``derivative``-th derivative of a piecewise polynomial through samples (a reference's function).
+
+    ``"cubic spline"`` through ``q`` (end rates clamped to ``qd``'s first and
+    last rows when given, else not-a-knot), or ``"quintic Hermite"`` through
+    ``q``, ``qd`` and ``qdd``.  Outside ``[t[0], t[-1]]`` the position is
+    held at its end and the derivatives are zero (for the spline also at
+    ``t[0]`` and ``t[-1]`` themselves).  A value built from its samples:
+    equal to another built from the same, and picklable.
+    """
+
+    kind: str
+    t: NDArray[np.float64]
+    q: NDArray[np.float64]
+    qd: NDArray[np.float64] | None
+    qdd: NDArray[np.float64] | None
+    derivative: int
+    polynomial: Any = field(default=None, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        freeze(self)
+        # here, not at the top: import twolink stays light
+        from scipy.interpolate import BPoly, CubicSpline
+
+        if self.qd is not None and self.qdd is not None:  # the quintic Hermite
+            polynomial = BPoly.from_derivatives(
+                self.t, np.stack([self.q, self.qd, self.qdd], axis=1)
+            )
+        elif self.qd is None:
+            polynomial = CubicSpline(self.t, self.q, axis=0)
+        else:
+            polynomial = CubicSpline(
+                self.t,
+                self.q,
+                axis=0,
+                bc_type=((1, self.qd[0]), (1, self.qd[-1])),
+            )
+        if self.derivative:
+            polynomial = polynomial.derivative(self.derivative)
+        object.__setattr__(self, "polynomial", polynomial)
+
+    def __call__(self, time: float) -> NDArray[np.float64]:
+        start, end = self.t[0], self.t[-1]
+        if self.derivative == 0:
             if time <= start:
-                return q_start
+                return self.q[0].copy()
             if time >= end:
-                return q_end
-            return spline(time)
-
-        def inside(derivative: Any) -> TimeFunction:
-            def evaluate(time: float) -> NDArray[np.float64]:
-                return derivative(time) if start < time < end else np.zeros(2)
-
-            return evaluate
-
-        return cls(position, inside(rate), inside(acceleration))
+                return self.q[-1].copy()
+        elif not (
+            start <= time <= end
+            if self.kind == "quintic Hermite"
+            else start < time < end
+        ):
+            return np.zeros(2)
+        return np.asarray(self.polynomial(time), dtype=float)
 
 
 def _reference_pair(

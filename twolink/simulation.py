@@ -29,16 +29,24 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import dynamics
+from ._integration import (
+    EXPLICIT_METHODS,
+    BudgetSpent,
+    budgeted,
+    integrate,
+    solver_options,
+    spent_error,
+)
 from ._validate import (
     InputTypeError,
-    NonFiniteTorque,
     as_configuration,
     as_count,
     as_finite_scalar,
-    frozen_array,
-    public_torque_floats,
+    as_time_span,
     real_array,
+    torque_floats,
 )
+from ._values import Value, freeze
 from .budgets import DEFAULT_MAX_EVALUATIONS, DEFAULT_MAX_WALL_TIME, EvaluationBudget
 from .errors import SimulationError
 from .kinematics import fk
@@ -54,14 +62,7 @@ TorqueLaw = Callable[[float, NDArray[np.float64], NDArray[np.float64]], ArrayLik
 #: A potential energy ``V(q)`` in joules, vectorised over configurations ``(n, 2)`` -> ``(n,)``.
 PotentialEnergy = Callable[[NDArray[np.float64]], ArrayLike]
 
-__all__ = [
-    "simulate",
-    "simulate_quick",
-    "SimulationResult",
-    "SimulationError",
-    "DEFAULT_MAX_EVALUATIONS",
-    "DEFAULT_MAX_WALL_TIME",
-]
+__all__ = ["simulate", "simulate_quick", "SimulationResult"]
 
 #: Solver settings used unless the caller passes others: an 8th-order
 #: Runge-Kutta method at tolerances tight enough that the energy of free
@@ -70,9 +71,6 @@ DEFAULT_SOLVER_OPTIONS = MappingProxyType(
     {"method": "DOP853", "rtol": 1e-10, "atol": 1e-10}
 )
 
-
-#: The explicit Runge-Kutta methods of ``solve_ivp`` (stiff loops need an implicit one).
-_EXPLICIT_METHODS = ("RK23", "RK45", "DOP853")
 
 #: Right-hand-side evaluations per step of each explicit method, and the
 #: length of its stability interval on the negative real axis (h |lambda| <= it).
@@ -88,37 +86,14 @@ QUICK_TOLERANCES = MappingProxyType({"rtol": 1e-6, "atol": 1e-6})
 #: of free motion take about 1.1e3 at its default tolerances; 1e5 take about 0.2 s).
 QUICK_MAX_EVALUATIONS = 100_000
 
+#: A loop counts as stiff when its fastest rate (1/s) times the time simulated exceeds this:
+#: its fastest mode then dies out a thousand times within the run, and an explicit method's
+#: steps are set by stability, not by accuracy.
+STIFF_SPAN = 1e3
+
 #: Mean seconds per right-hand-side call above which a spent wall-time budget is blamed on a slow
 #: torque function (the arm's own dynamics take about 1e-5 s a call; 1e-3 s is a hundred times that).
 SLOW_CALL = 1e-3
-
-
-class _BudgetExceeded(Exception):
-    def __init__(self, t, state, what, wall_time=False):
-        super().__init__(what)
-        self.t, self.state, self.what = t, np.array(state, dtype=float), what
-        self.wall_time = wall_time
-
-
-def _timed_events(events, out_of_time):
-    """``events`` (one callable or a list) wrapped so that each call, between the solver's steps, checks the wall clock."""
-
-    def timed(event):
-        if not callable(event):
-            raise InputTypeError(
-                f"events must be callables event(t, y) (or a list of them); got {event!r}"
-            )
-
-        def checked(t, state):
-            out_of_time(t, state)
-            return event(t, state)
-
-        # solve_ivp reads these two attributes of an event function (not in its type)
-        setattr(checked, "terminal", getattr(event, "terminal", False))  # noqa: B010
-        setattr(checked, "direction", getattr(event, "direction", 0.0))  # noqa: B010
-        return checked
-
-    return timed(events) if callable(events) else [timed(event) for event in events]
 
 
 def _jacobian_eigenvalues(right_hand_side, t, state):
@@ -154,16 +129,36 @@ def _explicit_evaluations(method, rate, duration):
     return per_step * rate * duration / interval
 
 
-def _budget_advice(inner, stop, evaluations, used, t_end):
-    """What to change when a budget ran out at a fast right-hand side: the stiffness there decides."""
+def _budget_advice(inner, stop, budget, method, t_end, torque, max_step):
+    """What to change when the budget of :func:`simulate` ran out: a slow torque function, ``max_step`` or stiffness.
+
+    A wall time spent at few evaluations blames the torque function; steps no
+    longer than ``max_step`` on average blame it; otherwise the stiffness
+    of the loop where the budget ran out decides.
+    """
+    evaluations = budget.evaluations
+    per_call = (time.monotonic() - budget.started) / max(evaluations, 1)
+    if stop.which == "max_wall_time" and torque is not None and per_call > SLOW_CALL:
+        return (
+            f"the torque function is the likely cause: the dynamics were evaluated only {evaluations} times, "
+            f"{per_call:.3g} s a call (the arm's own part takes about 1e-5 s), so torque(t, q, qd) is slow; "
+            "make it faster (no printing, plotting or sleeping in it) or raise max_wall_time"
+        )
+    explicit = method in EXPLICIT_METHODS
+    per_step = _EXPLICIT_COST[method][0] if explicit else 1
+    mean_step = stop.t * per_step / max(evaluations, 1)
+    if max_step < math.inf and mean_step <= 2.0 * max_step:
+        return (
+            f"max_step = {max_step:.3g} s limited the steps ({mean_step:.3g} s on average, "
+            f"{t_end / max_step:.3g} steps for {t_end:.6g} s): give a larger max_step or raise the budget"
+        )
     rate = _stiffness(inner, stop.t, stop.state)
-    explicit = isinstance(used, str) and used in _EXPLICIT_METHODS
     if explicit and rate is not None:
         # stiff: the steps taken were no longer than the explicit method's stability limit allows
-        per_step, interval = _EXPLICIT_COST[used]
-        stiff = stop.t * per_step < 3.0 * interval / rate * evaluations
+        interval = _EXPLICIT_COST[method][1]
+        stiff = mean_step < 3.0 * interval / rate and rate * t_end > STIFF_SPAN
     else:
-        stiff = rate is not None and rate * t_end > 1e4
+        stiff = rate is not None and rate * t_end > STIFF_SPAN
     if stiff:
         advice = (
             f"the closed loop is stiff there (fastest rate {rate:.3g} 1/s, time constant {1.0 / rate:.2g} s, "
@@ -172,13 +167,13 @@ def _budget_advice(inner, stop, evaluations, used, t_end):
         if explicit:
             return (
                 advice
-                + f": use an implicit method, method='Radau' or method='LSODA', instead of {used!r}"
+                + f": use an implicit method, method='Radau' or method='LSODA', instead of {method!r}"
             )
         return advice + ": loosen rtol/atol or raise the budget"
     if explicit:
         return "try looser tolerances, method='Radau' or method='LSODA' (if the loop is stiff), or a larger budget"
     return (
-        f"with the implicit method {used!r}, loosen rtol/atol (the defaults 1e-10 suit smooth motion; "
+        f"with the implicit method {method!r}, loosen rtol/atol (the defaults 1e-10 suit smooth motion; "
         "a contact or a switching controller is not smooth), give max_step, or raise the budget"
     )
 
@@ -197,31 +192,35 @@ def _start_state(q0, qd0):
     return np.concatenate([q_start, qd_start])
 
 
-def _non_finite_torque_error(exc, t, state, first):
-    """The public error for a torque that returned NaN or infinity: bad input at the first call, else a blow-up."""
-    if first:  # at the start: the torque function, not the motion
-        return ValueError(str(exc))
-    return SimulationError(
-        f"the motion blew up at t = {t:.6g} s: {exc} in the state {_state_text(state)}"
-    )
+def _past_the_start(inner, budget, check_overflow):
+    """``inner`` as the right-hand side of a run: past its first evaluation an error is the motion failing.
 
+    At the first evaluation (the start) a ``ValueError`` is bad input (a
+    torque function that returns NaN or junk there) and reaches the caller
+    as it is.  Later the same error, or an arithmetic one, means the motion
+    failed on the way: a :class:`SimulationError` naming the time, the state
+    and the cause.  With ``check_overflow``, accelerations that overflow are
+    a blow-up too.
+    """
 
-def _overflow_error(t, state, derivative):
-    """The error for accelerations that overflow (checked on every right-hand side)."""
-    return SimulationError(
-        f"the motion blew up at t = {t:.6g} s: the accelerations overflow "
-        f"(qdd = ({derivative[2]:.6g}, {derivative[3]:.6g}) rad/s^2) in the state "
-        f"{_state_text(state)}"
-    )
+    def right_hand_side(t, state):
+        try:
+            derivative = inner(t, state)
+        except (ValueError, ArithmeticError) as exc:
+            if budget.evaluations <= 1:
+                raise
+            raise SimulationError(
+                f"the motion failed at t = {t:.6g} s in the state {_state_text(state)}: {exc}"
+            ) from None
+        if check_overflow and not math.isfinite(derivative[2] + derivative[3]):
+            raise SimulationError(
+                f"the motion blew up at t = {t:.6g} s: the accelerations overflow "
+                f"(qdd = ({derivative[2]:.6g}, {derivative[3]:.6g}) rad/s^2) in the state "
+                f"{_state_text(state)}"
+            )
+        return derivative
 
-
-def _breakdown_error(exc, t, state, evaluations):
-    """The error for the solver's own arithmetic breaking down (overflowing rates or Jacobian)."""
-    return SimulationError(
-        f"the integration broke down at t = {t:.6g} s after {evaluations} evaluations "
-        f"({type(exc).__name__}: {exc}), last state {_state_text(state)}: the rates or the torques overflow; "
-        "check the controller's gains and the torques it returns"
-    )
+    return right_hand_side
 
 
 def _torques_at(torque, times, q, qd, budget=None):
@@ -241,7 +240,7 @@ def _torques_at(torque, times, q, qd, budget=None):
                 f"{len(torques)} of them: torque(t, q, qd) is slow; make it faster, pass fewer t_eval times "
                 "or raise max_wall_time"
             )
-        torques.append(public_torque_floats(torque(t, q_t, qd_t), t))
+        torques.append(torque_floats(torque(t, q_t, qd_t), t))
     return np.array(torques).reshape(q.shape)
 
 
@@ -272,8 +271,8 @@ def _check_t_eval(t_eval, t_end=None):
     return times
 
 
-@dataclass(frozen=True)
-class SimulationResult:
+@dataclass(frozen=True, eq=False)
+class SimulationResult(Value):
     """A simulated motion of the arm (read-only arrays).
 
     Attributes
@@ -309,6 +308,9 @@ class SimulationResult:
     nfev: int
     t_events: list[NDArray[np.float64]] | None = None
     y_events: list[NDArray[np.float64]] | None = None
+
+    def __post_init__(self) -> None:
+        freeze(self)
 
     @property
     def p_tip(self) -> NDArray[np.float64]:
@@ -473,21 +475,23 @@ def simulate(
     t_eval: ArrayLike | None = None,
     max_evaluations: int = DEFAULT_MAX_EVALUATIONS,
     max_wall_time: float = DEFAULT_MAX_WALL_TIME,
-    **solver_options: Any,
+    **solver_options_given: Any,
 ) -> SimulationResult:
     """Integrate the arm's motion from ``(q0, qd0)`` at ``t = 0`` to ``t_end``.
 
     Solves ``M(q) qdd + C(q, qd) qd + g(q) = tau`` with
     :func:`scipy.integrate.solve_ivp` on the state ``(q1, q2, qd1, qd2)``.
 
-    Nothing hangs: the integration has a budget of right-hand-side
-    evaluations and of wall time.  A stiff closed loop (large gains, a hard
-    contact wall) on an explicit method would need millions of tiny steps;
-    when the loop is already stiff at the start and no ``method`` was given,
-    the implicit ``"Radau"`` method is chosen instead (the result's
-    ``message`` says so), and when the budget runs out the
-    :class:`SimulationError` says that the loop is stiff (with its fastest
-    rate) and to pass ``method="Radau"`` or ``"LSODA"``.
+    It integrates with the method it is given (``DOP853`` unless
+    ``method=`` says otherwise), and nothing hangs: the integration has a
+    budget of right-hand-side evaluations and of wall time.  A stiff closed
+    loop (large gains, a hard contact wall) on an explicit method would
+    need millions of tiny steps: when the loop is already so stiff at the
+    start that the budget could not suffice, the call is refused at once,
+    and when the budget runs out on the way, the :class:`SimulationError`
+    says where and why (the loop is stiff, with its fastest rate; a slow
+    torque function; a ``max_step`` that limits every step) and what to
+    change (``method="Radau"`` or ``"LSODA"`` for a stiff loop).
 
     Parameters
     ----------
@@ -510,10 +514,15 @@ def simulate(
         ``DEFAULT_MAX_EVALUATIONS`` = 1e6; 10 s of free motion takes ~7e3).
     max_wall_time : float
         Budget of wall-clock seconds (default ``DEFAULT_MAX_WALL_TIME`` = 30).
-    **solver_options
-        Passed to ``solve_ivp`` (``method``, ``rtol``, ``atol``,
-        ``max_step``, ``events``, ...).  Defaults: ``method="DOP853"``,
-        ``rtol=atol=1e-10``.
+    **solver_options_given
+        Options of ``solve_ivp``: ``method`` (``"DOP853"``, ``"RK45"``,
+        ``"RK23"``, ``"Radau"``, ``"BDF"``, ``"LSODA"``), ``rtol``,
+        ``atol``, ``max_step``, ``first_step``, ``events``, and the method's
+        own (``jac``, ``jac_sparsity`` for Radau and BDF; ``jac``,
+        ``lband``, ``uband``, ``min_step`` for LSODA).  A name the method
+        does not take is refused (scipy would ignore it), and so is a
+        ``max_step`` too small to reach ``t_end`` within the budget.
+        Defaults: ``method="DOP853"``, ``rtol=atol=1e-10``.
 
     Returns
     -------
@@ -527,15 +536,18 @@ def simulate(
     Raises
     ------
     ValueError
-        For a start of the wrong shape or not finite, a non-positive
-        ``t_end``, a bad ``t_eval`` or budget, a ``torque`` that is not
-        callable or does not return two finite numbers at the start, or an
-        arm with a singular mass matrix.
+        For a start of the wrong shape or not finite, a ``t_end`` outside
+        ``TIME_RANGE`` = [1e-50, 1e50] s, a bad ``t_eval``, budget or
+        solver option, a ``torque`` that is not callable or does not return
+        two finite numbers at the start, or an arm with a singular mass
+        matrix.
     SimulationError
         When the solver fails (for example the step size becomes too small),
-        the state blows up (NaN, infinity, overflowing rates or torques: the
-        message names the time and the state), or the budget runs out; no
-        partial result is returned.
+        the motion fails on the way (the state or the accelerations blow up,
+        the torque function returns NaN: the message names the time and the
+        state), the loop is too stiff at the start for the explicit method
+        and the budget, or the budget runs out; no partial result is
+        returned.
 
     Examples
     --------
@@ -550,139 +562,94 @@ def simulate(
     >>> simulate(arm, q0, [0.0, 0.0], -1.0)
     Traceback (most recent call last):
     ...
-    ValueError: t_end (s) must be > 0.0; got -1.0
+    ValueError: t_end (s) must be in [1e-50, 1e+50]; got -1
     """
     start = _start_state(q0, qd0)
-    t_end = as_finite_scalar(t_end, "t_end (s)", minimum=0.0, strictly=True)
+    t_end = as_time_span(t_end, "t_end (s)")
     budget = EvaluationBudget(max_evaluations, max_wall_time)
-    max_evaluations = budget.max_evaluations
-    inner = dynamics.solver_state_derivative(arm, torque, signal_non_finite=True)
-    options: dict[str, Any] = dict(DEFAULT_SOLVER_OPTIONS)
-    options.update(solver_options)
+    inner = dynamics.state_derivative(arm, torque)
+    options = solver_options(
+        {**DEFAULT_SOLVER_OPTIONS, **solver_options_given},
+        t_end,
+        budget.max_evaluations,
+    )
+    method = options["method"]
     if t_eval is not None:
         t_eval = _check_t_eval(t_eval, t_end)
-    calls = 0  # every call of the right-hand side, the stiffness estimates included
-
-    def out_of_time(t, state):
-        if budget.out_of_time():
-            raise _BudgetExceeded(
-                t,
-                state,
-                f"its budget of {budget.describe('max_wall_time')}",
-                wall_time=True,
-            )
-
-    def timed(t, state):
-        nonlocal calls
-        calls += 1
-        out_of_time(t, state)
-        return inner(t, state)
-
-    if options.get("events") is not None:
-        options["events"] = _timed_events(options["events"], out_of_time)
     note = ""
-    last = [0.0, start]
-
-    def right_hand_side(t, state):
-        nonlocal calls
-        calls += 1
-        last[0], last[1] = t, state
-        spent = budget.spend()
-        if spent is not None:
-            raise _BudgetExceeded(
-                t,
-                state,
-                f"its budget of {budget.describe(spent)}",
-                wall_time=spent == "max_wall_time",
-            )
+    if method in EXPLICIT_METHODS:
+        # an explicit method on a loop already stiff at the start: refused when it could
+        # not finish within the budget, noted when it would be slow
         try:
-            derivative = inner(t, state)
-        except NonFiniteTorque as exc:
-            raise _non_finite_torque_error(
-                exc, t, state, first=budget.evaluations == 1
+            rate = _stiffness(_out_of_time_checked(inner, budget), 0.0, start)
+        except BudgetSpent as stop:
+            raise spent_error(
+                "the stiffness estimate at the start",
+                method,
+                budget,
+                stop,
+                t_end,
+                _state_text,
+                lambda stop: _budget_advice(
+                    inner, stop, budget, method, t_end, torque, math.inf
+                ),
             ) from None
-        if not math.isfinite(derivative[2] + derivative[3]):
-            raise _overflow_error(t, state, derivative)
-        return derivative
-
-    # here, not at the top: import twolink stays light
-
-    from scipy.integrate import solve_ivp
-
-    try:
-        method = options.get("method")
-        if isinstance(method, str) and method in _EXPLICIT_METHODS:
-            rate = _stiffness(timed, 0.0, start)
-            needed = (
-                _explicit_evaluations(method, rate, t_end) if rate is not None else 0.0
+        stiff = rate is not None and rate * t_end > STIFF_SPAN
+        needed = _explicit_evaluations(method, rate, t_end) if stiff else 0.0
+        if needed > budget.max_evaluations:
+            raise SimulationError(
+                f"the closed loop is stiff at t = 0 in the state {_state_text(start)} (fastest rate "
+                f"{rate:.3g} 1/s, time constant {1.0 / rate:.2g} s): the explicit method {method!r} would "
+                f"need about {needed:.2g} evaluations for {t_end:.6g} s, more than max_evaluations = "
+                f"{budget.max_evaluations}; use an implicit method, method='Radau' or method='LSODA'"
             )
-            if needed > max_evaluations / 4:
-                if "method" in solver_options:
-                    if needed > max_evaluations:
-                        raise SimulationError(
-                            f"the closed loop is stiff at t = 0 (fastest rate {rate:.3g} 1/s, time constant "
-                            f"{1.0 / rate:.2g} s): the explicit method {method!r} would need about {needed:.2g} "
-                            f"evaluations for {t_end:.6g} s, more than max_evaluations = {max_evaluations}; "
-                            "use an implicit method, method='Radau' or method='LSODA'"
-                        )
-                    note = f" (the loop is stiff: fastest rate {rate:.3g} 1/s at t = 0; method='Radau' would be faster)"
-                else:
-                    options["method"] = "Radau"
-                    note = f" (the loop is stiff, fastest rate {rate:.3g} 1/s at t = 0: integrated with method='Radau')"
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            solution = solve_ivp(
-                right_hand_side, (0.0, t_end), start, t_eval=t_eval, **options
-            )
-    except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
-        if isinstance(exc, NonFiniteTorque):  # from the stiffness estimate at the start
-            raise ValueError(str(exc)) from None
-        if budget.evaluations <= 1:
-            raise
-        # the solver's own arithmetic broke down (overflowing rates or Jacobian): a blow-up, not bad input
-        raise _breakdown_error(
-            exc, last[0], np.asarray(last[1], dtype=float), budget.evaluations
-        ) from exc
-    except _BudgetExceeded as stop:
-        if (
-            budget.evaluations == 0
-        ):  # stopped while the stiffness at the start was estimated (around the start)
-            stop.t, stop.state = 0.0, start
-        per_call = (time.monotonic() - budget.started) / max(calls, 1)
-        if stop.wall_time and torque is not None and per_call > SLOW_CALL:
-            advice = (
-                f"the torque function is the likely cause: the dynamics were evaluated only {calls} times, "
-                f"{per_call:.3g} s a call (the arm's own part takes about 1e-5 s), so torque(t, q, qd) is slow; "
-                "make it faster (no printing, plotting or sleeping in it) or raise max_wall_time"
-            )
-        else:
-            advice = _budget_advice(
-                inner, stop, budget.evaluations, options.get("method", "RK45"), t_end
-            )
-        raise SimulationError(
-            f"the integration used up {stop.what} at t = {stop.t:.6g} s of {t_end:.6g} s "
-            f"(state {_state_text(stop.state)}); {advice}"
-        ) from None
-    if solution.status < 0 or not np.all(np.isfinite(solution.y)):
-        reached = solution.t[-1] if solution.t.size else 0.0
-        raise SimulationError(
-            f"the integration failed at t = {reached:.6g} s of {t_end:.6g} s: {solution.message} "
-            "(try a smaller max_step, looser tolerances or another method)"
-        )
+        if needed > budget.max_evaluations / 4:
+            note = f" (the loop is stiff: fastest rate {rate:.3g} 1/s at t = 0; method='Radau' would be faster)"
+    solution = integrate(
+        _past_the_start(inner, budget, check_overflow=True),
+        t_end,
+        start,
+        t_eval=t_eval,
+        options=options,
+        budget=budget,
+        what="the integration",
+        state_text=_state_text,
+        advice=lambda stop: _budget_advice(
+            inner,
+            stop,
+            budget,
+            method,
+            t_end,
+            torque,
+            options.get("max_step", math.inf),
+        ),
+    )
     q = solution.y[:2].T
     qd = solution.y[2:].T
     tau = _torques_at(torque, solution.t, q, qd, budget)
     return SimulationResult(
         arm=arm,
-        t=frozen_array(solution.t),
-        q=frozen_array(q),
-        qd=frozen_array(qd),
-        tau=frozen_array(tau),
+        t=solution.t,
+        q=q,
+        qd=qd,
+        tau=tau,
         status=int(solution.status),
         message=str(solution.message) + note,
         nfev=int(solution.nfev),
         t_events=solution.t_events,
         y_events=solution.y_events,
     )
+
+
+def _out_of_time_checked(inner, budget):
+    """``inner`` that first checks the wall clock (the stiffness estimate at the start calls it 8 times)."""
+
+    def checked(t, state):
+        if budget.out_of_time():
+            raise BudgetSpent(t, state, "max_wall_time")
+        return inner(t, state)
+
+    return checked
 
 
 def simulate_quick(
@@ -695,6 +662,7 @@ def simulate_quick(
     rtol: float = QUICK_TOLERANCES["rtol"],
     atol: float = QUICK_TOLERANCES["atol"],
     max_evaluations: int = QUICK_MAX_EVALUATIONS,
+    max_wall_time: float = DEFAULT_MAX_WALL_TIME,
 ) -> SimulationResult:
     """The motion of :func:`simulate` by scipy's compiled ``odeint``: quick, for a picture.
 
@@ -711,8 +679,8 @@ def simulate_quick(
     ``benchmarks/bench_dynamics.py``), and where an error of a millimetre
     is invisible.
     :func:`simulate` stays the exact run: tight tolerances (energy drift
-    under 1e-8), events, the solver's own steps, a wall-time budget and the
-    advice for stiff loops; use it for every number you report, and check a
+    under 1e-8), events, the solver's own steps and the advice for stiff
+    loops; use it for every number you report, and check a
     quick run against it.
 
     Parameters
@@ -739,6 +707,10 @@ def simulate_quick(
         ``QUICK_MAX_EVALUATIONS`` = 1e5).  A slider's run passes a few
         hundred: a motion that needs more (fast swings, a stiff loop) stops
         with a :class:`SimulationError` instead of keeping the hand waiting.
+    max_wall_time : float
+        Budget of wall-clock seconds (default ``DEFAULT_MAX_WALL_TIME`` = 30),
+        read at every evaluation as :func:`simulate` reads it: a slow torque
+        function stops there, named as the cause.
 
     Returns
     -------
@@ -773,29 +745,19 @@ def simulate_quick(
     """
     start = _start_state(q0, qd0)
     times = _check_t_eval(t_eval)
+    if times[-1] > 0.0:
+        as_time_span(times[-1], "the last time of t_eval (s)")
     tolerances = {
         name: as_finite_scalar(value, name, minimum=0.0, strictly=True)
         for name, value in (("rtol", rtol), ("atol", atol))
     }
     tolerance_text = f"rtol = {tolerances['rtol']:.3g}, atol = {tolerances['atol']:.3g}"
-    budget = as_count(max_evaluations, "max_evaluations", minimum=1)
-    inner = dynamics.solver_state_derivative(arm, torque, signal_non_finite=True)
-    calls = 0
-
-    def right_hand_side(t, state):
-        # lean, odeint calls it ~1e3 times a run: a blow-up shows in the next state, which inner checks
-        nonlocal calls
-        calls += 1
-        if calls > budget:
-            raise _BudgetExceeded(t, state, "max_evaluations")
-        try:
-            return inner(t, state)
-        except NonFiniteTorque as exc:
-            raise _non_finite_torque_error(exc, t, state, first=calls == 1) from None
-        except (ValueError, ArithmeticError) as exc:
-            if calls == 1:  # the torque function at the start: bad input
-                raise
-            raise _breakdown_error(exc, t, state, calls) from exc
+    budget = EvaluationBudget(max_evaluations, max_wall_time)
+    inner = dynamics.state_derivative(arm, torque)
+    # lean, odeint calls it ~1e3 times a run: a blow-up shows in the next state, which inner checks
+    right_hand_side = budgeted(
+        _past_the_start(inner, budget, check_overflow=False), budget
+    )
 
     # here, not at the top: import twolink stays light
     from scipy.integrate import ODEintWarning, odeint
@@ -815,35 +777,42 @@ def simulate_quick(
                     grid,
                     tfirst=True,
                     full_output=True,
-                    mxstep=budget,  # per output interval: the budget is what stops it
+                    mxstep=budget.max_evaluations,  # per output interval: the budget is what stops it
                     **tolerances,
                 )
-    except _BudgetExceeded as stop:
+    except BudgetSpent as stop:
+        if stop.which == "max_wall_time":
+            advice = _budget_advice(
+                inner, stop, budget, "LSODA", times[-1], torque, math.inf
+            )
+        else:
+            advice = (
+                f"the motion needs more steps at {tolerance_text} (fast swings or a stiff loop); raise "
+                "max_evaluations, loosen rtol/atol, or run it with simulate (the exact run)"
+            )
         raise SimulationError(
-            f"the quick run used up its budget of max_evaluations = {budget} evaluations at "
-            f"t = {stop.t:.6g} s of {times[-1]:.6g} s (state {_state_text(stop.state)}): the motion "
-            f"needs more steps at {tolerance_text} (fast swings or a stiff loop); raise "
-            "max_evaluations, loosen rtol/atol, or run it with simulate (the exact run)"
+            f"the quick run used up its budget of {budget.describe(stop.which)} at "
+            f"t = {stop.t:.6g} s of {times[-1]:.6g} s (state {_state_text(stop.state)}): {advice}"
         ) from None
     message = str(report["message"])
     if message != "Integration successful." or not np.all(np.isfinite(states)):
         reached = float(np.max(report["tcur"], initial=0.0))
         last = max(int(np.searchsorted(grid, reached, side="right")) - 1, 0)
         raise SimulationError(
-            f"the quick run (odeint, LSODA) failed near t = {reached:.6g} s of {times[-1]:.6g} s after {calls} "
-            f"evaluations ({message}); state at t = {grid[last]:.6g} s: {_state_text(states[last])}; the rates "
-            "or the torques may overflow (check the controller's gains and the torques it returns), else try "
-            "looser tolerances, or simulate"
+            f"the quick run (odeint, LSODA) failed near t = {reached:.6g} s of {times[-1]:.6g} s after "
+            f"{budget.evaluations} evaluations ({message}); state at t = {grid[last]:.6g} s: "
+            f"{_state_text(states[last])}; the rates or the torques may overflow (check the controller's "
+            "gains and the torques it returns), else try looser tolerances, or simulate"
         )
     states = states[len(grid) - len(times) :]
     q, qd = states[:, :2], states[:, 2:]
     return SimulationResult(
         arm=arm,
-        t=frozen_array(times),
-        q=frozen_array(q),
-        qd=frozen_array(qd),
-        tau=frozen_array(_torques_at(torque, times, q, qd)),
+        t=times,
+        q=q,
+        qd=qd,
+        tau=_torques_at(torque, times, q, qd, budget),
         status=0,
         message=f"odeint (LSODA) reached t = {times[-1]:.6g} s at {tolerance_text}: {message}",
-        nfev=calls,
+        nfev=budget.evaluations,
     )

@@ -23,19 +23,20 @@ from ._validate import (
     as_pairs,
     require_arm,
 )
+from ._values import Value, freeze
 from .errors import UnreachableError
 from .kinematics import REACH_RTOL, fk, joint_torques
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
-__all__ = ["Wall", "as_wall", "WallContact", "wall_contact"]
+__all__ = ["Wall", "WallContact", "wall_contact"]
 
 _POINT = {"what": "one (x, y) point", "unit": "metres"}
 
 
-@dataclass(frozen=True, init=False)
-class Wall:
+@dataclass(frozen=True, init=False, eq=False)
+class Wall(Value):
     """A straight wall (a line in the arm's plane): a point on it and a normal.
 
     Parameters
@@ -76,6 +77,7 @@ class Wall:
             )
         object.__setattr__(self, "point", on_wall.copy())
         object.__setattr__(self, "normal", direction / length)
+        freeze(self)
 
     @classmethod
     def through(cls, p_a: ArrayLike, p_b: ArrayLike) -> Wall:
@@ -142,8 +144,8 @@ def as_wall(wall: Wall | ArrayLike) -> Wall:
     )
 
 
-@dataclass(frozen=True)
-class WallContact:
+@dataclass(frozen=True, eq=False)
+class WallContact(Value):
     """The arm pushing on a wall with link 2 perpendicular to it (see :func:`wall_contact`).
 
     Row ``k`` of every array is one contact configuration.
@@ -186,11 +188,14 @@ class WallContact:
     tau: NDArray[np.float64]
     within_limits: NDArray[np.bool_]
 
+    def __post_init__(self) -> None:
+        freeze(self)
+
     def branch(self, elbow: str) -> int:
         """Row index of the configuration named ``elbow`` (``"down"``, ``"up"``, ...)."""
-        if elbow not in self.elbow:
+        if not isinstance(elbow, str) or elbow not in self.elbow:
             raise ValueError(
-                f"no {elbow!r} configuration here; this contact has {self.elbow}"
+                f"elbow must be one of this contact's configurations {self.elbow}; got {elbow!r}"
             )
         return self.elbow.index(elbow)
 

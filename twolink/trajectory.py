@@ -33,30 +33,34 @@ Examples
 
 from __future__ import annotations
 
-from bisect import bisect_right
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ._integration import EXPLICIT_METHODS, integrate, solver_options
 from ._validate import (
     as_configuration,
     as_count,
     as_finite_scalar,
+    as_flag,
+    as_length,
     as_pairs,
+    as_time_span,
     finite_result,
     real_array,
     require_arm,
 )
+from ._values import Value, freeze
 from .budgets import (
     DEFAULT_MAX_EVALUATIONS,
     DEFAULT_MAX_WALL_TIME,
     MAX_SAMPLES,
     EvaluationBudget,
 )
-from .conventions import check_elbow
-from .errors import InputTypeError, SimulationError, SingularityError, UnreachableError
+from .conventions import check_elbow, wrap_angle
+from .errors import InputTypeError, SingularityError, UnreachableError
 from .ik import LIMIT_TOL, solutions_within_limits
 from .kinematics import (
     fk,
@@ -80,7 +84,6 @@ __all__ = [
     "JointTrajectory",
     "ik_trajectory",
     "resolved_rate_trajectory",
-    "path_positions",
 ]
 
 #: The time laws :func:`time_scaling` knows.
@@ -158,9 +161,9 @@ def time_scaling(
     >>> time_scaling([0.5, 1.0], 2.0, "quintic", with_acceleration=True)[2]
     array([1.40625, 0.     ])
     """
-    duration = as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True)
-    if law not in TIME_LAWS:
-        raise ValueError(f"law must be one of {TIME_LAWS}; got {law!r}")
+    duration = as_time_span(duration, "duration (s)")
+    _check_law(law)
+    with_acceleration = as_flag(with_acceleration, "with_acceleration")
     times = real_array(t, "t (s)")
     if not np.all(np.isfinite(times)):
         raise ValueError("t must be finite times in seconds")
@@ -182,6 +185,13 @@ def time_scaling(
     if not with_acceleration:
         return s, s_dot
     return s, s_dot, np.where(inside, dds / duration**2, 0.0)
+
+
+def _check_law(law: object) -> str:
+    """``law`` if it is one of :data:`TIME_LAWS`, else an error naming it and them."""
+    if not isinstance(law, str) or law not in TIME_LAWS:
+        raise ValueError(f"law must be one of {TIME_LAWS}; got {law!r}")
+    return law
 
 
 def _point(value: ArrayLike, name: str) -> _Array:
@@ -231,6 +241,7 @@ class _TimedPath:
         -------
         p, v[, a] : numpy.ndarray, each of shape ``t.shape + (2,)``
         """
+        with_acceleration = as_flag(with_acceleration, "with_acceleration")
         p, v, a = self._at(t)
         return (p, v, a) if with_acceleration else (p, v)
 
@@ -250,6 +261,7 @@ class _TimedPath:
         Shapes ``(n,)`` for ``t`` (s) and ``(n, 2)`` for ``p`` (m), ``v`` (m/s)
         and ``a`` (m/s^2, with ``with_acceleration=True``).
         """
+        with_acceleration = as_flag(with_acceleration, "with_acceleration")
         t = _sample_times(self.duration, n)
         p, v, a = self._at(t)
         return (t, p, v, a) if with_acceleration else (t, p, v)
@@ -297,7 +309,7 @@ class LinePath(_TimedPath):
         object.__setattr__(
             self,
             "duration",
-            as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True),
+            as_time_span(duration, "duration (s)"),
         )
         object.__setattr__(self, "law", law)
         time_scaling(0.0, self.duration, self.law)  # checks the law's name
@@ -388,12 +400,12 @@ class CirclePath(_TimedPath):
         object.__setattr__(
             self,
             "radius",
-            as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True),
+            as_length(radius, "radius (m)"),
         )
         object.__setattr__(
             self,
             "duration",
-            as_finite_scalar(duration, "duration (s)", minimum=0.0, strictly=True),
+            as_time_span(duration, "duration (s)"),
         )
         object.__setattr__(self, "law", law)
         object.__setattr__(
@@ -421,7 +433,8 @@ class CirclePath(_TimedPath):
             over="ignore", invalid="ignore"
         ):  # _finite_motion names an overflow
             sweep = 2.0 * np.pi * self.turns
-            angle = self.start_angle + sweep * s
+            # the start reduced exactly first: added to a large start the sweep would round away
+            angle = wrap_angle(self.start_angle) + sweep * s
             rate, angular_acceleration = sweep * s_dot, sweep * s_ddot  # rad/s, rad/s^2
             direction = np.stack([np.cos(angle), np.sin(angle)], axis=-1)
             tangent = np.stack([-np.sin(angle), np.cos(angle)], axis=-1)
@@ -450,110 +463,8 @@ def _finite_motion(path: _TimedPath, p: _Array, v: _Array, a: _Array) -> _Three:
 Path = LinePath | CirclePath
 
 
-def _quintic_hermite(t: _Array, q: _Array, qd: _Array, qdd: _Array) -> JointReference:
-    """The piecewise quintic through samples of ``q``, ``qd`` and ``qdd`` (matched at every sample).
-
-    On ``[t_k, t_k+1]``, with ``h = t_k+1 - t_k`` and ``s = (t - t_k) / h``,
-    the quintic Hermite basis; written with the change ``q_k+1 - q_k`` so
-    that at ``s = 0`` every derivative is the sample itself, to round-off.
-    Outside ``[t_0, t_n]`` the reference holds the end position at rest.
-    """
-    times = np.array(
-        t, dtype=float
-    )  # copies: the reference does not change with the trajectory's arrays
-    q, qd, qdd = (np.array(values, dtype=float) for values in (q, qd, qdd))
-    start, end = float(times[0]), float(times[-1])
-    held_start, held_end, zeros = q[0].copy(), q[-1].copy(), np.zeros(2)
-    last = (qd[-1].copy(), qdd[-1].copy())
-    # Python floats: a reference is called once per step of an ODE solver, and on two
-    # numbers each operation of numpy costs more than the arithmetic (the same IEEE
-    # operations in the same order: the same values)
-    time_list = times.tolist()
-    steps = np.diff(times).tolist()
-    changes = np.diff(q, axis=0).tolist()
-    q_rows, qd_rows, qdd_rows = q.tolist(), qd.tolist(), qdd.tolist()
-
-    def locate(time: float) -> tuple[int, float, float]:
-        k = min(bisect_right(time_list, time) - 1, len(steps) - 1)
-        return k, (time - time_list[k]) / steps[k], steps[k]
-
-    def position(time: float) -> NDArray[np.float64]:
-        time = float(time)
-        if time <= start:
-            return held_start.copy()
-        if time >= end:
-            return held_end.copy()
-        k, s, h = locate(time)
-        s2, s3 = s * s, s * s * s
-        h5 = s3 * (10.0 - 15.0 * s + 6.0 * s2)
-        h1 = s - s3 * (6.0 - 8.0 * s + 3.0 * s2)
-        h2 = 0.5 * s2 * (1.0 - s) ** 3
-        h3 = 0.5 * s3 * (1.0 - s) ** 2
-        h4 = s3 * (-4.0 + 7.0 * s - 3.0 * s2)
-
-        def joint(j: int) -> float:
-            return (
-                q_rows[k][j]
-                + h5 * changes[k][j]
-                + h * (h1 * qd_rows[k][j] + h4 * qd_rows[k + 1][j])
-                + h * h * (h2 * qdd_rows[k][j] + h3 * qdd_rows[k + 1][j])
-            )
-
-        return np.array((joint(0), joint(1)))
-
-    def velocity(time: float) -> NDArray[np.float64]:
-        time = float(time)
-        if time == end:
-            return last[0].copy()
-        if time < start or time > end:
-            return zeros.copy()
-        k, s, h = locate(time)
-        s2 = s * s
-        d5 = 30.0 * s2 * (1.0 - s) ** 2
-        d1 = 1.0 - s2 * (18.0 - 32.0 * s + 15.0 * s2)
-        d2 = 0.5 * s * (1.0 - s) ** 2 * (2.0 - 5.0 * s)
-        d3 = 0.5 * s2 * (1.0 - s) * (3.0 - 5.0 * s)
-        d4 = s2 * (-12.0 + 28.0 * s - 15.0 * s2)
-
-        def joint(j: int) -> float:
-            return (
-                d5 / h * changes[k][j]
-                + d1 * qd_rows[k][j]
-                + d4 * qd_rows[k + 1][j]
-                + h * (d2 * qdd_rows[k][j] + d3 * qdd_rows[k + 1][j])
-            )
-
-        return np.array((joint(0), joint(1)))
-
-    def acceleration(time: float) -> NDArray[np.float64]:
-        time = float(time)
-        if time == end:
-            return last[1].copy()
-        if time < start or time > end:
-            return zeros.copy()
-        k, s, h = locate(time)
-        s2 = s * s
-        c5 = 60.0 * s * (1.0 - s) * (1.0 - 2.0 * s)
-        c1 = -s * (36.0 - 96.0 * s + 60.0 * s2)
-        c2 = (1.0 - s) * (1.0 - 8.0 * s + 10.0 * s2)
-        c3 = s * (3.0 - 12.0 * s + 10.0 * s2)
-        c4 = s * (-24.0 + 84.0 * s - 60.0 * s2)
-
-        def joint(j: int) -> float:
-            return (
-                c5 / (h * h) * changes[k][j]
-                + (c1 * qd_rows[k][j] + c4 * qd_rows[k + 1][j]) / h
-                + c2 * qdd_rows[k][j]
-                + c3 * qdd_rows[k + 1][j]
-            )
-
-        return np.array((joint(0), joint(1)))
-
-    return JointReference(position, velocity, acceleration)
-
-
-@dataclass(frozen=True)
-class JointTrajectory:
+@dataclass(frozen=True, eq=False)
+class JointTrajectory(Value):
     """A joint motion that follows a Cartesian path, sampled at ``len(t)`` instants.
 
     Attributes
@@ -589,6 +500,9 @@ class JointTrajectory:
     elbow: str
     method: str
     branch_switches: tuple[int, ...] = ()
+
+    def __post_init__(self) -> None:
+        freeze(self)
 
     @property
     def p_tip(self) -> NDArray[np.float64]:
@@ -636,11 +550,14 @@ class JointTrajectory:
     def joint_reference(self) -> JointReference:
         """This motion as a controller's reference, matching ``q``, ``qd`` and ``qdd`` at every sample.
 
-        The piecewise quintic Hermite interpolant of the samples: on each
-        interval the one quintic with the samples' angles, rates and
-        accelerations at both ends (no fit, no spline refitted through
-        ``q`` alone), so the reference reproduces the samples to round-off
-        and has continuous rate and acceleration.  Between samples it
+        The piecewise quintic Hermite interpolant of the samples
+        (:meth:`twolink.references.JointReference.from_derivatives`, scipy's
+        ``BPoly.from_derivatives``): on each interval the one quintic with
+        the samples' angles, rates and accelerations at both ends (no fit,
+        no spline refitted through ``q`` alone), so the reference
+        reproduces the samples (the angles exactly, the rates and
+        accelerations to round-off) and has continuous rate and
+        acceleration.  Between samples it
         differs from the path's exact joint motion by ``O(h^6)`` in the
         interval ``h``.  Outside ``[t[0], t[-1]]`` it holds the end position
         at rest (zero rate and acceleration), like
@@ -657,10 +574,12 @@ class JointTrajectory:
         >>> from twolink import arms
         >>> motion = ik_trajectory(arms.two_metre, LinePath([3.0, -1.0], [3.0, 1.0], duration=2.0), n=21)
         >>> q_ref, qd_ref, qdd_ref = motion.joint_reference()(motion.t[5])
-        >>> bool(np.all(q_ref == motion.q[5]) and np.all(qd_ref == motion.qd[5]) and np.all(qdd_ref == motion.qdd[5]))
+        >>> bool(np.all(q_ref == motion.q[5]))
+        True
+        >>> bool(np.allclose(qd_ref, motion.qd[5], rtol=0.0, atol=1e-12) and np.allclose(qdd_ref, motion.qdd[5], rtol=0.0, atol=1e-12))
         True
         """
-        return _quintic_hermite(self.t, self.q, self.qd, self.qdd)
+        return JointReference.from_derivatives(self.t, self.q, self.qd, self.qdd)
 
 
 def path_positions(
@@ -1182,45 +1101,31 @@ def resolved_rate_trajectory(
 
     if method is None:
         method = "LSODA" if gain * duration / 3.3 > 1e4 else "RK45"
-    reached = float(t[0])
+    options = solver_options(
+        {"method": method, "rtol": rtol, "atol": rtol * 1e-2},
+        duration,
+        budget.max_evaluations,
+    )
     advice = (
         "pass method='LSODA' or 'Radau' (the feedback is stiff)"
-        if method in ("RK23", "RK45", "DOP853")
+        if method in EXPLICIT_METHODS
         else "loosen rtol or lower the gain"
     )
 
-    def budgeted_rates(now: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
-        nonlocal reached
-        reached = now
-        spent = budget.spend()
-        if spent is None:
-            return rates(now, q)
-        what = budget.describe(spent)
-        if spent == "max_wall_time":
-            what += f" ({budget.evaluations} evaluations)"
-        raise SimulationError(
-            f"resolved rate used up its budget of {what} at t = {now:.6g} s of {duration:.6g} s "
-            f"(method {method!r}, gain {gain:.3g} 1/s): {advice}"
-        )
+    def shifted(now: float, q: NDArray[np.float64]) -> NDArray[np.float64]:
+        return rates(t[0] + now, q)  # the integration runs from 0 over the duration
 
-    # here, not at the top: import twolink stays light
-
-    from scipy.integrate import solve_ivp
-
-    solution = solve_ivp(
-        budgeted_rates,
-        (t[0], t[-1]),
+    solution = integrate(
+        shifted,
+        duration,
         q_begin,
-        t_eval=t,
-        rtol=rtol,
-        atol=rtol * 1e-2,
-        method=method,
+        t_eval=t - t[0],
+        options=options,
+        budget=budget,
+        what=f"resolved rate (gain {gain:.3g} 1/s)",
+        state_text=lambda q: f"q = ({q[0]:.6g}, {q[1]:.6g}) rad",
+        advice=lambda stop: advice,
     )
-    if not solution.success:
-        raise SimulationError(
-            f"resolved rate: the integration failed at t = {reached:.6g} s of {duration:.6g} s "
-            f"(method {method!r}, gain {gain:.3g} 1/s): {solution.message}"
-        )
     q = solution.y.T
     qd = np.array([rates(now, q_now) for now, q_now in zip(t, q)])
     qdd = _rate_derivative(arm, q, qd, points, v_ref, a_ref, gain, damping)

@@ -17,14 +17,22 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ._validate import as_count, as_finite_scalar, as_pairs, finite_result, require_arm
+from ._values import Value, freeze
 from .errors import SingularityError
-from .kinematics import SINGULARITY_TOL, fk, jacobian, require_nonsingular
+from .kinematics import (
+    SINGULARITY_TOL,
+    evaluate_blockwise,
+    fk,
+    jacobian,
+    jacobian_from_trig,
+    reduced_angles,
+    require_nonsingular,
+)
 
 if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
 __all__ = [
-    "SINGULARITY_TOL",
     "tip_velocity",
     "joint_rates",
     "joint_rates_dls",
@@ -90,8 +98,9 @@ def joint_rates(
 ) -> NDArray[np.float64]:
     """Joint rates that give the tip velocity ``v_tip``: ``qd = J(q)^-1 v_tip``.
 
-    Solved with :func:`numpy.linalg.solve`, refusing configurations within
-    ``tol`` of a singularity, where the rates grow like ``1 / sin q2``.
+    Solved in closed form, ``J^-1 = adj(J) / det J`` with
+    ``det J = l1 l2 sin q2`` (block by block), refusing configurations
+    within ``tol`` of a singularity, where the rates grow like ``1 / sin q2``.
 
     Parameters
     ----------
@@ -138,14 +147,30 @@ def joint_rates(
             f"{error}; the joint rates are unbounded there: use joint_rates_dls"
         ) from None
     scale = _row_scale(v_tip)
+    unit = v_tip / scale
+    q_flat, unit_flat = reduced_angles(q).reshape(-1, 2), unit.reshape(-1, 2)
+    qd = np.empty(q.shape)
     with np.errstate(over="ignore", invalid="ignore"):
-        qd = (
-            np.linalg.solve(jacobian(arm, q), (v_tip / scale)[..., None])[..., 0]
-            * scale
+        evaluate_blockwise(
+            _rates_of_angles,
+            (arm.l1, arm.l2),
+            (q_flat[:, 0], q_flat[:, 1], unit_flat[:, 0], unit_flat[:, 1]),
+            qd.reshape(-1, 2),
         )
+        qd *= scale
     return finite_result(
         qd, "joint rates qd (rad/s)", "v_tip is too large for this (near-singular) pose"
     )
+
+
+def _rates_of_angles(l1, l2, q1, q2, vx, vy):
+    """``J^-1 v = adj(J) v / det J`` for a block of (reduced) angles, ``det J = l1 l2 sin q2``, with numpy."""
+    q12 = q1 + q2
+    j11, j12, j21, j22 = jacobian_from_trig(
+        l1, l2, np.cos(q1), np.sin(q1), np.cos(q12), np.sin(q12)
+    )
+    det = l1 * l2 * np.sin(q2)
+    return (j22 * vx - j12 * vy) / det, (j11 * vy - j21 * vx) / det
 
 
 def _row_scale(v_tip: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -155,8 +180,9 @@ def _row_scale(v_tip: NDArray[np.float64]) -> NDArray[np.float64]:
     result back: a tiny (even subnormal) or huge velocity then loses no
     accuracy inside the solve, only in the final, correctly rounded product.
     """
-    scale = np.max(np.abs(v_tip), axis=-1, keepdims=True)
-    return np.where(scale > 0.0, scale, 1.0)
+    scale = np.maximum(np.abs(v_tip[..., 0]), np.abs(v_tip[..., 1]))[..., None]
+    scale[scale == 0.0] = 1.0
+    return scale
 
 
 def _accurate_svd(
@@ -272,8 +298,8 @@ def manipulability(arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
     return np.abs(arm.l1 * arm.l2 * _sin_q2(q_pairs))
 
 
-@dataclass(frozen=True)
-class Ellipse:
+@dataclass(frozen=True, eq=False)
+class Ellipse(Value):
     """An ellipse (or a batch of them) ready to draw.
 
     Attributes
@@ -290,6 +316,9 @@ class Ellipse:
     centre: NDArray[np.float64]
     semi_axes: NDArray[np.float64]
     directions: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        freeze(self)
 
     @property
     def angle(self) -> NDArray[np.float64]:

@@ -45,7 +45,15 @@ from typing import TYPE_CHECKING
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ._validate import InputTypeError, as_count, as_finite_scalar, as_pairs, require_arm
+from ._validate import (
+    InputTypeError,
+    as_count,
+    as_finite_scalar,
+    as_length,
+    as_pairs,
+    require_arm,
+)
+from ._values import same, value_key
 from .arcs import Arc, arc_distance, circle_intersections
 from .budgets import DEFAULT_MAX_WALL_TIME, MAX_SAMPLES
 from .conventions import check_elbow, to_absolute, to_relative, wrap_angle
@@ -63,12 +71,8 @@ if TYPE_CHECKING:
     from .arm import TwoLinkArm
 
 __all__ = [
-    "LIMIT_TOL",
     "is_reachable",
-    "require_reachable",
-    "describe_limits",
     "sample_reachable",
-    "candidate_arcs",
     "boundary_arcs",
     "distance_to_arcs",
     "clearance",
@@ -288,12 +292,8 @@ def sample_reachable(
     """
     require_arm(arm)
     n = as_count(n, "n (samples)", minimum=1, maximum=MAX_SAMPLES)
-    if not (
-        seed is None
-        or isinstance(seed, (int, np.integer))
-        and not isinstance(seed, (bool, np.bool_))
-    ):
-        raise InputTypeError(f"seed must be an integer (or None); got {seed!r}")
+    if seed is not None:
+        seed = as_count(seed, "seed (None or an integer >= 0)", minimum=0)
     rng = np.random.default_rng(seed)
     if arm.has_limits:
         low, high = np.asarray(arm.q_min), np.asarray(arm.q_max)
@@ -400,7 +400,8 @@ class BranchTable:
                 f"p holds {count} points; a BranchTable takes at most MAX_SAMPLES = {MAX_SAMPLES}"
             )
         self.l1, self.l2 = float(arm.l1), float(arm.l2)
-        self.points = points
+        self.points = points.copy()
+        self.points.setflags(write=False)
         links = (
             dataclasses.replace(arm, q_min=None, q_max=None) if arm.has_limits else arm
         )
@@ -419,6 +420,17 @@ class BranchTable:
         self._at_base: NDArray[np.bool_] = (
             free_q1_at_base(links, points)[0] & self._in_reach
         )
+
+    def __eq__(self, other: object) -> bool:
+        """Tables of the same link lengths and points are equal (the rest follows from them)."""
+        if type(other) is not BranchTable:
+            return NotImplemented
+        return (self.l1, self.l2) == (other.l1, other.l2) and same(
+            self.points, other.points
+        )
+
+    def __hash__(self) -> int:
+        return hash((self.l1, self.l2, value_key(self.points)))
 
     def _require_links(self, arm: TwoLinkArm) -> None:
         require_arm(arm)
@@ -717,7 +729,9 @@ def boundary_arcs(
     ``probe * (l1 + l2)``) is not.  Where two arcs touch tangentially (an
     edge arc meets a singular circle tangentially at a singular pose) their
     computed crossings are ``sqrt(eps)`` apart; pieces shorter than
-    ``1e-6 (l1 + l2)`` from such cuts are dropped.
+    ``1e-6 (l1 + l2)`` from such cuts are dropped, unless they are the whole
+    boundary (joint limits narrower than that: a workspace that small is
+    all slivers).
 
     Parameters
     ----------
@@ -780,14 +794,16 @@ def boundary_arcs(
     midpoints = np.array([piece.point_at(0.5) for piece in pieces])
     outside = ~is_reachable(arm, midpoints[:, None, :] + ring, elbow=elbow)
     on_edge = np.any(outside, axis=1) & is_reachable(arm, midpoints, elbow=elbow)
+    edge = [piece for piece, piece_on_edge in zip(pieces, on_edge) if piece_on_edge]
+    whole = [
+        piece
+        for piece in edge
+        if not 0.0 < piece.radius * abs(piece.sweep) < 1e-6 * scale
+    ]
     kept: list[Arc] = []
-    for piece, piece_on_edge in zip(pieces, on_edge):
-        sliver = 0.0 < piece.radius * abs(piece.sweep) < 1e-6 * scale
-        if (
-            piece_on_edge
-            and not sliver
-            and not any(_same_arc(piece, other, scale) for other in kept)
-        ):
+    # slivers are kept only when they are the whole boundary (limits narrower than 1e-6 of the reach)
+    for piece in whole or edge:
+        if not any(_same_arc(piece, other, scale) for other in kept):
             kept.append(piece)
     return kept
 
@@ -914,7 +930,11 @@ def clearance(
     """
     points: NDArray[np.float64] = as_pairs(p, "p")
     elbow = check_elbow(elbow)
-    arcs = boundary_arcs(arm, elbow=elbow) if arcs is None else arcs
+    if arcs is None:
+        arcs = boundary_arcs(arm, elbow=elbow)
+    else:
+        require_arm(arm)
+        _require_arcs(arcs)
     if not arcs:  # nothing is reachable (one branch may be entirely outside the limits)
         return np.full(points.shape[:-1], -np.inf)
     distance = distance_to_arcs(points, arcs)
@@ -1191,8 +1211,9 @@ def circle_points(
     centre_xy: NDArray[np.float64] = as_pairs(centre, "centre")
     if centre_xy.shape != (2,):
         raise ValueError(f"centre must be one (x, y) pair; got shape {centre_xy.shape}")
-    radius = as_finite_scalar(radius, "radius (m)", minimum=0.0, strictly=True)
-    start_angle = as_finite_scalar(start_angle, "start_angle (rad)")
+    radius = as_length(radius, "radius (m)")
+    # reduced exactly first: added to a large start angle the steps would round away
+    start_angle = float(wrap_angle(as_finite_scalar(start_angle, "start_angle (rad)")))
     n = as_count(n, "n (points)", minimum=1, maximum=MAX_SAMPLES)
     angle = start_angle + _TWO_PI * np.arange(n) / n
     return centre_xy + radius * np.c_[np.cos(angle), np.sin(angle)]

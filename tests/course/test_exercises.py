@@ -14,20 +14,27 @@ passes its self-check, its student-edition stub says "not solved yet", and a
 function part passes hidden cases (a seed the notebook never holds).
 
 The right answers are computed here from the package's primitives or by hand,
-never read from ``answers/``.
+never read from ``answers/``; chapters 1 to 3's ``RERUN`` and ``FORBIDDEN`` entries
+(the interface with the grader) are tested at the end: each inputs cell binds its
+entry's inputs, each worked solution run on hidden inputs gives the entry's
+references, each forbidden call exists and the exercise states its rules.
 """
 
 import ast
+import builtins
 import contextlib
 import dataclasses
+import importlib
 import io
 import json
+import os
 import pathlib
 import re
 import sys
 
 import numpy as np
 import pytest
+from IPython.core.inputtransformer2 import TransformerManager
 
 from twolink import (
     TwoLinkArm,
@@ -44,12 +51,15 @@ from twolink_course import (
     exercises,
     selfcheck,
 )
+from twolink_course.exercises import judging
 from twolink_course.sources import compsys726
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 sys.path.insert(0, str(ROOT))
 import editions  # noqa: E402
+
+import answers  # noqa: E402
 
 #: A seed the notebooks never hold (the grader has its own).
 HIDDEN_TEST_SEED = 5_318_008
@@ -117,10 +127,68 @@ def _sag(k):
     )
 
 
+def _tip(arm, q):
+    """The tip (x, y) of ``arm`` at ``q`` by the formula, without the package's fk."""
+    return np.array(
+        [
+            arm.l1 * np.cos(q[0]) + arm.l2 * np.cos(q[0] + q[1]),
+            arm.l1 * np.sin(q[0]) + arm.l2 * np.sin(q[0] + q[1]),
+        ]
+    )
+
+
+def _elbow(arm, p, sign):
+    """The closed form's branch with q2 of ``sign`` (-1: up), by the cosine rule and atan2."""
+    c2 = (p[0] ** 2 + p[1] ** 2 - arm.l1**2 - arm.l2**2) / (2 * arm.l1 * arm.l2)
+    q2 = sign * np.arccos(np.clip(c2, -1.0, 1.0))
+    q1 = np.arctan2(p[1], p[0]) - np.arctan2(
+        arm.l2 * np.sin(q2), arm.l1 + arm.l2 * np.cos(q2)
+    )
+    return np.array([q1, q2])
+
+
+def _elbow_up(arm, p):
+    """The elbow-up angles, without the package's IK."""
+    return _elbow(arm, p, -1.0)
+
+
+def _jacobian(arm, q):
+    """J of ``arm`` at ``q`` by hand, without the package's jacobian."""
+    s1, c1, s12, c12 = (
+        np.sin(q[0]),
+        np.cos(q[0]),
+        np.sin(q[0] + q[1]),
+        np.cos(q[0] + q[1]),
+    )
+    return np.array(
+        [
+            [-arm.l1 * s1 - arm.l2 * s12, -arm.l2 * s12],
+            [arm.l1 * c1 + arm.l2 * c12, arm.l2 * c12],
+        ]
+    )
+
+
+def _solve_rates(arm, q, v_tip):
+    return np.linalg.solve(_jacobian(arm, q), v_tip)
+
+
+def _dls(lambda_squared, transpose=True, normal=False):
+    """Exercise 3.6's damped rates, written the ways a student might."""
+    q, v = (
+        np.radians([30.0, 3.0]),
+        0.1 * np.array([np.cos(np.radians(31.5)), np.sin(np.radians(31.5))]),
+    )
+    J = _jacobian(arms.two_metre, q)
+    if normal:
+        return np.linalg.solve(J.T @ J + lambda_squared * np.eye(2), J.T @ v)
+    w = np.linalg.solve(J @ J.T + lambda_squared * np.eye(2), v)
+    return J.T @ w if transpose else w
+
+
 def _right_answers():
     two, ten, osake = arms.two_metre, arms.ten, arms.osake
     answers = {}
-    q = np.radians([45.0, -30.0])
+    q = np.radians([50.0, -30.0])
     answers["1.1"] = {
         "p_tip_ex1": [
             osake.l1 * np.cos(q[0]) + osake.l2 * np.cos(q.sum()),
@@ -137,22 +205,24 @@ def _right_answers():
         "p_tip_ex3": two.l1 * np.array([np.cos(q_abs[0]), np.sin(q_abs[0])])
         + two.l2 * np.array([np.cos(q_abs[1]), np.sin(q_abs[1])]),
     }
-    answers["1.4"] = {
-        "tip_position": lambda arm, q: np.array(
-            [
-                arm.l1 * np.cos(q[0]) + arm.l2 * np.cos(q[0] + q[1]),
-                arm.l1 * np.sin(q[0]) + arm.l2 * np.sin(q[0] + q[1]),
-            ]
-        )
+    answers["1.4"] = {"tip_position": _tip}
+    # the bench arm (0.30 m, 0.20 m, its plane 0.05 m up) at (90, -90) deg: the elbow at
+    # (0, 0.30, 0.05), link 2 along q1 + q2 = 0
+    answers["1.5"] = {
+        "dh_ex5": [[0.05, 0.30, 0.0], [0.0, 0.20, 0.0]],
+        "o1_ex5": [0.0, 0.30, 0.05],
+        "x2_ex5": [1.0, 0.0, 0.0],
     }
+    # at (14, 9) elbow up is q = (66.4, -67.4) deg, within [0, 90] x [-90, 90] deg; elbow
+    # down, (-0.9, 67.4) deg, is not
     answers["2.1"] = {
-        "q_elbow_up": ik.closed_form(ten, [12.0, 4.0], elbow="up").q,
-        "up_within_limits": False,
+        "q_elbow_up": _elbow_up(ten, [14.0, 9.0]),
+        "up_within_limits": True,
     }
     step = 2 * 0.01 / 30.0
     answers["2.2"] = {
-        "step_1cm_deg": np.degrees(step),
-        "grid_points_1cm": (np.ceil(np.pi / 2 / step) + 1)
+        "step_deg_ex2": np.degrees(step),
+        "grid_points_ex2": (np.ceil(np.pi / 2 / step) + 1)
         * (np.ceil(np.pi / step) + 1),
     }  # both ends on the grid
     try:
@@ -163,12 +233,16 @@ def _right_answers():
         "unreachable_message": message,
         "distance_beyond_reach": np.sqrt(481.0) - 20.0,
     }
-    answers["2.4"] = {
-        "elbow_up_angles": lambda arm, p: ik.closed_form(arm, p, elbow="up").q
+    answers["2.4"] = {"elbow_up_angles": _elbow_up}
+    seconds = np.array([3.2e-6, 9.7e-6, 9.4e-4, 2.9e-4, 2.7e-4])
+    answers["2.5"] = {
+        "margins_ex5": 1e-3 / seconds,  # closed form, newton, BFGS, SLSQP, brute force
+        "fit_with_margin_ex5": 4,  # all but BFGS fit 3 times over
+        "reason_ex5": "b",
     }
     answers["3.1"] = {
-        "joint_rates": lambda arm, q, v_tip: np.linalg.solve(arm.jacobian(q), v_tip),
-        "qd_ex1": np.linalg.solve(two.jacobian(np.radians([20.0, 70.0])), [0.0, 0.2]),
+        "joint_rates": _solve_rates,
+        "qd_ex1": _solve_rates(two, np.radians([20.0, 70.0]), [0.0, 0.2]),
     }
     answers["3.2"] = {"tip_speed_ex2": np.hypot(osake.l1, osake.l2) * np.radians(5.0)}
     q2_grid = np.radians(np.arange(0.5, 180.0, 0.5))
@@ -178,6 +252,33 @@ def _right_answers():
     answers["3.3"] = {
         "q2_best_deg_ex3": np.degrees(q2_grid[np.argmin(cond)]),
         "cond_best_ex3": cond.min(),
+    }
+    # exercise 3.4: column i stacks z x (o2 - o_(i-1)) over z, z = (0, 0, 1), on the OSAKE arm
+    q34 = np.radians([40.0, -70.0])
+    elbow, tip = osake.joint_positions(q34)[1:]
+    turn = np.array([[0.0, -1.0], [1.0, 0.0]])  # z x r in the plane
+    answers["3.4"] = {
+        "J_geo_ex4": np.vstack(
+            [
+                np.column_stack([turn @ tip, turn @ (tip - elbow)]),
+                np.zeros((3, 2)),
+                [1, 1],
+            ]
+        )
+    }
+    answers["3.5"] = {
+        "det_J_ex5": 0.06 * np.sin(np.radians(30.0)),
+        "singular_q2_deg_ex5": [0, 180],
+    }
+    q36 = np.radians([30.0, 3.0])
+    v36 = 0.1 * np.array([np.cos(np.radians(31.5)), np.sin(np.radians(31.5))])
+    J36 = _jacobian(two, q36)
+    U, sigma, Vt = np.linalg.svd(
+        J36
+    )  # DLS: each singular direction times sigma / (sigma^2 + 0.01)
+    answers["3.6"] = {
+        "qd_exact_ex6": np.linalg.solve(J36, v36),
+        "qd_dls_ex6": Vt.T @ (sigma / (sigma**2 + 0.1**2) * (U.T @ v36)),
     }
     answers["4.1"] = {
         "tau_ex1": two.jacobian(np.radians([30.0, 60.0])).T @ [0.0, -100.0]
@@ -369,7 +470,11 @@ WRONG = {
     "1.1": [
         (
             "degrees fed to cos/sin",
-            {"p_tip_ex1": lambda r: arms.osake.fk([45.0, -30.0])},
+            {"p_tip_ex1": lambda r: arms.osake.fk([50.0, -30.0])},
+        ),
+        (
+            "q2's sign flipped",
+            {"p_tip_ex1": lambda r: arms.osake.fk(np.radians([50.0, 30.0]))},
         ),
         (
             "sin and cos swapped",
@@ -378,12 +483,10 @@ WRONG = {
         (
             "l1 and l2 swapped",
             {
-                "p_tip_ex1": lambda r: [
-                    arms.osake.l2 * np.cos(np.pi / 4)
-                    + arms.osake.l1 * np.cos(np.pi / 12),
-                    arms.osake.l2 * np.sin(np.pi / 4)
-                    + arms.osake.l1 * np.sin(np.pi / 12),
-                ]
+                "p_tip_ex1": lambda r: _tip(
+                    TwoLinkArm(l1=arms.osake.l2, l2=arms.osake.l1),
+                    np.radians([50.0, -30.0]),
+                )
             },
         ),
     ],
@@ -429,29 +532,41 @@ WRONG = {
             "links swapped",
             {
                 "tip_position": lambda r: (
-                    lambda arm, q: TwoLinkArm(l1=arm.l2, l2=arm.l1).fk(q)
+                    lambda arm, q: _tip(TwoLinkArm(l1=arm.l2, l2=arm.l1), q)
                 )
             },
         ),
         (
             "the OSAKE arm's lengths",
-            {"tip_position": lambda r: lambda arm, q: arms.osake.fk(q)},
+            {"tip_position": lambda r: lambda arm, q: _tip(arms.osake, q)},
         ),
         (
             "q2 as absolute",
-            {"tip_position": lambda r: lambda arm, q: arm.fk(to_relative(q))},
+            {"tip_position": lambda r: lambda arm, q: _tip(arm, to_relative(q))},
         ),
         (
             "q converted to radians again",
-            {"tip_position": lambda r: lambda arm, q: arm.fk(np.radians(q))},
+            {"tip_position": lambda r: lambda arm, q: _tip(arm, np.radians(q))},
         ),
+    ],
+    "1.5": [
+        (
+            "d and a swapped",
+            {"dh_ex5": lambda r: [[0.30, 0.05, 0.0], [0.20, 0.0, 0.0]]},
+        ),
+        ("a twist of 90 deg", {"dh_ex5": lambda r: [[0.05, 0.3, 90], [0, 0.2, 90]]}),
+        ("centimetres", {"dh_ex5": lambda r: [[5.0, 30.0, 0.0], [0.0, 20.0, 0.0]]}),
+        ("the elbow at height 0", {"o1_ex5": lambda r: [0.0, 0.30, 0.0]}),
+        ("the tip for frame 1", {"o1_ex5": lambda r: [0.20, 0.30, 0.05]}),
+        ("x1 for x2", {"x2_ex5": lambda r: [0.0, 1.0, 0.0]}),
+        ("q2 read as absolute", {"x2_ex5": lambda r: [0.0, -1.0, 0.0]}),
     ],
     "2.1": [
         (
             "the elbow-down branch",
             {
                 "q_elbow_up": lambda r: (
-                    ik.closed_form(arms.ten, [12.0, 4.0], elbow="down").q
+                    ik.closed_form(arms.ten, [14.0, 9.0], elbow="down").q
                 )
             },
         ),
@@ -460,20 +575,20 @@ WRONG = {
             "atan for atan2 (q1 off by pi)",
             {"q_elbow_up": lambda r: np.asarray(r["q_elbow_up"]) + [np.pi, 0.0]},
         ),
-        ("within limits claimed", {"up_within_limits": lambda r: True}),
-        ("a string for a bool", {"up_within_limits": lambda r: "no"}),
+        ("the elbow-down branch's limits", {"up_within_limits": lambda r: False}),
+        ("a string for a bool", {"up_within_limits": lambda r: "yes"}),
     ],
     "2.2": [
         (
             "step left in radians",
-            {"step_1cm_deg": lambda r: np.radians(r["step_1cm_deg"])},
+            {"step_deg_ex2": lambda r: np.radians(r["step_deg_ex2"])},
         ),
-        ("factor 2 missing", {"step_1cm_deg": lambda r: r["step_1cm_deg"] / 2}),
-        ("a1 + a2 for a1 + 2 a2", {"step_1cm_deg": lambda r: r["step_1cm_deg"] * 1.5}),
+        ("factor 2 missing", {"step_deg_ex2": lambda r: r["step_deg_ex2"] / 2}),
+        ("a1 + a2 for a1 + 2 a2", {"step_deg_ex2": lambda r: r["step_deg_ex2"] * 1.5}),
         (
             "the missing +1",
             {
-                "grid_points_1cm": lambda r: (
+                "grid_points_ex2": lambda r: (
                     np.floor(np.pi / 2 / (0.02 / 30)) * np.floor(np.pi / (0.02 / 30))
                 )
             },
@@ -481,7 +596,7 @@ WRONG = {
         (
             "the upper ends missed (floor + 1)",
             {
-                "grid_points_1cm": lambda r: (
+                "grid_points_ex2": lambda r: (
                     (np.floor(np.pi / 2 / (0.02 / 30)) + 1)
                     * (np.floor(np.pi / (0.02 / 30)) + 1)
                 )
@@ -490,7 +605,7 @@ WRONG = {
         (
             "range / step, not whole",
             {
-                "grid_points_1cm": lambda r: (
+                "grid_points_ex2": lambda r: (
                     (np.pi / 2 / (0.02 / 30)) * (np.pi / (0.02 / 30))
                 )
             },
@@ -521,11 +636,7 @@ WRONG = {
     "2.4": [
         (
             "the elbow-down branch",
-            {
-                "elbow_up_angles": lambda r: (
-                    lambda arm, p: ik.closed_form(arm, p, elbow="down").q
-                )
-            },
+            {"elbow_up_angles": lambda r: lambda arm, p: _elbow(arm, p, +1.0)},
         ),
         (
             "atan(y / x) for atan2",
@@ -547,26 +658,36 @@ WRONG = {
             },
         ),
     ],
+    "2.5": [
+        ("shares of the budget", {"margins_ex5": lambda r: 1 / r["margins_ex5"]}),
+        ("every method that fits", {"fit_with_margin_ex5": lambda r: 5}),
+        ("fits as measured", {"reason_ex5": lambda r: "a"}),
+        ("only a closed form", {"reason_ex5": lambda r: "c"}),
+    ],
     "3.1": [
         (
             "J^T v",
             {
                 "qd_ex1": lambda r: (
-                    arms.two_metre.jacobian(np.radians([20.0, 70.0])).T @ [0.0, 0.2]
+                    _jacobian(arms.two_metre, np.radians([20.0, 70.0])).T @ [0.0, 0.2]
                 )
             },
         ),
         ("swapped sign", {"qd_ex1": lambda r: -np.asarray(r["qd_ex1"])}),
         (
             "a J^T v function",
-            {"joint_rates": lambda r: lambda arm, q, v_tip: arm.jacobian(q).T @ v_tip},
+            {
+                "joint_rates": lambda r: (
+                    lambda arm, q, v_tip: _jacobian(arm, q).T @ v_tip
+                )
+            },
         ),
         (
             "a function with l1 and l2 swapped",
             {
                 "joint_rates": lambda r: (
-                    lambda arm, q, v_tip: np.linalg.solve(
-                        TwoLinkArm(l1=arm.l2, l2=arm.l1).jacobian(q), v_tip
+                    lambda arm, q, v_tip: _solve_rates(
+                        TwoLinkArm(l1=arm.l2, l2=arm.l1), q, v_tip
                     )
                 )
             },
@@ -574,8 +695,8 @@ WRONG = {
         (
             "degrees in J",
             {
-                "qd_ex1": lambda r: np.linalg.solve(
-                    arms.two_metre.jacobian([20.0, 70.0]), [0.0, 0.2]
+                "qd_ex1": lambda r: _solve_rates(
+                    arms.two_metre, [20.0, 70.0], [0.0, 0.2]
                 )
             },
         ),
@@ -615,6 +736,42 @@ WRONG = {
                 )
             },
         ),
+    ],
+    "3.4": [
+        (
+            "both levers from the base",
+            {
+                "J_geo_ex4": lambda r: np.vstack(
+                    [
+                        np.repeat(np.asarray(r["J_geo_ex4"])[:, :1], 2, axis=1)[:3],
+                        np.asarray(r["J_geo_ex4"])[3:],
+                    ]
+                )
+            },
+        ),
+        (
+            "no angular rows",
+            {
+                "J_geo_ex4": lambda r: np.vstack(
+                    [np.asarray(r["J_geo_ex4"])[:3], np.zeros((3, 2))]
+                )
+            },
+        ),
+        (
+            "the 2x2 Jacobian only",
+            {"J_geo_ex4": lambda r: np.asarray(r["J_geo_ex4"])[:2]},
+        ),
+    ],
+    "3.5": [
+        ("cos q2", {"det_J_ex5": lambda r: 0.06 * np.cos(np.radians(30.0))}),
+        ("sin(q1 + q2)", {"det_J_ex5": lambda r: 0.06 * np.sin(np.radians(70.0))}),
+        ("where det J is largest", {"singular_q2_deg_ex5": lambda r: [-90.0, 90.0]}),
+        ("folded in radians", {"singular_q2_deg_ex5": lambda r: [0.0, np.pi]}),
+    ],
+    "3.6": [
+        ("the damped rates for the exact", {"qd_exact_ex6": lambda r: r["qd_dls_ex6"]}),
+        ("lambda, not lambda squared", {"qd_dls_ex6": lambda r: _dls(0.1)}),
+        ("J^T missing", {"qd_dls_ex6": lambda r: _dls(0.01, transpose=False)}),
     ],
     "4.1": [
         ("F up (swapped sign)", {"tau_ex1": lambda r: -np.asarray(r["tau_ex1"])}),
@@ -1052,7 +1209,17 @@ EQUIVALENT = {
     "1.4": [
         (
             "a tuple returned",
-            {"tip_position": lambda r: lambda arm, q: tuple(arm.fk(q))},
+            {"tip_position": lambda r: lambda arm, q: tuple(_tip(arm, q))},
+        )
+    ],
+    "1.5": [
+        (
+            "3 significant figures, lists and a tuple",
+            {
+                "dh_ex5": lambda r: [[0.05, 0.3, 0], [0, 0.2, 0]],
+                "o1_ex5": lambda r: (0, 0.3, 0.05),
+                "x2_ex5": lambda r: np.array([1, 0, 0]),
+            },
         )
     ],
     "2.1": [
@@ -1065,13 +1232,13 @@ EQUIVALENT = {
                 ]
             },
         ),
-        ("numpy's bool", {"up_within_limits": lambda r: np.bool_(False)}),
+        ("numpy's bool", {"up_within_limits": lambda r: np.bool_(True)}),
     ],
     "2.2": [
-        ("an int count", {"grid_points_1cm": lambda r: int(r["grid_points_1cm"])}),
+        ("an int count", {"grid_points_ex2": lambda r: int(r["grid_points_ex2"])}),
         (
             "a numpy float step",
-            {"step_1cm_deg": lambda r: np.float64(r["step_1cm_deg"])},
+            {"step_deg_ex2": lambda r: np.float64(r["step_deg_ex2"])},
         ),
     ],
     "2.3": [
@@ -1089,6 +1256,16 @@ EQUIVALENT = {
                 )
             },
         )
+    ],
+    "2.5": [
+        (
+            "a list, and a spaced letter",
+            {
+                "margins_ex5": lambda r: list(r["margins_ex5"]),
+                "reason_ex5": lambda r: " b ",
+            },
+        ),
+        ("a numpy count", {"fit_with_margin_ex5": lambda r: np.int64(4)}),
     ],
     "3.1": [
         ("a list", {"qd_ex1": lambda r: list(r["qd_ex1"])}),
@@ -1110,6 +1287,24 @@ EQUIVALENT = {
             "to 3 significant figures",
             {"tip_speed_ex2": lambda r: float(f"{r['tip_speed_ex2']:.3g}")},
         ),
+    ],
+    "3.4": [
+        ("nested lists", {"J_geo_ex4": lambda r: np.asarray(r["J_geo_ex4"]).tolist()})
+    ],
+    "3.5": [
+        (
+            "3 significant figures, a tuple of ints",
+            {"det_J_ex5": lambda r: 0.03, "singular_q2_deg_ex5": lambda r: (0, 180)},
+        )
+    ],
+    "3.6": [
+        (
+            "the normal equations' form, (J^T J + lambda^2 I)^-1 J^T v, and lists",
+            {
+                "qd_dls_ex6": lambda r: list(_dls(0.01, normal=True)),
+                "qd_exact_ex6": lambda r: list(r["qd_exact_ex6"]),
+            },
+        )
     ],
     "3.3": [
         (
@@ -1228,21 +1423,32 @@ def _apply(right_answers, changes):
     return answers
 
 
+#: Each chapter's exercises: (how many, how many parts, the exercises with a function part).
+EXERCISE_COUNTS = {
+    1: (5, 10, ("1.4",)),
+    2: (5, 10, ("2.4",)),
+    3: (6, 10, ("3.1",)),
+    4: (4, 5, ("4.4",)),
+    5: (4, 9, ("5.4",)),
+    6: (4, 6, ("6.4",)),
+    7: (4, 5, ("7.4",)),
+}
+
+
 def test_every_exercise_has_wrong_and_equivalent_answers():
-    assert len(NUMBERS) == 27
     for number in NUMBERS:
         assert len(WRONG[number]) >= 2, number
         assert len(EQUIVALENT[number]) >= 1, number
-    assert sum(len(exercises.get(number).parts) for number in NUMBERS) == 44
-    assert [number for number, _ in FUNCTION_PARTS] == [
-        "1.4",
-        "2.4",
-        "3.1",
-        "4.4",
-        "5.4",
-        "6.4",
-        "7.4",
-    ]
+    counts = {
+        chapter: (
+            len(numbers := [n for n in NUMBERS if n.split(".")[0] == str(chapter)]),
+            sum(len(exercises.get(number).parts) for number in numbers),
+            tuple(n for n, _ in FUNCTION_PARTS if n in numbers),
+        )
+        for chapter in EXERCISE_COUNTS
+    }
+    assert counts == EXERCISE_COUNTS
+    assert len(NUMBERS) == sum(count for count, _, _ in EXERCISE_COUNTS.values())
 
 
 @pytest.mark.parametrize("number", NUMBERS)
@@ -1357,7 +1563,8 @@ def test_references_are_computed_by_the_package():
 # ------------------------------------------------------------- the notebooks' own solutions
 
 NOTEBOOKS = {
-    path.name[:2]: path for path in sorted((ROOT / "notebooks").glob("*.ipynb"))
+    path.name[:2]: path
+    for path in sorted((ROOT / "notebooks").glob("[0-9][0-9]_*.ipynb"))
 }
 
 
@@ -1413,3 +1620,214 @@ def test_check_cells_hold_no_reference(chapter):
     assert checked == chapter_numbers, (
         f"{path.name} checks {checked}, its exercises are {chapter_numbers}"
     )
+
+
+# ------------------------------------------------------------- value exercises graded on hidden inputs
+
+# Chapters 1 to 3's entries (answers/chN.py, RERUN and FORBIDDEN); each chapter's owner tests its own.
+CHAPTERS_1_TO_3 = ("ch1", "ch2", "ch3")
+#: Every value exercise of chapters 1 to 3 re-run on hidden inputs: its chapter module's RERUN entry.
+RERUNS_1_TO_3 = [
+    (number, rerun)
+    for name in CHAPTERS_1_TO_3
+    for number, rerun in getattr(answers.chapter(name), "RERUN", {}).items()
+]
+
+
+# The exercise's cells run here, outside nbval's run of the chapter: the solution cell and
+# the cells it reads (its backward slice), with inputs the notebook never holds.
+SETUP_NAMES = set(dir(builtins))
+
+
+def _cell_names(source):
+    tree = ast.parse(source)
+    stored, loaded = set(), set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Name):
+            (stored if isinstance(node.ctx, ast.Store) else loaded).add(node.id)
+        elif isinstance(node, (ast.FunctionDef, ast.ClassDef, ast.AsyncFunctionDef)):
+            stored.add(node.name)
+        elif isinstance(node, (ast.Import, ast.ImportFrom)):
+            stored.update(
+                (alias.asname or alias.name).split(".")[0] for alias in node.names
+            )
+        elif isinstance(node, ast.arg):
+            stored.add(node.arg)
+    return stored, loaded
+
+
+def _exercise_cells(number):
+    path = NOTEBOOKS[f"0{number.split('.')[0]}"]
+    cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+    for index, cell in enumerate(cells):
+        source = "".join(cell["source"])
+        if (
+            cell["cell_type"] == "code"
+            and source.startswith(f"# Exercise {number}")
+            and editions.BEGIN in source
+        ):
+            return path, cells, index
+    raise AssertionError(
+        f"{path.name} has no solution cell starting '# Exercise {number}'"
+    )
+
+
+def _backward_slice(cells, index):
+    """The code cells before ``cells[index]`` that define what it (transitively) reads, in order."""
+    _, needed = _cell_names("".join(cells[index]["source"]))
+    needed -= SETUP_NAMES
+    chosen = []
+    for cell in reversed(cells[:index]):
+        if cell["cell_type"] != "code":
+            continue
+        source = TransformerManager().transform_cell(
+            "".join(cell["source"])
+        )  # IPython syntax (%pip) as Python
+        if source.lstrip().startswith(("%", "!", "get_ipython()")):
+            continue
+        stored, loaded = _cell_names(source)
+        if stored & needed:
+            chosen.append(source)
+            needed = (needed - stored) | (loaded - SETUP_NAMES)
+    return chosen[::-1]
+
+
+def _run(sources, namespace):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    cwd = os.getcwd()
+    os.chdir(ROOT / "notebooks")
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):
+            for source in sources:
+                exec(compile(source, "<notebook cell>", "exec"), namespace)  # noqa: S102
+    finally:
+        os.chdir(cwd)
+        plt.close("all")
+
+
+def _inputs_cell(cells, index):
+    """The cell right before the solution cell, which must be the exercise's inputs cell."""
+    cell = cells[index - 1]
+    assert cell["cell_type"] == "code"
+    return "".join(cell["source"])
+
+
+def _same(a, b):
+    if isinstance(a, TwoLinkArm) or isinstance(b, TwoLinkArm):
+        return a == b
+    if isinstance(a, dict):
+        return a.keys() == b.keys() and all(_same(a[k], b[k]) for k in a)
+    return np.allclose(
+        np.asarray(a, dtype=float), np.asarray(b, dtype=float), rtol=0, atol=0
+    )
+
+
+@pytest.mark.parametrize(
+    "number, rerun", RERUNS_1_TO_3, ids=[n for n, _ in RERUNS_1_TO_3]
+)
+def test_the_inputs_cell_binds_exactly_the_rerun_inputs(number, rerun):
+    _, cells, index = _exercise_cells(number)
+    source = _inputs_cell(cells, index)
+    first, *lines = source.splitlines()
+    assert first == f"# Inputs of exercise {number}"
+    tree = ast.parse("\n".join(lines))
+    assert all(
+        isinstance(node, ast.Assign)
+        and len(node.targets) == 1
+        and isinstance(node.targets[0], ast.Name)
+        for node in tree.body
+    ), f"exercise {number}: the inputs cell holds only assignments name = expression"
+    bound = [node.targets[0].id for node in tree.body]
+    assert bound == list(rerun.inputs), (bound, list(rerun.inputs))
+    namespace = {}
+    _run(_backward_slice(cells, index - 1), namespace)
+    _run([source], namespace)
+    for name, value in rerun.inputs.items():
+        assert _same(namespace[name], value), (number, name)
+
+
+@pytest.mark.parametrize(
+    "number, rerun", RERUNS_1_TO_3, ids=[n for n, _ in RERUNS_1_TO_3]
+)
+def test_the_solution_computes_from_the_inputs_on_hidden_ones(number, rerun):
+    # the worked solution, run on inputs the notebook never holds, gives the references
+    _, cells, index = _exercise_cells(number)
+    solution = "".join(cells[index]["source"])
+    parts = {part.name for part in exercises.get(number).parts}
+    visible = rerun.answers(rerun.inputs)
+    assert set(visible) <= parts and visible
+    status, lines = statuses(
+        number,
+        {
+            name: visible.get(name, ...)
+            for name in (p.name for p in exercises.get(number).parts)
+        },
+    )
+    assert all(status[name] == "correct" for name in visible), lines
+    setup = {}
+    _run(_backward_slice(cells, index), setup)  # the chapter's cells the solution needs
+    by_name = {part.name: part for part in exercises.get(number).parts}
+    for seed in range(3):
+        hidden = rerun.hidden(np.random.default_rng(HIDDEN_TEST_SEED + seed))
+        assert hidden.keys() == rerun.inputs.keys()
+        namespace = dict(setup, **hidden)
+        _run([solution], namespace)
+        for name, expected in rerun.answers(hidden).items():
+            # judged as the visible answer is, with the hidden reference in its place
+            part = dataclasses.replace(by_name[name], expected=expected, mistakes=())
+            verdict = judging.judge(part, namespace[name])
+            assert verdict.right, (number, name, seed, verdict.message)
+
+
+# ------------------------------------------------------------- function exercises' rules
+
+FORBIDDEN_1_TO_3 = [
+    (number, part, paths)
+    for name in CHAPTERS_1_TO_3
+    for (number, part), paths in getattr(answers.chapter(name), "FORBIDDEN", {}).items()
+]
+
+
+def _resolve(dotted):
+    """The object a dotted import path names (a module's function or a class's method)."""
+    parts = dotted.split(".")
+    for cut in range(len(parts), 0, -1):
+        try:
+            found = importlib.import_module(".".join(parts[:cut]))
+        except ModuleNotFoundError:
+            continue
+        for attribute in parts[cut:]:
+            found = getattr(found, attribute)
+        return found
+    raise AssertionError(f"{dotted} names no module")
+
+
+@pytest.mark.parametrize(
+    "number, part, paths",
+    FORBIDDEN_1_TO_3,
+    ids=[f"{n}-{p}" for n, p, _ in FORBIDDEN_1_TO_3],
+)
+def test_forbidden_calls_exist_and_the_exercise_states_its_rules(number, part, paths):
+    assert part in {p.name for p in exercises.get(number).parts}
+    for dotted in paths:
+        assert callable(_resolve(dotted)), dotted
+    _, cells, index = _exercise_cells(number)
+    text = " ".join(
+        "".join(cell["source"])
+        for cell in cells[:index]
+        if cell["cell_type"] == "markdown"
+        and f"**Exercise {number}" in "".join(cell["source"])
+    )
+    assert "**Rules:**" in text and "switched off" in text, number
+    spec = next(p for p in exercises.get(number).parts if p.name == part)
+    for argument in spec.cases[0].arguments:
+        assert f"`{argument}`" in text, (
+            number,
+            argument,
+        )  # the parameter names, as given
+    called = {dotted.rsplit(".", 1)[-1] for dotted in paths}
+    assert any(f"{name}`" in text for name in called), number

@@ -32,7 +32,7 @@ def test_check_arguments_and_messages():
 
 
 # ---------------------------------------------------------------- verdicts
-RIGHT_TIP = arms.osake.fk(np.radians([45.0, -30.0]))
+RIGHT_TIP = arms.osake.fk(np.radians([50.0, -30.0]))
 
 
 def checked(*answers, **named_answers):
@@ -52,7 +52,7 @@ def test_a_right_answer_is_correct():
 
 @pytest.mark.parametrize(
     "wrong",
-    [RIGHT_TIP + [0.01, 0.0], arms.osake.fk([45.0, -30.0]), "abc", [1.0, 2.0, 3.0]],
+    [RIGHT_TIP + [0.01, 0.0], arms.osake.fk([50.0, -30.0]), "abc", [1.0, 2.0, 3.0]],
     ids=["off by a centimetre", "degrees as radians", "a string", "three numbers"],
 )
 def test_a_wrong_answer_is_wrong_with_a_reason_and_the_hint(wrong):

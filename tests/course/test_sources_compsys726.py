@@ -1,7 +1,7 @@
 """COMPSYS726 reproduced (twolink_course.sources.compsys726), and the course's corrections.
 
-The printed numbers checked here are those COURSE.md section H quotes from the
-source: the angle columns' first and last rows and the rate at x = 10 (0.6132).
+The printed numbers checked here are those the course's source record
+(``notebooks/source_record.ipynb``, items H2.1 to H2.5) quotes from the source: the angle columns' first and last rows and the rate at x = 10 (0.6132).
 The printed angle table is derived as H2.4 describes it (every angle the
 reproduction rounded to whole degrees, the last q1 printed -3.3); the rest of
 the printed rate column is not quoted there, only that -10 x the vertical
@@ -171,3 +171,38 @@ def test_bad_input_is_named():
         source.ik_as_written(0.0)
     with pytest.raises(ValueError, match="q_deg must have shape"):
         source.rate_as_printed([1.0, 2.0, 3.0])
+
+
+# H2.5: truncation, not rounding, explains the printed -3.3 and the worked row's 49.09 -----------
+
+
+def test_truncation_explains_the_printed_minus_3_3_and_49_09():
+    q_last, q_first = source.ik_as_written(100.0), source.ik_as_written(10.0)
+    assert (
+        float(source.truncated(q_last[0], 1))
+        == -3.3
+        == float(source.PRINTED_ANGLES_DEG[-1, 0])
+    )
+    assert round(float(q_last[0]), 1) == -3.4  # rounding would print -3.4
+    assert source.WORKED_ROW_PRINTED_DEG == (49.09, 171.89)
+    assert float(source.truncated(q_first[0], 2)) == 49.09
+    assert round(float(q_first[0]), 2) == 49.1  # rounding would print 49.10
+    assert float(source.truncated(q_first[1], 2)) == 171.89 == round(q_first[1], 2)
+    assert round(float(q_first[1])) == 172  # "171.89 ~ 172", the table's 172
+
+
+@given(
+    value=st.floats(-1e6, 1e6, allow_nan=False, allow_infinity=False),
+    decimals=st.integers(0, 4),
+)
+def test_truncated_cuts_towards_zero_by_less_than_one_unit(value, decimals):
+    cut = float(source.truncated(value, decimals))
+    assert abs(cut) <= abs(value) + 1e-9
+    assert abs(value - cut) < 10.0**-decimals + 1e-9 * max(1.0, abs(value))
+
+
+def test_truncated_refuses_bad_decimals():
+    with pytest.raises(ValueError, match="decimals must be a whole number >= 0"):
+        source.truncated(1.0, -1)
+    with pytest.raises(ValueError, match="decimals must be a whole number >= 0"):
+        source.truncated(1.0, 1.5)

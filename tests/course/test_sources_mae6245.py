@@ -1,6 +1,7 @@
 """MAE 6245, reproduced (twolink_course.sources.mae6245).
 
-For every number its solution printed (COURSE.md H1), the reproduction of its
+For every number its solution printed (the course's source record,
+``notebooks/source_record.ipynb``, items H1.1 to H1.9), the reproduction of its
 method must give it to the printed rounding; beside it, the corrected value
 computed by the package.
 """
@@ -152,3 +153,80 @@ def test_linspace_without_end_point_gives_equal_gaps(n):
 def test_circle_angles_rejects_a_non_positive_step():
     with pytest.raises(ValueError, match="step must be > 0"):
         mae6245.circle_angles(0.0)
+
+
+def test_the_module_says_what_the_task_asks_for_the_numerical_part_and_the_points():
+    # H1.5: the task does not name fminunc; H1.4: "preferably equi-distant" is a preference
+    text = " ".join(mae6245.__doc__.split())
+    assert (
+        '"one of the numerical techniques shown in class (root finding or '
+        'optimization)"' in text
+    )
+    assert "Its worked solution chose MATLAB's ``fminunc`` for (b)" in text
+    assert '"(preferably equi-distant)": a preference, not a requirement' in text
+
+
+# H1.7: the closed form's cosine at its own target --------------------------------------------------
+
+
+def test_closed_form_cosine_is_just_above_one_at_the_solution_s_target():
+    x = mae6245.TARGET[0]
+    assert repr(float(x * x)) == "200.00000000000003"
+    cosine = mae6245.closed_form_cosine()
+    assert repr(cosine) == "1.0000000000000002" and cosine > 1.0
+    # MATLAB's acos there is complex (numpy's emath gives the same modulus)
+    assert round(abs(complex(np.emath.arccos(cosine)).imag), 9) == 2.1e-08
+    with np.errstate(invalid="ignore"):
+        assert np.isnan(np.arccos(np.array(cosine)))  # numpy's arccos: nan
+    assert np.isclose(mae6245.closed_form_cosine([15.0, 10.0]), 0.625)
+
+
+@given(
+    x=st.floats(-20.0, 20.0, allow_nan=False), y=st.floats(-20.0, 20.0, allow_nan=False)
+)
+def test_closed_form_cosine_is_the_cosine_rule(x, y):
+    assert np.isclose(
+        mae6245.closed_form_cosine([x, y]),
+        (x * x + y * y - 200.0) / 200.0,
+        rtol=1e-12,
+        atol=1e-12,
+    )
+
+
+# H1.8: its workspace grid stops short of pi/2 ------------------------------------------------------
+
+
+def test_workspace_grid_stops_short_of_pi_over_2():
+    theta1, theta2 = mae6245.workspace_grid()
+    assert round(float(theta1[-1]), 3) == 1.5 and round(float(theta2[-1]), 3) == 1.529
+    assert theta1[-1] < np.pi / 2 and theta2[-1] < np.pi / 2
+    assert theta1[0] == 0.0 and theta2[0] == -np.pi / 2
+    assert np.allclose(np.diff(theta1), 0.1) and np.allclose(np.diff(theta2), 0.1)
+
+
+@given(
+    start=st.floats(-10.0, 10.0),
+    step=st.floats(0.01, 2.0),
+    span=st.floats(0.0, 20.0),
+)
+def test_colon_never_passes_its_bound_and_misses_it_by_less_than_a_step(
+    start, step, span
+):
+    values = mae6245.colon(start, step, start + span)
+    assert values[0] == start and values[-1] <= start + span + 1e-9
+    assert start + span - values[-1] < step + 1e-9
+
+
+def test_colon_refuses_a_bad_step_or_range():
+    with pytest.raises(ValueError, match="step must be > 0"):
+        mae6245.colon(0.0, -0.1, 1.0)
+    with pytest.raises(ValueError, match="start <= stop"):
+        mae6245.colon(1.0, 0.1, 0.0)
+
+
+# H1.9: its part (e) draws the arm with the digit swap again -------------------------------------
+
+
+def test_part_e_draws_the_arm_at_the_swapped_digits():
+    assert mae6245.PART_E_ANGLES == (0.7845, -0.7845)
+    assert mae6245.PART_E_ANGLES[0] == mae6245.FK_CHECK_THETA1

@@ -94,21 +94,16 @@ def right_jacobian_cm(q):
 
 
 @given(q=configurations())
-def test_printed_jacobian_has_the_expanded_products_where_the_angle_sums_belong(q):
-    # right: l2 (-s12, c12) in both columns, plus the l1 lever in column 1; printed:
-    # s12 -> s1 c2 in both v_x entries, c12 -> c1 c2 in column 1, c1 s2 in column 2
+def test_printed_jacobian_has_single_angle_products_where_the_angle_sums_belong(q):
+    # right: l2 (-s12, c12) in both columns, plus the l1 lever in column 1; printed, read
+    # as products: s12 -> s1 c2 in column 1, s1 s2 in column 2; c12 -> c1 c2, c1 s2
     J_printed, J_right = osake.jacobian_as_printed(q), right_jacobian_cm(q)
     (c1, c2), (s1, s2) = np.cos(q), np.sin(q)
+    s12, c12 = np.sin(q.sum()), np.cos(q.sum())
     l2 = osake.L2_CM
     assert np.allclose(
         J_printed[:2] - J_right[:2],
-        l2
-        * np.array(
-            [
-                [np.sin(q.sum()) - s1 * c2] * 2,
-                [c1 * c2 - np.cos(q.sum()), c1 * s2 - np.cos(q.sum())],
-            ]
-        ),
+        l2 * np.array([[s12 - s1 * c2, s12 - s1 * s2], [c1 * c2 - c12, c1 * s2 - c12]]),
         atol=1e-12,
     )
     assert np.allclose(
@@ -117,26 +112,27 @@ def test_printed_jacobian_has_the_expanded_products_where_the_angle_sums_belong(
 
 
 @given(q=configurations())
-def test_printed_jacobian_is_not_singular_everywhere(q):
+def test_printed_jacobian_columns_are_parallel_so_it_is_singular_everywhere(q):
+    # source record H3.2: column 1 = (l1 + l2 c2)(-s1, c1), column 2 = l2 s2 (-s1, c1)
     (c1, c2), (s1, s2) = np.cos(q), np.sin(q)
-    det = np.linalg.det(osake.jacobian_as_printed(q)[:2])
-    expected = osake.L2_CM * s1 * c1 * (c2 - s2) * (osake.L1_CM + osake.L2_CM * c2)
-    assert np.isclose(det, expected, atol=1e-9)
-    assert (
-        abs(np.linalg.det(osake.jacobian_as_printed(np.radians([30.0, 60.0]))[:2])) > 20
+    J_printed = osake.jacobian_as_printed(q)[:2]
+    direction = np.array([-s1, c1])
+    assert np.allclose(
+        J_printed[:, 0], (osake.L1_CM + osake.L2_CM * c2) * direction, atol=1e-12
     )
+    assert np.allclose(J_printed[:, 1], osake.L2_CM * s2 * direction, atol=1e-12)
+    assert abs(np.linalg.det(J_printed)) < 1e-9
+    # the right block is singular only where sin q2 = 0
+    right = np.linalg.det(right_jacobian_cm(q)[:2])
+    assert np.isclose(right, osake.L1_CM * osake.L2_CM * s2, atol=1e-9)
 
 
-@given(q1=angles, branch=st.sampled_from([np.pi / 4, -3 * np.pi / 4]))
-def test_printed_jacobian_columns_differ_by_the_l1_lever_where_cos_q2_is_sin_q2(
-    q1, branch
-):
-    # what the source got right, as far as the record's pose shows: column 1 has the
-    # lever from the base, column 2 the one from the elbow
-    q = np.array([q1, branch])
-    J_printed = osake.jacobian_as_printed(q)
-    lever_l1 = osake.L1_CM * np.array([-np.sin(q1), np.cos(q1)])
-    assert np.allclose(J_printed[:2, 0] - J_printed[:2, 1], lever_l1, atol=1e-12)
+def test_printed_jacobian_columns_are_parallel_not_equal_and_hide_it_at_45_degrees():
+    J_45 = osake.jacobian_as_printed(q_example)[:2]
+    assert not np.allclose(J_45[:, 0], J_45[:, 1])  # parallel, not equal
+    q_60 = np.radians([30.0, 60.0])
+    assert abs(np.linalg.det(osake.jacobian_as_printed(q_60)[:2])) < 1e-12
+    assert round(np.linalg.det(right_jacobian_cm(q_60)[:2]), 1) == 99.6  # cm^2
 
 
 def test_printed_jacobian_at_30_45_degrees_gives_the_record_numbers():
@@ -257,23 +253,19 @@ def forward_difference_bound(t, step):
     return eps * (2.0 * (abs(t) + step) / step + angle_term + 32.0)
 
 
-def test_velocity_program_reproduces_the_printed_number():
-    assert osake.PRINTED_SPEED_CM_S == 10.8975
-    assert (
-        round(osake.velocity_program_speed(), 4) == osake.PRINTED_SPEED_CM_S
-    )  # the defaults: t = 2, 1e-6 s
-    assert (
-        round(osake.velocity_program_speed(t=2.0, step=1e-6), 4)
-        == osake.PRINTED_SPEED_CM_S
-    )
+def test_velocity_program_gives_the_record_s_reproduced_number():
+    # source record H3.4: the source shows no output; run as written it gives 10.8975
+    assert not hasattr(osake, "PRINTED_SPEED_CM_S")
+    assert round(osake.velocity_program_speed(), 4) == 10.8975  # t = 2, 1e-6 s
+    assert round(osake.velocity_program_speed(t=2.0, step=1e-6), 4) == 10.8975
 
 
 def test_velocity_program_forward_difference_costs_only_round_off_at_t_2():
     t, step = 2.0, 1e-6
-    printed, exact = osake.velocity_program_speed(t, step=step), exact_program_speed()
+    as_run, exact = osake.velocity_program_speed(t, step=step), exact_program_speed()
     bound = forward_difference_bound(t, step)
     assert bound < 1e-9
-    assert abs(printed - exact) <= bound * exact
+    assert abs(as_run - exact) <= bound * exact
 
 
 @given(
@@ -283,32 +275,32 @@ def test_velocity_program_forward_difference_costs_only_round_off_at_t_2():
 def test_velocity_program_is_three_rad_per_s_times_the_radius_at_60_rad_for_any_t(
     t, step
 ):
-    printed = osake.velocity_program_speed(t, step=step)
+    as_run = osake.velocity_program_speed(t, step=step)
     assert (
-        abs(printed - exact_program_speed())
+        abs(as_run - exact_program_speed())
         <= forward_difference_bound(t, step) * exact_program_speed()
     )
 
 
 def test_velocity_program_number_against_the_jacobian():
-    printed = osake.velocity_program_speed()
+    as_run = osake.velocity_program_speed()
     q = np.radians([3.0 * 2.0, 60.0])  # t = 2 s: theta1 = 6 deg, theta2 = 60 deg
     right_cm_s = CM * np.linalg.norm(arms.osake.tip_velocity(q, np.radians([3.0, 0.0])))
     assert np.isclose(
         right_cm_s, np.radians(3.0) * CM * np.linalg.norm(arms.osake.fk(q))
     )
     assert round(right_cm_s, 4) == 0.9757
-    assert 11.1 < printed / right_cm_s < 11.2
+    assert 11.1 < as_run / right_cm_s < 11.2
     # each mistake alone: 3 used as rad/s multiplies by 180/pi; 60 rad for 60 deg shrinks the radius
     rate_only = CM * np.linalg.norm(arms.osake.tip_velocity(q, [3.0, 0.0]))
     assert np.isclose(rate_only / right_cm_s, 180.0 / np.pi)
     angle_only = CM * np.linalg.norm(
         arms.osake.tip_velocity([6.0, 60.0], np.radians([3.0, 0.0]))
     )
-    assert np.isclose(printed / angle_only, 180.0 / np.pi)
+    assert np.isclose(as_run / angle_only, 180.0 / np.pi)
     # the program is the package's tip velocity at its radian-read angles and rates
     assert np.isclose(
-        printed,
+        as_run,
         CM * np.linalg.norm(arms.osake.tip_velocity([6.0, 60.0], [3.0, 0.0])),
         rtol=1e-9,
     )
@@ -323,3 +315,29 @@ def test_velocity_program_checks_its_inputs():
         osake.velocity_program_speed(float("nan"))
     with pytest.raises(ValueError, match="l2"):
         osake.velocity_program_speed(l2=0.0)
+
+
+# --- H3.5: the vector d_0^2 under the expanded H_0^2, a third tip
+@given(q=configurations())
+def test_d02_tip_as_written_has_the_lengths_and_sine_cosine_swapped(q):
+    (c1, _), (s1, s2) = np.cos(q), np.sin(q)
+    l1, l2 = osake.L1_CM, osake.L2_CM
+    assert np.allclose(
+        osake.d02_tip_as_written(q), [l2 * c1 * s2 + l1 * s1, l2 * s1 * s2 + l1 * c1]
+    )
+
+
+def test_d02_tip_as_written_is_a_third_tip_at_30_45_degrees():
+    third = osake.d02_tip_as_written(q_example)
+    assert np.round(third, 2).tolist() == [12.04, 12.73]
+    right = right_h02_cm(q_example)[:2, 3]
+    expanded = osake.h02_as_expanded(q_example)[:2, 3]
+    assert np.round(right, 2).tolist() == [11.64, 16.11]
+    assert min(np.linalg.norm(third - right), np.linalg.norm(third - expanded)) > 1.0
+
+
+def test_d02_tip_as_written_checks_its_inputs():
+    with pytest.raises(ValueError, match="q"):
+        osake.d02_tip_as_written([0.1])
+    with pytest.raises(ValueError, match="l1"):
+        osake.d02_tip_as_written([0.1, 0.2], l1=-1.0)

@@ -42,3 +42,14 @@ def test_split_pieces_join_up_into_the_arc(fractions):
         assert np.isclose(
             before.start + before.sweep, after.start, rtol=0.0, atol=1e-12
         )
+
+
+@given(heading=st.floats(0.0, 2 * np.pi), start=st.floats(-np.pi, np.pi))
+def test_an_arc_of_zero_sweep_is_its_one_point(heading, start):
+    """A point on the arc's circle but off its one point is that far from it (np.sign(0)
+    put every point of the circle on the span of a zero sweep: distance 0)."""
+    arc = Arc((0.5, -0.25), 2.0, start, 0.0)
+    point = np.array([0.5, -0.25]) + 2.0 * np.array([np.cos(heading), np.sin(heading)])
+    assert arc.distance(point) == pytest.approx(
+        np.hypot(*(point - arc.end_points[0])), abs=1e-12
+    )

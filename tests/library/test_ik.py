@@ -1,6 +1,7 @@
 """Inverse kinematics: every solver, both branches, the reach boundary, bad input."""
 
 import dataclasses
+import pickle
 import re
 
 import numpy as np
@@ -357,8 +358,59 @@ def test_closed_form_returns_a_result_whose_residual_is_recomputed_from_q():
     p = np.array([[12.0, 9.0], [5.0, 12.0]])
     result = ik.closed_form(arms.ten, p)
     assert result.method == "closed-form" and np.all(result.iterations == 0)
-    assert np.array_equal(result.residual, np.hypot(*(arms.ten.fk(result.q) - p).T))
+    # forward kinematics of q (with q2's cosine and sine from the unit vector q2 is the atan2 of)
+    assert np.allclose(
+        result.residual, np.hypot(*(arms.ten.fk(result.q) - p).T), rtol=0, atol=1e-14
+    )
     assert result.all_success and np.all(result.residual < 1e-12)
+
+
+#: Link lengths as unequal as the arm allows them to be, both ways round.
+UNEQUAL = [
+    (1e-9, 1e9),
+    (1e9, 1e-9),
+    (1e-3, 1e9),
+    (1e9, 1e-3),
+    (1e-50, 1.0),
+    (1.0, 1e-50),
+]
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    lengths=st.sampled_from(UNEQUAL),
+    direction=st.floats(-np.pi, np.pi),
+    depth=st.floats(0.0, 1.0),
+    elbow=st.sampled_from(["down", "up", "both"]),
+    batch=st.booleans(),
+)
+def test_closed_form_reaches_every_target_of_very_unequal_arms(
+    lengths, direction, depth, elbow, batch
+):
+    """Links of 1e-9 and 1e9 m: the annulus is thinner than r^2's round-off; the closed form used to
+    report failure with the opposite point (1 - cos q2 and 1 + cos q2 both rounded to 0)."""
+    arm = TwoLinkArm(*lengths)
+    r_min, r_max = arm.reach
+    radius = r_min + depth * (r_max - r_min)
+    target = radius * np.array([np.cos(direction), np.sin(direction)])
+    result = ik.closed_form(arm, [target, target] if batch else target, elbow=elbow)
+    assert np.all(result.success), result.message
+    q = result.q.reshape(-1, 2)
+    tips = arm.fk(q)
+    assert np.all(np.hypot(*(tips - target).T) <= 1e-14 * r_max)
+    assert np.allclose(
+        np.ravel(result.residual),
+        np.hypot(*(tips - target).T),
+        rtol=0,
+        atol=1e-14 * r_max,
+    )
+
+
+def test_the_unequal_arm_of_the_finding_is_solved_not_sent_to_the_opposite_point():
+    arm = TwoLinkArm(1e-9, 1e9)
+    result = ik.closed_form(arm, [1e9, 0.0])
+    assert result.success and result.residual <= 1e-14 * sum(arm.reach)
+    assert arm.fk(result.q)[0] > 0.0  # the opposite point was (-1e9, 0)
 
 
 def test_assemble_result_judges_the_answers_by_forward_kinematics_when_built():
@@ -882,6 +934,15 @@ def test_a_results_arrays_are_its_own(q1, q2):
     assert ik.newton(ONE_ARM, ONE_ARM.fk([q1, q2]).tolist()).q[0] != 5.0
 
 
+def test_a_result_compares_by_value_pickles_and_refuses_a_hash_saying_why():
+    result = ik.closed_form(ONE_ARM, [[1.2, 0.3], [0.5, 1.1]], elbow="both")
+    again = ik.closed_form(ONE_ARM, [[1.2, 0.3], [0.5, 1.1]], elbow="both")
+    assert result == again and result == pickle.loads(pickle.dumps(result))
+    assert result != ik.closed_form(ONE_ARM, [[1.2, 0.3], [0.5, 1.0]], elbow="both")
+    with pytest.raises(TypeError, match="an IKResult has no hash: its arrays"):
+        hash(result)
+
+
 @pytest.mark.parametrize("not_an_arm", [None, 3.0, "arm"], ids=repr)
 def test_single_target_with_something_that_is_not_an_arm_is_refused_as_in_a_batch(
     not_an_arm,
@@ -1062,3 +1123,27 @@ def test_a_grid_beyond_the_memory_budget_is_refused_up_front_naming_points_and_l
         match=r"grid of \d+ x \d+ = .* points per target, more than MAX_GRID_POINTS",
     ):
         ik.brute_force(arms.two_metre, [3.0, 1.0], step=1e-4)
+
+
+@pytest.mark.parametrize("convention", ["relative", "absolute"])
+@given(q1=angles, q2=st.floats(0.1, 3.0))
+@settings(max_examples=30, deadline=None)
+def test_brute_force_finds_joint_limits_that_are_a_single_angle(convention, q1, q2):
+    """Limits of one angle each hold no point of a grid of q2 for absolute limits
+    (link 2's absolute angle q1 + q2 falls between its grid values): link 2 is tried along them."""
+    relative = np.array([q1, q2])
+    limits = relative if convention == "relative" else np.array([q1, q1 + q2])
+    arm = TwoLinkArm(1.0, 0.7, q_min=limits, q_max=limits, limit_convention=convention)
+    result = ik.brute_force(arm, arm.fk(relative))
+    assert result.success and result.within_limits
+    assert np.allclose(wrap_angle(result.q - relative), 0.0, atol=1e-9)
+
+
+def test_minimize_constrained_with_limits_that_fix_every_joint():
+    """scipy fixes both joints and runs no iteration (its result has no ``nit``: it was an AttributeError)."""
+    arm = TwoLinkArm(1.0, 1.0, q_min=(0.3, 0.5), q_max=(0.3, 0.5))
+    result = ik.minimize(arm, arm.fk([0.3, 0.5]), constrained=True)
+    assert result.success and np.array_equal(result.q, [0.3, 0.5])
+    assert result.iterations == 0
+    missed = ik.minimize(arm, [1.0, 1.0], constrained=True)
+    assert not missed.success and "fixed by bounds" in missed.message

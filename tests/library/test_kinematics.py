@@ -360,40 +360,42 @@ def test_single_configuration_with_something_that_is_not_an_arm_is_refused_as_in
         assert "arm" in fast[1][1]
 
 
-# ----------------------------------------------------------------- angles whose sum overflows
-HUGE = [1e308, 1e308]
+# ----------------------------------------------------------------- large angles, reduced exactly
+#: Any finite angle, up to the largest float.
+any_angles = st.floats(-1.7e308, 1.7e308, allow_nan=False, allow_infinity=False)
+
+KINEMATICS_CALLS = {
+    "fk": lambda q: ONE_ARM.fk(q),
+    "jacobian": lambda q: ONE_ARM.jacobian(q),
+    "joint_positions": lambda q: ONE_ARM.joint_positions(q),
+    "joint_torques": lambda q: ONE_ARM.joint_torques(q, [1.0, 0.5]),
+    "jacobian_derivative": lambda q: kinematics.jacobian_derivative(ONE_ARM, q),
+    "jacobian_rate": lambda q: kinematics.jacobian_rate(ONE_ARM, q, [0.3, -0.2]),
+}
 
 
-@pytest.mark.parametrize(
-    "call",
-    [
-        lambda q: ONE_ARM.fk(q),
-        lambda q: ONE_ARM.jacobian(q),
-        lambda q: ONE_ARM.joint_positions(q),
-        lambda q: ONE_ARM.joint_torques(q, [1.0, 0.0]),
-        lambda q: kinematics.jacobian_derivative(ONE_ARM, q),
-        lambda q: kinematics.jacobian_rate(ONE_ARM, q, [0.0, 0.0]),
-    ],
-    ids=[
-        "fk",
-        "jacobian",
-        "joint_positions",
-        "joint_torques",
-        "jacobian_derivative",
-        "jacobian_rate",
-    ],
-)
-@pytest.mark.parametrize("batch", [False, True], ids=["one", "batch"])
-def test_angles_whose_sum_overflows_are_refused_naming_q(call, batch):
-    q = [[0.1, 0.2], HUGE] if batch else HUGE
-    with pytest.raises(
-        ValueError, match=r"q = \(1e\+308, 1e\+308\) rad.*q1 \+ q2 overflows float64"
-    ) as raised:
-        call(q)
-    assert "math domain error" not in str(raised.value)
-    assert ("index (1,), first of 1" in str(raised.value)) == batch
-    # large angles with a finite sum are angles like any other
-    assert np.all(np.isfinite(ONE_ARM.fk([1e308, -1e308])))
+def exactly_reduced(angle):
+    """``angle`` in (-pi, pi] with the same sine and cosine: libm's sin and cos reduce exactly."""
+    return float(np.arctan2(np.sin(angle), np.cos(angle)))
+
+
+@settings(max_examples=60)
+@given(q1=any_angles, q2=any_angles, batch=st.booleans())
+@pytest.mark.parametrize("name", sorted(KINEMATICS_CALLS))
+def test_large_angles_are_reduced_exactly_never_rounded_in_a_sum(name, q1, q2, batch):
+    """fk(1e17, 0.5) put link 2 at 1e17 rad: the sum rounded the 0.5 away (and 1e308 + 1e308 overflowed)."""
+    call = KINEMATICS_CALLS[name]
+    q = [q1, q2]
+    reduced = [exactly_reduced(q1), exactly_reduced(q2)]
+    got = call([q, q])[1] if batch else call(q)
+    assert np.allclose(got, call(reduced), rtol=0.0, atol=1e-14)
+
+
+def test_a_sub_revolution_part_of_link_2_is_kept_beside_a_large_q1():
+    q1 = 1e17
+    reduced = exactly_reduced(q1)
+    assert not np.allclose(ONE_ARM.fk([q1, 0.5]), ONE_ARM.fk([q1, 0.0]))
+    assert np.allclose(ONE_ARM.fk([q1, 0.5]), ONE_ARM.fk([reduced, 0.5]), atol=1e-15)
 
 
 # ----------------------------------------------------------------- the reach message

@@ -274,7 +274,12 @@ def test_solver_failure_raises_instead_of_returning_a_partial_result():
             r"qd0 must be one pair of joint rates of shape \(2,\) \(rad/s\); got shape \(1, 2\)",
         ),
         ({"qd0": [np.nan, 0.0]}, ValueError, "qd0 must be finite"),
-        ({"t_end": 0.0}, ValueError, r"t_end \(s\) must be > 0"),
+        (
+            {"t_end": 0.0},
+            ValueError,
+            r"t_end \(s\) must be in \[1e-50, 1e\+50\]; got 0",
+        ),
+        ({"t_end": 1e-300}, ValueError, r"t_end \(s\) must be in \[1e-50, 1e\+50\]"),
         ({"t_end": np.inf}, ValueError, r"t_end \(s\) must be finite"),
         ({"torque": [1.0, 2.0]}, ValueError, "torque must be None or a callable"),
         ({"torque": lambda t, q, qd: [np.nan, 0.0]}, ValueError, "non-finite torques"),
@@ -284,7 +289,26 @@ def test_solver_failure_raises_instead_of_returning_a_partial_result():
             r"must return shape \(2,\)",
         ),
         ({"torque": lambda t, q, qd: "strong"}, ValueError, "must return two numbers"),
-        ({"method": "Euler"}, ValueError, "`method` must be one of"),
+        ({"method": "Euler"}, ValueError, "method must be one of"),
+        (
+            {"rtoll": 1e-6},
+            ValueError,
+            r"'rtoll' is not an option .*did you mean 'rtol'",
+        ),
+        (
+            {"method": "RK45", "jac": None},
+            ValueError,
+            "'jac' is not an option of .*'RK45'",
+        ),
+        (
+            {"max_step": 1e-300},
+            ValueError,
+            r"max_step = 1e-300 s would take at least 1e\+300 steps",
+        ),
+        ({"max_step": -1.0}, ValueError, r"max_step \(s\) must be > 0.0"),
+        ({"first_step": 5.0}, ValueError, r"first_step \(s\) must be at most .* 1 s"),
+        ({"rtol": "tight"}, TypeError, "rtol must be positive numbers"),
+        ({"atol": 0.0}, ValueError, "atol must be a positive finite number"),
     ],
 )
 def test_bad_input_raises(kwargs, error, fragment):
@@ -532,20 +556,47 @@ def timed(function):
         raise
 
 
-def test_stiff_joint_pd_runs_to_the_end_with_an_implicit_method_chosen():
+def test_a_stiff_loop_on_the_default_method_is_refused_at_once_not_switched():
+    """simulate integrates with the method it is given (DOP853 by default): no silent switch to Radau."""
     stiff = controllers.JointPD(ARM, kp=1e8, kd=1e8, reference=[0.5, 0.5])
-    result, seconds = timed(
-        lambda: simulate(ARM, [0.3, 0.4], [0.0, 0.0], 0.5, torque=stiff)
-    )
-    assert result.status == 0 and seconds < 10.0
-    assert "Radau" in result.message and "stiff" in result.message
-    assert np.all(np.isfinite(result.q))
+    with pytest.raises(
+        SimulationError,
+        match=r"stiff at t = 0 in the state q = \(0.3, 0.4\) rad.*'DOP853' would need "
+        r"about .*method='Radau' or method='LSODA'",
+    ) as error:
+        timed(lambda: simulate(ARM, [0.3, 0.4], [0.0, 0.0], 0.5, torque=stiff))
+    assert error.value.seconds < 5.0
 
 
-def test_stiff_impedance_damping_runs_to_the_end():
+def test_a_stiff_loop_runs_to_the_end_with_the_implicit_method_asked_for():
+    stiff = controllers.JointPD(ARM, kp=1e8, kd=1e8, reference=[0.5, 0.5])
+    ends = []
+    for method in ("Radau", "LSODA", "BDF"):
+        result, seconds = timed(
+            lambda: simulate(
+                ARM,
+                [0.3, 0.4],
+                [0.0, 0.0],
+                0.5,
+                torque=stiff,
+                method=method,
+                rtol=1e-8,
+                atol=1e-8,
+            )
+        )
+        assert result.status == 0 and seconds < 10.0 and "stiff" not in result.message
+        ends.append(result.q[-1])
+    # overdamped (time constant kd / kp = 1 s): part of the way to the reference, alike by every method
+    assert np.all((ends[0] > [0.3, 0.4]) & (ends[0] < [0.5, 0.5]))
+    assert np.allclose(ends, ends[0], rtol=0.0, atol=1e-5)
+
+
+def test_stiff_impedance_damping_runs_to_the_end_with_radau():
     control = controllers.Impedance(ARM, 600.0, 1e6, [3.0, 1.0])
-    result = simulate(ARM, [0.3, 0.4], [0.0, 0.0], 0.5, torque=control)
-    assert result.status == 0 and "Radau" in result.message
+    with pytest.raises(SimulationError, match="method='Radau'"):
+        simulate(ARM, [0.3, 0.4], [0.0, 0.0], 0.5, torque=control)
+    result = simulate(ARM, [0.3, 0.4], [0.0, 0.0], 0.5, torque=control, method="Radau")
+    assert result.status == 0
 
 
 def test_an_explicit_method_on_a_stiff_loop_is_refused_at_once_naming_the_methods_to_use():
@@ -625,7 +676,9 @@ def test_overflowing_torques_are_a_simulation_error_with_time_and_state():
 
 def test_torques_that_turn_nan_during_the_motion_are_a_simulation_error_not_a_value_error():
     with pytest.raises(
-        SimulationError, match=r"blew up at t = 0\.1.* q = \(.*\) rad, qd = "
+        SimulationError,
+        match=r"the motion failed at t = 0\.1\d* s in the state q = \(.*\) rad, qd = .*"
+        r"returned non-finite torques",
     ):
         simulate(
             ARM,
@@ -851,7 +904,7 @@ def test_the_quick_runs_tolerances_are_positive_numbers(kwargs, fragment):
 def test_the_quick_run_turns_a_blow_up_into_a_simulation_error_with_time_and_state():
     with pytest.raises(
         SimulationError,
-        match=r"blew up at t = 0\.[5-9]\d* s: torque.*non-finite torques.* q = \(",
+        match=r"failed at t = 0\.[5-9]\d* s in the state q = \(.*: torque.*non-finite torques",
     ):
         simulate_quick(ARM, [0.3, 0.2], [0.0, 0.0], [0.0, 1.0], _nan_from(0.5))
     with pytest.raises(
@@ -864,3 +917,60 @@ def test_the_quick_run_turns_a_blow_up_into_a_simulation_error_with_time_and_sta
             [0.0, 0.5],
             lambda t, q, qd: [1e300 * (1.0 + qd[0] ** 2), 0.0],
         )
+
+
+# ----------- one budget mechanism: every run reads the wall clock at every evaluation
+def test_the_quick_run_stops_a_slow_torque_function_at_its_wall_time_naming_it():
+    """simulate_quick spends the budget simulate spends: a slow torque stops within the wall time, named."""
+    started = time.monotonic()
+    with pytest.raises(
+        SimulationError,
+        match=r"the quick run used up its budget of max_wall_time = 0.3 s at t = .*"
+        r"the torque function is the likely cause",
+    ):
+        simulate_quick(
+            ARM,
+            [0.3, 0.2],
+            [0.0, 0.0],
+            np.linspace(0.0, 5.0, 11),
+            sleepy(0.05),
+            max_wall_time=0.3,
+        )
+    assert time.monotonic() - started < 0.3 + 3 * 0.05
+
+
+def test_the_engine_stops_a_slow_torque_function_at_its_wall_time():
+    pytest.importorskip("mujoco")
+    from twolink import engine
+
+    started = time.monotonic()
+    with pytest.raises(
+        SimulationError,
+        match=r"simulate_in_mujoco used up its budget of max_wall_time = 0.3 s at t = .* is slow",
+    ):
+        engine.simulate_in_mujoco(
+            ARM, [0.3, 0.2], [0.0, 0.0], 1.0, sleepy(0.05), max_wall_time=0.3
+        )
+    assert time.monotonic() - started < 0.3 + 3 * 0.05
+
+
+def test_a_budget_spent_under_a_small_max_step_blames_max_step_not_stiffness():
+    """Free motion is not stiff: when max_step limits the steps, the message says so."""
+    with pytest.raises(
+        SimulationError,
+        match=r"max_evaluations = 12001 .*max_step = 0.001 s limited the steps .*give a larger max_step",
+    ) as error:
+        simulate(ARM, [0.3, 0.2], [0.0, 0.0], 1.0, max_step=1e-3, max_evaluations=12001)
+    assert "stiff" not in str(error.value) and "Radau" not in str(error.value)
+
+
+@pytest.mark.parametrize(
+    "options",
+    [{"method": "Radau", "jac_sparsity": None}, {"method": "LSODA", "min_step": 0.0}],
+)
+def test_each_methods_own_options_pass(options):
+    if options.get("min_step") == 0.0:
+        with pytest.raises(ValueError, match=r"min_step \(s\) must be > 0.0"):
+            simulate(ARM, [0.3, 0.2], [0.0, 0.0], 0.5, **options)
+        options = {**options, "min_step": 1e-12}
+    assert simulate(ARM, [0.3, 0.2], [0.0, 0.0], 0.5, **options).status == 0

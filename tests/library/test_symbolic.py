@@ -8,7 +8,7 @@ import sympy as sp
 
 from twolink import symbolic
 from twolink.errors import InputTypeError
-from twolink.symbolic import dh_matrix
+from twolink.symbolic import christoffel_coriolis, dh_matrix, time_derivative
 
 
 def test_a_zero_dimensional_array_is_a_number():
@@ -61,3 +61,16 @@ def test_planar_fk_hands_out_fresh_matrices_from_one_simplification():
 def test_planar_fk_takes_only_a_bool_offset_flag(junk):
     with pytest.raises(InputTypeError, match="with_offset must be True or False"):
         symbolic.planar_fk(with_offset=junk)
+
+
+def test_the_symbol_lists_may_be_sympy_vectors_as_chapter_5_writes_them():
+    """Coordinates, rates and accelerations as ``sp.Matrix`` columns, as the chapter builds them."""
+    q1, q2, u1, u2, a1, a2 = sp.symbols("q1 q2 u1 u2 a1 a2")
+    q, qd, qdd = sp.Matrix([q1, q2]), sp.Matrix([u1, u2]), sp.Matrix([a1, a2])
+    assert sp.simplify(time_derivative(q1 * u2, q, qd, qdd) - (u1 * u2 + q1 * a2)) == 0
+    M = sp.Matrix([[2 + sp.cos(q2), 0], [0, 1]])
+    assert christoffel_coriolis(M, q, qd) == christoffel_coriolis(M, [q1, q2], [u1, u2])
+    with pytest.raises(
+        InputTypeError, match="coordinates must be a list, tuple or sympy vector"
+    ):
+        time_derivative(q1, "q1", [u1], [a1])

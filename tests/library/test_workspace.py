@@ -1090,3 +1090,18 @@ def test_chapter_7s_limit_test_and_circle_search_are_the_packages_and_as_before(
             centre, centre_before, rtol=0.0, atol=1e-12 * arm.reach[1]
         )
         assert radius == pytest.approx(radius_before, abs=1e-12 * arm.reach[1])
+
+
+@pytest.mark.parametrize("width", [0.0, 1e-12, 1e-9, 1e-7])
+def test_limits_narrower_than_the_sliver_cut_keep_their_boundary(width):
+    """A workspace smaller than ``1e-6`` of the reach is all slivers: they are its boundary
+    (limits 1e-12 wide gave no arc, and a clearance of -inf at the reachable points)."""
+    arm = TwoLinkArm(1.0, 1.0, q_min=(0.3, 0.5), q_max=(0.3 + width, 0.5 + width))
+    arcs = workspace.boundary_arcs(arm)
+    assert arcs
+    inside = arm.fk([0.3 + width / 2, 0.5 + width / 2])
+    room = workspace.clearance(arm, inside, arcs)
+    assert 0.0 <= room <= 2.0 * width + 1e-15
+    assert workspace.clearance(arm, [0.0, 0.0], arcs) == pytest.approx(
+        -np.hypot(*inside), rel=1e-6
+    )

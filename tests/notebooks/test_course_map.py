@@ -16,6 +16,8 @@ import sys
 
 import nbformat
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
@@ -69,19 +71,27 @@ def test_the_map_and_the_navigation_are_up_to_date():
 def test_the_start_page_links_every_chapter_in_order_with_its_title_time_and_prerequisites():
     start = read(START)
     assert editions.chapter_title(start, START.stem).startswith("Start here")
-    linked = [target for _, target in markdown_links(start)]
-    assert linked == [path.name for path in CHAPTERS]
     (table,) = [
         cell_text(cell)
         for cell in start["cells"]
         if cell_text(cell).endswith(course_map.MAP_MARKER)
     ]
+    linked = [
+        target
+        for _, target in markdown_links(
+            {"cells": [{"cell_type": "markdown", "source": table}]}
+        )
+    ]
+    assert linked == [path.name for path in CHAPTERS]
+    # beside the chapters, the start page links the source record (no chapter)
+    others = {target for _, target in markdown_links(start)} - set(linked)
+    assert others == {"source_record.ipynb"}
     rows = [line for line in table.splitlines() if line.startswith("| [")]
     for row, path in zip(rows, CHAPTERS, strict=True):
         opening = cell_text(read(path)["cells"][0])
         title = editions.chapter_title(read(path), path.stem)
-        time = re.search(r"\*\*Time:\*\* (about [\d.]+ (?:minutes|hours?))", opening)
-        assert row.startswith(f"| [{title}]({path.name}) | {time[1]} |"), row
+        time = course_map.time_text(course_map.chapter_time(path).main_minutes)
+        assert row.startswith(f"| [{title}]({path.name}) | {time} |"), row
         first_words = re.search(r"\*\*Prerequisites:\*\* (\S+ \S+)", opening)[1]
         assert f"| {first_words}" in row, row
 
@@ -151,8 +161,13 @@ def test_each_chapter_links_the_start_page_first_and_its_neighbours_last(number)
     )
 
 
+RECORD = NOTEBOOKS / "source_record.ipynb"
+
+
 @pytest.mark.parametrize(
-    "path", [START, *CHAPTERS], ids=[p.stem[:2] for p in [START, *CHAPTERS]]
+    "path",
+    [START, *CHAPTERS, RECORD],
+    ids=[p.stem[:2] for p in [START, *CHAPTERS]] + ["record"],
 )
 def test_every_link_between_notebooks_resolves(path, student_edition):
     for folder in (NOTEBOOKS, student_edition):
@@ -189,30 +204,52 @@ def test_the_grader_never_takes_the_start_page_for_a_chapter():
 
 @pytest.fixture
 def course(tmp_path):
-    """A copy of the committed notebooks' folder (the tool writes into it)."""
+    """A copy of the committed notebooks' folder, brought up to date by the tool (which writes into it).
+
+    Whether the committed notebooks are up to date is
+    ``test_the_map_and_the_navigation_are_up_to_date``'s question; these tests start
+    from the tool's fixed point.
+    """
     folder = tmp_path / "notebooks"
     shutil.copytree(NOTEBOOKS, folder, ignore=shutil.ignore_patterns(".*"))
+    course_map.update(folder)
     return folder
 
 
-def test_check_fails_on_a_stale_map_and_writing_fixes_it_once(course):
+def test_check_fails_on_a_stale_time_and_writing_fixes_it_once(course):
     chapter = course / CHAPTERS[1].name
     notebook = nbformat.read(chapter, as_version=4)
-    notebook.cells[0].source = notebook.cells[0].source.replace(
-        "**Time:** about", "**Time:** about 7 hours; before:"
+    notebook.cells[0].source = course_map.TIME_PARAGRAPH.sub(
+        "**Time:** about 7 hours; before: a guess.", notebook.cells[0].source
     )
     nbformat.write(notebook, chapter)
     stale = subprocess.run(
         [*TOOL, "--check", "--folder", str(course)], capture_output=True, text=True
     )
-    assert stale.returncode == 1 and course_map.START_PAGE in stale.stderr
-    assert course_map.update(course) == [course / course_map.START_PAGE]
-    assert "| about 7 hours |" in cell_text(
-        read(course / course_map.START_PAGE)["cells"][1]
-    )
+    assert stale.returncode == 1 and CHAPTERS[1].name in stale.stderr
+    assert course_map.update(course) == [chapter]
+    opening = nbformat.read(chapter, as_version=4).cells[0].source
+    assert course_map.chapter_time(chapter).paragraph() in opening
+    assert "about 7 hours" not in opening
     written = {path: path.read_bytes() for path in course.glob("*.ipynb")}
     assert course_map.update(course) == []
     assert {path: path.read_bytes() for path in course.glob("*.ipynb")} == written
+
+
+def test_a_longer_chapter_gets_a_longer_time_and_the_map_follows(course):
+    chapter = course / CHAPTERS[0].name
+    before = course_map.chapter_time(chapter)
+    notebook = nbformat.read(chapter, as_version=4)
+    prose = " ".join(["word"] * (30 * course_map.WORDS_PER_MINUTE))  # 30 minutes
+    notebook.cells.insert(3, nbformat.v4.new_markdown_cell(prose))
+    nbformat.write(notebook, chapter)
+    course_map.update(course)
+    after = course_map.chapter_time(chapter)
+    assert after.main.words == before.main.words + 30 * course_map.WORDS_PER_MINUTE
+    assert after.main_minutes in (before.main_minutes + 30, before.main_minutes + 35)
+    assert after.casebook == before.casebook
+    table = cell_text(read(course / course_map.START_PAGE)["cells"][1])
+    assert f"| {course_map.time_text(after.main_minutes)} |" in table
 
 
 def sources(path):
@@ -224,7 +261,7 @@ def sources(path):
 
 def test_writing_inserts_missing_navigation_and_moves_a_misplaced_cell(course):
     chapter = course / CHAPTERS[2].name
-    committed = nbformat.read(chapter, as_version=4)
+    committed = nbformat.read(chapter, as_version=4)  # as the tool wrote it
     notebook = nbformat.read(chapter, as_version=4)
     del notebook.cells[1]  # the link to the start page
     end = notebook.cells.pop()  # the last cell moved into the middle, with old text
@@ -278,3 +315,90 @@ def test_first_clause_keeps_parentheses_and_maths_whole():
         "none of the other chapters"
     )
     assert course_map.first_clause("no stop at all") == "no stop at all"
+
+
+# --- the time rule -----------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("path", CHAPTERS, ids=[p.stem[:2] for p in CHAPTERS])
+def test_every_chapter_states_the_time_the_rule_gives(path):
+    opening = cell_text(read(path)["cells"][0])
+    time = course_map.chapter_time(path)
+    assert course_map.TIME_PARAGRAPH.search(opening)[0] == time.paragraph()
+    assert time.main_minutes % course_map.ROUND_TO_MINUTES == 0
+    assert time.main.minutes <= time.main_minutes < time.main.minutes + 5
+
+
+def test_the_start_page_states_the_rule_and_the_course_s_totals():
+    (table,) = [
+        cell_text(cell)
+        for cell in read(START)["cells"]
+        if cell_text(cell).endswith(course_map.MAP_MARKER)
+    ]
+    times = [course_map.chapter_time(path) for path in CHAPTERS]
+    main = sum(time.main_minutes for time in times)
+    casebooks = sum(time.casebook_minutes for time in times)
+    assert " ".join(course_map.RULE_TEXT.split()) in " ".join(table.split())
+    assert f"{course_map.time_text(main)} for the main lines" in table
+    assert f"{course_map.time_text(casebooks)} more for the casebooks" in table
+
+
+def test_the_rule_counts_what_a_reader_meets_and_leaves_out_generated_cells():
+    cells = [
+        nbformat.v4.new_markdown_cell(
+            "# Chapter 9: X\n\n**Time:** about 3 hours.\n\nSix words <!-- hidden words here --> are read here."
+        ),
+        nbformat.v4.new_code_cell(
+            "# Setup: installs twolink\nimport twolink\nimport os"
+        ),
+        nbformat.v4.new_markdown_cell(
+            f"[Back]({course_map.START_PAGE})\n\n{course_map.NAV_MARKER}"
+        ),
+        nbformat.v4.new_code_cell(
+            "# a comment\n\nx = 1\nview = explorer.Explorer(figure, update, {})"
+        ),
+        nbformat.v4.new_markdown_cell(
+            f"{course_map.CASEBOOK_HEADING}\n\nThree more words."
+        ),
+        nbformat.v4.new_code_cell("y = 2"),
+    ]
+    notebook = nbformat.v4.new_notebook(cells=cells)
+    time = course_map.chapter_time("01_x.ipynb", notebook)
+    # "# Chapter 9: X" (4) + "Six words are read here." (5): the Time paragraph is not counted
+    assert (time.main.words, time.main.code_lines, time.main.explorers) == (9, 2, 1)
+    assert (time.casebook.words, time.casebook.code_lines) == (7, 1)
+    value, function = course_map.exercise_parts(1)
+    assert (time.main.value_parts, time.main.function_parts) == (value, function)
+
+
+@given(
+    words=st.integers(0, 20000),
+    code=st.integers(0, 3000),
+    value=st.integers(0, 20),
+    function=st.integers(0, 10),
+    explorers=st.integers(0, 5),
+)
+def test_the_rule_adds_up_and_rounds_up_to_five_minutes(
+    words, code, value, function, explorers
+):
+    load = course_map.Workload(words, code, value, function, explorers)
+    expected = words / 60 + code / 15 + 10 * value + 15 * function + 5 * explorers
+    assert load.minutes == pytest.approx(expected)
+    minutes = course_map.rounded_up(load.minutes)
+    assert minutes % 5 == 0 and load.minutes - 1e-6 <= minutes < load.minutes + 5
+    text = course_map.time_text(minutes)
+    hours, rest = divmod(minutes, 60)
+    assert text.startswith("about ") and (str(rest) in text or rest == 0)
+    assert (f"{hours} hour" in text) == (hours > 0)
+
+
+def test_exercise_parts_count_function_and_pen_and_paper_parts_apart():
+    sys.path.insert(0, str(ROOT))
+    import answers
+
+    for number in range(1, len(CHAPTERS) + 1):
+        module = answers.chapter(f"ch{number}")
+        pen = set(getattr(module, "PEN_AND_PAPER", ()))
+        parts = [(e.number, p) for e in module.exercises() for p in e.parts]
+        heavy = sum(1 for n, p in parts if p.kind == "function" or (n, p.name) in pen)
+        assert course_map.exercise_parts(number) == (len(parts) - heavy, heavy)

@@ -71,9 +71,17 @@ def code_cells(content):
 
 
 def compared_texts(cell):
-    """The stored texts strict nbval compares for one cell (none for an NBVAL_IGNORE_OUTPUT/SKIP cell)."""
+    """The stored texts strict nbval compares for one cell (none for a cell nbval ignores or skips).
+
+    nbval reads the markers as a first-line comment (``# NBVAL_IGNORE_OUTPUT``) or as
+    the cell's metadata tags (``nbval-ignore-output``), which a reader does not see.
+    """
     first_line = ("".join(cell["source"]).lstrip().splitlines() or [""])[0]
     if "NBVAL_IGNORE_OUTPUT" in first_line or "NBVAL_SKIP" in first_line:
+        return []
+    if {"nbval-ignore-output", "nbval-skip"} & set(
+        cell.get("metadata", {}).get("tags", [])
+    ):
         return []
     texts = []
     for output in cell.get("outputs", []):
@@ -112,7 +120,7 @@ def test_cells_that_time_things_are_never_compared(notebook):
     ]
     assert not compared, (
         f"{path.name}: {', '.join(compared)} time something and store compared output: start the cell with "
-        "# NBVAL_IGNORE_OUTPUT and build any prose about the timings in that cell, from that run"
+        "the nbval-ignore-output tag and build any prose about the timings in that cell, from that run"
     )
 
 

@@ -45,6 +45,7 @@ NO_TEST_FILE = {
     "twolink": "the package as a whole: tests/library/test_import.py",
     "twolink_course": "a docstring only: the kit's modules have their test files",
     "twolink_course.sources": "a docstring only: each source has its tests/course/test_sources_*.py",
+    "twolink_course.explorers": "a docstring only: each chapter's module has its tests/course/test_explorers_chN.py",
 }
 
 #: "issue 12", "issues 11 and 12", "issue #21", " #21" (not "owner/repo#312", not a

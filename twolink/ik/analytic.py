@@ -19,7 +19,13 @@ from numpy.typing import ArrayLike, NDArray
 from .._derived import derived
 from .._validate import arm_lengths, as_pairs, pair_floats, require_arm
 from ..conventions import check_elbow
-from ..kinematics import BLOCK_ROWS, REACH_RTOL, require_within_reach
+from ..kinematics import (
+    BLOCK_ROWS,
+    REACH_RTOL,
+    angle_sum_trig,
+    require_within_reach,
+    tip_from_trig,
+)
 from .result import IKResult, assemble_result, one_answer_result
 from .turns import free_q1_at_base, move_into_limits
 
@@ -84,8 +90,11 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
         ``(..., 2)``; for ``"both"`` ``(2, ..., 2)``, ``q[0]`` the down
         branch and ``q[1]`` the up branch, and every field has that leading
         axis of 2.  ``residual`` is recomputed from ``q`` by forward
-        kinematics when the result is built; ``success`` where it is at most ``CLOSED_FORM_RTOL * (l1 + l2)``
-        (round-off: the closed form is exact).  ``within_limits`` is not
+        kinematics when the result is built (in a batch block by block with
+        the answers, taking ``cos q2`` and ``sin q2`` from the unit vector
+        ``q2`` is the ``atan2`` of: equal to round-off); ``success`` where
+        it is at most ``CLOSED_FORM_RTOL * (l1 + l2)`` (round-off: the closed
+        form is exact, also for links as unequal as 1e-9 and 1e9 m).  ``within_limits`` is not
         applied except by ``"auto"``: check it.
 
     Raises
@@ -155,6 +164,11 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
                 one_minus_c2 = 0.0
             if one_plus_c2 < 0.0:  # round-off at full fold
                 one_plus_c2 = 0.0
+            # the two sum to 2: the larger from the smaller, which is the accurate one (_cosine_rule)
+            if one_minus_c2 <= one_plus_c2:
+                one_plus_c2 = 2.0 - one_minus_c2
+            else:
+                one_minus_c2 = 2.0 - one_plus_c2
             if (
                 elbow == "down"
                 or elbow == "up"
@@ -211,14 +225,23 @@ def closed_form(arm: TwoLinkArm, p: ArrayLike, elbow: str = "down") -> IKResult:
     count = len(flat)
     if elbow == "auto" and arm.has_limits:
         q_flat, message = _within_limits_first(arm, targets, flat, terms)
+        residual = None  # the angles were moved by turns: judged by forward kinematics
     else:
-        q_flat = _branches(
+        q_flat, residual = _branches(
             arm, targets, flat, terms, "down" if elbow == "auto" else elbow
         )
         message = f"solved {count} target{'s' if count != 1 else ''} in closed form ({_BRANCH_WORDS[elbow]})"
     q = q_flat.reshape(((2,) if elbow == "both" else ()) + targets.shape)
     return assemble_result(
-        arm, targets, q, 0, terms[5], METHOD, message, _failure_detail
+        arm,
+        targets,
+        q,
+        0,
+        terms[5],
+        METHOD,
+        message,
+        _failure_detail,
+        residual=residual,
     )
 
 
@@ -235,7 +258,7 @@ def _within_limits_first(
     branches take the ``q1`` that :func:`twolink.ik.solutions_within_limits`
     takes (:func:`twolink.ik.limits.free_q1_at_base`), so the two agree.
     """
-    q_both = _branches(arm, p, flat, terms, "both")
+    q_both = _branches(arm, p, flat, terms, "both")[0]
     at_base, free_q1 = free_q1_at_base(arm, flat)
     if free_q1 is not None:
         q_both[:, at_base, 0] = free_q1
@@ -260,14 +283,18 @@ def _branches(
     flat: NDArray[np.float64],
     terms: _Terms,
     elbow: str,
-) -> NDArray[np.float64]:
-    """The closed form on flat targets ``(n, 2)``: ``(n, 2)`` for one branch, ``(2, n, 2)`` for ``"both"``.
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The closed form on flat targets ``(n, 2)``, and each answer's residual ``|fk(q) - p|``.
 
+    ``q`` of shape ``(n, 2)`` for one branch, ``(2, n, 2)`` for ``"both"``;
+    the residuals ``(n,)`` or ``(2, n)``, by forward kinematics of the
+    answers, block by block with them (while the block is in the CPU cache).
     ``p`` is the targets as given, for the reach error's message.
     """
     l1, l2 = arm.l1, arm.l2
     r_min_squared, r_max_squared, inverse, low_outer, low_inner = terms[:5]
     q = np.empty((2, len(flat), 2) if elbow == "both" else (len(flat), 2))
+    residual = np.empty(q.shape[:-1])
     for start in range(
         0, len(flat), BLOCK_ROWS
     ):  # block by block: the temporaries stay in the CPU cache
@@ -282,15 +309,29 @@ def _branches(
             require_within_reach(arm, p)
         np.maximum(one_minus_c2, 0.0, out=one_minus_c2)  # round-off at full stretch
         np.maximum(one_plus_c2, 0.0, out=one_plus_c2)  # round-off at full fold
-        for out, sign in (
-            ((q[0], 1.0), (q[1], -1.0))
+        # the two sum to 2: the larger from the smaller, which is the accurate one (_cosine_rule)
+        minus_smaller = one_minus_c2 <= one_plus_c2
+        one_plus_c2 = np.where(minus_smaller, 2.0 - one_minus_c2, one_plus_c2)
+        one_minus_c2 = np.where(minus_smaller, one_minus_c2, 2.0 - one_plus_c2)
+        for out, misses, sign in (
+            ((q[0], residual[0], 1.0), (q[1], residual[1], -1.0))
             if elbow == "both"
-            else ((q, 1.0 if elbow == "down" else -1.0),)
+            else ((q, residual, 1.0 if elbow == "down" else -1.0),)
         ):
-            out[block, 0], out[block, 1] = _branch_angles(
+            q1, q2 = _branch_angles(
                 l1, l2, x, y, one_minus_c2, one_plus_c2, sign, np.sqrt, np.arctan2
             )
-    return q
+            out[block, 0], out[block, 1] = q1, q2
+            # forward kinematics of the answer: cos and sin of q1, and of q2 the pair it is
+            # the atan2 of (its cosine and sine, to round-off), which saves two of the four
+            cos_q2, sin_q2 = _elbow_trig(one_minus_c2, one_plus_c2, sign, np.sqrt)
+            c1, s1 = np.cos(q1), np.sin(q1)
+            c12, s12 = angle_sum_trig(c1, s1, cos_q2, sin_q2)
+            tip_x, tip_y = tip_from_trig(l1, l2, c1, s1, c12, s12)
+            tip_x -= x
+            tip_y -= y
+            misses[block] = np.sqrt(tip_x * tip_x + tip_y * tip_y)
+    return q, residual
 
 
 # ---------------------------------------------------------------- the formula (floats or arrays)
@@ -304,6 +345,12 @@ def _cosine_rule(
     without forming ``cos q2`` first: they keep their relative accuracy at
     full stretch and full fold, where ``1 -+ cos q2`` would cancel.  Floats
     or arrays; negative (by round-off, or out of reach) outside the annulus.
+
+    The two sum to 2, and the callers (after clipping them at 0) take the
+    larger as 2 minus the smaller, which is the accurate one: where the
+    annulus is thinner than the round-off of ``r^2`` (links of 1e-9 and
+    1e9 m), both come out as round-off and ``cos q2`` would be no angle at
+    all (both 0 put the tip at the opposite point).
     """
     r_squared = x * x + y * y
     return (r_max_squared - r_squared) * inverse, (r_squared - r_min_squared) * inverse
@@ -330,12 +377,22 @@ def _branch_angles(
     so that ``q1`` lies in ``(-pi, pi]``.  ``sqrt``/``atan2`` from
     :mod:`math` (floats) or numpy (arrays).
     """
-    sin_q2 = sign * sqrt(one_minus_c2 * one_plus_c2)
+    cos_q2, sin_q2 = _elbow_trig(one_minus_c2, one_plus_c2, sign, sqrt)
     k1 = one_plus_c2 * l2 + (l1 - l2)
     k2 = l2 * sin_q2
-    return atan2(y * k1 - x * k2, x * k1 + y * k2), atan2(
-        sin_q2, (one_plus_c2 - one_minus_c2) * 0.5
-    )
+    return atan2(y * k1 - x * k2, x * k1 + y * k2), atan2(sin_q2, cos_q2)
+
+
+def _elbow_trig(
+    one_minus_c2: Any, one_plus_c2: Any, sign: float, sqrt: Callable[[Any], Any]
+) -> tuple[Any, Any]:
+    """``(cos q2, sin q2)`` of one branch: ``((1 + c2) - (1 - c2)) / 2`` and ``sign sqrt((1 - c2)(1 + c2))``.
+
+    With the two halves summing to 2 (:func:`_cosine_rule`) they are a unit
+    vector, so they are the cosine and sine of ``q2 = atan2(sin q2, cos q2)``
+    to round-off.
+    """
+    return (one_plus_c2 - one_minus_c2) * 0.5, sign * sqrt(one_minus_c2 * one_plus_c2)
 
 
 # r_min^2, r_max^2, 1 / (2 l1 l2), low_outer, low_inner, the success threshold, the message of one target per elbow

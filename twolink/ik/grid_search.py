@@ -16,13 +16,7 @@ from .targets import reachable_targets
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = [
-    "brute_force",
-    "grid_axis",
-    "GRID_CHUNK",
-    "MAX_AXIS_POINTS",
-    "MAX_GRID_POINTS",
-]
+__all__ = ["brute_force", "MAX_AXIS_POINTS", "MAX_GRID_POINTS"]
 
 #: Grid points evaluated at once: bounds memory however fine the step, and keeps
 #: each chunk (a few 256 KB arrays) in cache; larger chunks measured 2-3x slower.
@@ -121,8 +115,8 @@ def _best_on_grid(
     q1_axis: NDArray[np.float64],
     q2_axis: NDArray[np.float64],
     absolute_limits: tuple[float, float] | None,
-) -> tuple[int, int]:
-    """Index pair of the grid point nearest the target, by rows of q1 in chunks.
+) -> tuple[float, float]:
+    """The grid point ``(q1, q2)`` nearest the target, by rows of q1 in chunks.
 
     With ``a = elbow - p`` the squared distance is
     ``|a|^2 + l2^2 + 2 l2 (cos q2 (c1 ax + s1 ay) + sin q2 (c1 ay - s1 ax))``,
@@ -136,7 +130,7 @@ def _best_on_grid(
     beta = c1 * a_y - s1 * a_x
     offset = (a_x**2 + a_y**2 + arm.l2**2) / (2.0 * arm.l2)
     rows_per_chunk = max(1, GRID_CHUNK // len(q2_axis))
-    best = (np.inf, 0, 0)
+    best = (np.inf, float(q1_axis[0]), float(q2_axis[0]))
     for start in range(0, len(q1_axis), rows_per_chunk):
         rows = slice(start, start + rows_per_chunk)
         score = np.multiply.outer(alpha[rows], c2)
@@ -149,7 +143,17 @@ def _best_on_grid(
         flat = int(np.argmin(score))
         row, column = divmod(flat, len(q2_axis))
         if score[row, column] < best[0]:
-            best = (score[row, column], start + row, column)
+            best = (score[row, column], q1_axis[start + row], q2_axis[column])
+    if absolute_limits is not None:
+        # link 2 along each of its absolute limits, row by row: a limit narrower than the step
+        # (a single angle) holds no grid point of q2
+        for limit in absolute_limits:
+            q2_edge = limit - q1_axis
+            score = alpha * np.cos(q2_edge) + beta * np.sin(q2_edge) + offset
+            score[(q2_edge < q2_axis[0]) | (q2_edge > q2_axis[-1])] = np.inf
+            row = int(np.argmin(score))
+            if score[row] < best[0]:
+                best = (score[row], q1_axis[row], q2_edge[row])
     return best[1], best[2]
 
 
@@ -164,7 +168,9 @@ def brute_force(
 
     The grid covers ``q1_range`` x ``q2_range`` (radians, inclusive) with
     spacing ``step``, intersected with the arm's joint limits (absolute-angle
-    limits mask grid points instead).  The search works in chunks of
+    limits mask grid points instead, and link 2 is also tried along each of
+    its absolute limits, so that a limit narrower than the step, even a
+    single angle, is found).  The search works in chunks of
     ``GRID_CHUNK`` points, so memory stays bounded however fine the step.  The
     number of grid points grows as ``1 / step^2``; the time approaches that
     growth once the grid work dominates the fixed cost of a call.
@@ -230,8 +236,7 @@ def brute_force(
     p_flat = p.reshape(-1, 2)
     q = np.empty_like(p_flat)
     for index, p_target in enumerate(p_flat):
-        row, column = _best_on_grid(arm, p_target, q1_axis, q2_axis, absolute_limits)
-        q[index] = (q1_axis[row], q2_axis[column])
+        q[index] = _best_on_grid(arm, p_target, q1_axis, q2_axis, absolute_limits)
 
     bound = (arm.l1 + 2.0 * arm.l2) * step / 2.0
     grid_points = len(q1_axis) * len(q2_axis)

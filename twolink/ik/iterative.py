@@ -238,7 +238,7 @@ def _trig(
     cos: Callable[[Any], Any], sin: Callable[[Any], Any], q1: Any, q2: Any
 ) -> tuple[Any, Any, Any, Any, Any]:
     """``(cos q1, sin q1, cos q12, sin q12, sin q2)``; ``cos``/``sin`` from :mod:`math` or numpy."""
-    q12 = q1 + q2
+    q12 = q1 + q2  # wrapped angles: a sum of two angles in [-pi, pi)
     return cos(q1), sin(q1), cos(q12), sin(q12), sin(q2)
 
 

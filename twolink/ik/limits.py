@@ -24,7 +24,7 @@ from .turns import LIMIT_TOL, free_q1_at_base, move_into_limits
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = ["LIMIT_TOL", "move_into_limits", "solutions_within_limits"]
+__all__ = ["solutions_within_limits"]
 
 
 def solutions_within_limits(
@@ -89,9 +89,8 @@ def solutions_within_limits(
         points,
         direction * np.clip(distance, r_min, r_max)[..., None],
     )
-    q_both = np.ascontiguousarray(
-        np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2)
-    )
+    # a copy of its own (the result's arrays are read-only), C-contiguous
+    q_both = np.moveaxis(closed_form(arm, p_projected, elbow="both").q, 0, -2).copy()
     valid = np.broadcast_to(in_reach[..., None], q_both.shape[:-1]).copy()
     if arm.has_limits:
         at_base, free_q1 = free_q1_at_base(arm, points)

@@ -143,7 +143,8 @@ def minimize(
     for index, (p_target, q0_target) in enumerate(zip(p_flat, q0_flat)):
         outcome = _solve_one(arm, p_target, q0_target, constrained, bounds)
         q[index] = outcome.x
-        iterations[index] = outcome.nit
+        # no iterations when the bounds fix every joint (scipy's result then has no nit)
+        iterations[index] = outcome.get("nit", 0)
         scipy_messages.append(outcome.message)
 
     threshold = tol * (arm.l1 + arm.l2) + distance_outside_reach(arm, p_flat)

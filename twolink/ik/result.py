@@ -17,22 +17,24 @@ from typing import TYPE_CHECKING, Any, NoReturn
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..kinematics import fk, tip_from_trig
+from .._values import Value
+from ..kinematics import LARGE_ANGLE, fk, reduced_pair, tip_from_trig
 
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = ["IKResult", "FailureDetail", "assemble_result", "one_answer_result"]
+__all__ = ["IKResult"]
 
 #: ``failure_detail(flat_index, residual)``: a phrase on why the answer at
 #: ``flat_index`` (of the flattened answers) failed, given its residual (m).
 FailureDetail = Callable[[int, float], str]
 
 _cos, _sin, _hypot, _empty = math.cos, math.sin, math.hypot, np.empty
+_LARGE = LARGE_ANGLE
 
 
 @dataclass(frozen=True, eq=False, repr=False, init=False)
-class IKResult:
+class IKResult(Value):
     """What an IK solver found, and whether to trust it.
 
     Modelled on the Robotics Toolbox's ``IKSolution``: always check
@@ -48,8 +50,13 @@ class IKResult:
     axis of 2 (the down branch first), so one target solved on both branches
     is a batch of two answers.
 
-    ``q`` is the result's own array: change a copy of it, not it (the other
-    fields describe the angles the solver returned).
+    Two results with the same fields are equal (``==``, arrays compared by
+    their values), and a result pickles (to another process, for a
+    parameter sweep).  ``q`` is the result's own array: change a copy of
+    it, not it (the other fields describe the angles the solver returned).
+    So a result has no hash (its arrays could change under it, and making
+    them read-only would cost a one-target call a tenth of its time):
+    ``hash(result)`` raises a ``TypeError`` that says so.
 
     Attributes
     ----------
@@ -59,7 +66,9 @@ class IKResult:
         True where the residual is within the solver's threshold.
     residual : float, or numpy.ndarray of float, shape (...)
         ``|fk(q) - p|`` in metres, always recomputed from ``q`` by forward
-        kinematics, never taken from the solver's own bookkeeping.
+        kinematics, never taken from the solver's own bookkeeping (a batch
+        of the closed form takes ``cos q2`` and ``sin q2`` from the unit
+        vector its ``q2`` is the ``atan2`` of, which they equal to round-off).
     within_limits : bool, or numpy.ndarray of bool, shape (...)
         Whether each ``q`` respects the arm's joint limits (true for an
         arm without limits; ``arm.within_limits(q)``).
@@ -137,6 +146,14 @@ class IKResult:
         raise TypeError(
             "an IKResult is not an array of joint angles: use its .q (and check .success), "
             f"e.g. ik.closed_form(arm, p).q; this result came from {self.method!r}"
+        )
+
+    _freezes_arrays = False
+
+    def __hash__(self) -> int:
+        raise TypeError(
+            "an IKResult has no hash: its arrays (q, ...) can be changed in place; "
+            "hash what you need from it, e.g. tuple(result.q)"
         )
 
     def __repr__(self) -> str:
@@ -217,9 +234,15 @@ def one_answer_result(
     floats (the residual with :func:`twolink.kinematics.tip_from_trig`), with
     the values and the message a batch of one would get.
     """
-    q12 = q1 + q2
+    if (
+        -_LARGE <= q1 <= _LARGE and -_LARGE <= q2 <= _LARGE
+    ):  # the usual answer: as it is
+        q1_reduced, q2_reduced = q1, q2
+    else:
+        q1_reduced, q2_reduced = reduced_pair(q1, q2)
+    q12 = q1_reduced + q2_reduced
     tip_x, tip_y = tip_from_trig(
-        arm.l1, arm.l2, _cos(q1), _sin(q1), _cos(q12), _sin(q12)
+        arm.l1, arm.l2, _cos(q1_reduced), _sin(q1_reduced), _cos(q12), _sin(q12)
     )
     residual = _hypot(tip_x - x, tip_y - y)
     success = residual <= threshold
@@ -250,6 +273,7 @@ def assemble_result(
     method: str,
     solved_message: str,
     failure_detail: FailureDetail | None = None,
+    residual: NDArray[np.float64] | None = None,
 ) -> IKResult:
     """The :class:`IKResult` of answers ``q`` to targets ``p``, judged by forward kinematics now.
 
@@ -277,6 +301,10 @@ def assemble_result(
     failure_detail : callable, optional
         ``failure_detail(flat_index, residual)`` describes the first failed
         answer for the message (None: its residual only).
+    residual : numpy.ndarray, optional
+        ``|fk(q) - p|`` of the answers (one per answer, flat or in their
+        shape), when the solver computed it by forward kinematics with
+        them (the closed form does, block by block); else computed here.
 
     Raises
     ------
@@ -314,9 +342,12 @@ def assemble_result(
         )
     shape = q.shape[:-1]
     q_flat = q.reshape(-1, 2)
-    tips = fk(arm, q_flat)
-    tips -= np.broadcast_to(p, q.shape).reshape(-1, 2)
-    residual = np.hypot(tips[:, 0], tips[:, 1])
+    if residual is None:
+        tips = fk(arm, q_flat)
+        tips -= np.broadcast_to(p, q.shape).reshape(-1, 2)
+        residual = np.hypot(tips[:, 0], tips[:, 1])
+    else:
+        residual = _flat(residual, q_flat.shape[0], "residual", float)
     success = residual <= _flat(threshold, residual.size, "threshold", float)
     within = np.asarray(arm.within_limits(q_flat), dtype=bool).reshape(-1)
     failures = int(np.count_nonzero(~success))

@@ -13,7 +13,7 @@ from ..kinematics import require_within_reach
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = ["reachable_targets"]
+__all__ = []
 
 
 def reachable_targets(arm: TwoLinkArm, p: ArrayLike) -> NDArray[np.float64]:

@@ -17,7 +17,7 @@ from .._validate import as_finite_scalar, as_pairs, require_arm
 if TYPE_CHECKING:
     from ..arm import TwoLinkArm
 
-__all__ = ["LIMIT_TOL", "BASE_ROUND_OFF", "move_into_limits", "free_q1_at_base"]
+__all__ = ["LIMIT_TOL", "move_into_limits"]
 
 #: Slack (radians) with which a configuration on a joint limit counts as inside.
 #: At a stretched or folded pose the tip pins the angles down only to about

@@ -30,8 +30,9 @@ what is meant.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cache
 from typing import TYPE_CHECKING, Any
 
@@ -39,7 +40,9 @@ import numpy as np
 import sympy as sp
 from numpy.typing import ArrayLike, NDArray
 
-from .._validate import as_configuration
+from .._validate import as_configuration, is_real_number, require_arm
+from .._values import Value
+from ..errors import InputTypeError
 from .kinematics import planar_symbols
 
 if TYPE_CHECKING:
@@ -108,6 +111,35 @@ def dynamics_symbols() -> dict[str, sp.Symbol]:
     return symbols
 
 
+def _expression(value: object, name: str) -> sp.Expr | sp.MatrixBase:
+    """``value`` as a sympy expression (or matrix of them): an expression or a real number, never a string (sympy would parse it)."""
+    if isinstance(value, (sp.Expr, sp.MatrixBase)):
+        return value
+    if is_real_number(value) and math.isfinite(float(value)):  # type: ignore[arg-type]
+        return sp.sympify(value, strict=True)
+    raise InputTypeError(
+        f"{name} must be a sympy expression (or a finite real number); got {value!r} ({type(value).__name__})"
+    )
+
+
+def _symbols(values: object, name: str, count: int | None = None) -> list[sp.Symbol]:
+    """``values`` as a list of sympy symbols (``count`` of them when given), or an error naming ``name``.
+
+    A list, a tuple or a sympy vector (``Matrix([q1, q2])``) of symbols.
+    """
+    if not isinstance(values, (list, tuple, sp.MatrixBase)) or not all(
+        isinstance(value, sp.Symbol) for value in values
+    ):
+        raise InputTypeError(
+            f"{name} must be a list, tuple or sympy vector of sympy symbols; got {values!r} ({type(values).__name__})"
+        )
+    if count is not None and len(values) != count:
+        raise ValueError(
+            f"{name} must hold one symbol per coordinate, {count}; got {len(values)}"
+        )
+    return list(values)
+
+
 def time_derivative(
     expr: sp.Expr,
     coordinates: Sequence[sp.Symbol],
@@ -135,7 +167,15 @@ def time_derivative(
     >>> x, v, a = sp.symbols("x v a")
     >>> time_derivative(x**2 * v, [x], [v], [a])
     a*x**2 + 2*v**2*x
+    >>> time_derivative(x, [x], "v", [a])
+    Traceback (most recent call last):
+    ...
+    twolink.errors.InputTypeError: rates must be a list, tuple or sympy vector of sympy symbols; got 'v' (str)
     """
+    expr = _expression(expr, "expr")
+    coordinates = _symbols(coordinates, "coordinates")
+    rates = _symbols(rates, "rates", len(coordinates))
+    accelerations = _symbols(accelerations, "accelerations", len(coordinates))
     return sum(
         sp.diff(expr, coordinate) * rate + sp.diff(expr, rate) * acceleration
         for coordinate, rate, acceleration in zip(coordinates, rates, accelerations)
@@ -170,7 +210,14 @@ def christoffel_coriolis(
     >>> christoffel_coriolis(sp.Matrix([[2 + sp.cos(q)]]), [q], [qd])
     Matrix([[-qd*sin(q)/2]])
     """
+    coordinates = _symbols(coordinates, "coordinates")
+    rates = _symbols(rates, "rates", len(coordinates))
     size = len(coordinates)
+    if not isinstance(M, sp.MatrixBase) or M.shape != (size, size):
+        raise InputTypeError(
+            f"M must be a sympy matrix of shape ({size}, {size}), one row and column per coordinate; "
+            f"got {M!r} ({type(M).__name__})"
+        )
     C = sp.zeros(size, size)
     for i in range(size):
         for j in range(size):
@@ -247,7 +294,6 @@ class EquationsOfMotion:
         )
 
 
-@cache
 def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
     """Derive the equations of motion of the 2R arm by Euler-Lagrange.
 
@@ -285,8 +331,14 @@ def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
     >>> equations_of_motion("absolute").Q.T
     Matrix([[u1, u2]])
     """
-    if model not in MODELS:
+    if not isinstance(model, str) or model not in MODELS:
         raise ValueError(f"model must be one of {MODELS}; got {model!r}")
+    return _derived_equations(model)
+
+
+@cache
+def _derived_equations(model: str) -> EquationsOfMotion:
+    """:func:`equations_of_motion` of a checked model name, derived once (the result is immutable)."""
     s = dynamics_symbols()
     l1, l2, m1, m2, I1, I2, g = (
         s[name] for name in ("l1", "l2", "m1", "m2", "I1", "I2", "g")
@@ -367,8 +419,8 @@ def equations_of_motion(model: str = "relative") -> EquationsOfMotion:
     )
 
 
-@dataclass(frozen=True)
-class NumericDynamics:
+@dataclass(frozen=True, eq=False)
+class NumericDynamics(Value):
     """Numeric ``M``, ``C`` and ``g`` lambdified from an :class:`EquationsOfMotion`.
 
     Each function evaluates one state (``q``, ``qd`` of shape ``(2,)``, in the
@@ -379,13 +431,17 @@ class NumericDynamics:
     """
 
     model: str
-    _mass_matrix: Callable[..., Any]
-    _coriolis: Callable[..., Any]
-    _gravity: Callable[..., Any]
+    _mass_matrix: Callable[..., Any] = field(compare=False, repr=False)
+    _coriolis: Callable[..., Any] = field(compare=False, repr=False)
+    _gravity: Callable[..., Any] = field(compare=False, repr=False)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Pickled as its model's name: lambdified functions do not pickle, and follow from it."""
+        return lambdify_dynamics, (self.model,)
 
     @staticmethod
     def _parameters(arm: TwoLinkArm) -> tuple[float, ...]:
-        inertia_1, inertia_2 = arm.inertias
+        inertia_1, inertia_2 = require_arm(arm).inertias
         return (arm.l1, arm.l2, arm.m1, arm.m2, inertia_1, inertia_2, arm.g)
 
     def mass_matrix(self, arm: TwoLinkArm, q: ArrayLike) -> NDArray[np.float64]:
@@ -440,7 +496,16 @@ def lambdify_dynamics(equations: EquationsOfMotion | str) -> NumericDynamics:
            [10.,  4.]])
     """
     if isinstance(equations, str):
+        if equations not in MODELS:
+            raise ValueError(
+                f"equations must be an EquationsOfMotion or a model name, one of {MODELS}; got {equations!r}"
+            )
         equations = equations_of_motion(equations)
+    elif not isinstance(equations, EquationsOfMotion):
+        raise InputTypeError(
+            "equations must be a model name ('relative' or 'absolute') or an EquationsOfMotion; "
+            f"got {equations!r} ({type(equations).__name__})"
+        )
     q, qd, parameters = (
         list(equations.q),
         list(equations.qd),

@@ -9,11 +9,11 @@ from __future__ import annotations
 
 import functools
 import math
-import numbers
 
 import numpy as np
 import sympy as sp
 
+from .._validate import is_real_number
 from ..errors import InputTypeError
 
 __all__ = ["planar_symbols", "dh_matrix", "planar_fk"]
@@ -117,8 +117,8 @@ def _dh_entry(value: object, name: str) -> sp.Expr:
                 f"{name} must be {_ALLOWED}; got the string {value!r}, which is not a name (it is never evaluated)"
             )
         return sp.Symbol(value)
-    if isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_)):
-        if not math.isfinite(value):
+    if is_real_number(value):
+        if not math.isfinite(value):  # type: ignore[arg-type]
             raise ValueError(f"{name} must be finite; got {value}")
         return sp.sympify(value, strict=True)
     raise InputTypeError(

@@ -6,6 +6,13 @@ Each module here reproduces one of them, method by method, so that a chapter
 own formula before the course corrects it.  Nothing here is meant for use in
 new code: the rest of :mod:`twolink` holds the correct versions.
 
+What each piece of coursework asked, computed, printed and got wrong is the
+course's source record, ``notebooks/source_record.ipynb`` (a page of the
+static site too): one anchor per fact, named after its item (``#h1-4``,
+``#h3-2``, ...), which the modules' docstrings and the chapters' casebooks
+link; ``tests/notebooks/test_source_record.py`` computes every number it gives with
+these modules.
+
 - :mod:`twolink_course.sources.mae6245`: MAE 6245 (inverse kinematics three
   ways, a1 = a2 = 10).
 - :mod:`twolink_course.sources.compsys726`: COMPSYS726 (DH, Jacobian, the

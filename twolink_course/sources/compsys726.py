@@ -14,7 +14,10 @@ Then it tabulated joint angles and a joint rate for the tip on the line
 The arm ``a1 = 100``, ``a2 = 50`` reproduces both printed angle columns to their
 printed rounding (:data:`PRINTED_ANGLES_DEG`: whole degrees, e.g. 49, 172 at
 ``x = 10``), except the last q1, where the method gives -3.38 deg and the
-printed value is -3.3.
+printed value is -3.3: truncated, not rounded, as the worked row's
+"theta1 = 49.09" is (the method gives 49.0965; :func:`truncated`).  Its text
+calls theta "the angle between the plane and the Link", an absolute angle,
+beside a relative DH table.
 The rate column is reproduced from the **printed**, rounded angles:
 :func:`rate_as_printed` of :data:`PRINTED_ANGLES_DEG` gives 0.6132 at ``x = 10``
 (:data:`PRINTED_RATE_FIRST_ROW`) and is within 0.16 % of every printed row.  At
@@ -33,6 +36,8 @@ The table has three faults, reproduced here:
    (wrong, rounded) angles and multiplied by -10 (a velocity the text never
    states).
 
+Each fact rests on an item of the course's source record,
+``notebooks/source_record.ipynb`` (anchors ``#h2-1`` ... ``#h2-5``).
 Lengths are the source's bare numbers; angles in the source's functions are
 in degrees, as the source printed them.  Nothing here is for new code: use
 :func:`twolink.ik.closed_form` and :meth:`twolink.TwoLinkArm.joint_rates`.
@@ -53,6 +58,8 @@ __all__ = [
     "RATE_FACTOR",
     "PRINTED_ANGLES_DEG",
     "PRINTED_RATE_FIRST_ROW",
+    "WORKED_ROW_PRINTED_DEG",
+    "truncated",
     "ik_as_written",
     "q2_rate_vertical",
     "q1_rate_horizontal",
@@ -88,12 +95,46 @@ PRINTED_ANGLES_DEG = np.array(
 Derived, not transcribed: the reproduction :func:`ik_as_written` at
 :data:`X_LINE` rounded as the source printed it, to whole degrees, except the
 last row's q1, printed -3.3 (the reproduction gives -3.38, which rounds to
--3.4).  The source's first and last rows, (49, 172) and (-3.3, 90), are of
+-3.4 and truncates to -3.3, :func:`truncated`).  The source's first and last rows, (49, 172) and (-3.3, 90), are of
 this form.  :func:`rate_as_printed` of this table reproduces the printed rate
 column to within 0.16 % in every row (0.6132 at ``x = 10``).
 """
 PRINTED_RATE_FIRST_ROW = 0.6132
 """The printed rate at ``x = 10``: :func:`rate_as_printed` of the printed angles (49, 172), to 4 decimals."""
+WORKED_ROW_PRINTED_DEG = (49.09, 171.89)
+"""The worked row's printed "theta1 = 49.09" and "theta2 = 171.89 ~ 172", degrees (``x = 10``)."""
+
+
+def truncated(values: ArrayLike, decimals: int) -> NDArray[np.float64]:
+    """``values`` cut to ``decimals`` decimals, towards zero: how the source's -3.3 and 49.09 come about.
+
+    The reproduction gives -3.3793 deg for the last q1 and 49.0965 deg for the
+    worked row's theta1; rounded they print -3.4 and 49.10, truncated -3.3 and
+    49.09, as printed (``source_record.ipynb#h2-5``).
+
+    Parameters
+    ----------
+    values : array_like
+        Finite numbers.
+    decimals : int
+        Decimals kept (>= 0).
+
+    Returns
+    -------
+    numpy.ndarray
+
+    Examples
+    --------
+    >>> q1_last, q1_first = ik_as_written(100.0)[0], ik_as_written(10.0)[0]
+    >>> float(truncated(q1_last, 1)), float(truncated(q1_first, 2))
+    (-3.3, 49.09)
+    >>> round(float(q1_last), 1), round(float(q1_first), 2)
+    (-3.4, 49.1)
+    """
+    if isinstance(decimals, bool) or not isinstance(decimals, int) or decimals < 0:
+        raise ValueError(f"decimals must be a whole number >= 0; got {decimals!r}")
+    scale = 10.0**decimals
+    return np.trunc(_array(values, "values") * scale) / scale
 
 
 def _array(values: ArrayLike, name: str) -> NDArray[np.float64]:

@@ -1,28 +1,43 @@
 """MAE 6245, reproduced: inverse kinematics three ways on a1 = a2 = 10.
 
 The assignment asks for the IK of the planar 2R arm with a1 = a2 = 10 (no
-units) three ways (a closed form, MATLAB's ``fminunc``, and a brute-force
-function over q1 in [0, 90] deg, q2 in [-90, 90] deg), each timed with
-``tic``/``toc`` on a circle of targets.  Its worked solution contains the
-closed form and the ``fminunc`` objective for the target (10 sqrt 2,
-10 sqrt 2), an ``fmincon`` feasibility formulation, a forward-kinematics check,
-a workspace scatter and the circle's points.  It has no brute-force IK
-function, no measured times and no arm drawn on the circle: for the timing it
-says only that the time "would typically be" closed form, numerical, brute
-force "in increasing order".  This module reruns what the solution did, step
-by step, so that chapters 2 and 7 (and the tests) show its printed numbers
-coming out of its own formulas:
+units): (a) a closed form and a MATLAB function, (b) "one of the numerical
+techniques shown in class (root finding or optimization)", (c) a brute-force
+function over q1 in [0, 90] deg, q2 in [-90, 90] deg, and ``tic``/``toc``
+timings on a circle of 10 to 20 targets, "(preferably equi-distant)": a
+preference, not a requirement (``notebooks/source_record.ipynb#h1-5``,
+``#h1-4``).  Its worked solution chose MATLAB's ``fminunc`` for (b).  It
+contains the closed form and the ``fminunc`` objective for the target
+(10 sqrt 2, 10 sqrt 2), an ``fmincon`` feasibility formulation, a
+forward-kinematics check, a workspace scatter on a 0.1 rad grid (its part (c))
+and the circle's points.  It has no brute-force IK function, no measured
+times and no arm drawn on the circle: for the timing it says only that the
+time "would typically be" closed form, numerical, brute force "in increasing
+order".  This module reruns what the solution did, step by step, so that
+chapters 2 and 7 (and the tests) show its printed numbers coming out of its
+own formulas; each fact rests on an item of the course's source record,
+``notebooks/source_record.ipynb`` (anchors ``#h1-1`` ... ``#h1-9``):
 
 - :func:`x_equation_roots`: its closed form, the ``a cos t + b sin t = c``
   solution applied to the x-equation alone; printed "theta1 = +-0.7854,
-  theta2 = 0", of which the minus root is spurious.
-- :func:`numerical_ik`: its ``fminunc`` run on the absolute y-residual with q1 + q2
-  from ``acos`` of the x-equation, translated with MATLAB's ``acos`` (complex
-  outside [-1, 1]) or with numpy's (``nan`` there); printed 0.7854, 0.
+  theta2 = 0", of which the minus root is spurious (``#h1-1``).
+- :func:`closed_form_cosine`: the cosine its closed-form script computes at its
+  own target, 1.0000000000000002 in IEEE doubles (``#h1-7``): ``acos`` of it is
+  complex in MATLAB, whose ``atan2`` takes real arguments only.  Not run in
+  MATLAB here: the course asks what the script does there, it does not say.
+- :func:`numerical_ik`: its ``fminunc`` run on the absolute y-residual with
+  q1 + q2 from ``acos`` of the x-equation, translated with MATLAB's ``acos``
+  (complex outside [-1, 1]) or with numpy's (``nan`` there); printed
+  0.7854, 0 (``#h1-2``).
 - :func:`fk_check`: its forward-kinematics check, typed with theta1 = 0.7845
-  (a digit swap of 0.7854); printed x = 14.1548, y = 14.1294.
-- :func:`circle_angles`: its circle points, ``phi = 0:0.5:2*pi``: 13 points, the
-  last gap shorter than the others.
+  (a digit swap of 0.7854); printed x = 14.1548, y = 14.1294 (``#h1-3``).
+  Its part (e) draws the arm at :data:`PART_E_ANGLES`, the same swap a
+  second time (``#h1-9``).
+- :func:`circle_angles`: its circle points, ``phi = 0:0.5:2*pi``: 13 points,
+  the last gap shorter than the others (``#h1-4``).
+- :func:`workspace_grid`: its part (c) workspace scatter's grid,
+  ``0:0.1:pi/2`` and ``-pi/2:0.1:pi/2``, whose last samples, 1.5 and
+  1.529 rad, stop short of pi/2 (``#h1-8``).
 
 The correct methods live in :mod:`twolink.ik`; nothing here is meant for new
 code.  Angles in radians, lengths in the assignment's units (read as metres).
@@ -46,12 +61,19 @@ __all__ = [
     "CIRCLE_CENTRE",
     "CIRCLE_RADIUS",
     "CIRCLE_STEP",
+    "WORKSPACE_STEP",
+    "PART_E_ANGLES",
+    "TASK_CIRCLE_POINTS",
+    "TASK_RANGES_DEG",
+    "colon",
     "x_equation_roots",
+    "closed_form_cosine",
     "y_residual",
     "NumericalRun",
     "numerical_ik",
     "fk_check",
     "circle_angles",
+    "workspace_grid",
 ]
 
 #: The assignment's link lengths (no units; the course reads them as metres).
@@ -61,12 +83,21 @@ A2 = 10.0
 TARGET = (10.0 * np.sqrt(2.0), 10.0 * np.sqrt(2.0))
 #: Where its solution's ``fminunc`` run started, rad.
 Q1_START = 0.4
-#: The theta1 its solution's FK check was typed with: 0.7845, a digit swap of 0.7854.
+#: The theta1 its solution's FK check was typed with: 0.7845, a digit swap of 0.7854
+#: (its caption says 0.7854).
 FK_CHECK_THETA1 = 0.7845
+#: The angles its part (e) draws the arm at, (0.7845, -0.7845) rad: the digit swap again.
+PART_E_ANGLES = (0.7845, -0.7845)
 #: Its solution's circle of targets: centre, radius and the step of ``phi = 0:0.5:2*pi`` (rad).
 CIRCLE_CENTRE = (12.5, 12.5)
 CIRCLE_RADIUS = 2.0
 CIRCLE_STEP = 0.5
+#: How many points the task asks for on the circle: 10 to 20, "(preferably equi-distant)".
+TASK_CIRCLE_POINTS = (10, 20)
+#: The joint ranges the task sets for the brute-force function, degrees: q1, q2.
+TASK_RANGES_DEG = ((0.0, 90.0), (-90.0, 90.0))
+#: The step of its part (c) workspace grid, ``0:0.1:pi/2`` and ``-pi/2:0.1:pi/2`` (rad).
+WORKSPACE_STEP = 0.1
 
 _ACOS: dict[str, Callable[[Any], Any]] = {"matlab": np.emath.arccos, "numpy": np.arccos}
 
@@ -128,6 +159,41 @@ def x_equation_roots(
     direction = np.arctan2(b, a)
     half_angle = np.arctan2(np.sqrt(discriminant), x)
     return np.array([direction + half_angle, direction - half_angle])
+
+
+def closed_form_cosine(p: ArrayLike = TARGET, a1: float = A1, a2: float = A2) -> float:
+    """``(x^2 + y^2 - a1^2 - a2^2) / (2 a1 a2)`` as its closed-form script computes it, in IEEE doubles.
+
+    At its own target, (10 sqrt 2, 10 sqrt 2), the arm is stretched and the
+    exact value is 1; in doubles ``x^2`` is 200.00000000000003 and the cosine
+    1.0000000000000002, just above 1 (the same arithmetic in MATLAB).  MATLAB's
+    ``acos`` is complex there (about 2.1e-8 i, :func:`numpy.emath.arccos`)
+    and its ``atan2`` takes real arguments only, so the script as written
+    would stop with an error at that target, while the solution shows
+    "theta1 = +-0.7854, theta2 = 0" (``source_record.ipynb#h1-7``).  Not run
+    in MATLAB here: a question to ask, not a claim about what MATLAB did.
+
+    Parameters
+    ----------
+    p : pair of float
+        The target (x, y).
+    a1, a2 : float
+        Link lengths.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> x = float(TARGET[0])
+    >>> repr(x * x), repr(closed_form_cosine())
+    ('200.00000000000003', '1.0000000000000002')
+    >>> round(abs(complex(np.emath.arccos(closed_form_cosine())).imag), 9)
+    2.1e-08
+    """
+    x, y = (float(value) for value in np.asarray(p, dtype=float))
+    return (x * x + y * y - a1 * a1 - a2 * a2) / (2.0 * a1 * a2)
 
 
 def y_residual(
@@ -323,12 +389,44 @@ def fk_check(
     )
 
 
+def colon(start: float, step: float, stop: float) -> NDArray[np.float64]:
+    """MATLAB's colon operator ``start:step:stop``: ``start + k step`` up to ``stop``, never beyond.
+
+    Parameters
+    ----------
+    start, stop : float
+        The first value and the bound the last one does not pass.
+    step : float
+        Increment (> 0).
+
+    Returns
+    -------
+    numpy.ndarray
+
+    Examples
+    --------
+    >>> colon(0.0, 0.5, 2.0)
+    array([0. , 0.5, 1. , 1.5, 2. ])
+    >>> float(colon(0.0, 0.1, np.pi / 2)[-1])       # short of pi/2
+    1.5
+    """
+    if not step > 0:
+        raise ValueError(f"step must be > 0; got {step!r}")
+    if not np.isfinite(start) or not np.isfinite(stop) or stop < start:
+        raise ValueError(
+            f"start and stop must be finite with start <= stop; got {start!r}, {stop!r}"
+        )
+    count = int(np.floor((stop - start) / step + 1e-10)) + 1
+    return start + step * np.arange(count, dtype=np.float64)
+
+
 def circle_angles(step: float = CIRCLE_STEP) -> NDArray[np.float64]:
     """The solution's circle parameter ``phi = 0:step:2*pi`` (MATLAB's colon operator).
 
     The colon operator stops at the last multiple of the step not beyond
     2 pi, so with step 0.5 there are 13 angles, 0 to 6, and the gap from the
-    last back to the first is 2 pi - 6 = 0.283 rad, not 0.5.
+    last back to the first is 2 pi - 6 = 0.283 rad, not 0.5
+    (``source_record.ipynb#h1-4``).
 
     Parameters
     ----------
@@ -348,5 +446,35 @@ def circle_angles(step: float = CIRCLE_STEP) -> NDArray[np.float64]:
     """
     if not step > 0:
         raise ValueError(f"step must be > 0 rad; got {step!r}")
-    count = int(np.floor(2 * np.pi / step + 1e-10)) + 1
-    return step * np.arange(count, dtype=np.float64)
+    return colon(0.0, step, 2 * np.pi)
+
+
+def workspace_grid(
+    step: float = WORKSPACE_STEP,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The two axes of its part (c) workspace scatter: ``0:step:pi/2`` and ``-pi/2:step:pi/2``.
+
+    The colon operator stops at the last sample not beyond pi/2, so with
+    the solution's step 0.1 the axes end at 1.5 and 1.529 rad, short of
+    pi/2: the scatter misses the edge of the joint ranges, the
+    grid-end mistake (``source_record.ipynb#h1-8``).
+
+    Parameters
+    ----------
+    step : float
+        Increment, radians (> 0).
+
+    Returns
+    -------
+    (numpy.ndarray, numpy.ndarray)
+        The theta1 and theta2 samples, radians.
+
+    Examples
+    --------
+    >>> theta1, theta2 = workspace_grid()
+    >>> round(float(theta1[-1]), 3), round(float(theta2[-1]), 3)
+    (1.5, 1.529)
+    >>> bool(theta1[-1] < np.pi / 2 and theta2[-1] < np.pi / 2)
+    True
+    """
+    return colon(0.0, step, np.pi / 2), colon(-np.pi / 2, step, np.pi / 2)

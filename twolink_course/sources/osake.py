@@ -7,30 +7,34 @@ of its work, were right; the step-by-step derivation below them was not, and
 its two C++ programs have mistakes of their own.  Each function here
 reproduces one of those steps or programs as the source did it, so that
 chapter 1 and chapter 3 of the course (and the tests) can show the source's
-result coming out of the source's method before correcting it:
+result coming out of the source's method before correcting it.  Each fact
+rests on an item of the course's source record,
+``notebooks/source_record.ipynb`` (anchors ``#h3-1`` ... ``#h3-5``):
 
 - :func:`h02_as_expanded`: the hand-expanded ``H_0^2`` (``cos q1 cos q2`` and
   ``sin q1 cos q2`` where ``cos(q1+q2)`` and ``sin(q1+q2)`` belong, ``l1`` and
-  ``l2`` swapped in the position column);
+  ``l2`` swapped in the position column; ``source_record.ipynb#h3-1``);
 - :func:`jacobian_as_printed`: the 6x2 Jacobian the derivation prints under
-  its recipe (column 1 with the lever from the base, column 2 from the
-  elbow, both carrying the expanded ``H_0^2``'s product error: products of
-  single-angle terms where ``sin(q1+q2)`` and ``cos(q1+q2)`` belong); it
-  gives ``[[-9.07, -4.07], [15.70, 7.04]]`` cm at ``q = (30, 45)`` deg (the
-  source record's numbers, H3.2), where the right block is
-  ``[[-16.11, -11.11], [11.64, 2.98]]``.  (The vector ``d_0^2`` written under
-  the expanded ``H_0^2`` is wrong as well, with ``l1``, ``l2`` and sine,
-  cosine swapped, e.g. ``l2 cos q1 sin q2 + l1 sin q1``; nothing here
-  reproduces it.)
+  its recipe, read as products (the only reading that gives its numbers):
+  its two position columns are ``(l1 + l2 c2)(-s1, c1)`` and
+  ``l2 s2 (-s1, c1)``, parallel at every pose, so the printed matrix is
+  singular everywhere; at ``q = (30, 45)`` deg it gives
+  ``[[-9.07, -4.07], [15.70, 7.04]]`` cm, where the right block is
+  ``[[-16.11, -11.11], [11.64, 2.98]]`` (``source_record.ipynb#h3-2``);
+- :func:`d02_tip_as_written`: the vector ``d_0^2`` written under the expanded
+  ``H_0^2``, a third tip, (12.04, 12.73) cm at ``q = (30, 45)`` deg
+  (``source_record.ipynb#h3-5``);
 - :func:`cpp_fk_tip`: the C++ forward-kinematics program (link lengths read
   into ``int``, so 11.5 becomes 11, a 5 mm error; no z-offset in ``H01``, so
-  the 6.5 cm height is dropped; a triple-loop matrix product, which is right);
+  the 6.5 cm height is dropped; a triple-loop matrix product, which is right;
+  ``source_record.ipynb#h3-3``);
 - :func:`velocity_program_speed`: the C++ velocity program (angles meant in
   degrees passed to ``cos``/``sin``, 3 deg/s used as 3 rad/s, the linear angle
   functions differentiated by a forward difference, the tip's linear speed
-  printed as its "end-tip angular velocity"); at its ``t = 2`` s it gives the
-  printed 10.8975 cm/s (:data:`PRINTED_SPEED_CM_S`), where the right tip speed
-  is 0.9757 cm/s.
+  called its "end-tip angular velocity"; ``source_record.ipynb#h3-4``).  The
+  source shows no output of it: run as written, at its ``t = 2`` s, it gives
+  10.8975 cm/s (reproduced, never printed), where the right tip speed is
+  0.9757 cm/s.
 
 Lengths are in the source's unit, centimetres (as it typed them); angles are
 plain numbers handed to ``cos``/``sin``, i.e. radians, unless a docstring
@@ -56,10 +60,10 @@ __all__ = [
     "D_CM",
     "h02_as_expanded",
     "jacobian_as_printed",
+    "d02_tip_as_written",
     "cpp_read_int",
     "matmul_triple_loop",
     "cpp_fk_tip",
-    "PRINTED_SPEED_CM_S",
     "velocity_program_speed",
 ]
 
@@ -69,8 +73,6 @@ L2_CM = 11.5
 """Link 2 of the OSAKE arm, cm."""
 D_CM = 6.5
 """Height of the arm's plane above the base frame (first DH row's ``d``), cm."""
-PRINTED_SPEED_CM_S = 10.8975
-"""The number the C++ velocity program printed as its "end-tip angular velocity" (a linear speed, cm/s)."""
 
 
 def _lengths(l1: float, l2: float) -> tuple[float, float]:
@@ -133,44 +135,33 @@ def h02_as_expanded(
 def jacobian_as_printed(
     q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM
 ) -> NDArray[np.float64]:
-    """The 6x2 Jacobian the source's derivation printed, with the expanded ``H_0^2``'s product error.
+    """The 6x2 Jacobian the source's derivation printed, read as products: singular everywhere.
 
     The derivation writes its recipe with ``(d_2^0 - d_1^0)`` in both columns,
     then states that ``d_1^0`` is the zero matrix (although it had written
     ``d_1^0 = (l1 c1, l1 s1, d)``, the elbow, just above) and that ``R_0^0`` is
-    the 4x4 identity (``R_0^0`` is 3x3).  The matrix printed under it follows neither reading of
-    that recipe: column 1 does contain the ``l1`` terms (the lever from the
-    base, as ``z_0 x (o_2 - o_0)`` needs) and column 2 does not (the lever from
-    the elbow, as ``z_1 x (o_2 - o_1)`` needs), but both columns carry the
-    product error of the source's expanded ``H_0^2`` (:func:`h02_as_expanded`):
-    its entries have ``sin q1 cos q2``, ``cos q1 cos q2`` and ``cos q1 sin q2``
-    where ``sin(q1 + q2)`` and ``cos(q1 + q2)`` belong.  This reproduction
-    reads them as::
+    the 4x4 identity (``R_0^0`` is 3x3).  The matrix printed under it follows
+    neither reading of that recipe: column 1 does contain the ``l1`` terms
+    (the lever from the base, as ``z_0 x (o_2 - o_0)`` needs) and column 2
+    does not, but both columns carry the product error of the source's
+    expanded ``H_0^2`` (:func:`h02_as_expanded`): products of single-angle
+    terms where ``sin(q1 + q2)`` and ``cos(q1 + q2)`` belong.  Read as
+    products, the only reading that gives its numbers at ``q = (30, 45)`` deg
+    (``source_record.ipynb#h3-2``), the printed position block is::
 
-        column 1 = (-l1 s1 - l2 s1 c2,  l1 c1 + l2 c1 c2)
-        column 2 = (        -l2 s1 c2,          l2 c1 s2)
+        column 1 = (-l2 s1 c2 - l1 s1,  l2 c1 c2 + l1 c1) = (l1 + l2 c2) (-s1, c1)
+        column 2 = (        -l2 s1 s2,          l2 c1 s2) =      l2 s2  (-s1, c1)
 
-    which gives the source record's numbers (H3.2) at ``q = (30, 45)`` deg,
-    below.  There ``cos q2 = sin q2``, so those numbers cannot tell which
-    ``v_y`` entry has ``cos q1 cos q2`` and which ``cos q1 sin q2``; either
-    reading gives them, and neither is the right Jacobian away from
-    ``q2 = 0``.
+    Both columns are multiples of ``(-s1, c1)``: they are **parallel** at
+    every pose (not equal: their lengths differ), so the printed block has
+    determinant 0 for every ``q``.  At ``q2 = 45`` deg, where ``cos q2 = sin
+    q2``, the numbers hide it; at ``q = (30, 60)`` deg the printed determinant
+    is 0 while the right one, ``l1 l2 sin q2``, is 99.6 cm^2.
 
-    The printed matrix is not singular everywhere: in this reading its
-    determinant is ``l2 s1 c1 (c2 - s2) (l1 + l2 c2)``, zero only where one
-    of those factors is (at ``q = (30, 45)`` deg, where ``c2 = s2``, it is;
-    at ``q = (30, 60)`` deg it is not).  Nor are its two columns equal: at
-    ``q = (30, 45)`` deg both position columns miss the right ones by the
-    same vector, ``l2 sin q2 (c1, s1)`` along link 1 (the dropped ``cos q1
-    sin q2`` and ``sin q1 sin q2`` terms), so their difference is the
-    ``l1`` lever ``(-l1 s1, l1 c1)``, as it should be.
-
-    Rows: the ``v_x`` and ``v_y`` rows are the reproduction of the printed
-    matrix (at ``q = (30, 45)`` deg they give the source record's numbers,
-    below); the ``v_z`` row (0) and the ``omega`` rows (``(0, 0, 1)`` for
-    both joints) are set as in the correct Jacobian, so that the shape matches
-    :meth:`twolink.TwoLinkArm.geometric_jacobian`.  The course compares the
-    source with the correct Jacobian on the 2x2 position block only.
+    Rows: the ``v_x`` and ``v_y`` rows are the printed matrix as read above;
+    the ``v_z`` row (0) and the ``omega`` rows (``(0, 0, 1)`` for both
+    joints), which it prints as the right Jacobian has them, complete the
+    6x2 shape of :meth:`twolink.TwoLinkArm.geometric_jacobian`.
 
     Parameters
     ----------
@@ -187,9 +178,8 @@ def jacobian_as_printed(
 
     Examples
     --------
-    The printed matrix at ``q = (30, 45)`` deg, cm per rad, to two decimals,
-    as the source record (H3.2) gives them (the right block is
-    ``[[-16.11, -11.11], [11.64, 2.98]]``):
+    The printed matrix at ``q = (30, 45)`` deg, cm per rad, to two decimals
+    (the right block is ``[[-16.11, -11.11], [11.64, 2.98]]``):
 
     >>> from twolink_course.display import rounded
     >>> J = jacobian_as_printed(np.radians([30.0, 45.0]))
@@ -197,27 +187,63 @@ def jacobian_as_printed(
     ('(-9.07, -4.07)', '(15.70, 7.04)')
     >>> J[2:, 0], J.shape
     (array([0., 0., 0., 1.]), (6, 2))
-    >>> bool(np.allclose(J[:2, 0] - J[:2, 1], [-L1_CM * np.sin(np.pi / 6), L1_CM * np.cos(np.pi / 6)]))
-    True
 
-    Not singular everywhere (at ``q2 = 45`` deg it is):
+    Singular at every pose: at ``(30, 60)`` deg too, where the right block's
+    determinant is ``l1 l2 sin 60 deg``:
 
-    >>> [round(float(np.linalg.det(jacobian_as_printed(np.radians(q))[:2])), 2) for q in ([30.0, 45.0], [30.0, 60.0])]
-    [0.0, -28.71]
+    >>> J_60 = jacobian_as_printed(np.radians([30.0, 60.0]))[:2]
+    >>> bool(abs(np.linalg.det(J_60)) < 1e-12), round(L1_CM * L2_CM * float(np.sin(np.radians(60.0))), 1)
+    (True, 99.6)
     """
     q = as_pairs(q, "q (rad)")
     l1, l2 = _lengths(l1, l2)
     c1, s1 = np.cos(q[..., 0]), np.sin(q[..., 0])
     c2, s2 = np.cos(q[..., 1]), np.sin(q[..., 1])
     J = np.zeros(q.shape[:-1] + (6, 2))
-    # l2 (-s12, c12) with the products of the expanded H_0^2 in their place,
-    # plus, in column 1, the l1 lever from the base
-    J[..., 0, 0] = -l1 * s1 - l2 * s1 * c2
-    J[..., 1, 0] = l1 * c1 + l2 * c1 * c2
-    J[..., 0, 1] = -l2 * s1 * c2
+    # l2 (-s12, c12) with single-angle products in their place, plus, in
+    # column 1, the l1 lever from the base
+    J[..., 0, 0] = -l2 * s1 * c2 - l1 * s1
+    J[..., 1, 0] = l2 * c1 * c2 + l1 * c1
+    J[..., 0, 1] = -l2 * s1 * s2
     J[..., 1, 1] = l2 * c1 * s2
     J[..., 5, :] = 1.0
     return J
+
+
+def d02_tip_as_written(
+    q: ArrayLike, l1: float = L1_CM, l2: float = L2_CM
+) -> NDArray[np.float64]:
+    """The tip ``(x, y)`` in cm that the vector ``d_0^2`` under the source's expanded ``H_0^2`` gives.
+
+    That vector has ``l1`` and ``l2``, and sine and cosine, swapped
+    (``source_record.ipynb#h3-5``): its x entry is
+    ``l2 cos q1 sin q2 + l1 sin q1``, reproduced here with the y entry
+    ``l2 sin q1 sin q2 + l1 cos q1`` (the same swaps; at ``q2 = 45`` deg,
+    where ``sin q2 = cos q2``, the record's numbers cannot tell ``sin q2``
+    from ``cos q2`` there).  It is a third tip, different from both the
+    expanded ``H_0^2``'s (:func:`h02_as_expanded`) and the right one; the
+    source never evaluates it.
+
+    Parameters
+    ----------
+    q : array_like, shape (..., 2)
+        Joint angles ``(q1, q2)``, radians.
+    l1, l2 : float
+        Link lengths (> 0), cm.
+
+    Returns
+    -------
+    numpy.ndarray, shape (..., 2)
+
+    Examples
+    --------
+    >>> d02_tip_as_written(np.radians([30.0, 45.0])).round(2)   # the right tip: (11.64, 16.11)
+    array([12.04, 12.73])
+    """
+    q = as_pairs(q, "q (rad)")
+    l1, l2 = _lengths(l1, l2)
+    c1, s1, s2 = np.cos(q[..., 0]), np.sin(q[..., 0]), np.sin(q[..., 1])
+    return np.stack([l2 * c1 * s2 + l1 * s1, l2 * s1 * s2 + l1 * c1], axis=-1)
 
 
 def cpp_read_int(typed: str) -> int:
@@ -363,22 +389,22 @@ def cpp_fk_tip(
 def velocity_program_speed(
     t: float = 2.0, l1: float = L1_CM, l2: float = L2_CM, step: float = 1e-6
 ) -> float:
-    """The number the source's C++ velocity program prints as its "end-tip angular velocity", reproduced.
+    """The number the source's C++ velocity program gives when run: its "end-tip angular velocity".
 
-    The program states all its details, and this function follows them:
-    ``double l1 = 10.0; double l2 = 11.5;`` (cm), the angle functions
-    ``theta1 = 3 t`` and ``theta2 = 60``, both meant in degrees, evaluated at
-    ``t = 2`` s and passed to ``cos``/``sin``, which take radians.  It
-    differentiates the two angle functions numerically by a **forward**
-    difference with ``delta_t = 1e-6`` s; for these linear functions that only
-    returns their slopes ``(3, 0)`` (to round-off), which it uses as joint
-    rates in rad/s, although 3 was meant as 3 deg/s.  From those angles and
-    rates it forms the tip velocity ``(vx, vy)`` (this reproduction does so
-    with the planar Jacobian, ``J(theta) theta_dot``, which gives the printed
-    number) and prints
-    ``sqrt(vx^2 + vy^2)``, the tip's **linear** speed in cm/s, as the "end-tip
-    angular velocity": 10.8975 (:data:`PRINTED_SPEED_CM_S`), which this
-    reproduction gives.  (Its comment "relation for theta2" stands above
+    The program states all its details (``source_record.ipynb#h3-4``), and
+    this function follows them: ``double l1 = 10.0; double l2 = 11.5;`` (cm),
+    the angle functions ``theta1 = 3 t`` and ``theta2 = 60``, both meant in
+    degrees, evaluated at ``t = 2`` s and passed to ``cos``/``sin``, which take
+    radians.  It differentiates the two angle functions numerically by a
+    **forward** difference with ``delta_t = 1e-6`` s; for these linear
+    functions that only returns their slopes ``(3, 0)`` (to round-off), which
+    it uses as joint rates in rad/s, although 3 was meant as 3 deg/s.  From
+    those angles and rates it forms the tip velocity ``(vx, vy)`` (this
+    reproduction does so with the planar Jacobian, ``J(theta) theta_dot``) and
+    computes ``sqrt(vx^2 + vy^2)``, the tip's **linear** speed in cm/s, under
+    the name "end-tip angular velocity".  The source shows no output of this
+    program: run as written it gives 10.8975 (reproduced here; never call it
+    a printed value).  (Its comment "relation for theta2" stands above
     theta1's function, and it computes the tip position ``px``, ``py`` and
     never uses it; neither changes the number.)
 
@@ -401,15 +427,13 @@ def velocity_program_speed(
     Returns
     -------
     float
-        The number the program prints, cm/s (a linear speed; the source
+        The number the program computes, cm/s (a linear speed; the source
         called it an angular velocity).
 
     Examples
     --------
     >>> round(velocity_program_speed(), 4)          # the program's t = 2, delta_t = 1e-6
     10.8975
-    >>> round(velocity_program_speed(), 4) == PRINTED_SPEED_CM_S
-    True
     >>> from twolink import arms
     >>> q, q_dot = np.radians([3.0 * 2.0, 60.0]), np.radians([3.0, 0.0])   # t = 2 s, in radians
     >>> round(100 * float(np.linalg.norm(arms.osake.tip_velocity(q, q_dot))), 4)   # the right tip speed, cm/s
