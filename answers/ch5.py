@@ -1,4 +1,10 @@
-"""Chapter 5 (Lagrangian dynamics): the references of exercises 5.1 to 5.4, with typical mistakes and hints."""
+"""Chapter 5 (Lagrangian dynamics): the references of exercises 5.1 to 5.6, with typical mistakes and hints.
+
+Exercises 5.1, 5.2, 5.3 and 5.5 are graded on hidden inputs too (``RERUN``);
+5.4's function on hidden cases (``HIDDEN``) with ``arm.energy`` and
+``arm.mass_matrix`` switched off (``FORBIDDEN``); 5.4's hand value and 5.6 are
+worked on paper and checked on their own numbers (``PEN_AND_PAPER``).
+"""
 
 from __future__ import annotations
 
@@ -8,7 +14,8 @@ import functools
 import numpy as np
 from numpy.typing import NDArray
 
-from twolink import TwoLinkArm, arms, simulate, symbolic
+from answers._rerun import Rerun
+from twolink import TwoLinkArm, arms, simulate, trajectory
 from twolink_course.exercises.spec import (
     Case,
     ExerciseSpec,
@@ -22,6 +29,13 @@ Q_5_1_DEG = (30.0, 45.0)
 Q_HANG_5_2_DEG = (-90.0, 0.0)
 Q0_5_3_DEG, QD0_5_3, DURATION_5_3 = (0.0, 90.0), (2.0, 0.0), 5.0
 Q_5_4_DEG, QD_5_4 = (30.0, 45.0), (1.0, -2.0)
+Q_FROM_5_5_DEG, Q_TO_5_5_DEG, DURATION_5_5, SAMPLES_5_5 = (
+    (-90.0, 0.0),
+    (45.0, 60.0),
+    2.0,
+    2001,
+)
+Q_5_6_DEG, QD_5_6 = (0.0, 90.0), (1.0, 0.0)
 TORQUES = ("tau1", "tau2")
 #: the visible calls of kinetic_energy(arm, q, qd): (arm, q in degrees, qd in rad/s)
 CASES_5_4 = (
@@ -39,11 +53,40 @@ def horizontal_arm() -> TwoLinkArm:
     return dataclasses.replace(arms.two_metre, g=0.0)
 
 
+def _random_arm(rng: np.random.Generator, g: float = 9.81) -> TwoLinkArm:
+    """An arm of uniform rods like the chapter's: 0.5 to 3 m, 0.5 to 5 kg."""
+    lengths, masses = (
+        rng.uniform(0.5, 3.0, 2).round(2),
+        rng.uniform(0.5, 5.0, 2).round(2),
+    )
+    return TwoLinkArm(*lengths, *masses, g=g)
+
+
+def _inputs_5_1() -> dict[str, object]:
+    return {"arm_ex1": arms.two_metre, "q_ex1": np.radians(Q_5_1_DEG)}
+
+
+def _answers_5_1(inputs: dict) -> dict[str, object]:
+    arm, q = inputs["arm_ex1"], inputs["q_ex1"]
+    tau = arm.gravity(q)
+    return {
+        "tau_hold_ex1": tau,
+        "qdd_ex1": arm.forward_dynamics(q, np.zeros(2), [tau[0], 0.0]),
+    }
+
+
+def _hidden_5_1(rng: np.random.Generator) -> dict[str, object]:
+    return {
+        "arm_ex1": _random_arm(rng),
+        "q_ex1": rng.uniform(-np.pi, np.pi, 2).round(4),
+    }
+
+
 def exercise_5_1() -> ExerciseSpec:
     arm, q = arms.two_metre, np.radians(Q_5_1_DEG)
-    tau = arm.gravity(q)
+    reference = _answers_5_1(_inputs_5_1())
+    tau, qdd = reference["tau_hold_ex1"], reference["qdd_ex1"]
     at_rest = np.zeros(2)
-    qdd = arm.forward_dynamics(q, at_rest, [tau[0], 0.0])
     # each weight at its link's end instead of its centre (twice the lever arm)
     c1, c12 = np.cos(q[0]), np.cos(q.sum())
     at_ends = arm.g * np.array(
@@ -137,32 +180,35 @@ def exercise_5_1() -> ExerciseSpec:
     )
 
 
-@functools.cache
-def stiffness_5_2() -> NDArray[np.float64]:
-    """K = dg/dq at q = (-90, 0) deg, from the symbolic g of twolink.symbolic (exact)."""
-    arm, q_hang = arms.two_metre, np.radians(Q_HANG_5_2_DEG)
-    eom, s = symbolic.equations_of_motion("relative"), symbolic.dynamics_symbols()
-    inertia_1, inertia_2 = arm.inertias
-    values = {
-        s["l1"]: arm.l1,
-        s["l2"]: arm.l2,
-        s["m1"]: arm.m1,
-        s["m2"]: arm.m2,
-        s["I1"]: inertia_1,
-        s["I2"]: inertia_2,
-        s["g"]: arm.g,
-        s["q1"]: q_hang[0],
-        s["q2"]: q_hang[1],
-    }
-    return np.array(eom.g.jacobian(eom.q).subs(values), dtype=float)
+def stiffness(arm: TwoLinkArm, q: NDArray[np.float64]) -> NDArray[np.float64]:
+    """K = dg/dq at q (N m/rad), exact: the derivative of g(q)'s two cosine terms."""
+    s1, s12 = np.sin(q[0]), np.sin(q[0] + q[1])
+    outer = -arm.g * arm.m2 * arm.l2 / 2 * s12  # d/dq of the link-2 weight's term
+    inner = -arm.g * (arm.m1 / 2 + arm.m2) * arm.l1 * s1
+    return np.array([[inner + outer, outer], [outer, outer]])
+
+
+def _inputs_5_2() -> dict[str, object]:
+    return {"arm_ex2": arms.two_metre, "q_hang_ex2": np.radians(Q_HANG_5_2_DEG)}
+
+
+def _answers_5_2(inputs: dict) -> dict[str, object]:
+    arm, q_hang = inputs["arm_ex2"], inputs["q_hang_ex2"]
+    K = stiffness(arm, q_hang)
+    squares = np.linalg.eigvals(np.linalg.solve(arm.mass_matrix(q_hang), K)).real
+    return {"K_ex2": K, "omega_ex2": np.sort(np.sqrt(squares))}
+
+
+def _hidden_5_2(rng: np.random.Generator) -> dict[str, object]:
+    return {"arm_ex2": _random_arm(rng), "q_hang_ex2": np.radians(Q_HANG_5_2_DEG)}
 
 
 def exercise_5_2() -> ExerciseSpec:
     arm, q_hang = arms.two_metre, np.radians(Q_HANG_5_2_DEG)
-    K = stiffness_5_2()
+    K = stiffness(arm, q_hang)
     mass = arm.mass_matrix(q_hang)
     squares = np.sort(np.linalg.eigvals(np.linalg.solve(mass, K)).real)
-    omega = np.sqrt(squares)
+    omega = _answers_5_2(_inputs_5_2())["omega_ex2"]
     close = Tolerance(atol=1e-6, rtol=1e-6)
     return ExerciseSpec(
         "5.2",
@@ -237,7 +283,7 @@ def exercise_5_2() -> ExerciseSpec:
                     "Near the equilibrium the motion is M dq'' + K dq = 0: try dq = "
                     "v cos(omega t) and see which eigenvalue problem omega solves.",
                     "The exercise names the matrix whose eigenvalues are omega²: build "
-                    "its M at the hanging pose, and mind what numpy's eigenvalues are "
+                    "it with M at the hanging pose, and mind what numpy's eigenvalues are "
                     "(squares, in no particular order).",
                 ),
             ),
@@ -260,6 +306,37 @@ def _spins() -> dict[str, tuple[NDArray[np.float64], NDArray[np.float64]]]:
         motion = simulate(arm, start, qd0, DURATION_5_3, **solver)
         ends[name] = (motion.q[-1], motion.qd[-1])
     return ends
+
+
+def _inputs_5_3() -> dict[str, object]:
+    return {
+        "arm_ex3": horizontal_arm(),
+        "q0_ex3": np.radians(Q0_5_3_DEG),
+        "qd0_ex3": np.array(QD0_5_3),
+        "duration_ex3": DURATION_5_3,
+    }
+
+
+def _answers_5_3(inputs: dict) -> dict[str, object]:
+    arm = inputs["arm_ex3"]
+    motion = simulate(
+        arm, inputs["q0_ex3"], inputs["qd0_ex3"], inputs["duration_ex3"], **EXACT
+    )
+    q_end, qd_end = motion.q[-1], motion.qd[-1]
+    return {
+        "q_end_ex3": q_end,
+        "qd_end_ex3": qd_end,
+        "p1_end_ex3": float((arm.mass_matrix(q_end) @ qd_end)[0]),
+    }
+
+
+def _hidden_5_3(rng: np.random.Generator) -> dict[str, object]:
+    return {
+        "arm_ex3": _random_arm(rng, g=0.0),
+        "q0_ex3": rng.uniform(-np.pi, np.pi, 2).round(3),
+        "qd0_ex3": rng.uniform(-2.0, 2.0, 2).round(2),
+        "duration_ex3": round(float(rng.uniform(2.0, 5.0)), 1),
+    }
 
 
 def exercise_5_3() -> ExerciseSpec:
@@ -518,6 +595,234 @@ def _hidden_5_4(rng: np.random.Generator, count: int) -> list[Case]:
 HIDDEN = {("5.4", "kinetic_energy"): _hidden_5_4}
 
 
+def _inputs_5_5() -> dict[str, object]:
+    return {
+        "arm_ex5": arms.two_metre,
+        "q_from_ex5": np.radians(Q_FROM_5_5_DEG),
+        "q_to_ex5": np.radians(Q_TO_5_5_DEG),
+        "duration_ex5": DURATION_5_5,
+    }
+
+
+def _planned_work(arm: TwoLinkArm, q_from, q_to, duration: float, gravity: bool = True):
+    """The motors' work on the quintic move, integrated by the trapezoidal rule."""
+    t = np.linspace(0.0, duration, SAMPLES_5_5)
+    s, s_rate, s_accel = trajectory.time_scaling(
+        t, duration, "quintic", with_acceleration=True
+    )
+    move = np.asarray(q_to) - np.asarray(q_from)
+    q = np.asarray(q_from) + np.outer(s, move)
+    qd, qdd = np.outer(s_rate, move), np.outer(s_accel, move)
+    model = arm if gravity else dataclasses.replace(arm, g=0.0)
+    tau = model.inverse_dynamics(q, qd, qdd)
+    return float(np.trapezoid(np.sum(qd * tau, axis=1), t))
+
+
+def _answers_5_5(inputs: dict) -> dict[str, object]:
+    arm = inputs["arm_ex5"]
+    potential = [
+        arm.energy(inputs[name], np.zeros(2))[1] for name in ("q_to_ex5", "q_from_ex5")
+    ]
+    return {
+        "energy_change_ex5": float(potential[0] - potential[1]),
+        "work_ex5": _planned_work(
+            arm, inputs["q_from_ex5"], inputs["q_to_ex5"], inputs["duration_ex5"]
+        ),
+    }
+
+
+def _hidden_5_5(rng: np.random.Generator) -> dict[str, object]:
+    return {
+        "arm_ex5": _random_arm(rng),
+        "q_from_ex5": rng.uniform(-np.pi, np.pi, 2).round(3),
+        "q_to_ex5": rng.uniform(-np.pi, np.pi, 2).round(3),
+        "duration_ex5": round(float(rng.uniform(1.0, 3.0)), 1),
+    }
+
+
+def exercise_5_5() -> ExerciseSpec:
+    inputs = _inputs_5_5()
+    arm, q_from, q_to = inputs["arm_ex5"], inputs["q_from_ex5"], inputs["q_to_ex5"]
+    reference = _answers_5_5(inputs)
+    change = reference["energy_change_ex5"]
+    _, kinetic_only = arm.energy(q_to, np.zeros(2))
+    by_hand = Tolerance(significant=3)
+    return ExerciseSpec(
+        "5.5",
+        CHAPTER,
+        (
+            PartSpec(
+                "energy_change_ex5",
+                "change of energy",
+                "number",
+                expected=change,
+                unit="J",
+                tolerance=by_hand,
+                mistakes=(
+                    Mistake(
+                        -change,
+                        "the sign is reversed: the change is V at the end minus V at "
+                        "the start, and the arm ends higher than it starts",
+                    ),
+                    Mistake(
+                        float(arm.energy(q_to, np.zeros(2))[1]),
+                        "this is V at the end alone; the change subtracts V at the "
+                        "start (not zero: V = 0 is at shoulder height)",
+                    ),
+                    Mistake(
+                        float(
+                            arm.energy(np.degrees(q_to), np.zeros(2))[1]
+                            - arm.energy(np.degrees(q_from), np.zeros(2))[1]
+                        ),
+                        "these are the energies for the angles read as degrees fed "
+                        "to sin and cos: the angles are in radians already",
+                    ),
+                ),
+                hints=(
+                    "At rest T = 0, so the energy at each end is V alone: reread "
+                    "section 2's V, or use arm.energy(q, qd), which returns (T, V).",
+                    "Compute V at q_to_ex5 and at q_from_ex5, both at rest, and "
+                    "subtract: end minus start.",
+                ),
+            ),
+            PartSpec(
+                "work_ex5",
+                "motors' work",
+                "number",
+                expected=reference["work_ex5"],
+                unit="J",
+                tolerance=by_hand,
+                mistakes=(
+                    Mistake(
+                        _planned_work(
+                            arm, q_from, q_to, inputs["duration_ex5"], gravity=False
+                        ),
+                        "this is the work on the arm lying flat (g = 0), which ends "
+                        "where it started in energy: the exercise's arm is vertical, "
+                        "its motors also lift it",
+                    ),
+                    Mistake(
+                        -reference["work_ex5"],
+                        "the sign is reversed: the motors' power is qd^T tau, positive "
+                        "while they lift the arm",
+                    ),
+                ),
+                hints=(
+                    "Section 8 turns a planned q, qd, qdd into torques; the power "
+                    "the motors put in is qd^T tau at each instant (section 3).",
+                    "Sample the quintic move at 2001 instants, take tau from "
+                    "arm_ex5.inverse_dynamics, the power as the sum over the joints "
+                    "of qd times tau, and integrate it over time with np.trapezoid.",
+                ),
+            ),
+        ),
+    )
+
+
+def _c_qd(q: NDArray[np.float64], qd: NDArray[np.float64]) -> NDArray[np.float64]:
+    arm = arms.two_metre
+    return arm.coriolis(q, qd) @ qd
+
+
+def exercise_5_6() -> ExerciseSpec:
+    q, qd = np.radians(Q_5_6_DEG), np.asarray(QD_5_6)
+    c_qd = _c_qd(q, qd)
+    return ExerciseSpec(
+        "5.6",
+        CHAPTER,
+        (
+            PartSpec(
+                "C_qd_ex6",
+                "velocity torques C qd",
+                "vector",
+                expected=c_qd,
+                shape=(2,),
+                unit="N m",
+                components=("shoulder", "elbow"),
+                tolerance=Tolerance(significant=3),
+                mistakes=(
+                    Mistake(
+                        -c_qd,
+                        "the sign is reversed: h = -m2 l1 l2 sin(q2) / 2 is negative "
+                        "here, so the elbow's term -h qd1² is positive",
+                    ),
+                    Mistake(
+                        _c_qd(np.asarray(Q_5_6_DEG), qd),
+                        "these are the torques with the angles read as radians: sin "
+                        "of 90 degrees is 1",
+                    ),
+                    Mistake(
+                        c_qd[::-1],
+                        "the entries are swapped: the first is the shoulder's torque, "
+                        "the second the elbow's",
+                    ),
+                ),
+                hints=(
+                    "Put q2 = 90 deg, qd1 = 1 rad/s and qd2 = 0 into section 3's C qd; "
+                    "start with h.",
+                    "h = -(1/2)(1 kg)(2 m)(2 m) sin 90 deg; with qd2 = 0 only the "
+                    "elbow's term -h qd1² is left.",
+                ),
+            ),
+            PartSpec(
+                "reason_ex6",
+                "reason",
+                "text",
+                expected="b",
+                mistakes=(
+                    Mistake(
+                        "a",
+                        "a constant rate does not remove the velocity terms (they are "
+                        "quadratic in the rates, not in the accelerations), and the "
+                        "elbow's term has qd1², a centrifugal term, not a Coriolis one",
+                    ),
+                    Mistake(
+                        "c",
+                        "at q2 = 90 deg sin q2 = 1: h is largest there, not zero; the "
+                        "terms vanish when the arm is stretched or folded",
+                    ),
+                ),
+                hints=(
+                    "Reread the bullets after C qd in section 3: which term is "
+                    "centrifugal, which Coriolis, and which terms are absent?",
+                    "A centrifugal term has the square of one rate, a Coriolis term "
+                    "the product of two; no joint feels the centrifugal force of "
+                    "its own rotation.",
+                ),
+            ),
+        ),
+    )
+
+
+#: The value exercises graded on hidden inputs too: the inputs cell, a hidden draw, the references.
+RERUN = {
+    "5.1": Rerun(inputs=_inputs_5_1(), hidden=_hidden_5_1, answers=_answers_5_1),
+    "5.2": Rerun(inputs=_inputs_5_2(), hidden=_hidden_5_2, answers=_answers_5_2),
+    "5.3": Rerun(inputs=_inputs_5_3(), hidden=_hidden_5_3, answers=_answers_5_3),
+    "5.5": Rerun(inputs=_inputs_5_5(), hidden=_hidden_5_5, answers=_answers_5_5),
+}
+
+#: The package's one-liners a function part must not call (dotted paths): switched off while it runs.
+FORBIDDEN = {
+    ("5.4", "kinetic_energy"): (
+        "twolink.arm.TwoLinkArm.energy",
+        "twolink.dynamics.energy",
+        "twolink.arm.TwoLinkArm.mass_matrix",
+        "twolink.dynamics.mass_matrix",
+    ),
+}
+
+#: Parts worked on paper: checked on the visible values only, timed as pen-and-paper parts.
+PEN_AND_PAPER = (("5.4", "T_ex4"), ("5.6", "C_qd_ex6"), ("5.6", "reason_ex6"))
+
+
 def exercises() -> list[ExerciseSpec]:
     """The chapter's exercises, computed from their data."""
-    return [exercise_5_1(), exercise_5_2(), exercise_5_3(), exercise_5_4()]
+    return [
+        exercise_5_1(),
+        exercise_5_2(),
+        exercise_5_3(),
+        exercise_5_4(),
+        exercise_5_5(),
+        exercise_5_6(),
+    ]

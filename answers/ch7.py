@@ -1,4 +1,10 @@
-"""Chapter 7 (workspace and trajectories): the references of exercises 7.1 to 7.4, with typical mistakes and hints."""
+"""Chapter 7 (workspace and trajectories): the references of exercises 7.1 to 7.5, with typical mistakes and hints.
+
+Exercises 7.2, 7.3 and 7.5 are graded on hidden inputs too (``RERUN``); 7.4's
+function on hidden cases (``HIDDEN``) with the package's reachability tests
+switched off (``FORBIDDEN``); 7.1 and parts of 7.5 are worked on paper
+(``PEN_AND_PAPER``).
+"""
 
 from __future__ import annotations
 
@@ -8,6 +14,8 @@ from collections.abc import Callable
 import numpy as np
 import scipy.optimize
 
+from answers._draws import first_valid
+from answers._rerun import Rerun
 from twolink import TwoLinkArm, arms, ik, trajectory, workspace
 from twolink_course.exercises.spec import (
     Case,
@@ -22,6 +30,9 @@ LIMIT_DEG_7_1 = 35.0  # arms.two_metre_limited: link angles in [35, 145] deg
 CENTRE_7_2, SHRINK_7_2, DURATION_7_2, SAMPLES_7_2 = (11.5, 12.0), 0.999, 3.0, 60
 LINE_7_3, DURATION_7_3, RTOL_7_3 = ((-3.5, 1.0), (-1.0, 3.5)), 5.0, 1e-6
 SECTION_SAMPLES_7_3 = 50  # the line task's samples in the chapter's section
+CENTRE_7_5, RADIUS_7_5, DURATION_7_5, SAMPLES_7_5 = (12.5, 12.5), 2.0, 4.0, 4001
+CIRCLE_POINTS_7_5 = 16  # section 5's points
+BUDGET_SHARE_7_5 = (20e-6 + 6 * 6e-6) / 1e-3  # a call's 20 us and 6 iterations of 6 us
 
 
 # ------------------------------------------------------------------ 7.1
@@ -103,11 +114,59 @@ def exercise_7_1() -> ExerciseSpec:
 
 
 def _largest_step_deg(
-    radius: float, n: int = SAMPLES_7_2, law: str = "quintic"
+    radius: float,
+    n: int = SAMPLES_7_2,
+    law: str = "quintic",
+    arm: TwoLinkArm = arms.ten,
+    centre: object = CENTRE_7_2,
+    duration: float = DURATION_7_2,
 ) -> float:
-    path = trajectory.CirclePath(CENTRE_7_2, radius, duration=DURATION_7_2, law=law)
-    motion = trajectory.ik_trajectory(arms.ten, path, n=n, elbow="up")
+    path = trajectory.CirclePath(centre, radius, duration=duration, law=law)
+    motion = trajectory.ik_trajectory(arm, path, n=n, elbow="up")
     return float(np.degrees(motion.joint_steps.max()))
+
+
+def _inputs_7_2() -> dict[str, object]:
+    return {
+        "arm_ex2": arms.ten,
+        "centre_ex2": np.array(CENTRE_7_2),
+        "duration_ex2": DURATION_7_2,
+        "samples_ex2": SAMPLES_7_2,
+    }
+
+
+def _answers_7_2(inputs: dict) -> dict[str, object]:
+    arm, centre = inputs["arm_ex2"], inputs["centre_ex2"]
+    radius = float(workspace.clearance(arm, centre, elbow="up"))
+    step = _largest_step_deg(
+        SHRINK_7_2 * radius,
+        n=inputs["samples_ex2"],
+        arm=arm,
+        centre=centre,
+        duration=inputs["duration_ex2"],
+    )
+    return {"radius_up": radius, "largest_step_deg": step}
+
+
+def _draw_7_2(rng: np.random.Generator) -> dict[str, object] | None:
+    inputs = {
+        "arm_ex2": arms.ten,
+        "centre_ex2": rng.uniform(2.0, 18.0, 2).round(2),
+        "duration_ex2": round(float(rng.uniform(2.0, 5.0)), 1),
+        "samples_ex2": int(rng.integers(40, 100)),
+    }
+    if workspace.clearance(arms.ten, inputs["centre_ex2"], elbow="up") < 1.0:
+        return None
+    try:
+        _answers_7_2(inputs)
+    except ValueError:  # a circle the branch cannot trace whole
+        return None
+    return inputs
+
+
+def _hidden_7_2(rng: np.random.Generator) -> dict[str, object]:
+    """Another centre with room on the elbow-up branch of arms.ten, and another timing."""
+    return first_valid(_draw_7_2, rng, what="exercise 7.2's hidden inputs")
 
 
 def exercise_7_2() -> ExerciseSpec:
@@ -196,16 +255,24 @@ def exercise_7_2() -> ExerciseSpec:
 # ------------------------------------------------------------------ 7.3
 
 
-def _line(law: str) -> trajectory.LinePath:
-    return trajectory.LinePath(*LINE_7_3, duration=DURATION_7_3, law=law)
+def _line(
+    law: str, ends=LINE_7_3, duration: float = DURATION_7_3
+) -> trajectory.LinePath:
+    return trajectory.LinePath(*ends, duration=duration, law=law)
 
 
-def _peak_rate(law: str = "quintic", joint: int | None = None) -> float:
-    """The largest |joint rate| (rad/s) of the line task: exact rates, refined near the peak.
+def _peak_rate(
+    law: str = "quintic",
+    joint: int | None = None,
+    arm: TwoLinkArm = arms.two_metre,
+    ends=LINE_7_3,
+    duration: float = DURATION_7_3,
+) -> float:
+    """The largest |joint rate| (rad/s) of a line task: exact rates, refined near the peak.
 
     ``joint`` None: either joint; 0 or 1: that joint only.
     """
-    arm, path = arms.two_metre, _line(law)
+    path = _line(law, ends, duration)
     columns = slice(None) if joint is None else slice(joint, joint + 1)
 
     def rate(t: float | np.ndarray, elbow: str) -> np.ndarray:
@@ -225,6 +292,55 @@ def _peak_rate(law: str = "quintic", joint: int | None = None) -> float:
         options={"xatol": 1e-10},
     )
     return float(max(rates[i], -best.fun))
+
+
+def _inputs_7_3() -> dict[str, object]:
+    return {
+        "arm_ex3": arms.two_metre,
+        "line_start_ex3": np.array(LINE_7_3[0]),
+        "line_end_ex3": np.array(LINE_7_3[1]),
+        "duration_ex3": DURATION_7_3,
+    }
+
+
+def _answers_7_3(inputs: dict) -> dict[str, object]:
+    ends = (inputs["line_start_ex3"], inputs["line_end_ex3"])
+    return {
+        "max_joint_rate": _peak_rate(
+            arm=inputs["arm_ex3"], ends=ends, duration=inputs["duration_ex3"]
+        )
+    }
+
+
+def _draw_7_3(rng: np.random.Generator) -> dict[str, object] | None:
+    arm = arms.two_metre
+    ends = [
+        arm.fk([rng.uniform(-np.pi, np.pi), rng.uniform(0.6, 2.2)]) for _ in range(2)
+    ]
+    start, end = (np.round(point, 2) for point in ends)
+    inputs = {
+        "arm_ex3": arm,
+        "line_start_ex3": start,
+        "line_end_ex3": end,
+        "duration_ex3": round(float(rng.uniform(2.0, 6.0)), 1),
+    }
+    path = _line("quintic", (start, end), inputs["duration_ex3"])
+    try:  # on one branch, and the chapter's 2001 samples meet the 1e-6 asked
+        sampled = trajectory.ik_trajectory(arm, path, n=2001)
+        peak = _answers_7_3(inputs)["max_joint_rate"]
+    except ValueError:
+        return None
+    if (
+        np.linalg.norm(end - start) > 1.0
+        and abs(np.abs(sampled.qd).max() - peak) < 1e-7 * peak
+    ):
+        return inputs
+    return None
+
+
+def _hidden_7_3(rng: np.random.Generator) -> dict[str, object]:
+    """Another line well inside the 2 m arm's reach, away from its base, another duration."""
+    return first_valid(_draw_7_3, rng, what="exercise 7.3's hidden inputs")
 
 
 def exercise_7_3() -> ExerciseSpec:
@@ -473,6 +589,188 @@ def hidden_7_4(rng: np.random.Generator, count: int) -> list[Case]:
 HIDDEN = {("7.4", "reachable"): hidden_7_4}
 
 
+# ------------------------------------------------------------------ 7.5
+
+
+def _inputs_7_5() -> dict[str, object]:
+    return {
+        "arm_ex5": arms.ten,
+        "centre_ex5": np.array(CENTRE_7_5),
+        "radius_ex5": RADIUS_7_5,
+        "samples_ex5": SAMPLES_7_5,
+    }
+
+
+def _largest_step_7_5(
+    inputs: dict, law: str = "quintic", n: int | None = None
+) -> float:
+    path = trajectory.CirclePath(
+        inputs["centre_ex5"], inputs["radius_ex5"], duration=DURATION_7_5, law=law
+    )
+    samples = inputs["samples_ex5"] if n is None else n
+    return float(
+        trajectory.ik_trajectory(inputs["arm_ex5"], path, n=samples).joint_steps.max()
+    )
+
+
+def _answers_7_5(inputs: dict) -> dict[str, object]:
+    return {
+        "largest_step_ex5": _largest_step_7_5(inputs),
+        "budget_share_ex5": BUDGET_SHARE_7_5,
+        "reason_ex5": "a",
+    }
+
+
+def _draw_7_5(rng: np.random.Generator) -> dict[str, object] | None:
+    centre = rng.uniform(4.0, 16.0, 2).round(2)
+    room = float(workspace.clearance(arms.ten, centre))
+    if room < 1.0:
+        return None
+    inputs = {
+        "arm_ex5": arms.ten,
+        "centre_ex5": centre,
+        "radius_ex5": round(float(rng.uniform(0.5, room * 0.9)), 2),
+        "samples_ex5": int(rng.integers(1000, 5000)),
+    }
+    try:
+        _answers_7_5(inputs)
+    except ValueError:  # no branch traces it whole
+        return None
+    return inputs
+
+
+def _hidden_7_5(rng: np.random.Generator) -> dict[str, object]:
+    """Another circle traced whole on one branch of arms.ten, at another sampling rate."""
+    return first_valid(_draw_7_5, rng, what="exercise 7.5's hidden inputs")
+
+
+def exercise_7_5() -> ExerciseSpec:
+    inputs = _inputs_7_5()
+    step = _largest_step_7_5(inputs)
+    return ExerciseSpec(
+        "7.5",
+        CHAPTER,
+        (
+            PartSpec(
+                "largest_step_ex5",
+                "warm start's largest distance",
+                "number",
+                expected=step,
+                unit="rad",
+                tolerance=Tolerance(atol=1e-9, rtol=1e-6),
+                mistakes=(
+                    Mistake(
+                        float(np.degrees(step)),
+                        "this is in degrees; the exercise asks for radians",
+                    ),
+                    Mistake(
+                        _largest_step_7_5(inputs, n=CIRCLE_POINTS_7_5),
+                        "this is the step between the 16 points of section 5; at 1 kHz "
+                        "the samples are 1 ms apart: use the exercise's samples",
+                    ),
+                    Mistake(
+                        _largest_step_7_5(inputs, law="linear"),
+                        "this is the constant-speed law; section 5's path uses the "
+                        "quintic law",
+                    ),
+                ),
+                hints=(
+                    "Section 6: at 1 kHz each sample starts from the previous one's "
+                    "answer; the distance between them is the change of the joint angles.",
+                    "Make section 5's CirclePath (4 s, quintic), solve it with "
+                    "trajectory.ik_trajectory at the exercise's samples, and take the "
+                    "largest of its joint_steps, in radians.",
+                ),
+            ),
+            PartSpec(
+                "budget_share_ex5",
+                "share of the cycle",
+                "number",
+                expected=BUDGET_SHARE_7_5,
+                tolerance=Tolerance(significant=3),
+                mistakes=(
+                    Mistake(
+                        (20e-6 + 6e-6) / 1e-3,
+                        "this counts one iteration: the slowest point needs 6",
+                    ),
+                    Mistake(
+                        6 * 6e-6 / 1e-3,
+                        "the call's own 20 us are missing",
+                    ),
+                    Mistake(
+                        100 * BUDGET_SHARE_7_5,
+                        "this is a percentage; give the share as a number between 0 "
+                        "and 1",
+                    ),
+                ),
+                hints=(
+                    "The time at the slowest point is the call's own time plus its "
+                    "iterations' time; the share is that over the cycle.",
+                    "20 us + 6 x 6 us, over 1 ms (1000 us).",
+                ),
+            ),
+            PartSpec(
+                "reason_ex5",
+                "reason",
+                "text",
+                expected="a",
+                mistakes=(
+                    Mistake(
+                        "b",
+                        "at 1 kHz the samples are millimetres apart, yet Newton still "
+                        "takes a few iterations: closeness is not what limits the saving",
+                    ),
+                    Mistake(
+                        "c",
+                        "Newton's iterations start from the guess and improve it; a "
+                        "better guess does help, only by little",
+                    ),
+                ),
+                hints=(
+                    "Reread section 6's sentence on why warm starts save little.",
+                    "How fast does Newton's error shrink from one iteration to the "
+                    "next, near the answer?",
+                ),
+            ),
+        ),
+    )
+
+
+#: The value exercises graded on hidden inputs too: the inputs cell, a hidden draw, the references.
+RERUN = {
+    "7.2": Rerun(inputs=_inputs_7_2(), hidden=_hidden_7_2, answers=_answers_7_2),
+    "7.3": Rerun(inputs=_inputs_7_3(), hidden=_hidden_7_3, answers=_answers_7_3),
+    "7.5": Rerun(inputs=_inputs_7_5(), hidden=_hidden_7_5, answers=_answers_7_5),
+}
+
+#: The package's one-liners a function part must not call (dotted paths): switched off while it runs.
+FORBIDDEN = {
+    ("7.4", "reachable"): (
+        "twolink.workspace.is_reachable",
+        "twolink.workspace.require_reachable",
+        "twolink.workspace.clearance",
+        "twolink.workspace.BranchTable",
+        "twolink.ik.limits.solutions_within_limits",
+        "twolink.ik.turns.move_into_limits",
+        "twolink.trajectory.ik_trajectory",
+    ),
+}
+
+#: Parts worked on paper: checked on the visible values only (7.5's also on hidden
+#: runs, where they do not change), timed as pen-and-paper parts.
+PEN_AND_PAPER = (
+    ("7.1", "rho_two_metre"),
+    ("7.5", "budget_share_ex5"),
+    ("7.5", "reason_ex5"),
+)
+
+
 def exercises() -> list[ExerciseSpec]:
     """The chapter's exercises, computed from their data."""
-    return [exercise_7_1(), exercise_7_2(), exercise_7_3(), exercise_7_4()]
+    return [
+        exercise_7_1(),
+        exercise_7_2(),
+        exercise_7_3(),
+        exercise_7_4(),
+        exercise_7_5(),
+    ]

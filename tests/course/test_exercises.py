@@ -117,6 +117,14 @@ def _kinetic_energy(arm, q, qd):
     )
 
 
+def _potential_5_5(q):
+    """V (J) of the 2 m arm's rods at q, by hand: g (m1 y_c1 + m2 y_c2)."""
+    two = arms.two_metre
+    y_c1 = two.l1 / 2 * np.sin(q[0])
+    y_c2 = two.l1 * np.sin(q[0]) + two.l2 / 2 * np.sin(q[0] + q[1])
+    return two.g * (two.m1 * y_c1 + two.m2 * y_c2)
+
+
 def _sag(k):
     """How far (m) the vertical 2 m arm's tip rests from (3, 1) under a spring k, no gravity compensation."""
     two, rest = arms.two_metre, np.array([3.0, 1.0])
@@ -124,6 +132,18 @@ def _sag(k):
     q_rest = ik.closed_form(two, rest).q
     return np.linalg.norm(
         two.fk(linearization.equilibrium(two, controller, q_rest)) - rest
+    )
+
+
+def _moments(arm, q, force_by_tip):
+    """The joint torques of a tip force as its moments about the joints (no J, no joint_torques)."""
+    base, elbow, tip = arm.joint_positions(np.asarray(q, dtype=float))
+    fx, fy = force_by_tip
+    return np.array(
+        [
+            (tip - base)[0] * fy - (tip - base)[1] * fx,
+            (tip - elbow)[0] * fy - (tip - elbow)[1] * fx,
+        ]
     )
 
 
@@ -135,6 +155,23 @@ def _tip(arm, q):
             arm.l1 * np.sin(q[0]) + arm.l2 * np.sin(q[0] + q[1]),
         ]
     )
+
+
+def _reachable_by_hand(arm, p, elbows=("down", "up")):
+    """Within the limits on one of ``elbows``: closed-form IK, angles taken modulo 2 pi."""
+    if not arm.reach[0] <= np.hypot(*p) <= arm.reach[1]:
+        return False
+    low, high = np.array(arm.q_min), np.array(arm.q_max)
+    for elbow in elbows:
+        q = ik.closed_form(arm, np.asarray(p, dtype=float), elbow=elbow).q
+        angles = (
+            np.array([q[0], q[0] + q[1]]) if arm.limit_convention == "absolute" else q
+        )
+        # each angle's offset past its low limit, on the turn that starts there
+        offset = np.mod(angles - low + 1e-9, 2 * np.pi) - 1e-9
+        if np.all(offset <= high - low + 1e-9):
+            return True
+    return False
 
 
 def _elbow(arm, p, sign):
@@ -297,10 +334,13 @@ def _right_answers():
     answers["4.3"] = {
         "tau_ex3": two.jacobian(q43).T @ [0.0, 20.0 * two.g] + two.gravity(q43)
     }
-    answers["4.4"] = {
-        "wall_torques": lambda arm, q, force_by_tip: (
-            arm.jacobian(q).T @ np.asarray(force_by_tip)
-        )
+    answers["4.4"] = {"wall_torques": _moments}
+    # at (0, 90) deg: s1 = 0, c1 = 1, s12 = 1, c12 = 0; J J^T = [[8, -4], [-4, 4]] has
+    # the eigenvalues 6 +- 2 sqrt(5) = (sqrt(5) +- 1)^2, so sigma = sqrt(5) +- 1
+    answers["4.5"] = {
+        "J_ex5": [[-2.0, -2.0], [2.0, 0.0]],
+        "force_axes_ex5": [1 / (np.sqrt(5) - 1), 1 / (np.sqrt(5) + 1)],
+        "reason_ex5": "b",
     }
     q51 = np.radians([30.0, 45.0])
     answers["5.1"] = {
@@ -331,37 +371,43 @@ def _right_answers():
         "T_ex4": _kinetic_energy(two, np.radians([30.0, 45.0]), np.array([1.0, -2.0])),
         "kinetic_energy": _kinetic_energy,
     }
+    # the planned move starts and ends at rest: the motors' work is the change of V
+    energy_change = _potential_5_5(np.radians([45.0, 60.0])) - _potential_5_5(
+        np.radians([-90.0, 0.0])
+    )
+    answers["5.5"] = {"energy_change_ex5": energy_change, "work_ex5": energy_change}
+    # h = -m2 l1 l2 sin(q2) / 2 = -2 at q2 = 90 deg; C qd = (h (2 qd1 qd2 + qd2^2), -h qd1^2)
+    answers["5.6"] = {"C_qd_ex6": [0.0, 2.0], "reason_ex6": "b"}
     q_up = ik.closed_form(two, [2.6, 0.3], elbow="up").q
     answers["6.1"] = {
         "tau_ex1": two.jacobian(q_up).T
         @ np.diag([600.0, 200.0])
         @ (np.array([3.0, 1.0]) - two.fk(q_up))
     }
+    # the tip mass at (3, 1) elbow down, by the 2x2 rules: (J M^-1 J^T)^-1
     q_rest = ik.closed_form(two, [3.0, 1.0]).q
-    Lambda = linearization.tip_mass(two, q_rest)
-    w, V = np.linalg.eigh(Lambda)
-    D = (
-        2.0 * np.sqrt(600.0) * (V * np.sqrt(w)) @ V.T
-    )  # 2 Lambda^1/2 (k Lambda^-1)^1/2 Lambda^1/2 = 2 sqrt(k) Lambda^1/2
-    control = pytest.importorskip("control")
-    loop = linearization.linearize(
-        two,
-        controllers.Impedance(two, 600.0, (D + D.T) / 2, np.array([3.0, 1.0])),
-        q_rest,
-    )
+    J, M = two.jacobian(q_rest), two.mass_matrix(q_rest)
+    (a, b), (c, d) = J @ np.linalg.inv(M) @ J.T
+    Lambda = np.array([[d, -b], [-c, a]]) / (a * d - b * c)
+    trace, det = np.trace(Lambda), np.linalg.det(Lambda)
+    light, heavy = (trace + np.array([-1.0, 1.0]) * np.sqrt(trace**2 - 4 * det)) / 2
     answers["6.2"] = {
-        "D_ex2": D,
-        "poles_ex2": np.sort(control.poles(loop).real),
-        # the scalar critical damping's ratio in each eigen-direction, light first
-        "zeta_modes_ex2": linearization.critical_damping(two, q_rest, 600.0)
-        / (2.0 * np.sqrt(600.0 * w)),
+        "Lambda_ex2": Lambda,
+        "masses_ex2": [light, heavy],
+        "d_c_ex2": 2 * np.sqrt(600.0 * heavy),
+        "zeta_light_ex2": np.sqrt(heavy / light),  # 2 sqrt(k heavy) / (2 sqrt(k light))
     }
     import scipy.optimize
 
-    answers["6.3"] = {
-        "k_ex3": scipy.optimize.brentq(
-            lambda k: _sag(k) - 0.005, 600.0, 20000.0, xtol=1e-6
-        )
+    # the boundary where the tip rests exactly 5 mm away, then the next whole N/m up
+    boundary = scipy.optimize.brentq(
+        lambda k: _sag(k) - 0.005, 600.0, 20000.0, xtol=1e-9
+    )
+    answers["6.3"] = {"k_ex3": int(np.ceil(boundary))}
+    J5 = two.jacobian(np.radians([-20.0, 70.0]))
+    answers["6.5"] = {
+        "K_joint_ex5": 600.0 * J5.T @ J5,
+        "offset_ex5": 300.0 / 600.0 + 300.0 / 1e5,
     }
     answers["6.4"] = {
         "spring_torques": lambda arm, q, p_rest, k: (
@@ -390,8 +436,14 @@ def _right_answers():
         n=4001,
     )
     answers["7.3"] = {"max_joint_rate": np.abs(fine.qd).max()}
-    answers["7.4"] = {
-        "reachable": lambda arm, p: bool(workspace.is_reachable(arm, np.asarray(p)))
+    answers["7.4"] = {"reachable": _reachable_by_hand}
+    # 1 kHz on the 4 s quintic circle: the joints' largest change between samples
+    circle = trajectory.CirclePath([12.5, 12.5], 2.0, duration=4.0, law="quintic")
+    q_dense = ik.closed_form(ten, circle.sample(4001)[1], elbow="down").q
+    answers["7.5"] = {
+        "largest_step_ex5": np.abs(np.diff(q_dense, axis=0)).max(),
+        "budget_share_ex5": (20 + 6 * 6) / 1000,  # us at the slowest point, of 1 ms
+        "reason_ex5": "a",
     }
     return answers
 
@@ -450,19 +502,6 @@ def _exact_peak_rate():
         options={"xatol": 1e-10},
     )
     return -best.fun
-
-
-def _scalar_damping_poles():
-    control = pytest.importorskip("control")
-    q_rest = ik.closed_form(arms.two_metre, [3.0, 1.0]).q
-    d = linearization.critical_damping(arms.two_metre, q_rest, 600.0)
-    return control.poles(
-        linearization.linearize(
-            arms.two_metre,
-            controllers.Impedance(arms.two_metre, 600.0, d, np.array([3.0, 1.0])),
-            q_rest,
-        )
-    )
 
 
 #: exercise -> [(what the mistake is, {part: wrong value (a function of the right answers)})]
@@ -840,17 +879,15 @@ WRONG = {
             "the force on the tip",
             {
                 "wall_torques": lambda r: (
-                    lambda arm, q, force_by_tip: -arm.joint_torques(q, force_by_tip)
+                    lambda arm, q, force_by_tip: -_moments(arm, q, force_by_tip)
                 )
             },
         ),
         (
-            "J F",
+            "tau2 about the base",
             {
                 "wall_torques": lambda r: (
-                    lambda arm, q, force_by_tip: (
-                        arm.jacobian(q) @ np.asarray(force_by_tip)
-                    )
+                    lambda arm, q, force_by_tip: _moments(arm, q, force_by_tip)[[0, 0]]
                 )
             },
         ),
@@ -858,12 +895,32 @@ WRONG = {
             "degrees",
             {
                 "wall_torques": lambda r: (
-                    lambda arm, q, force_by_tip: arm.joint_torques(
-                        np.radians(q), force_by_tip
+                    lambda arm, q, force_by_tip: _moments(
+                        arm, np.radians(q), force_by_tip
                     )
                 )
             },
         ),
+    ],
+    "4.5": [
+        ("J transposed", {"J_ex5": lambda r: np.transpose(r["J_ex5"])}),
+        (
+            "the singular values",
+            {"force_axes_ex5": lambda r: [np.sqrt(5) + 1, np.sqrt(5) - 1]},
+        ),
+        ("the shortest first", {"force_axes_ex5": lambda r: r["force_axes_ex5"][::-1]}),
+        (
+            "1 / lambda",
+            {
+                "force_axes_ex5": lambda r: [
+                    1 / (6 - np.sqrt(20)),
+                    1 / (6 + np.sqrt(20)),
+                ]
+            },
+        ),
+        ("stronger motors", {"reason_ex5": lambda r: "a"}),
+        ("det J largest", {"reason_ex5": lambda r: "c"}),
+        ("the right letter in a list", {"reason_ex5": lambda r: ["b"]}),
     ],
     "5.1": [
         ("-g(q)", {"tau_hold_ex1": lambda r: -np.asarray(r["tau_hold_ex1"])}),
@@ -958,9 +1015,27 @@ WRONG = {
             {"kinetic_energy": lambda r: _kinetic_energy_relative},
         ),
         (
-            "arm.energy's tuple",
-            {"kinetic_energy": lambda r: lambda arm, q, qd: arm.energy(q, qd)},
+            "a tuple (T, 0.0)",
+            {
+                "kinetic_energy": lambda r: (
+                    lambda arm, q, qd: (_kinetic_energy(arm, q, qd), 0.0)
+                )
+            },
         ),
+    ],
+    "5.5": [
+        (
+            "V at the end only",
+            {"energy_change_ex5": lambda r: _potential_5_5(np.radians([45.0, 60.0]))},
+        ),
+        ("the sign reversed", {"work_ex5": lambda r: -r["work_ex5"]}),
+        ("the flat arm's work", {"work_ex5": lambda r: 0.0}),
+    ],
+    "5.6": [
+        ("h taken positive", {"C_qd_ex6": lambda r: [0.0, -2.0]}),
+        ("swapped entries", {"C_qd_ex6": lambda r: [2.0, 0.0]}),
+        ("a constant rate", {"reason_ex6": lambda r: "a"}),
+        ("zero at 90 deg", {"reason_ex6": lambda r: "c"}),
     ],
     "6.1": [
         (
@@ -983,42 +1058,38 @@ WRONG = {
     ],
     "6.2": [
         (
-            "scalar critical damping times I",
-            {
-                "D_ex2": lambda r: (
-                    linearization.critical_damping(
-                        arms.two_metre,
-                        ik.closed_form(arms.two_metre, [3.0, 1.0]).q,
-                        600.0,
-                    )
-                    * np.eye(2)
-                )
-            },
+            "J M^-1 J^T, not inverted",
+            {"Lambda_ex2": lambda r: np.linalg.inv(r["Lambda_ex2"])},
         ),
+        ("heavy first", {"masses_ex2": lambda r: r["masses_ex2"][::-1]}),
         (
-            "poles of the scalar damping",
-            {"poles_ex2": lambda r: np.sort(_scalar_damping_poles().real)},
+            "the light direction's d",
+            {"d_c_ex2": lambda r: 2 * np.sqrt(600.0 * r["masses_ex2"][0])},
         ),
-        (
-            "the natural frequencies |p| (the sign lost)",
-            {"poles_ex2": lambda r: -np.asarray(r["poles_ex2"])},
-        ),
-        (
-            "sorted from the least negative",
-            {"poles_ex2": lambda r: np.asarray(r["poles_ex2"])[::-1]},
-        ),
-        (
-            "two poles only",
-            {"poles_ex2": lambda r: np.unique(np.round(np.real(r["poles_ex2"]), 6))},
-        ),
-        ("control.damp's ratios", {"zeta_modes_ex2": lambda r: np.ones(2)}),
-        ("heavy first", {"zeta_modes_ex2": lambda r: r["zeta_modes_ex2"][::-1]}),
+        ("the factor 2 missing", {"d_c_ex2": lambda r: r["d_c_ex2"] / 2}),
+        ("zeta = 1 for both", {"zeta_light_ex2": lambda r: 1.0}),
     ],
     "6.3": [
         ("the source's k = 600", {"k_ex3": lambda r: 600.0}),
+        ("the boundary itself, unrounded", {"k_ex3": lambda r: r["k_ex3"] - 0.5}),
+        ("rounded down", {"k_ex3": lambda r: r["k_ex3"] - 1}),
         ("ten times too stiff", {"k_ex3": lambda r: 10 * r["k_ex3"]}),
-        ("for a 5 cm sag", {"k_ex3": lambda r: r["k_ex3"] / 10}),
         ("negative", {"k_ex3": lambda r: -r["k_ex3"]}),
+    ],
+    "6.5": [
+        (
+            "J K J^T",
+            {
+                "K_joint_ex5": lambda r: (
+                    600.0
+                    * (lambda J: J @ J.T)(
+                        arms.two_metre.jacobian(np.radians([-20.0, 70.0]))
+                    )
+                )
+            },
+        ),
+        ("the tip's stiffness", {"K_joint_ex5": lambda r: 600.0 * np.eye(2)}),
+        ("the spring's stretch only", {"offset_ex5": lambda r: 0.5}),
     ],
     "6.4": [
         (
@@ -1157,22 +1228,23 @@ WRONG = {
             "elbow down only",
             {
                 "reachable": lambda r: (
-                    lambda arm, p: bool(
-                        workspace.is_reachable(arm, np.asarray(p), elbow="down")
-                    )
+                    lambda arm, p: _reachable_by_hand(arm, p, ("down",))
                 )
             },
         ),
         (
             "elbow up only",
-            {
-                "reachable": lambda r: (
-                    lambda arm, p: bool(
-                        workspace.is_reachable(arm, np.asarray(p), elbow="up")
-                    )
-                )
-            },
+            {"reachable": lambda r: lambda arm, p: _reachable_by_hand(arm, p, ("up",))},
         ),
+    ],
+    "7.5": [
+        (
+            "in degrees",
+            {"largest_step_ex5": lambda r: np.degrees(r["largest_step_ex5"])},
+        ),
+        ("one iteration only", {"budget_share_ex5": lambda r: 0.026}),
+        ("a percentage", {"budget_share_ex5": lambda r: 5.6}),
+        ("the points too far apart", {"reason_ex5": lambda r: "b"}),
     ],
 }
 
@@ -1330,12 +1402,20 @@ EQUIVALENT = {
             "a list",
             {
                 "wall_torques": lambda r: (
-                    lambda arm, q, force_by_tip: list(
-                        arm.joint_torques(q, force_by_tip)
-                    )
+                    lambda arm, q, force_by_tip: list(_moments(arm, q, force_by_tip))
                 )
             },
         )
+    ],
+    "4.5": [
+        (
+            "3 significant figures",
+            {
+                "force_axes_ex5": lambda r: [0.809, 0.309],
+                "J_ex5": lambda r: [[-2, -2], [2, 0]],
+            },
+        ),
+        ("spaces around the letter", {"reason_ex5": lambda r: " b "}),
     ],
     "5.1": [
         (
@@ -1363,24 +1443,53 @@ EQUIVALENT = {
     "5.4": [
         ("3 significant figures", {"T_ex4": lambda r: float(f"{r['T_ex4']:.3g}")}),
         (
-            "arm.energy's T",
-            {"kinetic_energy": lambda r: lambda arm, q, qd: arm.energy(q, qd)[0]},
-        ),
-    ],
-    "6.1": [("a list", {"tau_ex1": lambda r: list(r["tau_ex1"])})],
-    "6.2": [
-        ("poles as a list", {"poles_ex2": lambda r: list(r["poles_ex2"])}),
-        (
-            "the symmetrised D",
+            "a numpy number",
             {
-                "D_ex2": lambda r: (
-                    (np.asarray(r["D_ex2"]) + np.asarray(r["D_ex2"]).T) / 2
+                "kinetic_energy": lambda r: (
+                    lambda arm, q, qd: np.float64(_kinetic_energy(arm, q, qd))
                 )
             },
         ),
     ],
-    "6.3": [
-        ("to 4 significant figures", {"k_ex3": lambda r: float(f"{r['k_ex3']:.4g}")})
+    "5.5": [
+        (
+            "3 significant figures",
+            {
+                "energy_change_ex5": lambda r: float(f"{r['energy_change_ex5']:.3g}"),
+                "work_ex5": lambda r: float(f"{r['work_ex5']:.3g}"),
+            },
+        ),
+    ],
+    "5.6": [
+        (
+            "a list, a spaced letter",
+            {"C_qd_ex6": lambda r: [0, 2], "reason_ex6": lambda r: " b"},
+        )
+    ],
+    "6.1": [("a list", {"tau_ex1": lambda r: list(r["tau_ex1"])})],
+    "6.2": [
+        (
+            "3 significant figures",
+            {
+                "masses_ex2": lambda r: [float(f"{m:.3g}") for m in r["masses_ex2"]],
+                "d_c_ex2": lambda r: float(f"{r['d_c_ex2']:.3g}"),
+                "zeta_light_ex2": lambda r: float(f"{r['zeta_light_ex2']:.3g}"),
+            },
+        ),
+        (
+            "Lambda as nested lists",
+            {"Lambda_ex2": lambda r: np.asarray(r["Lambda_ex2"]).tolist()},
+        ),
+    ],
+    "6.3": [("a float", {"k_ex3": lambda r: float(r["k_ex3"])})],
+    "6.5": [
+        (
+            "a list, 3 significant figures",
+            {
+                "K_joint_ex5": lambda r: np.asarray(r["K_joint_ex5"]).tolist(),
+                "offset_ex5": lambda r: 0.503,
+            },
+        )
     ],
     "6.4": [
         (
@@ -1413,6 +1522,15 @@ EQUIVALENT = {
             {"reachable": lambda r: lambda arm, p: np.bool_(r["reachable"](arm, p))},
         )
     ],
+    "7.5": [
+        (
+            "a numpy float and the letter spaced",
+            {
+                "largest_step_ex5": lambda r: np.float64(r["largest_step_ex5"]),
+                "reason_ex5": lambda r: "a ",
+            },
+        )
+    ],
 }
 
 
@@ -1428,10 +1546,10 @@ EXERCISE_COUNTS = {
     1: (5, 10, ("1.4",)),
     2: (5, 10, ("2.4",)),
     3: (6, 10, ("3.1",)),
-    4: (4, 5, ("4.4",)),
-    5: (4, 9, ("5.4",)),
-    6: (4, 6, ("6.4",)),
-    7: (4, 5, ("7.4",)),
+    4: (5, 8, ("4.4",)),
+    5: (6, 13, ("5.4",)),
+    6: (5, 9, ("6.4",)),
+    7: (5, 8, ("7.4",)),
 }
 
 

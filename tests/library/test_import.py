@@ -32,6 +32,9 @@ HEAVY_BY_DESIGN = {
     "twolink_course.plot": "matplotlib",
     "twolink_course.diagrams": "matplotlib",
     "twolink_course.explorer": "matplotlib",
+    "twolink_course.explorers.ch1": "matplotlib",  # chapter 1's explorer, built on explorer
+    "twolink_course.explorers.ch2": "matplotlib",  # chapter 2's explorer, built on explorer
+    "twolink_course.explorers.ch3": "matplotlib",  # chapter 3's explorer, built on explorer
     "twolink_course.figure_style": "matplotlib",
     "twolink_course.alttext": "matplotlib",
     "twolink_course.inline": "matplotlib",

@@ -6,5 +6,5 @@ chapter's module and wires that object's ``update`` and ``describe`` to the
 sliders with :class:`twolink_course.explorer.Explorer`.  How the figure keeps up
 with the hand (artists drawn once and moved, heavy work done once, a quicker
 solver checked against the exact one) lives here, with the tests that check it
-(``tests/test_explorers_chN.py``).
+(``tests/course/test_explorers_chN.py``).
 """

@@ -2,26 +2,41 @@
 
 The project measures **both** link angles from the x-axis (``q1`` and
 ``q2_abs = q1 + q2``), as for a belt drive with motor 2 on the ground.  This
-module reproduces its methods as the source record (COURSE.md H4) gives them,
-so that the course (chapters 4-7) and the tests can show its numbers coming out
-of its own formulas:
+module reproduces its methods as the course's source record gives them
+(``notebooks/source_record.ipynb``, items H4.1 to H4.6, each at the anchor
+``#h4-1`` ... ``#h4-6``), so that the course (chapters 4-7) and the tests can
+show its numbers coming out of its own formulas:
 
-- :func:`source_ik`: its inverse kinematics as reproduced here (H4.1 gives only
-  the second term of its ``q1`` line), in both readings of that transcribed
-  term (``l1 + l2 sin(theta)`` or ``l1 + l2 cos(theta)``).
+- :func:`source_ik`: its inverse kinematics, printed whole in each of its
+  programs (``source_record.ipynb#h4-1``):
+  ``theta = acos((x^2 + y^2 - l1^2 - l2^2) / (2 l1 l2))``,
+  ``q1 = atan2(y, x) - atan2(l2 sin(theta), l1 + l2 cos(theta))``,
+  ``q2_abs = q1 + theta``.  In the transcription three programs break the
+  ``q1`` line after ``l1 + l2 * np.sin(theta)))`` with an orphan line
+  ``np.cos(theta)))``; the spring program reads ``cos``.  That is almost
+  certainly an artifact of the transcription: the author's code is the
+  correct ``cos``, the default here.  ``reading="sin"`` computes the line as
+  transcribed, to show what such a typo would do (a general lesson, never the
+  project's mistake).
 - :func:`source_wall_search`: its wall search, 100,000 points from (4, 0) to
   (0, 4), stopped at the first point whose rounded absolute link-2 angle equals
-  ``round(pi/4, 4)``; with its torque formulas (H4.2).
+  ``round(pi/4, 4)``; with its torque formulas (``source_record.ipynb#h4-2``).
 - :func:`source_spring_torques`: its spring, ``F = k (x, y)`` (anchored at the
-  origin), torques in its own convention (H4.3).
+  origin), torques in its own convention (``source_record.ipynb#h4-3``).
 - :func:`correct_spring_torques_dh` and :func:`dh_to_motor_torques`: the correct
   law ``tau = J^T k (x0 - x)`` and the conversion to the source's convention.
 - :func:`source_workspace_points`: the tips its workspace plot draws, both
-  absolute angles over ``range(35, 145, 1)`` degrees (H4.5).  That is a plot
-  range, not joint limits: the project states no joint limits anywhere, and its
-  own wall, spring and line tasks use angles outside [35, 145] deg.  The course
-  takes [35, 145] deg as example limits (``twolink.arms.two_metre_limited``), its
-  own choice suggested by that plot range.
+  absolute angles over ``range(35, 145, 1)`` degrees (``source_record.ipynb#h4-5``).
+  That is a plot range, not joint limits: the project states no joint limits
+  anywhere, and its own wall, spring and line tasks use angles outside
+  [35, 145] deg.  The course takes [35, 145] deg as example limits
+  (``twolink.arms.two_metre_limited``), its own choice suggested by that plot
+  range.  The project labels its torques "N" where N m belongs.
+
+Its animations (``source_record.ipynb#h4-4``) draw both links at the forward
+kinematics of the commanded angles, with a dashed trace of the planned points:
+an IK error would show as the tip leaving the trace.  Its kinetic energy
+(``source_record.ipynb#h4-6``) is right; chapter 5 shows it.
 
 The package itself works in relative (DH) angles; convert the absolute angles
 returned here with :func:`twolink.to_relative`.
@@ -62,7 +77,8 @@ __all__ = [
     "source_workspace_points",
 ]
 
-#: The two readings of the transcribed IK line for q1 (COURSE.md H4.1).
+#: The two readings of the transcribed IK line for q1 (``source_record.ipynb#h4-1``):
+#: ``"cos"`` the author's code, ``"sin"`` the transcription's artifact read literally.
 READINGS = ("sin", "cos")
 
 _ACOS_SLACK = 1e-12  # rounding slack on the cosine at full stretch
@@ -71,33 +87,35 @@ _ACOS_SLACK = 1e-12  # rounding slack on the cosine at full stretch
 def _check_reading(reading: str) -> None:
     if reading not in READINGS:
         raise ValueError(
-            f"reading must be 'sin' (the transcribed typo) or 'cos' (correct); got {reading!r}"
+            f"reading must be 'cos' (the author's code) or 'sin' (the transcription's "
+            f"artifact, read literally); got {reading!r}"
         )
 
 
 def source_ik(
     p_tip: ArrayLike, *, reading: str = "cos", l1: float = 2.0, l2: float = 2.0
 ) -> NDArray[np.float64]:
-    """The source's inverse kinematics as reproduced: absolute link angles ``(q1, q2_abs)`` for a tip point.
+    """The source's inverse kinematics: absolute link angles ``(q1, q2_abs)`` for a tip point.
 
-    This reproduction computes the elbow angle (link 2 relative to link 1) with
+    As printed whole in each of its programs (``source_record.ipynb#h4-1``):
+    the elbow angle (link 2 relative to link 1)
     ``theta = acos((x^2 + y^2 - l1^2 - l2^2) / (2 l1 l2))`` (``theta`` in
-    ``[0, pi]``, the package's ``elbow="down"`` branch: the branch that gives
-    COURSE.md H4.2's and H4.3's numbers), then
+    ``[0, pi]``: one branch, the package's ``elbow="down"``), then
     ``q1 = atan2(y, x) - atan2(l2 sin(theta), l1 + l2 cos(theta))`` and
-    ``q2_abs = q1 + theta``.  COURSE.md H4.1 gives only the second term of the
-    source's ``q1`` line: in the transcription of the wall, trajectory and
-    workspace programs it reads ``l1 + l2 sin(theta)`` (``reading="sin"``), in the
-    spring program ``l1 + l2 cos(theta)`` (``reading="cos"``, the correct
-    formula).  The transcription breaks that line, so the ``sin`` may be a
-    transcription artifact, not the author's (H4.1).
+    ``q2_abs = q1 + theta``.  In the transcription the wall, trajectory and
+    workspace programs break the ``q1`` line after ``l1 + l2 * np.sin(theta)))``
+    and continue on an orphan line ``np.cos(theta)))``; the spring program
+    reads ``cos``.  That is almost certainly an artifact of the transcription,
+    so the author's code is the correct ``cos`` (the default).
+    ``reading="sin"`` reads the transcribed line literally: what such a typo
+    would do, a general lesson and never the project's mistake.
 
     Parameters
     ----------
     p_tip : array_like, shape (..., 2)
         Tip targets ``(x, y)``, metres.
     reading : {"cos", "sin"}
-        Which reading of the transcribed line to use.
+        ``"cos"``, the author's code; ``"sin"``, the transcription read literally.
     l1, l2 : float
         Link lengths, metres (> 0).
 
@@ -122,7 +140,8 @@ def source_ik(
     >>> np.degrees(source_ik([3.0, 1.0])).round(2)
     array([-19.33,  56.2 ])
 
-    The typo moves link 1 (the elbow angle ``theta`` is the same), so the tip misses:
+    Read literally, the transcription's ``sin`` moves link 1 (the elbow angle
+    ``theta`` is the same), so the tip would miss:
 
     >>> q_sin = source_ik([3.4116, 0.5884], reading="sin")
     >>> source_fk(q_sin).round(3)
@@ -274,7 +293,8 @@ def source_wall_search(
     Parameters
     ----------
     reading : {"cos", "sin"}
-        Which reading of the transcribed IK line (H4.1).
+        ``"cos"``, the author's IK; ``"sin"``, its transcribed line read literally
+        (``source_record.ipynb#h4-1``).
     n_points : int
         Number of points along the wall (the source used 100,000; at least 2).
     force_magnitude : float
@@ -293,13 +313,15 @@ def source_wall_search(
 
     Examples
     --------
-    With the correct IK the search finds the right contact, to four digits:
+    With its IK the search finds the right contact, to four digits
+    (``source_record.ipynb#h4-2``):
 
     >>> hit = source_wall_search(reading="cos")
     >>> hit.p_contact.round(4), hit.torques.round(2)
     (array([3.2872, 0.7128]), array([9.1018e+02, 3.0000e-02]))
 
-    With the ``sin`` typo it stops elsewhere, and the real tip is off the wall:
+    Had its ``q1`` line read ``sin``, as the transcription does literally, it would
+    stop elsewhere, with the real tip off the wall:
 
     >>> typo = source_wall_search(reading="sin")
     >>> typo.p_contact.round(4), round(float(typo.torques[0]), 2), typo.p_tip_fk.round(3)
@@ -337,11 +359,9 @@ def source_spring_torques(
 ) -> NDArray[np.float64]:
     """The source's spring torques: ``F = k (x, y)`` and ``t_i = k y l_i cos q_i - k x l_i sin q_i``.
 
-    The spring is anchored at the origin (``x`` where ``x0 - x`` belongs), the
-    angles are absolute angles from the reproduced IK, :func:`source_ik`, with
-    the ``cos`` reading (the spring program's), reproduced on the elbow-down
-    branch (the package's ``elbow="down"``), which gives COURSE.md H4.3's motor-1
-    torques; H4.1 gives only the second term of the source's ``q1`` line.  The
+    The spring is anchored at the origin (``x`` where ``x0 - x`` belongs)
+    (``source_record.ipynb#h4-3``); the angles are the absolute angles of its
+    IK, :func:`source_ik` (one branch, the package's ``elbow="down"``).  The
     torques are in the source's convention (motor 2 on the ground,
     :func:`source_link_torques`).
 
@@ -369,8 +389,14 @@ def source_spring_torques(
            [ 2323.8, -2323.8],
            [ 1873.5, -1873.5]])
 
-    COURSE.md H4.3 gives the motor-1 torques as +2381, +2324, +1874 N m: the third
-    is 1873.4994 N m, 1873.5 to one decimal, which rounds half up to 1874.
+    To the nearest N m the motor-1 torques are +2381, +2324 and +1873: the third
+    is 1873.4994 N m, which rounds to 1873 (rounding its one-decimal 1873.5 again
+    would give 1874, a double rounding):
+
+    >>> source_spring_torques(p)[:, 0].round(4)
+    array([2381.1762, 2323.79  , 1873.4994])
+    >>> source_spring_torques(p)[:, 0].round()
+    array([2381., 2324., 1873.])
     """
     k = as_finite_scalar(k, "k")
     points = as_pairs(p_tip, "p_tip")
@@ -455,8 +481,8 @@ def motor_to_dh_torques(u_motor: ArrayLike) -> NDArray[np.float64]:
 
 
 #: The whole degrees the project's workspace plot samples for both absolute link
-#: angles, ``range(35, 145, 1)`` (COURSE.md H4.5): a plot range, which leaves out
-#: 145 deg; the project states no joint limits.
+#: angles, ``range(35, 145, 1)`` (``source_record.ipynb#h4-5``): a plot range, which
+#: leaves out 145 deg; the project states no joint limits.
 WORKSPACE_PLOT_DEGREES = range(35, 145, 1)
 
 
@@ -467,7 +493,7 @@ def source_workspace_points(*, l1: float = 2.0, l2: float = 2.0) -> NDArray[np.f
     (``q1`` in the outer loop), through :func:`source_fk`.  Python's ``range``
     stops before its end, so 145 deg is never used.  The range belongs to the
     plot: the project states no joint limits, and its own wall, spring and line
-    tasks use angles outside [35, 145] deg (COURSE.md H4.5).
+    tasks use angles outside [35, 145] deg (``source_record.ipynb#h4-5``).
 
     Parameters
     ----------
