@@ -28,12 +28,14 @@ INSTALL := $(BIN)/python -m pip install --quiet --no-compile
 COMPILE := $(BIN)/python -m compileall -q -j 0 "$$($(BIN)/python -c 'import sysconfig; print(sysconfig.get_path("purelib"))')" >/dev/null || echo "make: some files did not compile (Python compiles them when imported)"
 endif
 
-.PHONY: help install install-dev lock lab test portable notebooks bench bench-quick bench-widgets bench-peers bench-first-lab student grade site dist browser-test clean
+.PHONY: help install install-dev lock lab fresh test portable notebooks bench bench-quick bench-widgets bench-peers bench-first-lab student grade site dist browser-test clean
 
 help:
 	@echo "make lab        open the course in JupyterLab, on the start page notebooks/$(START_PAGE);"
 	@echo "                the first time, creates .venv and installs the course (requirements.txt, with $(INSTALLER));"
 	@echo "                extra JupyterLab options: make lab LAB_ARGS=\"--no-browser --port 8890\""
+	@echo "                it opens your copies of the chapters in work/ (git ignores them: git pull always works)"
+	@echo "make fresh NOTEBOOK=03_jacobian_velocity.ipynb  the course's version of a chapter in work/ again (yours kept as .ipynb~)"
 	@echo "make install    install (or, after git pull, update) what make lab needs, without starting JupyterLab"
 	@echo "make install-dev  that and the developers' tools (requirements-dev.txt); every target below does it first"
 	@echo "make test       import layers, ruff, mypy, then pytest: unit tests, doctests, every chapter once under strict"
@@ -65,10 +67,12 @@ help:
 # made with) whichever installer fills it; pip upgrades itself first (the new
 # one installs the course ~10 s faster).
 $(COURSE_STAMP): requirements.txt constraints.txt pyproject.toml
+	@$(CHECK_PYTHON)
 	@echo "make: installing the course (requirements.txt) into $(VENV) with $(INSTALLER)$(if $(UV),, (uv is not on the PATH; with it the install is faster))"
-	@test -x $(BIN)/python || { $(PYTHON) -m venv $(VENV) $(if $(UV),,&& $(BIN)/python -m pip install --quiet --upgrade pip); }
-	$(INSTALL) -r requirements.txt -c constraints.txt
+	@test -x $(BIN)/python || { $(PYTHON) -m venv $(VENV) && touch $(NEW_VENV) $(if $(UV),,&& $(BIN)/python -m pip install --quiet --upgrade pip); } || { $(UNDO_NEW_VENV); exit 1; }
+	$(QUIET_SETUPTOOLS) $(INSTALL) -r requirements.txt -c constraints.txt || { $(UNDO_NEW_VENV); exit 1; }
 	$(COMPILE)
+	@rm -f $(NEW_VENV)
 	rm -rf $(LABEXTENSION_LINK)
 	mkdir -p $(dir $(LABEXTENSION_LINK))
 	ln -s "$(CURDIR)/labextension/twolink_figure_alt/labextension" $(LABEXTENSION_LINK)
@@ -76,9 +80,29 @@ $(COURSE_STAMP): requirements.txt constraints.txt pyproject.toml
 
 $(STAMP): $(COURSE_STAMP) requirements-dev.txt
 	@echo "make: installing the developers' tools (requirements-dev.txt) into $(VENV) with $(INSTALLER)"
-	$(INSTALL) -r requirements-dev.txt -c constraints.txt
+	$(QUIET_SETUPTOOLS) $(INSTALL) -r requirements-dev.txt -c constraints.txt
 	$(COMPILE)
 	@touch $@
+
+# Python first, before minutes of install: the course needs 3.11 or newer (numpy 2.4
+# and the pinned packages), and a .venv made by an older Python is reported, not reused.
+MIN_PYTHON := 3.11
+PYTHON_IS_NEW_ENOUGH = -c 'import sys; sys.exit(sys.version_info < ($(subst .,$(comma),$(MIN_PYTHON)),))'
+comma := ,
+CHECK_PYTHON = \
+	if test -x $(BIN)/python; then \
+		$(BIN)/python $(PYTHON_IS_NEW_ENOUGH) 2>/dev/null || { echo "make: $(VENV) was made with $$($(BIN)/python --version 2>&1), older than Python $(MIN_PYTHON); remove it and start again with a newer Python: rm -rf $(VENV) && make lab PYTHON=python$(MIN_PYTHON)"; exit 1; }; \
+	else \
+		command -v $(PYTHON) >/dev/null 2>&1 || { echo "make: $(PYTHON) was not found; the course needs Python $(MIN_PYTHON) or newer (https://www.python.org/downloads/), then: make lab PYTHON=python$(MIN_PYTHON)"; exit 1; }; \
+		$(PYTHON) $(PYTHON_IS_NEW_ENOUGH) 2>/dev/null || { echo "make: the course needs Python $(MIN_PYTHON) or newer, and $(PYTHON) is $$($(PYTHON) --version 2>&1); install Python $(MIN_PYTHON)+ (https://www.python.org/downloads/, or your system's python$(MIN_PYTHON) package), then: make lab PYTHON=python$(MIN_PYTHON)"; exit 1; }; \
+	fi
+# A .venv this make created and whose install failed is removed, so the next make starts
+# afresh (an existing .venv whose update failed is kept: it worked before).
+NEW_VENV = $(VENV)/.new-venv
+UNDO_NEW_VENV = if test -f $(NEW_VENV); then rm -rf $(VENV); echo "make: the install failed, so the new $(VENV) was removed (the next make starts afresh); the messages above say why"; fi
+# setuptools' editable install prints a warning box about folders named like the
+# package: true of every clone, and nothing a learner can act on.
+QUIET_SETUPTOOLS = PYTHONWARNINGS="ignore:Editable installation$${PYTHONWARNINGS:+,$$PYTHONWARNINGS}"
 
 # The prebuilt JupyterLab extension twolink-figure-alt (labextension/: figures'
 # alt text in JupyterLab).  A wheel installs it from pyproject's data-files, but
@@ -115,13 +139,37 @@ LAB_ARGS ?=
 
 # tools/lab_server/twolink_nodelay.py: kernel messages reach the browser
 # without Nagle's delay (explorers answer 15-40 ms sooner).
+# tools/lab_server/settings/: the course's JupyterLab defaults (no news prompt over the
+# explorers, no update check; nbgrader's menus and panels, which make site, make student
+# and make test install for teachers, are hidden from the learner's JupyterLab), and
+# nbgrader's server extensions are not started (their start-up warnings stay out too).
+NBGRADER_SERVER_EXTENSIONS := formgrader validate_assignment assignment_list course_list
 LAB_SERVER := PYTHONPATH="$(CURDIR)/tools/lab_server$${PYTHONPATH:+:$$PYTHONPATH}" \
-	$(BIN)/jupyter lab --ServerApp.jpserver_extensions=twolink_nodelay=True
+	$(BIN)/jupyter lab --ServerApp.jpserver_extensions=twolink_nodelay=True \
+	$(foreach name,$(NBGRADER_SERVER_EXTENSIONS),--ServerApp.jpserver_extensions=nbgrader.server_extensions.$(name)=False) \
+	--LabApp.app_settings_dir="$(CURDIR)/tools/lab_server/settings"
+
+# The learner's copies of the chapters: make lab opens work/ (git ignores it), where each
+# chapter is copied from notebooks/ the first time; running and saving a chapter never
+# changes the course's files, so git pull always works.  A chapter of the course's newer
+# version (after git pull), or the course's version again: delete its copy in work/ and
+# run make lab (make fresh NOTEBOOK=03_jacobian_velocity.ipynb keeps yours as .ipynb~).
+WORK ?= work
+COPY_CHAPTERS = mkdir -p $(WORK) && for notebook in notebooks/*.ipynb; do \
+	test -e "$(WORK)/$${notebook\#\#*/}" || cp "$$notebook" "$(WORK)/"; done
 
 # JupyterLab opens on the start page (its default URL) instead of the Launcher.
 lab: $(COURSE_STAMP)
 	@$(if $(ALLOW_ROOT),echo "$(ROOT_NOTE)",:)
-	$(LAB_SERVER) --ServerApp.root_dir=notebooks --LabApp.default_url=/lab/tree/$(START_PAGE) $(ALLOW_ROOT) $(LAB_ARGS)
+	@$(COPY_CHAPTERS)
+	$(LAB_SERVER) --ServerApp.root_dir=$(WORK) --LabApp.default_url=/lab/tree/$(START_PAGE) $(ALLOW_ROOT) $(LAB_ARGS)
+
+NOTEBOOK ?=
+fresh:
+	@test -n "$(NOTEBOOK)" -a -f "notebooks/$(NOTEBOOK)" || { echo "usage: make fresh NOTEBOOK=03_jacobian_velocity.ipynb (a file of notebooks/)"; exit 2; }
+	@mkdir -p $(WORK)
+	@if test -e "$(WORK)/$(NOTEBOOK)"; then mv "$(WORK)/$(NOTEBOOK)" "$(WORK)/$(NOTEBOOK)~"; echo "make: your copy is now $(WORK)/$(NOTEBOOK)~"; fi
+	cp "notebooks/$(NOTEBOOK)" "$(WORK)/$(NOTEBOOK)"
 
 # Options for pytest (doctests, strict nbval, sanitize file, xdist) live in
 # pyproject.toml so that a plain `pytest` in the venv behaves the same.

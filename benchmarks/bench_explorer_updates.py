@@ -41,7 +41,6 @@ import gc as _gc, json as _json, time as _time
 from twolink_course.explorer import Explorer as _Explorer
 _rows, _profiles = [], []
 for _index, _explorer in enumerate(o for o in _gc.get_objects() if isinstance(o, _Explorer)):
-    _explorer.figure.canvas.syncing_data_url = False  # as once a browser shows it
     for _name, _control in _explorer.controls.items():
         _start = _control.value
         if hasattr(_control, "options"):  # a choice: its first two options

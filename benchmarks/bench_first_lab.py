@@ -341,7 +341,7 @@ def main() -> None:
     if "uv" in installers and not shutil.which("uv"):
         sys.exit("bench_first_lab: --installer uv, but uv is not on the PATH")
     print(
-        f"# First `make lab` of a fresh clone of {rev} until notebooks/{args.page} is served "
+        f"# First `make lab` of a fresh clone of {rev} until the start page {args.page} is served "
         f"({platform.machine()}, {os.cpu_count()} CPUs, Python {platform.python_version()}; "
         f"load average {os.getloadavg()[0]:.1f}; target {TARGET_S:.0f} s)\n"
     )

@@ -50,6 +50,9 @@ import zipfile
 from collections.abc import Sequence
 from typing import Any
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import install_cell  # noqa: E402  (tools/install_cell.py: the chapters' first cell)
+
 BEGIN = "### BEGIN SOLUTION"
 END = "### END SOLUTION"
 STUB_COMMENT = "# your code here"
@@ -286,6 +289,30 @@ def without_hidden_tests(notebook: dict[str, Any]) -> dict[str, Any]:
     return shown
 
 
+def with_student_install_cell(notebook: dict[str, Any]) -> dict[str, Any]:
+    """``notebook`` whose install cell (``tools/install_cell.py``) is the student edition's.
+
+    The edition's cell installs the wheel beside it at the course's versions
+    (``constraints.txt`` beside it) and says when the page must be reloaded
+    for the sliders (:func:`install_cell.student_install_cell_source`).
+
+    >>> cell = {"cell_type": "code", "source": install_cell.MARKER + "\\n%pip install x",
+    ...         "outputs": [], "execution_count": 1}
+    >>> student = with_student_install_cell({"cells": [cell]})["cells"][0]
+    >>> student["source"] == install_cell.student_install_cell_source(), student["execution_count"]
+    (True, None)
+    """
+    edition = copy.deepcopy(notebook)
+    for cell in edition["cells"]:
+        source = cell["source"]
+        text = "".join(source) if isinstance(source, list) else source
+        if cell["cell_type"] == "code" and text.startswith(install_cell.MARKER):
+            cell["source"] = install_cell.student_install_cell_source()
+            cell["outputs"] = []
+            cell["execution_count"] = None
+    return edition
+
+
 def build_student(
     source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
 ) -> list[pathlib.Path]:
@@ -297,7 +324,12 @@ def build_student(
         notebook = json.loads(path.read_text(encoding="utf-8"))
         target = out_dir / path.name
         target.write_text(
-            json.dumps(student_notebook(notebook), indent=1, ensure_ascii=False) + "\n",
+            json.dumps(
+                with_student_install_cell(student_notebook(notebook)),
+                indent=1,
+                ensure_ascii=False,
+            )
+            + "\n",
             encoding="utf-8",
         )
         written.append(target)
@@ -464,6 +496,10 @@ def build_student_edition(
     written = build_student(source_dir, out_dir)
     record_edition(written)
     written.append(build_wheel(out_dir))
+    # the course's versions, which the install cell installs with the wheel
+    constraints = out_dir / install_cell.CONSTRAINTS
+    shutil.copyfile(ROOT / "constraints.txt", constraints)
+    written.append(constraints)
     archive = out_dir.with_name(out_dir.name + ".zip")
     partial = archive.with_name(archive.name + ".partial")
     with zipfile.ZipFile(partial, "w", compression=zipfile.ZIP_DEFLATED) as bundle:
@@ -579,9 +615,12 @@ def chapter_title(notebook: dict[str, Any], fallback: str) -> str:
 
 #: The jupyter-server-mathjax copy ships only the STIX-Web fonts: tell MathJax
 #: to use them instead of looking for its default TeX fonts.
+#: Formulas are no Tab stops (MathJax's menu stays on a right click): a chapter
+#: has hundreds of them, and each stop said nothing more than the text around it.
 MATHJAX_FONT_CONFIG = """MathJax.Hub.Config({
   "HTML-CSS": {availableFonts: [], imageFont: null, preferredFont: null, webFont: "STIX-Web"},
-  SVG: {font: "STIX-Web"}
+  SVG: {font: "STIX-Web"},
+  menuSettings: {inTabOrder: false}
 });
 MathJax.Ajax.loadComplete("[MathJax]/config/local/twolink.js");
 """
@@ -644,6 +683,100 @@ def navigation(pages: Sequence[str], titles: Sequence[str]) -> list[dict[str, An
     ]
 
 
+#: A sentence's end: a full stop, question or exclamation mark, then a capital.
+SENTENCE_END = re.compile(r"(?<=[.!?])\s+(?=[A-Z])")
+#: Longest short text alternative, characters: about two sentences.
+SHORT_ALT_MAX = 200
+
+
+def short_description(description: str) -> str:
+    """The first sentence of a figure's description, and the second when both are short.
+
+    A screen reader reads an image's ``alt`` whole, every time it passes the
+    image: the site gives it this short form and puts the full description
+    one step away, in a ``<details>`` after the figure.
+
+    >>> short_description("The arm at q = (30°, 45°). Tip at (2.25, 2.93) m. Axes: x [m] from -4 to 4.")
+    'The arm at q = (30°, 45°). Tip at (2.25, 2.93) m.'
+    >>> len(short_description("word " * 100)) <= SHORT_ALT_MAX
+    True
+    """
+    sentences = SENTENCE_END.split(" ".join(description.split()))
+    short = sentences[0]
+    if len(sentences) > 1 and len(short) + 1 + len(sentences[1]) <= SHORT_ALT_MAX * 0.6:
+        short += " " + sentences[1]
+    if len(short) > SHORT_ALT_MAX:
+        short = short[: SHORT_ALT_MAX - 1].rsplit(" ", 1)[0] + "…"
+    return short
+
+
+#: The course's animation wrapper (twolink_course.plot.animation_html) and its label.
+ANIMATION_LABEL = re.compile(r'<div role="figure" aria-label="(?P<label>[^"]*)">')
+#: A video tag's autoplay attribute (matplotlib's tag: ``controls autoplay loop``).
+AUTOPLAY = re.compile(r"(<video\b[^>]*?)\sautoplay\b")
+
+
+def site_outputs(notebook: dict[str, Any]) -> dict[str, Any]:
+    """The notebook's outputs as the site shows them: short text alternatives, the
+    full description beside them, and videos that play only where motion is welcome.
+
+    - an image output whose metadata has an ``alt`` keeps the short form
+      (:func:`short_description`) as ``alt`` and the whole as ``description``
+      (the site template shows it in a ``<details>`` after the image);
+    - an animation (the ``<div role="figure" aria-label=...>`` around a
+      ``<video>``) is labelled by the short form, with the whole in a
+      ``<details>`` after it;
+    - a ``<video autoplay>`` loses ``autoplay`` and is marked
+      ``data-twolink-autoplay``: the page's script starts it (muted) unless the
+      reader asks for reduced motion.
+
+    >>> cell = {"cell_type": "code", "outputs": [{"output_type": "display_data", "metadata": {},
+    ...     "data": {"text/html": '<div role="figure" aria-label="Moving. Frames 1-9. Axes.">\\n'
+    ...                           '<video width="4" controls autoplay loop>\\n</video>\\n</div>'}}]}
+    >>> print(site_outputs({"cells": [cell]})["cells"][0]["outputs"][0]["data"]["text/html"])
+    <div role="figure" aria-label="Moving. Frames 1-9.">
+    <video width="4" controls loop data-twolink-autoplay>
+    </video>
+    </div>
+    <details class="twolink-description"><summary>Description of the animation</summary><p>Moving. Frames 1-9. Axes.</p></details>
+    """
+    shown = copy.deepcopy(notebook)
+    for cell in shown["cells"]:
+        for output in cell.get("outputs", []):
+            data, metadata = output.get("data", {}), output.get("metadata", {})
+            image = metadata.get("image/png")
+            if "image/png" in data and isinstance(image, dict):
+                alt = image.get("alt")
+                if isinstance(alt, str) and alt and short_description(alt) != alt:
+                    image["description"] = alt
+                    image["alt"] = short_description(alt)
+            if "text/html" in data:
+                markup = data["text/html"]
+                markup = "".join(markup) if isinstance(markup, list) else markup
+                data["text/html"] = _site_animation(markup)
+    return shown
+
+
+def _site_animation(markup: str) -> str:
+    markup = AUTOPLAY.sub(lambda match: match[1], markup)
+    markup = (
+        re.sub(r"(<video\b[^>]*)>", r"\1 data-twolink-autoplay>", markup, count=1)
+        if "<video" in markup
+        else markup
+    )
+    found = ANIMATION_LABEL.search(markup)
+    if found is None:
+        return markup
+    description = html.unescape(found["label"])
+    short = html.escape(short_description(description), quote=True)
+    markup = markup.replace(found[0], f'<div role="figure" aria-label="{short}">', 1)
+    return (
+        markup.rstrip("\n")
+        + '\n<details class="twolink-description"><summary>Description of the animation</summary>'
+        + f"<p>{html.escape(description, quote=False)}</p></details>"
+    )
+
+
 def build_site(
     source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
 ) -> list[pathlib.Path]:
@@ -667,8 +800,8 @@ def build_site(
         # neighbouring chapters (read by tools/site_template/course/index.html.j2)
         copies = []
         for number, path in enumerate(notebooks):
-            notebook = without_hidden_tests(
-                json.loads(path.read_text(encoding="utf-8"))
+            notebook = site_outputs(
+                without_hidden_tests(json.loads(path.read_text(encoding="utf-8")))
             )
             stems = {other.stem for other in notebooks}
             for cell in notebook["cells"]:

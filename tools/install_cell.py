@@ -128,6 +128,65 @@ def install_cell_source(default_requirement: str | None = None) -> str:
     )
 
 
+#: The student edition's pins, beside its wheel (tools/editions.py copies constraints.txt).
+CONSTRAINTS = "constraints.txt"
+#: The one line the student edition's cell prints when it installed the widgets' page
+#: code into the running Jupyter: the page loaded before it, so the sliders need a reload.
+RELOAD_LINE = (
+    "twolink is installed. Reload this page (F5, or Cmd+R on a Mac) and run all cells "
+    "again: the sliders appear after the reload."
+)
+
+
+def student_install_cell_source() -> str:
+    """The student edition's first code cell: the wheel beside it, at the course's versions.
+
+    Where ``import twolink`` fails it installs the wheel beside the notebook with
+    the course's packages, pinned by ``constraints.txt`` beside it (the versions
+    the course was made with, not the newest), and, when that installed the
+    widgets' page code (``jupyterlab_widgets``) into the running Jupyter,
+    prints :data:`RELOAD_LINE`: a page loaded before the install cannot show
+    the sliders until it is reloaded.
+
+    Examples
+    --------
+    >>> source = student_install_cell_source()
+    >>> source.startswith(MARKER), '-c "constraints.txt"' in source
+    (True, True)
+    """
+
+    def quoted(text: str) -> str:
+        return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+
+    return "\n".join(
+        [
+            MARKER,
+            "# The student edition: it installs twolink with the course's packages from the wheel",
+            f"# in this folder, at the versions of {CONSTRAINTS} beside it.",
+            "try:",
+            "    import twolink  # noqa: F401",
+            "except ImportError:",
+            "    import glob",
+            "    import importlib.util",
+            "",
+            f"    wheels = sorted(glob.glob({quoted(WHEEL_PATTERN)}))",
+            "    if not wheels:",
+            "        raise FileNotFoundError(",
+            '            "the edition\'s twolink wheel (twolink-*.whl) is not beside this notebook: "',
+            '            "unzip the whole edition into one folder and open the notebook there"',
+            "        )",
+            "    wheel = wheels[-1]",
+            '    widgets_here = importlib.util.find_spec("jupyterlab_widgets") is not None',
+            f'    print(f"twolink is not installed here: installing {{wheel}}[course] from {FROM_WHEEL}")',
+            f'    %pip install --quiet "{{wheel}}[course]" -c {quoted(CONSTRAINTS)}',
+            "    import twolink  # noqa: F401",
+            "",
+            "    if not widgets_here:",
+            f"        print({quoted(RELOAD_LINE)})",
+        ]
+    )
+
+
 def _first_code_index(notebook: Any) -> int | None:
     for index, cell in enumerate(notebook.cells):
         if cell.cell_type == "code":

@@ -67,26 +67,24 @@ from __future__ import annotations
 
 import asyncio
 import base64
-import functools
 import html
 import io
 import itertools
 import math
 import sys
+import threading
 import warnings
-import zlib
+import weakref
 from collections.abc import Callable, Mapping, Sequence
 from decimal import Decimal
 from typing import Any
 
 import matplotlib
-import numpy as np
 from matplotlib.artist import Artist
 from matplotlib.axis import Axis
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.spines import Spine
-from PIL import Image
 
 from twolink._optional import require
 from twolink._validate import InputTypeError, as_finite_scalar
@@ -105,6 +103,8 @@ PIXELS_PER_STEP = 2
 TRACK_MIN_PX, TRACK_MAX_PX = 280, 640
 #: Width of every control's label, so that the tracks line up.
 LABEL_WIDTH = "9em"
+#: Width of each button of a choice.
+CHOICE_BUTTON_WIDTH = "6em"
 #: The CSS class of an explorer's box in the page.
 CSS_CLASS = "twolink-explorer"
 #: Seconds the sentence under the figure waits for the hand to stop (a drag
@@ -125,6 +125,8 @@ def _ipympl_backend() -> Any:
     """
     if "ipympl.backend_nbagg" in sys.modules:
         return sys.modules["ipympl.backend_nbagg"]
+    # the backend as configured, or matplotlib's "auto" sentinel (not resolved:
+    # resolving it would choose and load a backend)
     saved = dict.__getitem__(matplotlib.rcParams, "backend")
     module = require("ipympl.backend_nbagg", "twolink_course.explorer")
     if dict.__getitem__(matplotlib.rcParams, "backend") != saved:
@@ -135,47 +137,38 @@ def _ipympl_backend() -> Any:
     return module
 
 
-@functools.cache
-def _canvas_class(base: Any) -> Any:
-    """ipympl's canvas class ``base``, sending its changed pixels sooner.
+#: Each explorer figure's lock: one thread at a time moves or draws it.
+_draw_locks: weakref.WeakKeyDictionary[Figure, threading.RLock] = (
+    weakref.WeakKeyDictionary()
+)
 
-    On every move the canvas sends a PNG of the pixels that changed (the rest
-    transparent black).  Matplotlib compresses it with zlib's default
-    strategy; its run-length strategy compresses these mostly-empty images
-    as small about 30 % faster.  Everything else is matplotlib's
-    ``FigureCanvasWebAggCore.get_diff_image``, step for step.
+
+def _draw_lock(figure: Figure) -> threading.RLock:
+    """The lock held while ``figure`` is changed or drawn.
+
+    ipykernel 7 runs the messages of JupyterLab's widgets on a subshell, a
+    thread of its own, beside the kernel's main thread: the page's request
+    for a picture (ipympl's ``draw``) and a slider's new value can then draw
+    the same canvas at the same time, and the picture sent is a mix of both
+    (often the axes alone: chapter 5's blank explorer after Run All).
     """
+    return _draw_locks.setdefault(figure, threading.RLock())
 
-    class Canvas(base):
-        _png_is_old: bool
-        _force_full: bool
-        _last_buff: np.ndarray
 
-        def get_diff_image(self) -> bytes | None:
-            if not self._png_is_old:
-                return None
-            pixels = np.asarray(self.get_renderer().buffer_rgba())
-            buff = pixels.view(np.uint32).squeeze(2)  # a pixel compared as one number
-            if (
-                self._force_full
-                or buff.shape != self._last_buff.shape
-                or (pixels[:, :, 3] != 255).any()  # transparency cannot be overlaid
-            ):
-                self.set_image_mode("full")
-                output = buff
-            else:
-                self.set_image_mode("diff")
-                output = np.where(buff != self._last_buff, buff, 0)
-            self._last_buff = buff.copy()
-            self._force_full = False
-            self._png_is_old = False
-            data = output.view(dtype=np.uint8).reshape((*output.shape, 4))
-            with io.BytesIO() as png:
-                Image.fromarray(data).save(png, format="png", compress_type=zlib.Z_RLE)
-                return png.getvalue()
+def _whole_pixels(width: float, height: float, dpi: float) -> tuple[float, float]:
+    """``width`` x ``height`` inches rounded to whole pixels at ``dpi``.
 
-    Canvas.__qualname__ = Canvas.__name__ = base.__name__
-    return Canvas
+    The page draws the picture into a canvas of whole pixels; a figure of
+    6.6 inches at 96 dpi is 633.6 pixels, which the kernel and the page
+    would round differently.  Made at whole pixels, both agree.
+
+    >>> _whole_pixels(6.6, 3.0, 96.0)
+    (6.604166666666667, 3.0)
+    """
+    return (
+        max(1, round(width * dpi)) / dpi,
+        max(1, round(height * dpi)) / dpi,
+    )
 
 
 def _widgets() -> Any:
@@ -225,7 +218,7 @@ def explorer_figure(
         raise ValueError(f"ncols must be a positive int; got {ncols!r}")
     backend = None if grading() else _ipympl_backend()
     with figure_style.context():
-        figure = Figure(figsize=(width, height), dpi=dpi)
+        figure = Figure(figsize=_whole_pixels(width, height, dpi), dpi=dpi)
         # no layout engine: laid out once (Explorer), so a move never shifts the axes
         figure.set_layout_engine("none")
         axes = figure.subplots(1, ncols, **subplot_kw)
@@ -237,8 +230,22 @@ def explorer_figure(
         warnings.filterwarnings(
             "ignore", "Passing unrecognized arguments", DeprecationWarning
         )
-        canvas = _canvas_class(backend.Canvas)(figure)
+        canvas = backend.Canvas(figure)
         backend.FigureManager(canvas, next(_figure_numbers))
+    # ipympl keeps a copy of every picture it sends, as a data URL, until the
+    # page's canvas says it is ready; its copy lacks the URL's "data:" prefix, so
+    # a page that builds the canvas from it loads a broken image (the console's
+    # "drawImage ... 'broken' state").  The first picture reaches the page as the
+    # pictures after it do, and static renderers get the Explorer's own PNG.
+    canvas.syncing_data_url = False
+    lock = _draw_lock(figure)
+    draw = canvas.draw
+
+    def draw_alone() -> None:  # every draw ipympl asks for, one at a time
+        with lock:
+            draw()
+
+    canvas.draw = draw_alone
     canvas.header_visible = False
     canvas.footer_visible = False
     canvas.toolbar_visible = False
@@ -422,12 +429,17 @@ def choice(label: str, options: Sequence[str], value: str) -> Any:
         raise InputTypeError(f"{description}: options must be words; got {options!r}")
     if value not in names:
         raise ValueError(f"{description}: value must be one of {names}; got {value!r}")
-    return widgets.ToggleButtons(
+    # laid out as the sliders are (ipywidgets' inline row: the label right-aligned
+    # in its column, the buttons beside it); ToggleButtons alone is a block, whose
+    # label stood above the buttons, outside the column the sliders' labels share
+    toggle = widgets.ToggleButtons(
         options=names,
         value=value,
         description=description,
-        style={"description_width": LABEL_WIDTH, "button_width": "6em"},
+        style={"description_width": LABEL_WIDTH, "button_width": CHOICE_BUTTON_WIDTH},
     )
+    toggle.add_class("widget-inline-hbox")
+    return toggle
 
 
 class Explorer:
@@ -501,6 +513,7 @@ class Explorer:
                     f"control {name!r} must be named by an identifier and have a value; got {control!r}"
                 )
         self.figure = figure
+        self._lock = _draw_lock(figure)
         self.controls = dict(controls)
         self._update = update
         self._describe = describe
@@ -536,18 +549,6 @@ class Explorer:
         if describe is not None:
             self.description = str(describe(**values))
             self._show_description(wait=False)  # the first sentence, at once
-        # what ipympl's own display would set: the first picture (the canvas as
-        # just drawn) and the size, in pixels, that the browser's canvas starts from
-        canvas: Any = figure.canvas
-        width, height = figure.get_size_inches() * figure.dpi
-        canvas._size = (width, height)
-        first_picture = io.BytesIO()
-        Image.fromarray(np.asarray(canvas.buffer_rgba())).save(
-            first_picture, format="png", compress_type=zlib.Z_RLE
-        )
-        canvas._data_url = "data:image/png;base64," + base64.b64encode(
-            first_picture.getvalue()
-        ).decode("ascii")
         for control in self.controls.values():
             control.observe(self._changed, names="value")
         self.widget = widgets.VBox(
@@ -567,15 +568,16 @@ class Explorer:
             raise ValueError(
                 f"no control named {unknown}; the controls are {sorted(self.controls)}"
             )
-        before = self.values
-        self._holding = True
-        try:
-            for name, value in values.items():
-                self.controls[name].value = value
-        finally:
-            self._holding = False
-        if self.values != before:
-            self.refresh()
+        with self._lock:
+            before = self.values
+            self._holding = True
+            try:
+                for name, value in values.items():
+                    self.controls[name].value = value
+            finally:
+                self._holding = False
+            if self.values != before:
+                self.refresh()
 
     def refresh(self) -> None:
         """Move the artists for the current values and show them.
@@ -585,13 +587,14 @@ class Explorer:
         drawn over the saved background and only they are sent (blitting);
         anything else (limits, a new axes, the first draw) redraws the figure.
         """
-        values = self.values
-        self._update(**values)
-        self.updates += 1
-        self._show_changes()  # the picture first: it is what the hand waits for
-        if self._describe is not None:
-            self.description = str(self._describe(**values))
-            self._show_description(wait=True)
+        with self._lock:  # a page's request for a picture waits for the move
+            values = self.values
+            self._update(**values)
+            self.updates += 1
+            self._show_changes()  # the picture first: it is what the hand waits for
+            if self._describe is not None:
+                self.description = str(self._describe(**values))
+                self._show_description(wait=True)
 
     def redraw(self, description: str | None = None) -> None:
         """Show artists changed outside the update (by a button's exact run, say).
@@ -602,7 +605,8 @@ class Explorer:
         if description is not None:
             self.description = str(description)
             self._show_description(wait=False)
-        self._show_changes()
+        with self._lock:
+            self._show_changes()
 
     def _show_description(self, *, wait: bool) -> None:
         """Put ``description`` under the figure: at once, or once the hand has
@@ -728,6 +732,10 @@ class Explorer:
         """
         scale = as_finite_scalar(scale, "scale", minimum=0.0, strictly=True)
         buffer = io.BytesIO()
+        with self._lock:
+            return self._png(buffer, scale)
+
+    def _png(self, buffer: io.BytesIO, scale: float) -> bytes:
         self._saving = True
         for artist in self._animated:
             artist.set_animated(False)

@@ -19,15 +19,11 @@ nbconvert's templates read ``width`` and ``height`` there, and the course's
 site template (``tools/site_template/course/index.html.j2``) reads ``alt``
 into the ``<img>``.
 
-A figure laid out by constrained layout (the course style's default) on an
-Agg canvas (pyplot's inline backend), with the backend's print options left
-as they are, is drawn once, at twice its dpi, and
-encoded here: the picture is the one ``retina_figure`` stores, pixel for
-pixel, without matplotlib's extra layout pass before printing, and an opaque
-figure is stored as RGB (no alpha channel) at zlib level 3, as small as
-matplotlib's RGBA at level 6.  In a chapter that is about 20 ms less per
-figure.  Any other figure goes through ``retina_figure`` itself (cropped to
-what was drawn when it has no layout engine).
+A figure laid out by constrained layout (the course style's default) is
+printed at its own size (``bbox_inches=None``): it already fits its canvas,
+and the inline backend's cropping pass (``bbox_inches="tight"``, a second
+draw) would find nothing to crop.  Every other print option is the inline
+backend's (``InlineBackend.print_figure_kwargs``).
 
 Examples
 --------
@@ -44,17 +40,11 @@ Examples
 
 from __future__ import annotations
 
-import base64
-import io
 from typing import Any
 
 import matplotlib
-import numpy as np
-from matplotlib.backend_bases import FigureManagerBase
-from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 from matplotlib.layout_engine import ConstrainedLayoutEngine
-from PIL import Image
 
 from twolink._optional import require
 from twolink._validate import InputTypeError
@@ -66,8 +56,6 @@ __all__ = ["png_output", "install", "INLINE_BACKENDS", "PIXEL_SCALE"]
 
 #: Stored pixels per displayed pixel (a "retina" PNG, as IPython's ``retina_figure``).
 PIXEL_SCALE = 2
-#: zlib level of the PNGs encoded here (see the module's notes).
-PNG_COMPRESS_LEVEL = 3
 
 #: The names under which matplotlib knows the notebook's inline backend.
 INLINE_BACKENDS = ("inline", "module://matplotlib_inline.backend_inline")
@@ -109,56 +97,12 @@ def png_output(figure: Figure) -> tuple[str, dict[str, Any]] | None:
     if not figure.axes and not figure.lines:
         return None
     kwargs = _print_figure_kwargs(figure)
-    if kwargs == {"bbox_inches": None} and _drawn_here(figure):
-        png, (width, height) = _retina_png(figure)
-        return base64.b64encode(png).decode("ascii"), {
-            "width": width // PIXEL_SCALE,
-            "height": height // PIXEL_SCALE,
-            "alt": describe(figure),
-        }
     pylabtools = require("IPython.core.pylabtools", "twolink_course.inline.png_output")
     output = pylabtools.retina_figure(figure, base64=True, **kwargs)
     if output is None:
         return None
     encoded, size = output
     return encoded, {**size, "alt": describe(figure)}
-
-
-def _drawn_here(figure: Figure) -> bool:
-    """Whether :func:`_retina_png` can draw ``figure``: laid out by constrained
-    layout (it fits its canvas: nothing to crop), on an Agg canvas whose
-    window, if any, ignores a change of dpi (the inline backend's)."""
-    manager = getattr(figure.canvas, "manager", None)
-    return (
-        isinstance(figure.get_layout_engine(), ConstrainedLayoutEngine)
-        and isinstance(figure.canvas, FigureCanvasAgg)
-        and (manager is None or type(manager).resize is FigureManagerBase.resize)
-    )
-
-
-def _retina_png(figure: Figure) -> tuple[bytes, tuple[int, int]]:
-    """The figure drawn once at ``PIXEL_SCALE`` times its dpi, as PNG bytes, and its pixel size.
-
-    What ``Figure.savefig`` draws (the layout at the printing resolution,
-    animated artists included), in one draw: the canvas draws the figure,
-    which lays itself out first.
-    """
-    canvas: Any = figure.canvas
-    dpi, saving = figure.dpi, canvas._is_saving
-    figure.dpi = dpi * PIXEL_SCALE
-    canvas._is_saving = True  # as savefig: animated artists are drawn too
-    try:
-        canvas.draw()
-        pixels = np.asarray(canvas.buffer_rgba())
-    finally:
-        canvas._is_saving = saving
-        figure.dpi = dpi
-    image = Image.fromarray(pixels)
-    if pixels[:, :, 3].min() == 255:  # opaque: the alpha channel says nothing
-        image = image.convert("RGB")
-    with io.BytesIO() as png:
-        image.save(png, format="png", compress_level=PNG_COMPRESS_LEVEL)
-        return png.getvalue(), (pixels.shape[1], pixels.shape[0])
 
 
 def install() -> bool:
@@ -176,7 +120,7 @@ def install() -> bool:
     if shell is None:
         return False
     # the backend as configured, without resolving an "auto" backend
-    backend = dict.__getitem__(matplotlib.rcParams, "backend")
+    backend = matplotlib.get_backend(auto_select=False)
     if isinstance(backend, str) and backend.lower() in INLINE_BACKENDS:
         require("matplotlib_inline.backend_inline", "twolink_course.inline.install")
     formatters = shell.display_formatter.formatters

@@ -29,6 +29,14 @@
  *    Right arrow keys scroll it, as in any page, instead of reaching
  *    JupyterLab's command-mode shortcuts (collapse and expand headings).
  *
+ * 3. Videos that play by themselves.  The course's animations are H.264
+ *    videos with `autoplay loop` (matplotlib's tag).  For a reader who asks
+ *    the system for reduced motion (`prefers-reduced-motion: reduce`), a
+ *    video in an output area loses `autoplay` as it is added and stays on its
+ *    first frame until played with its controls (WCAG 2.2.2); when the
+ *    preference is dropped again, `autoplay` comes back to the videos it was
+ *    taken from (they start when played or re-rendered).
+ *
  * Cheap: one MutationObserver on the document, reacting only to added nodes
  * in or containing an output area (`.jp-OutputArea`); the sizes of outputs
  * are read in a ResizeObserver's callback, after layout, never forcing one.
@@ -206,6 +214,37 @@ function forgetDetached(): void {
   }
 }
 
+// --- 3. videos and reduced motion ---------------------------------------------
+
+const REDUCED_MOTION = '(prefers-reduced-motion: reduce)';
+/** Marks a video whose autoplay this plugin took away (and gives back). */
+const MARK_MOTION = 'data-twolink-a11y-autoplay';
+const reducedMotion = window.matchMedia?.(REDUCED_MOTION);
+
+/** A video that would play by itself stays still for a reader who asks for reduced motion. */
+function holdStill(video: HTMLVideoElement): void {
+  if (!reducedMotion?.matches || !video.hasAttribute('autoplay')) {
+    return;
+  }
+  video.removeAttribute('autoplay');
+  video.autoplay = false;
+  video.setAttribute(MARK_MOTION, '');
+  video.pause();
+}
+
+/** The reader's preference changed: hold every video still, or give autoplay back. */
+function onMotionPreference(): void {
+  const videos = document.querySelectorAll<HTMLVideoElement>(`${OUTPUT_AREA} video`);
+  for (const video of Array.from(videos)) {
+    if (reducedMotion?.matches) {
+      holdStill(video);
+    } else if (video.hasAttribute(MARK_MOTION)) {
+      video.removeAttribute(MARK_MOTION);
+      video.setAttribute('autoplay', '');
+    }
+  }
+}
+
 // --- what to look at ------------------------------------------------------------
 
 /** The slider widgets and outputs at or under `node` (or around it, for the closest ones). */
@@ -220,6 +259,10 @@ function visit(node: Element, widgets: Set<Element>, outputs: Set<Element>): voi
   }
   node.querySelectorAll(SLIDER_WIDGET).forEach(found => widgets.add(found));
   node.querySelectorAll(OUTPUT).forEach(found => outputs.add(found));
+  if (node instanceof HTMLVideoElement) {
+    holdStill(node);
+  }
+  node.querySelectorAll('video').forEach(holdStill);
 }
 
 function onMutations(records: MutationRecord[]): void {
@@ -276,6 +319,7 @@ function start(): void {
     childList: true,
     subtree: true
   });
+  reducedMotion?.addEventListener?.('change', onMotionPreference);
   // MathJax's web fonts change the width of typeset math without a mutation
   document.fonts?.addEventListener?.('loadingdone', () => {
     observedOutputs.forEach(measure);
@@ -285,7 +329,7 @@ function start(): void {
 const plugin: IPlugin<unknown, void> = {
   id: 'twolink-figure-alt:a11y',
   description:
-    "ipywidgets' slider handles are named by the widget's description; outputs that scroll are reachable with the keyboard.",
+    "ipywidgets' slider handles are named by the widget's description; outputs that scroll are reachable with the keyboard; videos do not play by themselves for readers who ask for reduced motion.",
   autoStart: true,
   activate: () => {
     start();

@@ -12,7 +12,6 @@ import pytest
 from .conftest import ROOT
 
 sys.path.insert(0, str(ROOT / "tools"))
-import course_map  # noqa: E402
 import editions  # noqa: E402
 
 NOTEBOOKS = sorted((ROOT / "notebooks").glob("*.ipynb"))
@@ -75,12 +74,16 @@ def test_index_links_every_chapter_in_order_and_each_page_is_complete(site, page
             # let MathJax finish typesetting (it loads fonts as it goes) before looking or leaving
             page.evaluate("() => new Promise(resolve => MathJax.Hub.Queue(resolve))")
         page.wait_for_load_state("networkidle")
-        source = "\n".join(
-            "".join(cell["source"])
-            for cell in json.loads(path.read_text(encoding="utf-8"))["cells"]
-        )
+        cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+        source = "\n".join("".join(cell["source"]) for cell in cells)
+        stored_images = [
+            output
+            for cell in cells
+            for output in cell.get("outputs", [])
+            if any(mime.startswith("image/") for mime in output.get("data", {}))
+        ]
         images = page.locator(".jp-OutputArea-output img")
-        if path.name != course_map.START_PAGE:  # the start page is text only
+        if stored_images:  # the start page and the source record are text only
             assert images.count() >= 1, f"{href}: no figures"
         broken = page.evaluate(
             "() => [...document.querySelectorAll('img')].filter(i => !(i.complete && i.naturalWidth > 0)).length"
@@ -212,3 +215,117 @@ def test_the_chapters_are_walked_by_keyboard_from_the_index_and_back(site, page)
         )  # on the last stop: next, or the index after the last chapter
     page.wait_for_url(f"{site}/index.html")
     assert page.title() == f"{editions.SITE_TITLE}: the planar two-link arm"
+
+
+#: The page's Tab stops, as the browser's sequential navigation finds them:
+#: focusable (a link, a control, a summary, tabindex >= 0), not disabled, shown.
+TAB_STOPS = """() => [...document.querySelectorAll('*')].filter(element => {
+    if (element.tabIndex < 0 || element.disabled) return false;
+    if (!(element.matches('a[href], button, input, select, textarea, summary, video[controls], [tabindex]'))) return false;
+    const style = getComputedStyle(element);
+    return style.visibility !== 'hidden' && element.getClientRects().length > 0;
+}).map(element => ({
+    tag: element.tagName.toLowerCase(),
+    cls: String(element.className || ''),
+    formula: Boolean(element.closest('.MathJax, .MathJax_Display, .MathJax_Preview, mjx-container')),
+    // as the page's own script decides: the box or the code block inside it scrolls
+    scrolls: element.scrollWidth > element.clientWidth || element.scrollHeight > element.clientHeight
+        || Boolean(element.querySelector('pre') && element.querySelector('pre').scrollWidth > element.querySelector('pre').clientWidth),
+}))"""
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_formulas_and_code_cells_are_no_tab_stops(site, page):
+    """One stop per cell at most: a code cell or an output only while it scrolls; no formula."""
+    for path in NOTEBOOKS:
+        name = path.with_suffix(".html").name
+        page.goto(f"{site}/{name}")
+        page.wait_for_load_state("load")
+        if page.evaluate("() => Boolean(window.MathJax && window.MathJax.Hub)"):
+            page.evaluate("() => new Promise(resolve => MathJax.Hub.Queue(resolve))")
+        stops = page.evaluate(TAB_STOPS)
+        formulas = [stop for stop in stops if stop["formula"]]
+        cells = [
+            stop
+            for stop in stops
+            if "jp-Cell-inputWrapper" in stop["cls"]
+            or "jp-OutputArea-output" in stop["cls"]
+        ]
+        print(
+            f"{name}: {len(stops)} Tab stops, {len(cells)} scrolling cells or outputs"
+        )
+        assert not formulas, f"{name}: {len(formulas)} formulas are Tab stops"
+        assert all(stop["scrolls"] for stop in cells), (
+            f"{name}: {sum(not stop['scrolls'] for stop in cells)} cells or outputs that do "
+            "not scroll are Tab stops"
+        )
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_figures_have_a_short_alt_and_the_whole_description_one_step_away(site, page):
+    for path in NOTEBOOKS:
+        name = path.with_suffix(".html").name
+        page.goto(f"{site}/{name}")
+        page.wait_for_load_state("load")
+        alts = page.evaluate(
+            "() => [...document.querySelectorAll('.jp-OutputArea-output img[alt]')].map(i => i.alt)"
+        )
+        assert all(len(alt) <= editions.SHORT_ALT_MAX for alt in alts), (
+            name,
+            max(map(len, alts), default=0),
+        )
+        details = page.locator(".twolink-description")
+        for index in range(details.count()):
+            summary = details.nth(index).locator("summary")
+            summary.focus()
+            page.keyboard.press("Enter")  # one step: the full description opens
+            assert details.nth(index).evaluate("d => d.open")
+            assert details.nth(index).locator("p").inner_text().strip()
+
+
+def _video_states(browser, url, reduced_motion):
+    context = browser.new_context(reduced_motion=reduced_motion)
+    try:
+        page = context.new_page()
+        page.goto(url)
+        page.wait_for_load_state("load")
+        page.wait_for_timeout(1500)
+        return page.evaluate(
+            """() => [...document.querySelectorAll('video')].map(video => ({
+                paused: video.paused, time: video.currentTime, autoplay: video.autoplay,
+                label: video.closest('[role=figure]') && video.closest('[role=figure]').getAttribute('aria-label'),
+                described: Boolean(video.closest('.jp-OutputArea-output').querySelector('details.twolink-description p')),
+            }))"""
+        )
+    finally:
+        context.close()
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_videos_are_described_and_hold_still_for_readers_who_ask_for_reduced_motion(
+    site, browser
+):
+    with_video = [
+        path
+        for path in NOTEBOOKS
+        if "animation_html(" in path.read_text(encoding="utf-8")
+    ]
+    assert with_video
+    for path in with_video:
+        url = f"{site}/{path.with_suffix('.html').name}"
+        still = _video_states(browser, url, "reduce")
+        moving = _video_states(browser, url, "no-preference")
+        assert still and len(still) == len(moving)
+        for video in still:
+            assert video["paused"] and video["time"] == 0 and not video["autoplay"], (
+                path.name,
+                video,
+            )
+        for video in moving:
+            assert not video["paused"] and video["time"] > 0, (path.name, video)
+        for video in still:  # a short label, the whole description one step away
+            assert video["label"] and len(video["label"]) <= editions.SHORT_ALT_MAX
+            assert video["described"], (path.name, video)

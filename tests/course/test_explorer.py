@@ -466,29 +466,42 @@ def test_an_empty_title_does_not_make_every_move_redraw_the_legend():
     assert ax.title in view._animated
 
 
-def test_the_canvas_sends_the_pixels_matplotlib_would_in_a_smaller_time():
-    from matplotlib.backends.backend_webagg_core import FigureCanvasWebAggCore
+def test_the_canvas_is_ipympls_own_and_keeps_no_data_url_of_its_own():
+    import ipympl.backend_nbagg as backend
 
     view, _, _ = _arm_explorer()
     canvas = view.figure.canvas
-    canvas.draw()
-    for q1, force_full in ((40, False), (55, False), (70, True)):
-        view.set(q1=q1)
-        state = canvas._last_buff.copy()
-        canvas._png_is_old, canvas._force_full = True, force_full
-        ours = canvas.get_diff_image()
-        mode = canvas._current_image_mode
-        canvas._last_buff, canvas._png_is_old, canvas._force_full = (
-            state,
-            True,
-            force_full,
-        )
-        theirs = FigureCanvasWebAggCore.get_diff_image(canvas)
-        assert canvas._current_image_mode == mode == ("full" if force_full else "diff")
-        assert np.array_equal(
-            np.asarray(_png_pixels(ours)), np.asarray(_png_pixels(theirs))
-        )
-        assert canvas.get_diff_image() is None  # nothing new to send
+    assert type(canvas) is backend.Canvas
+    view.set(q1=40)
+    # ipympl's copy (base64 without the "data:" prefix) would make the page draw a broken image
+    assert canvas._data_url is None and canvas.syncing_data_url is False
+
+
+def test_a_draw_the_page_asks_for_waits_until_a_move_in_another_thread_is_done():
+    import threading
+
+    view, _, _ = _arm_explorer()
+    canvas = view.figure.canvas
+    drawn = threading.Event()
+
+    def page_asks_for_a_picture():
+        canvas.draw()  # what ipympl's handle_draw calls, on a subshell's thread
+        drawn.set()
+
+    with view._lock:  # a move in progress on the main thread
+        other = threading.Thread(target=page_asks_for_a_picture)
+        other.start()
+        assert not drawn.wait(0.3), "the page's draw ran in the middle of a move"
+    assert drawn.wait(10.0)
+    other.join()
+
+
+@pytest.mark.parametrize("width, height", [(6.6, 3.0), (7.2, 2.9), (4.0, 4.6)])
+def test_an_explorer_figure_has_whole_pixels(width, height):
+    figure, _ = explorer.explorer_figure(width, height)
+    pixels = figure.bbox.size
+    assert np.allclose(pixels, np.round(pixels), atol=1e-9), pixels
+    assert np.allclose(pixels, np.array([width, height]) * figure.dpi, atol=0.5)
 
 
 def test_while_grading_an_explorer_updates_and_describes_but_draws_nothing(

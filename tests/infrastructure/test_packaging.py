@@ -10,6 +10,7 @@ import json
 import os
 import pathlib
 import re
+import shutil
 import subprocess
 import sys
 import textwrap
@@ -410,7 +411,7 @@ def test_make_installs_with_uv_when_it_is_on_the_path_and_says_which(tmp_path):
     path = os.environ.get("PATH", "")
     with_uv = make_dry_run("install", env={**os.environ, "PATH": f"{tmp_path}:{path}"})
     assert re.search(
-        rf"^{re.escape(str(fake))} pip install .*--python \.venv/bin/python -r requirements\.txt -c constraints\.txt$",
+        rf"^(PYTHONWARNINGS=\x22[^\x22]*\x22 )?{re.escape(str(fake))} pip install .*--python \.venv/bin/python -r requirements\.txt -c constraints\.txt( \|\|.*)?$",
         with_uv,
         re.M,
     ), with_uv
@@ -422,7 +423,7 @@ def test_make_installs_with_uv_when_it_is_on_the_path_and_says_which(tmp_path):
     )
     with_pip = make_dry_run("install", env={**os.environ, "PATH": without})
     assert re.search(
-        r"^\.venv/bin/python -m pip install .*-r requirements\.txt -c constraints\.txt$",
+        r"^(PYTHONWARNINGS=\x22[^\x22]*\x22 )?\.venv/bin/python -m pip install .*-r requirements\.txt -c constraints\.txt( \|\|.*)?$",
         with_pip,
         re.M,
     ), with_pip
@@ -442,10 +443,129 @@ def test_make_lab_passes_extra_jupyterlab_arguments():
     assert lab and lab[-1].rstrip().endswith("--no-browser --port 8890"), lab
 
 
-def test_make_lab_opens_the_start_page():
-    lab, _ = lab_command()
-    assert "--ServerApp.root_dir=notebooks " in lab[-1]
+def test_make_lab_opens_the_start_page_of_the_learners_copies():
+    lab, lines = lab_command()
+    assert "--ServerApp.root_dir=work " in lab[-1]
     assert "--LabApp.default_url=/lab/tree/00_start_here.ipynb" in lab[-1], lab
+    (copy,) = [line for line in lines if "cp " in line]
+    assert lines.index(copy) < lines.index(lab[-1])
+
+
+def _learners_clone(tmp_path):
+    """A clone's files make lab needs to copy the chapters: the Makefile, notebooks/, .gitignore."""
+    clone = tmp_path / "clone"
+    (clone / "notebooks").mkdir(parents=True)
+    shutil.copy(ROOT / "Makefile", clone)
+    shutil.copy(ROOT / ".gitignore", clone)
+    for name in ("00_start_here.ipynb", "01_dh_forward_kinematics.ipynb"):
+        shutil.copy(ROOT / "notebooks" / name, clone / "notebooks")
+    subprocess.run(["git", "init", "-q"], cwd=clone, check=True)
+    subprocess.run(["git", "add", "-A"], cwd=clone, check=True)
+    subprocess.run(
+        ["git", "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "c"],
+        cwd=clone,
+        check=True,
+    )
+    return clone
+
+
+def _make(clone, *args):
+    return subprocess.run(
+        ["make", "--no-print-directory", *args],
+        cwd=clone,
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+
+
+def test_running_and_saving_chapters_leaves_the_clone_clean(tmp_path):
+    clone = _learners_clone(tmp_path)
+    # make lab's copy step, as it runs before JupyterLab starts
+    copy = [line for line in lab_command()[1] if "cp " in line][0]
+    subprocess.run(["sh", "-c", copy], cwd=clone, check=True)
+    chapter = clone / "work" / "01_dh_forward_kinematics.ipynb"
+    assert chapter.read_bytes() == (clone / "notebooks" / chapter.name).read_bytes()
+    chapter.write_text("{}")  # run, edited and saved by the learner (autosave)
+    status = subprocess.run(
+        ["git", "status", "--porcelain"],
+        cwd=clone,
+        capture_output=True,
+        text=True,
+        check=True,
+    ).stdout
+    assert status == "", status
+    subprocess.run(["sh", "-c", copy], cwd=clone, check=True)
+    assert chapter.read_text() == "{}"  # a second make lab keeps the learner's work
+    done = _make(clone, "fresh", f"NOTEBOOK={chapter.name}")
+    assert done.returncode == 0, done.stderr
+    assert chapter.read_bytes() == (clone / "notebooks" / chapter.name).read_bytes()
+    assert (clone / "work" / f"{chapter.name}~").read_text() == "{}"
+    refused = _make(clone, "fresh", "NOTEBOOK=no_such_chapter.ipynb")
+    assert refused.returncode == 2 and "usage: make fresh" in refused.stdout
+
+
+def test_make_lab_hides_nbgrader_and_the_news_prompt():
+    lab, _ = lab_command()
+    for name in ("formgrader", "validate_assignment", "assignment_list", "course_list"):
+        assert (
+            f"--ServerApp.jpserver_extensions=nbgrader.server_extensions.{name}=False"
+            in lab[-1]
+        )
+    settings = ROOT / "tools" / "lab_server" / "settings"
+    assert f'--LabApp.app_settings_dir="{settings}"' in lab[-1]
+    page_config = json.loads((settings / "page_config.json").read_text())
+    assert page_config["disabledExtensions"] == {"@jupyter/nbgrader": True}
+    overrides = json.loads((settings / "overrides.json").read_text())
+    assert overrides["@jupyterlab/apputils-extension:notification"] == {
+        "fetchNews": "false",
+        "checkForUpdates": False,
+    }
+
+
+def _fake_python(tmp_path, version):
+    """A python3 that says it is ``version`` and fails the course's version check."""
+    fake = tmp_path / "python-old"
+    fake.write_text(
+        "#!/bin/sh\n"
+        f'case "$*" in *--version*) echo "Python {version}";; *) exit 1;; esac\n'
+    )
+    fake.chmod(0o755)
+    return fake
+
+
+def test_an_old_python_is_refused_before_any_install_and_leaves_no_venv(tmp_path):
+    venv = tmp_path / "venv"
+    done = _make(
+        ROOT, "install", f"PYTHON={_fake_python(tmp_path, '3.10.12')}", f"VENV={venv}"
+    )
+    assert done.returncode != 0
+    assert "the course needs Python 3.11 or newer" in done.stdout
+    assert (
+        "Python 3.10.12" in done.stdout and "make lab PYTHON=python3.11" in done.stdout
+    )
+    assert "installing the course" not in done.stdout  # refused before the install
+    assert not venv.exists()
+    missing = _make(ROOT, "install", "PYTHON=no-such-python3", f"VENV={venv}")
+    assert missing.returncode != 0 and "no-such-python3 was not found" in missing.stdout
+
+
+def test_a_venv_made_by_an_old_python_is_reported_not_reused(tmp_path):
+    venv = tmp_path / "venv"
+    (venv / "bin").mkdir(parents=True)
+    shutil.copy(_fake_python(tmp_path, "3.9.2"), venv / "bin" / "python")
+    done = _make(ROOT, "install", f"VENV={venv}")
+    assert done.returncode != 0
+    assert f"rm -rf {venv} && make lab PYTHON=python3.11" in done.stdout, done.stdout
+
+
+@pytest.mark.infrastructure
+def test_a_failed_install_removes_the_venv_it_made(tmp_path):
+    venv = tmp_path / "venv"
+    done = _make(ROOT, "install", f"VENV={venv}", "INSTALL=false")
+    assert done.returncode != 0
+    assert "the install failed, so the new" in done.stdout, done.stdout
+    assert not venv.exists()
 
 
 def test_make_lab_says_why_it_allows_root():

@@ -341,8 +341,17 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
     names = sorted(path.name for path in edition.iterdir())
     (wheel,) = [name for name in names if name.endswith(".whl")]
     assert wheel.startswith("twolink-") and names == sorted(
-        [START_PAGE.name, *(path.name for path in NOTEBOOKS), wheel]
+        # every notebook: the start page, the chapters and the source record they link to
+        [
+            *(path.name for path in (ROOT / "notebooks").glob("*.ipynb")),
+            wheel,
+            "constraints.txt",
+        ]
     )
+    assert {START_PAGE.name, *(path.name for path in NOTEBOOKS)} <= set(names)
+    assert (edition / "constraints.txt").read_text() == (
+        ROOT / "constraints.txt"
+    ).read_text()
 
     venv_dir = tmp_path / "venv"
     try:
@@ -400,6 +409,8 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
     )
     said = output_text(install)
     assert f"installing {wheel}[course] from {install_cell.FROM_WHEEL}" in said, said
+    # the venv had no widgets: the one line that says to reload the page
+    assert install_cell.RELOAD_LINE in said, said
     checks = selfcheck_cells(notebook)
     assert checks
     for cell in checks:
@@ -413,3 +424,24 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
         cwd=tmp_path,
     ).stdout
     assert site_packages.startswith(str(venv_dir)), site_packages
+    # the course's pinned versions, not the newest
+    pins = dict(
+        line.split("==")
+        for line in (ROOT / "constraints.txt").read_text().splitlines()
+        if "==" in line and not line.startswith("#")
+    )
+    versions = subprocess.run(
+        [
+            str(python),
+            "-c",
+            "import importlib.metadata as m; "
+            "print(*(m.version(n) for n in ('matplotlib', 'mujoco', 'numpy', 'ipympl')))",
+        ],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=tmp_path,
+    ).stdout.split()
+    assert versions == [
+        pins[name] for name in ("matplotlib", "mujoco", "numpy", "ipympl")
+    ]

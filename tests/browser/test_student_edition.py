@@ -1,0 +1,160 @@
+"""The student edition's first run, as a student meets it: a Jupyter without twolink.
+
+A JupyterLab whose environment has neither twolink nor the widgets (only
+JupyterLab, its kernel and pip, linked from this environment by
+``tests/_venvs.py``) opens chapter 1 of the unzipped edition; Run All runs the
+install cell, which installs the wheel beside it at the course's versions and
+prints the one line that says to reload; after the reload, Run All shows the
+chapter's explorer.  Minutes: pip installs the course's packages from the
+package index (or the machine's local wheel sources).
+"""
+
+import os
+import pathlib
+import secrets
+import subprocess
+import sys
+import time
+import urllib.request
+import zipfile
+
+import pytest
+
+from .conftest import ROOT, lab_browser
+from .test_chapters_in_jupyterlab import (
+    accept_kernel_dialog,
+    run_all_cells,
+    wait_for_all_cells,
+    wait_until_idle,
+)
+
+sys.path.insert(0, str(ROOT / "tests"))
+import _venvs  # noqa: E402
+import editions  # noqa: E402  (tools/ is on the path: tests/browser/conftest.py)
+import install_cell  # noqa: E402
+
+CHAPTER = "01_dh_forward_kinematics.ipynb"
+
+
+def _serve(python, folder, home):
+    """JupyterLab from ``python``'s environment on ``folder``; yields (url, token)."""
+    import jupyterlab
+
+    token = secrets.token_hex(16)
+    port = lab_browser.free_port()
+    env = {key: value for key, value in os.environ.items() if key != "MPLBACKEND"}
+    for name in (
+        "JUPYTER_CONFIG_DIR",
+        "JUPYTER_RUNTIME_DIR",
+        "JUPYTERLAB_SETTINGS_DIR",
+    ):
+        env[name] = str(home / name.lower())
+    env["JUPYTER_DATA_DIR"] = str(
+        home / "data"
+    )  # no labextension of this machine's user
+    settings = pathlib.Path(env["JUPYTERLAB_SETTINGS_DIR"])
+    for name, values in lab_browser.LAB_SETTINGS.items():
+        (settings / name).parent.mkdir(parents=True, exist_ok=True)
+        (settings / name).write_text(__import__("json").dumps(values))
+    # JupyterLab's own page files (its data files live in this environment's prefix)
+    app_dir = pathlib.Path(jupyterlab.__file__).parents[4] / "share" / "jupyter" / "lab"
+    log = open(home / "server.log", "w")
+    server = lab_browser.PROCESS_GROUPS.start(
+        [
+            str(python),
+            "-m",
+            "jupyterlab",
+            "--no-browser",
+            "--allow-root",
+            "--ServerApp.ip=127.0.0.1",
+            f"--ServerApp.port={port}",
+            f"--IdentityProvider.token={token}",
+            f"--ServerApp.root_dir={folder}",
+            f"--LabApp.app_dir={app_dir}",
+            "--LabApp.news_url=",
+        ],
+        env=env,
+        cwd=home,
+        stdout=log,
+        stderr=subprocess.STDOUT,
+    )
+    url = f"http://127.0.0.1:{port}"
+    deadline = time.monotonic() + 90
+    while True:
+        try:
+            urllib.request.urlopen(f"{url}/api/status?token={token}", timeout=2).close()
+            break
+        except OSError:
+            if server.poll() is not None or time.monotonic() > deadline:
+                lab_browser.PROCESS_GROUPS.stop(server)
+                raise RuntimeError((home / "server.log").read_text()[-2000:]) from None
+            time.sleep(0.5)
+    return server, url, token
+
+
+@pytest.mark.infrastructure
+@pytest.mark.browser
+def test_the_editions_first_run_installs_then_says_to_reload_and_then_shows_sliders(
+    tmp_path, page
+):
+    written = editions.build_student_edition(ROOT / "notebooks", tmp_path / "student")
+    with zipfile.ZipFile(written[-1]) as bundle:
+        bundle.extractall(tmp_path / "away")
+    edition = tmp_path / "away" / "student"
+    python = _venvs.bare_venv(tmp_path, ["jupyterlab", "pip"])
+    # away from the repository, whose folder would put its twolink on sys.path
+    probe = subprocess.run(
+        [str(python), "-c", "import twolink"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
+    assert "No module named 'twolink'" in probe.stderr
+    widgets = subprocess.run(
+        [str(python), "-c", "import jupyterlab_widgets"],
+        capture_output=True,
+        text=True,
+        cwd=tmp_path,
+    )
+    assert widgets.returncode != 0, "the student's Jupyter must lack the widgets"
+
+    home = tmp_path / "home"
+    home.mkdir()
+    server, url, token = _serve(python, edition, home)
+    try:
+        page.goto(f"{url}/lab/tree/{CHAPTER}?token={token}")
+        panel = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden)")
+        panel.locator(".jp-Cell").first.wait_for(timeout=120_000)
+        accept_kernel_dialog(page)
+        wait_until_idle(page, 120_000)
+        run_all_cells(page)
+        wait_for_all_cells(page, 1_200_000)  # the install: minutes
+        wait_until_idle(page, 300_000)
+        first_output = panel.locator(".jp-CodeCell").first.locator(".jp-OutputArea")
+        said = first_output.inner_text()
+        assert install_cell.RELOAD_LINE in said, said
+        assert (
+            panel.locator(".twolink-explorer").count() == 0
+        )  # no sliders before the reload
+
+        page.reload()
+        panel.locator(".jp-Cell").first.wait_for(timeout=120_000)
+        accept_kernel_dialog(page)
+        wait_until_idle(page, 120_000)
+        page.locator(".lm-MenuBar-itemLabel", has_text="Kernel").click()
+        page.locator(
+            ".lm-Menu-itemLabel",
+            has_text="Restart Kernel and Clear Outputs of All Cells",
+        ).click()
+        accept_kernel_dialog(page)
+        wait_until_idle(page, 120_000)
+        run_all_cells(page)
+        wait_for_all_cells(page, 300_000)
+        wait_until_idle(page, 300_000)
+        explorers = panel.locator(".twolink-explorer")
+        explorers.first.locator("canvas").first.wait_for(timeout=60_000)
+        assert explorers.first.locator(".widget-slider").count() >= 1
+        errors = panel.locator("[data-mime-type='application/vnd.jupyter.error']")
+        assert errors.count() == 0, errors.first.inner_text()[:500]
+    finally:
+        lab_browser.PROCESS_GROUPS.stop(server)
