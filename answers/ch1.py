@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from answers._rerun import Rerun
+from answers import Rerun
 from twolink import TwoLinkArm, arms, dh, to_absolute, to_relative
 from twolink_course.exercises.spec import (
     Case,

@@ -14,7 +14,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from answers._rerun import Rerun
+from answers import Rerun
 from twolink import TwoLinkArm, UnreachableError, arms, ik
 from twolink.ik.grid_search import grid_axis
 from twolink_course.exercises.spec import (

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.optimize
 
-from answers._rerun import Rerun
+from answers import Rerun
 from twolink import TwoLinkArm, arms
 from twolink_course.exercises.spec import (
     Case,

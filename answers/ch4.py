@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from answers._rerun import Rerun
+from answers import Rerun
 from twolink import TwoLinkArm, arms, ik, to_relative, velocity
 from twolink_course.exercises.spec import (
     Case,

@@ -14,7 +14,7 @@ import functools
 import numpy as np
 from numpy.typing import NDArray
 
-from answers._rerun import Rerun
+from answers import Rerun
 from twolink import TwoLinkArm, arms, simulate, trajectory
 from twolink_course.exercises.spec import (
     Case,

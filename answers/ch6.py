@@ -13,8 +13,8 @@ import numpy as np
 import scipy.optimize
 from numpy.typing import NDArray
 
+from answers import Rerun
 from answers._draws import first_valid
-from answers._rerun import Rerun
 from twolink import arms, controllers, ik, linearization
 from twolink.arm import TwoLinkArm
 from twolink_course.exercises.spec import (

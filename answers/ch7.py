@@ -14,8 +14,8 @@ from collections.abc import Callable
 import numpy as np
 import scipy.optimize
 
+from answers import Rerun
 from answers._draws import first_valid
-from answers._rerun import Rerun
 from twolink import TwoLinkArm, arms, ik, trajectory, workspace
 from twolink_course.exercises.spec import (
     Case,
