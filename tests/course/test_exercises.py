@@ -14,7 +14,7 @@ passes its self-check, its student-edition stub says "not solved yet", and a
 function part passes hidden cases (a seed the notebook never holds).
 
 The right answers are computed here from the package's primitives or by hand,
-never read from ``answers/``; chapters 1 to 3's ``RERUN`` and ``FORBIDDEN`` entries
+never read from ``answers/``; the chapters' ``RERUN`` and ``FORBIDDEN`` entries
 (the interface with the grader) are tested at the end: each inputs cell binds its
 entry's inputs, each worked solution run on hidden inputs gives the entry's
 references, each forbidden call exists and the exercise states its rules.
@@ -1742,12 +1742,10 @@ def test_check_cells_hold_no_reference(chapter):
 
 # ------------------------------------------------------------- value exercises graded on hidden inputs
 
-# Chapters 1 to 3's entries (answers/chN.py, RERUN and FORBIDDEN); each chapter's owner tests its own.
-CHAPTERS_1_TO_3 = ("ch1", "ch2", "ch3")
-#: Every value exercise of chapters 1 to 3 re-run on hidden inputs: its chapter module's RERUN entry.
-RERUNS_1_TO_3 = [
+#: Every value exercise re-run on hidden inputs: its chapter module's RERUN entry (answers/chN.py).
+RERUNS = [
     (number, rerun)
-    for name in CHAPTERS_1_TO_3
+    for name in answers.chapter_names()
     for number, rerun in getattr(answers.chapter(name), "RERUN", {}).items()
 ]
 
@@ -1844,9 +1842,7 @@ def _same(a, b):
     )
 
 
-@pytest.mark.parametrize(
-    "number, rerun", RERUNS_1_TO_3, ids=[n for n, _ in RERUNS_1_TO_3]
-)
+@pytest.mark.parametrize("number, rerun", RERUNS, ids=[n for n, _ in RERUNS])
 def test_the_inputs_cell_binds_exactly_the_rerun_inputs(number, rerun):
     _, cells, index = _exercise_cells(number)
     source = _inputs_cell(cells, index)
@@ -1868,9 +1864,7 @@ def test_the_inputs_cell_binds_exactly_the_rerun_inputs(number, rerun):
         assert _same(namespace[name], value), (number, name)
 
 
-@pytest.mark.parametrize(
-    "number, rerun", RERUNS_1_TO_3, ids=[n for n, _ in RERUNS_1_TO_3]
-)
+@pytest.mark.parametrize("number, rerun", RERUNS, ids=[n for n, _ in RERUNS])
 def test_the_solution_computes_from_the_inputs_on_hidden_ones(number, rerun):
     # the worked solution, run on inputs the notebook never holds, gives the references
     _, cells, index = _exercise_cells(number)
@@ -1903,9 +1897,10 @@ def test_the_solution_computes_from_the_inputs_on_hidden_ones(number, rerun):
 
 # ------------------------------------------------------------- function exercises' rules
 
-FORBIDDEN_1_TO_3 = [
+#: Every function part's forbidden calls: its chapter module's FORBIDDEN entry.
+FORBIDDEN = [
     (number, part, paths)
-    for name in CHAPTERS_1_TO_3
+    for name in answers.chapter_names()
     for (number, part), paths in getattr(answers.chapter(name), "FORBIDDEN", {}).items()
 ]
 
@@ -1926,8 +1921,8 @@ def _resolve(dotted):
 
 @pytest.mark.parametrize(
     "number, part, paths",
-    FORBIDDEN_1_TO_3,
-    ids=[f"{n}-{p}" for n, p, _ in FORBIDDEN_1_TO_3],
+    FORBIDDEN,
+    ids=[f"{n}-{p}" for n, p, _ in FORBIDDEN],
 )
 def test_forbidden_calls_exist_and_the_exercise_states_its_rules(number, part, paths):
     assert part in {p.name for p in exercises.get(number).parts}
