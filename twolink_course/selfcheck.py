@@ -111,12 +111,12 @@ def check(exercise: str, *answers: object, **named_answers: object) -> CheckRepo
     --------
     >>> import numpy as np
     >>> from twolink import arms
-    >>> report = check("1.1", arms.osake.fk(np.radians([45.0, -30.0])))
+    >>> report = check("1.1", arms.osake.fk(np.radians([50.0, -30.0])))
     Exercise 1.1 (tip position): correct.
     >>> report = check("1.1", ...)
     Exercise 1.1 (tip position): not solved yet (replace the ... in p_tip_ex1 with your answer).
     >>> reset_hints()          # hints start again from the first tier
-    >>> report = check("1.1", arms.osake.fk([45.0, -30.0]))
+    >>> report = check("1.1", arms.osake.fk([50.0, -30.0]))
     Exercise 1.1 (tip position): wrong: this is the tip for the angles read as radians: \
 cos and sin take radians, so convert the degrees first. Hint 1 of 2: Reread 'A1, A2 and \
 T_0^2 = A1 A2 with sympy': the last column of T_0^2 holds the tip's x and y.

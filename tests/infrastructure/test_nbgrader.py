@@ -30,7 +30,10 @@ from twolink_course import exercises
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
+sys.path.insert(0, str(ROOT))
 import nbgrader_cells  # noqa: E402
+
+import answers  # noqa: E402
 
 CHAPTERS = nbgrader_cells.chapters()
 
@@ -52,9 +55,17 @@ def test_every_chapter_carries_the_metadata_the_tool_writes(path):
     }
     chapter = [e for e in exercises.all_exercises() if e.chapter == path.stem]
     assert chapter, path.name
+    rerun = (
+        answers.rerun_specs()
+    )  # graded on hidden inputs: an inputs cell, locked, no points
     assert graded == {
         **{f"check_{e.number.replace('.', '_')}": len(e.parts) for e in chapter},
         **{f"solution_{e.number.replace('.', '_')}": None for e in chapter},
+        **{
+            f"inputs_{e.number.replace('.', '_')}": None
+            for e in chapter
+            if e.number in rerun
+        },
     }
 
 

@@ -387,12 +387,13 @@ def test_make_install_uses_the_lock_and_make_lock_regenerates_it():
 
 
 def test_make_lab_installs_the_course_only_and_make_test_the_developers_tools_too():
-    assert installs(make_dry_run("lab")) == ["requirements.txt"]
+    # a learner's make lab and a teacher's make student and make grade: the course's install
+    for target in ("lab", "student", "grade"):
+        assert installs(make_dry_run(target)) == ["requirements.txt"], target
     for target in (
         "test",
         "portable",
         "notebooks",
-        "student",
         "site",
         "dist",
         "bench",

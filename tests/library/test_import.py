@@ -35,6 +35,10 @@ HEAVY_BY_DESIGN = {
     "twolink_course.explorers.ch1": "matplotlib",  # chapter 1's explorer, built on explorer
     "twolink_course.explorers.ch2": "matplotlib",  # chapter 2's explorer, built on explorer
     "twolink_course.explorers.ch3": "matplotlib",  # chapter 3's explorer, built on explorer
+    "twolink_course.explorers.ch4": "matplotlib",  # chapter 4's explorer, built on explorer
+    "twolink_course.explorers.ch5": "matplotlib",  # chapter 5's explorer, built on explorer
+    "twolink_course.explorers.ch6": "matplotlib",  # chapter 6's explorer, built on explorer
+    "twolink_course.explorers.ch7": "matplotlib",  # chapter 7's explorer, built on explorer
     "twolink_course.figure_style": "matplotlib",
     "twolink_course.alttext": "matplotlib",
     "twolink_course.inline": "matplotlib",
