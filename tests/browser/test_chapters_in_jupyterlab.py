@@ -12,6 +12,7 @@ check alone.  Screenshots go to build/screenshots/.
 
 import base64
 import json
+import os
 import re
 
 import a11y  # tools/a11y.py: tools/ is on the path (tests/browser/conftest.py, loaded first)
@@ -29,7 +30,17 @@ RUN_IN_JUPYTERLAB = [ROOT / "notebooks" / "04_statics_wall.ipynb"]
 #: Also run in JupyterLab, for its explorers' completeness after Run All and a move
 #: alone: chapter 5's explorer was the one that stayed blank (the page's draw request
 #: ran while a move changed the canvas), its curves move the most.
-ALSO_DRAWN_COMPLETE = [ROOT / "notebooks" / "05_lagrangian_dynamics.ipynb"]
+#: ``TWOLINK_BROWSER_EVERY_CHAPTER=1`` checks every other chapter's explorers too (a
+#: release check: about a minute a chapter).
+ALSO_DRAWN_COMPLETE = (
+    [
+        path
+        for path in sorted((ROOT / "notebooks").glob("0[1-9]_*.ipynb"))
+        if path not in RUN_IN_JUPYTERLAB
+    ]
+    if os.environ.get("TWOLINK_BROWSER_EVERY_CHAPTER") == "1"
+    else [ROOT / "notebooks" / "05_lagrangian_dynamics.ipynb"]
+)
 
 
 def expected_widgets(path):
