@@ -478,10 +478,35 @@ def record_edition(notebooks: Sequence[pathlib.Path]) -> str:
     return commit
 
 
+def student_readme(start_page: str = "00_start_here.ipynb") -> str:
+    """The student edition's README.md: how to open it, the first run's reload, handing back.
+
+    >>> text = student_readme()
+    >>> "00_start_here.ipynb" in text and install_cell.RELOAD_LINE in text
+    True
+    """
+    return f"""# twolink: a course on the two-link robot arm (student edition)
+
+1. Unzip this folder and open it in JupyterLab (or Jupyter Notebook, VS Code, Colab).
+2. Open `{start_page}`, the start page: it says what each chapter teaches and how
+   long it takes, and links to the chapters.
+3. Run all cells of a notebook. Its first code cell installs the course (the
+   `twolink` wheel in this folder, at the versions of `constraints.txt`). The first
+   time, it installs the sliders' page code into your Jupyter and prints one line:
+
+   > {install_cell.RELOAD_LINE}
+
+   Do what it says once; after that, Run All shows the sliders straight away.
+4. Your answers go in the cells that say `...`; the check cell under each exercise
+   says whether they are right, and why not.
+5. Hand back the notebooks as your teacher asks, saved after your last run.
+"""
+
+
 def build_student_edition(
     source_dir: str | pathlib.Path, out_dir: str | pathlib.Path
 ) -> list[pathlib.Path]:
-    """The student edition that runs on its own: notebooks, a twolink wheel, and a zip of both.
+    """The student edition that runs on its own: notebooks, a twolink wheel, a README, and a zip of them.
 
     ``out_dir`` gets the student notebooks (:func:`build_student`, each
     chapter recording the commit it comes from, :func:`record_edition`) and the
@@ -500,6 +525,9 @@ def build_student_edition(
     constraints = out_dir / install_cell.CONSTRAINTS
     shutil.copyfile(ROOT / "constraints.txt", constraints)
     written.append(constraints)
+    readme = out_dir / "README.md"
+    readme.write_text(student_readme(), encoding="utf-8")
+    written.append(readme)
     archive = out_dir.with_name(out_dir.name + ".zip")
     partial = archive.with_name(archive.name + ".partial")
     with zipfile.ZipFile(partial, "w", compression=zipfile.ZIP_DEFLATED) as bundle:

@@ -346,8 +346,11 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
             *(path.name for path in (ROOT / "notebooks").glob("*.ipynb")),
             wheel,
             "constraints.txt",
+            "README.md",
         ]
     )
+    readme = (edition / "README.md").read_text(encoding="utf-8")
+    assert START_PAGE.name in readme and install_cell.RELOAD_LINE in readme
     assert {START_PAGE.name, *(path.name for path in NOTEBOOKS)} <= set(names)
     assert (edition / "constraints.txt").read_text() == (
         ROOT / "constraints.txt"
