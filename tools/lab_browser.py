@@ -171,12 +171,17 @@ def free_port():
 
 @contextlib.contextmanager
 def chromium() -> Iterator[Any]:
-    """A headless Chromium (playwright's ``Browser``), closed at the end."""
+    """A headless Chromium (playwright's ``Browser``), closed at the end.
+
+    ``TWOLINK_BROWSER_HEADED=1`` opens a window instead (on a display: under
+    ``xvfb-run`` on a machine without one), as a student's browser draws.
+    """
     from playwright.sync_api import sync_playwright
 
+    headed = os.environ.get("TWOLINK_BROWSER_HEADED") == "1"
     with sync_playwright() as playwright:
         browser = playwright.chromium.launch(
-            executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=True
+            executable_path=CHROMIUM, args=CHROMIUM_ARGS, headless=not headed
         )
         try:
             yield browser
