@@ -187,9 +187,11 @@ test: $(STAMP)
 
 # Stored outputs must read the same on every CPU, BLAS kernel and OS: strict
 # nbval of the chapters once per emulated numeric environment (tools/portable.py
-# lists them).  One chapter: make portable NOTEBOOKS=notebooks/04_statics_wall.ipynb
+# lists them).  One chapter: make portable NOTEBOOKS=notebooks/04_statics_wall.ipynb;
+# some variants: make portable VARIANTS="avx2-haswell sse-1-thread"; all but some:
+# make portable EXCEPT=as-installed (what .ci/run does: its make test has just run that one).
 portable: $(STAMP)
-	$(BIN)/python tools/portable.py $(if $(filter command line,$(origin NOTEBOOKS)),$(NOTEBOOKS),)
+	$(BIN)/python tools/portable.py $(addprefix --variant ,$(VARIANTS)) $(addprefix --except ,$(EXCEPT)) $(if $(filter command line,$(origin NOTEBOOKS)),$(NOTEBOOKS),)
 
 # First the generated cells: the install cell, the start page's map and the chapters' links,
 # nbgrader's metadata (tools/install_cell.py, tools/course_map.py, tools/nbgrader_cells.py).

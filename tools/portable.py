@@ -17,6 +17,7 @@ Usage::
     python tools/portable.py                       # every variant: every chapter and the package's doctests
     python tools/portable.py notebooks/02_inverse_kinematics.ipynb
     python tools/portable.py --variant sse-1-thread notebooks/04_statics_wall.ipynb
+    python tools/portable.py --except as-installed  # after make test, which ran that one
     python tools/portable.py --list                 # the variants and their settings
 """
 
@@ -209,6 +210,13 @@ def main(argv: list[str] | None = None) -> int:
         help="run only these (repeatable)",
     )
     parser.add_argument(
+        "--except",
+        dest="excepted",
+        action="append",
+        choices=[v.name for v in VARIANTS],
+        help="run every variant but these (repeatable)",
+    )
+    parser.add_argument(
         "--workers", default="2", help="pytest-xdist workers (default 2)"
     )
     parser.add_argument(
@@ -216,7 +224,14 @@ def main(argv: list[str] | None = None) -> int:
     )
     args = parser.parse_args(argv)
 
-    chosen = [v for v in VARIANTS if not args.variant or v.name in args.variant]
+    chosen = [
+        v
+        for v in VARIANTS
+        if (not args.variant or v.name in args.variant)
+        and v.name not in (args.excepted or ())
+    ]
+    if not chosen:
+        parser.error("--variant and --except leave no variant to run")
     if args.list:
         for variant in chosen:
             settings = (
