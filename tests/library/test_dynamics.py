@@ -1,6 +1,7 @@
 """Dynamics of the 2R arm: symbolic derivation, numeric M, C, g, inverse/forward dynamics, energy."""
 
 import dataclasses
+import functools
 
 import mpmath
 import numpy as np
@@ -13,7 +14,13 @@ from conftest import configurations, dynamic_arms, rates
 from twolink import TwoLinkArm, arms, dynamics
 from twolink.symbolic import dynamics_symbols, equations_of_motion, lambdify_dynamics
 
-NUMERIC = {model: lambdify_dynamics(model) for model in ("relative", "absolute")}
+
+@functools.cache
+def numeric(model):
+    """The derived equations of ``model``, made numeric once, when a test first asks
+    (not at import: every test worker imports this file to collect it)."""
+    return lambdify_dynamics(model)
+
 
 # Absolute link angles theta = T q and torques tau = T^T u (virtual work) for T below.
 TO_ABSOLUTE = np.array([[1.0, 0.0], [1.0, 1.0]])
@@ -131,7 +138,7 @@ def test_unknown_model_raises():
 # ----------------------------------------------------------------- numeric == symbolic
 @given(dynamic_arms(), configurations(), pairs)
 def test_numeric_matches_symbolic_relative_model(arm, q, qd):
-    symbolic = NUMERIC["relative"]
+    symbolic = numeric("relative")
     scale = mass_scale(arm)
     assert_within(arm.mass_matrix(q), symbolic.mass_matrix(arm, q), 1e-12 * scale)
     assert_within(
@@ -147,7 +154,7 @@ def test_numeric_matches_symbolic_absolute_model_after_change_of_variables(
     arm, q, qd, qdd
 ):
     """The absolute model's torques u, mapped by tau = T^T u, are the DH torques of the same motion."""
-    symbolic = NUMERIC["absolute"]
+    symbolic = numeric("absolute")
     theta, thetad, thetadd = q @ TO_ABSOLUTE.T, qd @ TO_ABSOLUTE.T, qdd @ TO_ABSOLUTE.T
     u = (
         symbolic.mass_matrix(arm, theta) @ thetadd
@@ -471,11 +478,11 @@ def test_a_massless_link_1_is_fine_when_link_2_has_inertia():
 def test_lambdify_takes_a_derivation_or_a_model_name():
     arm, q, qd = arms.osake, np.array([0.3, -0.4]), np.array([1.0, 2.0])
     from_derivation = lambdify_dynamics(equations_of_motion("absolute"))
-    assert from_derivation.model == NUMERIC["absolute"].model == "absolute"
+    assert from_derivation.model == numeric("absolute").model == "absolute"
     assert np.array_equal(
-        from_derivation.coriolis(arm, q, qd), NUMERIC["absolute"].coriolis(arm, q, qd)
+        from_derivation.coriolis(arm, q, qd), numeric("absolute").coriolis(arm, q, qd)
     )
-    assert NUMERIC["relative"].gravity(arm, q).shape == (2,)
+    assert numeric("relative").gravity(arm, q).shape == (2,)
 
 
 # ----------------------------------------------------------------- derivatives of M and g
