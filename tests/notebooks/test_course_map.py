@@ -62,10 +62,13 @@ def test_the_course_has_a_start_page_and_chapters_apart_from_it():
     ]
 
 
-def test_the_map_and_the_navigation_are_up_to_date():
-    """Fails after a chapter's title, time or prerequisites change until `python tools/course_map.py` runs."""
-    result = subprocess.run([*TOOL, "--check"], capture_output=True, text=True)
-    assert result.returncode == 0, result.stderr
+def test_the_map_and_the_navigation_are_up_to_date(capsys):
+    """Fails after a chapter's title, time or prerequisites change until `python tools/course_map.py` runs.
+
+    The tool's ``main`` runs in this process (its command line, exit status
+    and all, runs as a program in ``test_check_fails_on_a_stale_time_and_writing_fixes_it_once``).
+    """
+    assert course_map.main(["--check"]) == 0, capsys.readouterr().err
 
 
 def test_the_start_page_links_every_chapter_in_order_with_its_title_time_and_prerequisites():
@@ -175,13 +178,11 @@ def test_every_link_between_notebooks_resolves(path, student_edition):
             assert (folder / target).is_file(), f"{folder}/{path.name} links {target}"
 
 
-def test_nbgrader_metadata_is_still_complete():
-    result = subprocess.run(
-        [sys.executable, str(ROOT / "tools" / "nbgrader_cells.py"), "--check"],
-        capture_output=True,
-        text=True,
-    )
-    assert result.returncode == 0, result.stdout + result.stderr
+def test_nbgrader_metadata_is_still_complete(capsys):
+    """``python tools/nbgrader_cells.py --check`` passes: its ``main``, in this process."""
+    import nbgrader_cells
+
+    assert nbgrader_cells.main(["--check"]) == 0, capsys.readouterr().out
 
 
 def test_the_grader_never_takes_the_start_page_for_a_chapter():
@@ -205,18 +206,24 @@ def test_the_grader_never_takes_the_start_page_for_a_chapter():
 # --- the tool, on a copy ----------------------------------------------------------------------------------------
 
 
-@pytest.fixture
-def course(tmp_path):
-    """A copy of the committed notebooks' folder, brought up to date by the tool (which writes into it).
+@pytest.fixture(scope="module")
+def course_at_fixed_point(tmp_path_factory):
+    """A copy of the committed notebooks' folder, brought up to date by the tool (which writes into it), once.
 
     Whether the committed notebooks are up to date is
     ``test_the_map_and_the_navigation_are_up_to_date``'s question; these tests start
-    from the tool's fixed point.
+    from the tool's fixed point.  Read-only: each test changes its own copy (``course``).
     """
-    folder = tmp_path / "notebooks"
+    folder = tmp_path_factory.mktemp("course") / "notebooks"
     shutil.copytree(NOTEBOOKS, folder, ignore=shutil.ignore_patterns(".*"))
     course_map.update(folder)
     return folder
+
+
+@pytest.fixture
+def course(tmp_path, course_at_fixed_point):
+    """This test's own copy of the course at the tool's fixed point (``course_at_fixed_point``)."""
+    return shutil.copytree(course_at_fixed_point, tmp_path / "notebooks")
 
 
 def test_check_fails_on_a_stale_time_and_writing_fixes_it_once(course):
