@@ -1,5 +1,6 @@
 """tools/portable.py: the emulated numeric environments really take effect, and strict nbval under them tells a match from a mismatch."""
 
+import functools
 import json
 import sys
 from pathlib import Path
@@ -10,8 +11,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 import portable  # noqa: E402
 
 VARIANTS = {variant.name: variant for variant in portable.VARIANTS}
-AS_INSTALLED = portable.probe(VARIANTS["as-installed"])
-NATIVE = set(AS_INSTALLED["simd"])
+
+
+@functools.cache
+def as_installed():
+    """What this machine runs as installed: probed once, when a test first asks (not at collection)."""
+    return portable.probe(VARIANTS["as-installed"])
 
 
 def test_there_are_at_least_three_variants_and_the_first_is_as_installed():
@@ -26,7 +31,8 @@ def test_there_are_at_least_three_variants_and_the_first_is_as_installed():
     "variant", portable.VARIANTS[1:], ids=lambda variant: variant.name
 )
 def test_each_variant_changes_what_numpy_or_openblas_run(variant):
-    lacking = [group for group in variant.requires if group not in NATIVE]
+    native = set(as_installed()["simd"])
+    lacking = [group for group in variant.requires if group not in native]
     if lacking:
         pytest.skip(f"this CPU lacks {lacking}, which {variant.name} needs")
     seen = portable.probe(variant)
@@ -104,7 +110,8 @@ def _scripted_runs(monkeypatch, outcomes):
     ``test_each_variant_changes_what_numpy_or_openblas_run``).
     """
     calls = []
-    monkeypatch.setattr(portable, "probe", lambda variant: AS_INSTALLED)
+    seen = as_installed()
+    monkeypatch.setattr(portable, "probe", lambda variant: seen)
 
     def fake_run_nbval(variant, notebooks, workers):
         code, output = outcomes[len(calls)]
