@@ -65,8 +65,8 @@ def test_the_course_has_a_start_page_and_chapters_apart_from_it():
 def test_the_map_and_the_navigation_are_up_to_date(capsys):
     """Fails after a chapter's title, time or prerequisites change until `python tools/course_map.py` runs.
 
-    The tool's ``main`` runs in this process (its command line, exit status
-    and all, runs as a program in ``test_check_fails_on_a_stale_time_and_writing_fixes_it_once``).
+    The tool's ``main`` runs in this process (its command line, exit status and all, runs as a
+    program in ``test_the_command_line_check_exits_1_naming_the_stale_notebooks_and_writes_nothing``).
     """
     assert course_map.main(["--check"]) == 0, capsys.readouterr().err
 
@@ -226,17 +226,15 @@ def course(tmp_path, course_at_fixed_point):
     return shutil.copytree(course_at_fixed_point, tmp_path / "notebooks")
 
 
-def test_check_fails_on_a_stale_time_and_writing_fixes_it_once(course):
+def test_check_fails_on_a_stale_time_and_writing_fixes_it_once(course, capsys):
     chapter = course / CHAPTERS[1].name
     notebook = nbformat.read(chapter, as_version=4)
     notebook.cells[0].source = course_map.TIME_PARAGRAPH.sub(
         "**Time:** about 7 hours; before: a guess.", notebook.cells[0].source
     )
     nbformat.write(notebook, chapter)
-    stale = subprocess.run(
-        [*TOOL, "--check", "--folder", str(course)], capture_output=True, text=True
-    )
-    assert stale.returncode == 1 and CHAPTERS[1].name in stale.stderr
+    assert course_map.main(["--check", "--folder", str(course)]) == 1
+    assert CHAPTERS[1].name in capsys.readouterr().err
     assert course_map.update(course) == [chapter]
     opening = nbformat.read(chapter, as_version=4).cells[0].source
     assert course_map.chapter_time(chapter).paragraph() in opening
@@ -244,6 +242,27 @@ def test_check_fails_on_a_stale_time_and_writing_fixes_it_once(course):
     written = {path: path.read_bytes() for path in course.glob("*.ipynb")}
     assert course_map.update(course) == []
     assert {path: path.read_bytes() for path in course.glob("*.ipynb")} == written
+
+
+def test_the_command_line_check_exits_1_naming_the_stale_notebooks_and_writes_nothing(
+    tmp_path,
+):
+    """``python tools/course_map.py --check``, as a program: a course of the start page and the
+    first chapter alone has a stale map and a stale last navigation cell (a small course: the
+    program builds only chapter 1's exercises)."""
+    for path in (START, CHAPTERS[0]):
+        shutil.copy(path, tmp_path)
+    before = {path: path.read_bytes() for path in tmp_path.iterdir()}
+    stale = subprocess.run(
+        [*TOOL, "--check", "--folder", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert stale.returncode == 1, stale.stdout + stale.stderr
+    named = [line.split(":")[0] for line in stale.stderr.splitlines()]
+    assert named == [str(tmp_path / START.name), str(tmp_path / CHAPTERS[0].name)]
+    assert {path: path.read_bytes() for path in tmp_path.iterdir()} == before
 
 
 def test_a_longer_chapter_gets_a_longer_time_and_the_map_follows(course):
