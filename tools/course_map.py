@@ -35,6 +35,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import functools
 import importlib
 import math
 import pathlib
@@ -243,12 +244,15 @@ def time_text(minutes: int) -> str:
     return f"{text} {rest} minutes" if rest else text
 
 
+@functools.cache
 def exercise_parts(number: int) -> tuple[int, int]:
     """``(value parts, function or pen-and-paper parts)`` of chapter ``number``'s exercises.
 
     Read from ``answers/ch<number>.py``: a part of kind ``"function"`` or
     named in the module's ``PEN_AND_PAPER`` (``{("3.4", "det_J_zeros"), ...}``)
-    counts as a function part.
+    counts as a function part.  Counted once per process: building a chapter's
+    exercises computes their references (chapter 7's take a second), and every
+    :func:`chapter_time` asks.
     """
     if str(ROOT) not in sys.path:
         sys.path.insert(0, str(ROOT))

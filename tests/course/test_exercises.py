@@ -1789,9 +1789,14 @@ def _exercise_cells(number):
 
 
 def _backward_slice(cells, index):
-    """The code cells before ``cells[index]`` that define what it (transitively) reads, in order."""
-    _, needed = _cell_names("".join(cells[index]["source"]))
-    needed -= SETUP_NAMES
+    """The code cells before ``cells[index]`` that define what it (transitively) reads, in order.
+
+    A name ``cells[index]`` binds itself (a solution's own variables) is not
+    looked for before it: were it read before it is bound, the run here fails
+    with a NameError instead of taking the chapter's value of that name.
+    """
+    bound, needed = _cell_names("".join(cells[index]["source"]))
+    needed -= SETUP_NAMES | bound
     chosen = []
     for cell in reversed(cells[:index]):
         if cell["cell_type"] != "code":

@@ -66,26 +66,33 @@ def test_install_outside_ipython_changes_nothing():
     assert inline.install() is False
 
 
-def test_install_in_an_ipython_shell_formats_figures_with_alt():
-    """In a fresh process (an InteractiveShell is a process-wide singleton)."""
-    code = textwrap.dedent("""
-        import json
-        from IPython.core.interactiveshell import InteractiveShell
-        from matplotlib.figure import Figure
-        from twolink_course import figure_style
-        shell = InteractiveShell.instance()
-        shell.display_formatter.formatters["image/svg+xml"].for_type(Figure, lambda f: "<svg/>")
-        first, second = figure_style.use(), figure_style.use()
-        figure = Figure(figsize=(2.0, 1.0))
-        ax = figure.subplots()
-        ax.set_xlabel("t [s]")
-        data, metadata = shell.display_formatter.format(figure)
-        print(json.dumps([first, second, sorted(data), metadata]))
-    """)
+#: What one fresh interpreter says (an InteractiveShell is a process-wide singleton): first the
+#: modules importing the package side loaded, then the course style installed in an IPython shell.
+FRESH_PROCESS = textwrap.dedent("""
+    import json, sys
+    import twolink, twolink_course.figure_style, twolink_course.alttext, twolink_course.inline
+    print(json.dumps(sorted(m for m in ('IPython', 'matplotlib.pyplot') if m in sys.modules)))
+    from IPython.core.interactiveshell import InteractiveShell
+    from matplotlib.figure import Figure
+    from twolink_course import figure_style
+    shell = InteractiveShell.instance()
+    shell.display_formatter.formatters["image/svg+xml"].for_type(Figure, lambda f: "<svg/>")
+    first, second = figure_style.use(), figure_style.use()
+    figure = Figure(figsize=(2.0, 1.0))
+    ax = figure.subplots()
+    ax.set_xlabel("t [s]")
+    data, metadata = shell.display_formatter.format(figure)
+    print(json.dumps([first, second, sorted(data), metadata]))
+""")
+
+
+@pytest.fixture(scope="module")
+def fresh_process():
+    """The two lines ``FRESH_PROCESS`` prints, parsed."""
     env = {key: value for key, value in os.environ.items() if key != "MPLBACKEND"}
     env["MPLBACKEND"] = "Agg"
     done = subprocess.run(
-        [sys.executable, "-c", code],
+        [sys.executable, "-c", FRESH_PROCESS],
         capture_output=True,
         text=True,
         timeout=120,
@@ -93,7 +100,12 @@ def test_install_in_an_ipython_shell_formats_figures_with_alt():
         env=env,
     )
     assert done.returncode == 0, done.stderr[-3000:]
-    first, second, mimes, metadata = json.loads(done.stdout.splitlines()[-1])
+    return [json.loads(line) for line in done.stdout.splitlines()[-2:]]
+
+
+def test_install_in_an_ipython_shell_formats_figures_with_alt(fresh_process):
+    """In a fresh process (an InteractiveShell is a process-wide singleton)."""
+    first, second, mimes, metadata = fresh_process[1]
     assert first is True and second is True
     assert mimes == ["image/png", "text/plain"]  # the svg formatter is gone
     assert metadata["image/png"]["alt"].startswith("Axes: t [s] from 0 to 1")
@@ -172,16 +184,9 @@ def test_the_site_renders_the_stored_alt_as_the_images_alt(executed):
     assert "No description has been provided" not in page
 
 
-def test_the_package_side_imports_no_ipython_and_no_pyplot():
-    code = (
-        "import sys, twolink, twolink_course.figure_style, twolink_course.alttext, twolink_course.inline\n"
-        "print(sorted(m for m in ('IPython', 'matplotlib.pyplot') if m in sys.modules))"
-    )
-    done = subprocess.run(
-        [sys.executable, "-c", code], capture_output=True, text=True, cwd=ROOT
-    )
-    assert done.returncode == 0, done.stderr[-2000:]
-    assert done.stdout.strip() == "[]"
+def test_the_package_side_imports_no_ipython_and_no_pyplot(fresh_process):
+    """Importing twolink and the kit's figure modules, in a fresh process, loads neither."""
+    assert fresh_process[0] == []
 
 
 def test_a_figure_laid_out_by_constrained_layout_is_stored_whole_not_cropped():

@@ -189,7 +189,7 @@ def test_under_the_course_style_an_animations_own_figure_is_laid_out_once():
 
     anim = make()
     assert isinstance(anim._fig.get_layout_engine(), PlaceHolderLayoutEngine)
-    video.html5_video(anim, embed_limit=5.0)
+    # the same figure's video, by twolink's writer and by matplotlib's
     fast_video, full_video, fast_draws, _ = _both_videos(make)
     assert fast_video == full_video and fast_draws == 1
 

@@ -1,7 +1,8 @@
 """The chapter checks ride along in nbval's run: a figure without a unit fails the chapter's ``::figures``.
 
-A nested pytest runs a small chapter with the repository's pytest set-up
-(pyproject.toml, the root conftest.py, tests/notebooks/chapter_checks.py): it
+A nested pytest (pytest's own, in this process: ``pytester``) runs a small
+chapter with the repository's pytest set-up (pyproject.toml, the root
+conftest.py, tests/notebooks/chapter_checks.py), from the copy's root: it
 gets its ``::figures`` and ``::exercises`` tests after its last cell, asked of
 the kernel nbval ran it in; its last figure has an axis without a unit, so
 ``::figures`` fails, naming the cell and the axis, while the cells themselves
@@ -10,10 +11,10 @@ pass (nbval compares no picture) and ``::exercises`` passes (it has none).
 
 import pathlib
 import shutil
-import subprocess
-import sys
 
 import nbformat
+
+pytest_plugins = ["pytester"]
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
@@ -36,7 +37,10 @@ def _chapter(path, last_label):
     )
 
 
-def test_a_figure_without_a_unit_fails_its_chapter_in_the_one_run(tmp_path):
+def test_a_figure_without_a_unit_fails_its_chapter_in_the_one_run(
+    pytester, monkeypatch
+):
+    tmp_path = pytester.path
     shutil.copy(ROOT / "pyproject.toml", tmp_path)
     shutil.copy(ROOT / "conftest.py", tmp_path)
     (tmp_path / "tests").mkdir()
@@ -45,16 +49,12 @@ def test_a_figure_without_a_unit_fails_its_chapter_in_the_one_run(tmp_path):
     (tmp_path / "tools").symlink_to(ROOT / "tools")
     (tmp_path / "notebooks").mkdir()
     _chapter(tmp_path / "notebooks" / "01_unlabelled.ipynb", "q")
-    done = subprocess.run(
-        [sys.executable, "-m", "pytest", "-n", "0", "-p", "no:cacheprovider"]
-        + ["--nbval-lax", "-rA", "notebooks"],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    said = done.stdout
-    assert done.returncode == 1, said[-3000:] + done.stderr[-2000:]
+    monkeypatch.chdir(tmp_path)
+    # nbval's budgets: the kernel's start (60 s), each cell's (60 s); the chapter checks have their own
+    options = ["-n", "0", "-p", "no:cacheprovider", "--nbval-cell-timeout", "60"]
+    done = pytester.runpytest_inprocess(*options, "--nbval-lax", "-rA", "notebooks")
+    said = done.stdout.str()
+    assert done.ret == 1, said[-3000:] + done.stderr.str()[-2000:]
     assert "PASSED notebooks/01_unlabelled.ipynb::exercises" in said, said[-3000:]
     assert "FAILED notebooks/01_unlabelled.ipynb::figures" in said, said[-3000:]
     assert "code cell 3: figure: axes '': y label 'q' has no quantity [unit]" in said

@@ -1,5 +1,6 @@
 """tools/portable.py: the emulated numeric environments really take effect, and strict nbval under them tells a match from a mismatch."""
 
+import functools
 import json
 import sys
 from pathlib import Path
@@ -10,7 +11,12 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 import portable  # noqa: E402
 
 VARIANTS = {variant.name: variant for variant in portable.VARIANTS}
-NATIVE = set(portable.probe(VARIANTS["as-installed"])["simd"])
+
+
+@functools.cache
+def as_installed():
+    """What this machine runs as installed: probed once, when a test first asks (not at collection)."""
+    return portable.probe(VARIANTS["as-installed"])
 
 
 def test_there_are_at_least_three_variants_and_the_first_is_as_installed():
@@ -25,7 +31,8 @@ def test_there_are_at_least_three_variants_and_the_first_is_as_installed():
     "variant", portable.VARIANTS[1:], ids=lambda variant: variant.name
 )
 def test_each_variant_changes_what_numpy_or_openblas_run(variant):
-    lacking = [group for group in variant.requires if group not in NATIVE]
+    native = set(as_installed()["simd"])
+    lacking = [group for group in variant.requires if group not in native]
     if lacking:
         pytest.skip(f"this CPU lacks {lacking}, which {variant.name} needs")
     seen = portable.probe(variant)
@@ -74,12 +81,20 @@ def _notebook(path, stored_text):
 
 @pytest.mark.infrastructure
 def test_a_matching_notebook_passes_and_a_mismatching_one_fails(tmp_path, capsys):
+    """One strict nbval run of both notebooks: the one storing 0.3 passes, the one storing 0.30000000000000004 fails.
+
+    The failure shown compares the mismatching notebook's stored output with the
+    fresh one, so the test that passed is the matching notebook's.  A variant
+    whose run passes is a ``pass`` row: ``test_a_kernel_that_did_not_start_is_run_again_once``.
+    """
     good = _notebook(tmp_path / "good.ipynb", "0.3\n")
     bad = _notebook(tmp_path / "bad.ipynb", "0.30000000000000004\n")
-    assert portable.main([good, "--variant", "as-installed", "--workers", "0"]) == 0
-    assert "| as-installed | pass | 1 passed" in capsys.readouterr().out
-    assert portable.main([bad, "--variant", "as-installed", "--workers", "0"]) == 1
-    assert "| as-installed | FAIL (exit 1) | 1 failed" in capsys.readouterr().out
+    assert (
+        portable.main([good, bad, "--variant", "as-installed", "--workers", "0"]) == 1
+    )
+    said = capsys.readouterr()
+    assert "| as-installed | FAIL (exit 1) | 1 failed, 1 passed" in said.out
+    assert "'0.30000000000000004\\n' == '0.3\\n'" in said.err, said.err[-3000:]
 
 
 def test_an_unknown_notebook_is_refused_by_name(tmp_path, capsys):
@@ -89,8 +104,14 @@ def test_an_unknown_notebook_is_refused_by_name(tmp_path, capsys):
 
 
 def _scripted_runs(monkeypatch, outcomes):
-    """Replace run_nbval by a script of (exit code, output) pairs; return the list of calls made."""
+    """Replace run_nbval by a script of (exit code, output) pairs; return the list of calls made.
+
+    The probe answers as it did for this machine (a real probe per variant:
+    ``test_each_variant_changes_what_numpy_or_openblas_run``).
+    """
     calls = []
+    seen = as_installed()
+    monkeypatch.setattr(portable, "probe", lambda variant: seen)
 
     def fake_run_nbval(variant, notebooks, workers):
         code, output = outcomes[len(calls)]
@@ -108,10 +129,9 @@ def test_a_kernel_that_did_not_start_is_run_again_once(monkeypatch, tmp_path, ca
     )
     assert portable.main([good, "--variant", "as-installed"]) == 0
     assert calls == ["as-installed", "as-installed"]
-    assert (
-        "a kernel failed to start (not a mismatch of outputs)"
-        in capsys.readouterr().out
-    )
+    said = capsys.readouterr().out
+    assert "a kernel failed to start (not a mismatch of outputs)" in said
+    assert "| as-installed | pass | 1 passed |" in said
 
 
 def test_a_mismatch_is_never_run_again(monkeypatch, tmp_path):

@@ -1,7 +1,8 @@
 """`pytest --nbval` works from the root and from inside notebooks/ (the sanitize file is found from the root).
 
-The runs use a copy of the repository's pytest set-up (pyproject.toml,
-conftest.py, tests/nbval_sanitize.cfg) with one tiny notebook whose stored
+The runs (pytest's own, in this process: ``pytester``) use a copy of the
+repository's pytest set-up (pyproject.toml, conftest.py,
+tests/nbval_sanitize.cfg) with one tiny notebook whose stored
 output only matches after sanitising (a random video payload, what the
 sanitize file masks), so each run
 fails unless the sanitize file is found, and does not depend on chapters
@@ -11,17 +12,18 @@ notebooks/ fails: the last test shows it.
 
 import pathlib
 import shutil
-import subprocess
-import sys
 
 import nbformat
 import pytest
+
+pytest_plugins = ["pytester"]
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture()
-def repository(tmp_path):
+def repository(pytester):
+    tmp_path = pytester.path
     shutil.copy(ROOT / "pyproject.toml", tmp_path)
     shutil.copy(ROOT / "conftest.py", tmp_path)
     (tmp_path / "notebooks").mkdir()
@@ -43,27 +45,36 @@ def repository(tmp_path):
     return tmp_path
 
 
-def pytest_in(folder, *args):
-    return subprocess.run(
-        [sys.executable, "-m", "pytest", "-n", "0", "-p", "no:cacheprovider", *args],
-        cwd=folder,
-        capture_output=True,
-        text=True,
-        timeout=120,
+def pytest_in(pytester, monkeypatch, folder, *args):
+    """``pytest *args`` run from ``folder``: pytest's own, in this process (no second interpreter to start).
+
+    Every wait has a budget: nbval's kernel start (60 s) and each cell's (60 s).
+    """
+    monkeypatch.chdir(folder)
+    return pytester.runpytest_inprocess(
+        "-n", "0", "-p", "no:cacheprovider", "--nbval-cell-timeout", "60", *args
     )
 
 
 @pytest.mark.infrastructure
-def test_pytest_nbval_runs_from_inside_notebooks(repository):
+def test_pytest_nbval_runs_from_inside_notebooks(repository, pytester, monkeypatch):
     """From the root the relative path exists anyway (make test runs from there)."""
-    result = pytest_in(repository / "notebooks", "--nbval", "00_random_id.ipynb")
-    assert result.returncode == 0, result.stdout[-3000:] + result.stderr[-2000:]
-    assert "1 passed" in result.stdout
+    result = pytest_in(
+        pytester, monkeypatch, repository / "notebooks", "--nbval", "00_random_id.ipynb"
+    )
+    out, err = result.stdout.str(), result.stderr.str()
+    assert result.ret == 0, out[-3000:] + err[-2000:]
+    assert "1 passed" in out
 
 
 @pytest.mark.infrastructure
-def test_without_the_root_conftest_the_run_from_notebooks_fails(repository):
+def test_without_the_root_conftest_the_run_from_notebooks_fails(
+    repository, pytester, monkeypatch
+):
     (repository / "conftest.py").unlink()
-    result = pytest_in(repository / "notebooks", "--nbval", "00_random_id.ipynb")
-    assert result.returncode != 0
-    assert "sanitize.cfg" in result.stdout + result.stderr
+    result = pytest_in(
+        pytester, monkeypatch, repository / "notebooks", "--nbval", "00_random_id.ipynb"
+    )
+    out, err = result.stdout.str(), result.stderr.str()
+    assert result.ret != 0
+    assert "sanitize.cfg" in out + err

@@ -395,10 +395,14 @@ def test_boundary_of_the_ten_arm_is_the_expected_five_arcs():
 # ---------------------------------------------------------------- clearance and the largest circle
 
 
+#: The ten arm's boundary arcs, traced once for the examples that all ask about that arm.
+TEN_ARCS = workspace.boundary_arcs(arms.ten)
+
+
 @given(fraction=unit, heading=st.floats(0.0, np.pi / 2))
 def test_clearance_is_the_radius_of_the_largest_circle_about_a_point(fraction, heading):
     arm = arms.ten
-    arcs = workspace.boundary_arcs(arm)
+    arcs = TEN_ARCS
     radius = 10 * np.sqrt(2) + 1e-3 + fraction * (20 - 10 * np.sqrt(2) - 2e-3)
     p = radius * np.array([np.cos(heading), np.sin(heading)])
     room = float(workspace.clearance(arm, p, arcs))

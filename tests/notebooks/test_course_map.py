@@ -62,10 +62,13 @@ def test_the_course_has_a_start_page_and_chapters_apart_from_it():
     ]
 
 
-def test_the_map_and_the_navigation_are_up_to_date():
-    """Fails after a chapter's title, time or prerequisites change until `python tools/course_map.py` runs."""
-    result = subprocess.run([*TOOL, "--check"], capture_output=True, text=True)
-    assert result.returncode == 0, result.stderr
+def test_the_map_and_the_navigation_are_up_to_date(capsys):
+    """Fails after a chapter's title, time or prerequisites change until `python tools/course_map.py` runs.
+
+    The tool's ``main`` runs in this process (its command line, exit status and all, runs as a
+    program in ``test_the_command_line_check_exits_1_naming_the_stale_notebooks_and_writes_nothing``).
+    """
+    assert course_map.main(["--check"]) == 0, capsys.readouterr().err
 
 
 def test_the_start_page_links_every_chapter_in_order_with_its_title_time_and_prerequisites():
@@ -175,13 +178,11 @@ def test_every_link_between_notebooks_resolves(path, student_edition):
             assert (folder / target).is_file(), f"{folder}/{path.name} links {target}"
 
 
-def test_nbgrader_metadata_is_still_complete():
-    result = subprocess.run(
-        [sys.executable, str(ROOT / "tools" / "nbgrader_cells.py"), "--check"],
-        capture_output=True,
-        text=True,
-    )
-    assert result.returncode == 0, result.stdout + result.stderr
+def test_nbgrader_metadata_is_still_complete(capsys):
+    """``python tools/nbgrader_cells.py --check`` passes: its ``main``, in this process."""
+    import nbgrader_cells
+
+    assert nbgrader_cells.main(["--check"]) == 0, capsys.readouterr().out
 
 
 def test_the_grader_never_takes_the_start_page_for_a_chapter():
@@ -205,31 +206,35 @@ def test_the_grader_never_takes_the_start_page_for_a_chapter():
 # --- the tool, on a copy ----------------------------------------------------------------------------------------
 
 
-@pytest.fixture
-def course(tmp_path):
-    """A copy of the committed notebooks' folder, brought up to date by the tool (which writes into it).
+@pytest.fixture(scope="module")
+def course_at_fixed_point(tmp_path_factory):
+    """A copy of the committed notebooks' folder, brought up to date by the tool (which writes into it), once.
 
     Whether the committed notebooks are up to date is
     ``test_the_map_and_the_navigation_are_up_to_date``'s question; these tests start
-    from the tool's fixed point.
+    from the tool's fixed point.  Read-only: each test changes its own copy (``course``).
     """
-    folder = tmp_path / "notebooks"
+    folder = tmp_path_factory.mktemp("course") / "notebooks"
     shutil.copytree(NOTEBOOKS, folder, ignore=shutil.ignore_patterns(".*"))
     course_map.update(folder)
     return folder
 
 
-def test_check_fails_on_a_stale_time_and_writing_fixes_it_once(course):
+@pytest.fixture
+def course(tmp_path, course_at_fixed_point):
+    """This test's own copy of the course at the tool's fixed point (``course_at_fixed_point``)."""
+    return shutil.copytree(course_at_fixed_point, tmp_path / "notebooks")
+
+
+def test_check_fails_on_a_stale_time_and_writing_fixes_it_once(course, capsys):
     chapter = course / CHAPTERS[1].name
     notebook = nbformat.read(chapter, as_version=4)
     notebook.cells[0].source = course_map.TIME_PARAGRAPH.sub(
         "**Time:** about 7 hours; before: a guess.", notebook.cells[0].source
     )
     nbformat.write(notebook, chapter)
-    stale = subprocess.run(
-        [*TOOL, "--check", "--folder", str(course)], capture_output=True, text=True
-    )
-    assert stale.returncode == 1 and CHAPTERS[1].name in stale.stderr
+    assert course_map.main(["--check", "--folder", str(course)]) == 1
+    assert CHAPTERS[1].name in capsys.readouterr().err
     assert course_map.update(course) == [chapter]
     opening = nbformat.read(chapter, as_version=4).cells[0].source
     assert course_map.chapter_time(chapter).paragraph() in opening
@@ -237,6 +242,27 @@ def test_check_fails_on_a_stale_time_and_writing_fixes_it_once(course):
     written = {path: path.read_bytes() for path in course.glob("*.ipynb")}
     assert course_map.update(course) == []
     assert {path: path.read_bytes() for path in course.glob("*.ipynb")} == written
+
+
+def test_the_command_line_check_exits_1_naming_the_stale_notebooks_and_writes_nothing(
+    tmp_path,
+):
+    """``python tools/course_map.py --check``, as a program: a course of the start page and the
+    first chapter alone has a stale map and a stale last navigation cell (a small course: the
+    program builds only chapter 1's exercises)."""
+    for path in (START, CHAPTERS[0]):
+        shutil.copy(path, tmp_path)
+    before = {path: path.read_bytes() for path in tmp_path.iterdir()}
+    stale = subprocess.run(
+        [*TOOL, "--check", "--folder", str(tmp_path)],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert stale.returncode == 1, stale.stdout + stale.stderr
+    named = [line.split(":")[0] for line in stale.stderr.splitlines()]
+    assert named == [str(tmp_path / START.name), str(tmp_path / CHAPTERS[0].name)]
+    assert {path: path.read_bytes() for path in tmp_path.iterdir()} == before
 
 
 def test_a_longer_chapter_gets_a_longer_time_and_the_map_follows(course):
@@ -396,12 +422,19 @@ def test_the_rule_adds_up_and_rounds_up_to_five_minutes(
 
 
 def test_exercise_parts_count_function_and_pen_and_paper_parts_apart():
+    """Counted against the stored exercises' parts (what ``answers/`` computes: tests/course/test_exercises_stored.py)."""
     sys.path.insert(0, str(ROOT))
     import answers
+    from twolink_course import exercises
 
-    for number in range(1, len(CHAPTERS) + 1):
-        module = answers.chapter(f"ch{number}")
-        pen = set(getattr(module, "PEN_AND_PAPER", ()))
-        parts = [(e.number, p) for e in module.exercises() for p in e.parts]
+    for number, path in enumerate(CHAPTERS, start=1):
+        pen = set(getattr(answers.chapter(f"ch{number}"), "PEN_AND_PAPER", ()))
+        parts = [
+            (e.number, p)
+            for e in exercises.all_exercises()
+            if e.chapter == path.stem
+            for p in e.parts
+        ]
+        assert parts, path.name
         heavy = sum(1 for n, p in parts if p.kind == "function" or (n, p.name) in pen)
         assert course_map.exercise_parts(number) == (len(parts) - heavy, heavy)

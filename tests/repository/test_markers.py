@@ -8,7 +8,8 @@ quick part; nobody keeps a list of tests.  The slow work is infrastructure:
 a test that (itself, or through a helper function or fixture of its own
 module, transitively) builds a virtual environment (``_venvs.bare_venv``,
 ``_venvs.pip``) or a wheel (``pip wheel``, ``editions.build_wheel``), runs a
-nested pytest (``python -m pytest``, ``portable.main``), drives the browser
+nested pytest (``python -m pytest``, pytester's ``runpytest_inprocess`` and the
+like, ``portable.main``), drives the browser
 (the ``page``, ``browser`` or ``jupyterlab`` fixtures) or runs a whole edition
 (``grade.grade_folder``, ``editions.build_site``, a ``HeadlessClient``) lives
 in an infrastructure folder (``tests/infrastructure``, ``tests/browser``).
@@ -39,6 +40,10 @@ ROOT_CONFTEST = _root_conftest()
 VENV_OR_EDITION_CALLS = {
     "_venvs.bare_venv": "builds a venv",
     "_venvs.pip": "runs pip in a venv",
+    "pytester.runpytest": "runs nested pytest",
+    "pytester.runpytest_inprocess": "runs nested pytest",
+    "pytester.runpytest_subprocess": "runs nested pytest",
+    "pytester.inline_run": "runs nested pytest",
     "portable.main": "runs nested pytest (nbval)",
     "portable.run_nbval": "runs nested pytest (nbval)",
     "grade.grade_folder": "runs a whole edition (grading)",
