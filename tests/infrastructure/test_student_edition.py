@@ -28,6 +28,9 @@ import _venvs
 import nbformat
 import pytest
 from IPython.core.inputtransformer2 import TransformerManager
+from jupyter_client import KernelManager
+from jupyter_client.kernelspec import KernelSpecManager
+from nbclient import NotebookClient
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
@@ -285,35 +288,46 @@ def test_the_start_page_is_in_the_edition_and_speaks_to_the_student(student_edit
 
 # --- the edition away from the repository, in a fresh environment ------------------------------------------------
 
-#: Run in the fresh venv: execute a notebook in its own folder with a kernel of that venv.
-RUN_IN_VENV = """\
-import json, pathlib, sys
-
-import nbformat
-from jupyter_client import KernelManager
-from jupyter_client.kernelspec import KernelSpecManager
-from nbclient import NotebookClient
-
-notebook_path, executed_path, kernels = map(pathlib.Path, sys.argv[1:4])
-(kernels / "fresh").mkdir(parents=True)
-(kernels / "fresh" / "kernel.json").write_text(json.dumps({
-    "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
-    "display_name": "fresh venv", "language": "python"}))
-
 
 class Headless(NotebookClient):
-    def handle_comm_msg(self, outs, msg, cell_index):  # as tests/infrastructure/test_student_edition.py
+    """Runs a notebook without a page: the widgets' messages go unanswered."""
+
+    def handle_comm_msg(self, outs, msg, cell_index):
         return None
 
 
-notebook = nbformat.read(notebook_path, as_version=4)
-manager = KernelManager(
-    kernel_name="fresh", kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(kernels)])
-)
-Headless(notebook, km=manager, kernel_name="fresh", timeout=900, allow_errors=True,
-         resources={"metadata": {"path": str(notebook_path.parent)}}).execute()
-nbformat.write(notebook, executed_path)
-"""
+def run_in_venv(python, notebook_path, kernels, env, timeout=600):
+    """``notebook_path`` executed in its own folder by a kernel of ``python``'s venv, started with ``env``."""
+    (kernels / "fresh").mkdir(parents=True)
+    (kernels / "fresh" / "kernel.json").write_text(
+        json.dumps(
+            {
+                "argv": [
+                    str(python),
+                    "-m",
+                    "ipykernel_launcher",
+                    "-f",
+                    "{connection_file}",
+                ],
+                "display_name": "fresh venv",
+                "language": "python",
+            }
+        )
+    )
+    notebook = nbformat.read(notebook_path, as_version=4)
+    manager = KernelManager(
+        kernel_name="fresh",
+        kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(kernels)]),
+    )
+    Headless(
+        notebook,
+        km=manager,
+        kernel_name="fresh",
+        timeout=timeout,
+        allow_errors=True,
+        resources={"metadata": {"path": str(notebook_path.parent)}},
+    ).execute(env=env)
+    return notebook
 
 
 def fresh_environment(tmp_path, venv_dir):
@@ -372,7 +386,7 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(
     try:
         python = _venvs.bare_venv(
             tmp_path,
-            [*_venvs.requirements("twolink", "course"), "nbclient", "pip"],
+            [*_venvs.requirements("twolink", "course"), "pip"],
             without=["twolink", *widget_wheels.names],
         )
     except (OSError, subprocess.CalledProcessError) as error:  # pragma: no cover
@@ -392,25 +406,9 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(
             f"the venv must lack {module}"
         )
 
-    chapter = edition / NOTEBOOKS[0].name
-    executed = tmp_path / "executed.ipynb"
-    run = subprocess.run(
-        [
-            str(python),
-            "-c",
-            RUN_IN_VENV,
-            str(chapter),
-            str(executed),
-            str(tmp_path / "kernels"),
-        ],
-        capture_output=True,
-        text=True,
-        env=env,
-        cwd=tmp_path,
-        timeout=600,
+    notebook = run_in_venv(
+        python, edition / NOTEBOOKS[0].name, tmp_path / "kernels", env
     )
-    assert run.returncode == 0, run.stderr[-3000:]
-    notebook = nbformat.read(executed, as_version=4)
     errors = [
         output
         for cell in notebook.cells
