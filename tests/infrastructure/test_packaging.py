@@ -559,13 +559,35 @@ def test_a_venv_made_by_an_old_python_is_reported_not_reused(tmp_path):
     assert f"rm -rf {venv} && make lab PYTHON=python3.11" in done.stdout, done.stdout
 
 
+def _python_whose_venvs_share_its_pip(tmp_path):
+    """This Python, whose ``-m venv`` makes a venv that uses the base Python's pip (and
+    packages) instead of installing its own: a second, where ensurepip takes several."""
+    python = tmp_path / "python-quick-venv"
+    python.write_text(
+        "#!/bin/sh\n"
+        'if [ "$1" = -m ] && [ "$2" = venv ]; then shift 2; '
+        f'exec "{sys._base_executable}" -m venv --without-pip --system-site-packages "$@"; fi\n'
+        f'exec "{sys._base_executable}" "$@"\n'
+    )
+    python.chmod(0o755)
+    return python
+
+
 @pytest.mark.infrastructure
 def test_a_failed_install_removes_the_venv_it_made(tmp_path, monkeypatch):
     # pip's upgrade of itself in the new venv finds no index and keeps the pip it has
     monkeypatch.setenv("PIP_NO_INDEX", "1")
     venv = tmp_path / "venv"
-    done = _make(ROOT, "install", f"VENV={venv}", "INSTALL=false")
+    done = _make(
+        ROOT,
+        "install",
+        f"PYTHON={_python_whose_venvs_share_its_pip(tmp_path)}",
+        f"VENV={venv}",
+        "INSTALL=false",
+    )
     assert done.returncode != 0
+    # the venv was made and pip upgraded: the install itself failed
+    assert "false -r requirements.txt -c constraints.txt" in done.stdout, done.stdout
     assert "the install failed, so the new" in done.stdout, done.stdout
     assert not venv.exists()
 
