@@ -114,19 +114,20 @@ def acceleration_scale(arm, q, qd, tau):
 #: here follow in their usual order.
 SLOW_FILES_SECONDS = {
     "tests/browser/test_chapters_in_jupyterlab.py": 280,
-    "tests/infrastructure/test_student_edition.py": 110,
     "tests/browser/test_static_site.py": 80,
     "tests/infrastructure/test_pytest_anywhere.py": 70,
     "tests/infrastructure/test_grade_attacks.py": 150,
     "tests/infrastructure/test_nbgrader.py": 50,
     "tests/infrastructure/test_grade.py": 45,
+    "tests/browser/test_student_edition.py": 45,
     "tests/library/test_import.py": 38,
     "tests/notebooks/test_figures.py": 34,
-    "tests/infrastructure/test_install_cell.py": 25,
+    "tests/infrastructure/test_student_edition.py": 30,
     "tests/course/test_exercises.py": 25,
     "tests/infrastructure/test_benchmarks_run.py": 21,
     "tests/library/test_trajectory.py": 18,
     "tests/infrastructure/test_portable.py": 18,
+    "tests/infrastructure/test_install_cell.py": 12,
 }
 
 
