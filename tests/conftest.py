@@ -225,7 +225,8 @@ def edition_wheel(student_edition_bundle):
 
 @dataclasses.dataclass(frozen=True)
 class Wheelhouse:
-    """Wheels pip installs offline: ``pip_environment()`` points pip at ``folder`` alone."""
+    """Wheels pip installs offline: ``pip_environment()`` points pip at ``folder`` alone
+    (no index, no configuration file)."""
 
     folder: pathlib.Path
     names: tuple[str, ...]
@@ -233,6 +234,7 @@ class Wheelhouse:
 
     def pip_environment(self):
         return {
+            "PIP_CONFIG_FILE": os.devnull,  # no index or wheels of this machine's pip.conf
             "PIP_NO_INDEX": "1",
             "PIP_FIND_LINKS": str(self.folder),
             "PIP_DISABLE_PIP_VERSION_CHECK": "1",

@@ -576,6 +576,7 @@ def _python_whose_venvs_share_its_pip(tmp_path):
 @pytest.mark.infrastructure
 def test_a_failed_install_removes_the_venv_it_made(tmp_path, monkeypatch):
     # pip's upgrade of itself in the new venv finds no index and keeps the pip it has
+    monkeypatch.setenv("PIP_CONFIG_FILE", os.devnull)
     monkeypatch.setenv("PIP_NO_INDEX", "1")
     venv = tmp_path / "venv"
     done = _make(
