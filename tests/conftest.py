@@ -1,8 +1,13 @@
 """Shared hypothesis strategies and settings for the twolink tests."""
 
+import dataclasses
+import fcntl
+import json
 import os
 import pathlib
+import shutil
 import sys
+import time
 
 import matplotlib
 import numpy as np
@@ -109,19 +114,20 @@ def acceleration_scale(arm, q, qd, tau):
 #: here follow in their usual order.
 SLOW_FILES_SECONDS = {
     "tests/browser/test_chapters_in_jupyterlab.py": 280,
-    "tests/infrastructure/test_student_edition.py": 110,
     "tests/browser/test_static_site.py": 80,
     "tests/infrastructure/test_pytest_anywhere.py": 70,
     "tests/infrastructure/test_grade_attacks.py": 150,
     "tests/infrastructure/test_nbgrader.py": 50,
     "tests/infrastructure/test_grade.py": 45,
+    "tests/browser/test_student_edition.py": 45,
     "tests/library/test_import.py": 38,
     "tests/notebooks/test_figures.py": 34,
-    "tests/infrastructure/test_install_cell.py": 25,
+    "tests/infrastructure/test_student_edition.py": 30,
     "tests/course/test_exercises.py": 25,
     "tests/infrastructure/test_benchmarks_run.py": 21,
     "tests/library/test_trajectory.py": 18,
     "tests/infrastructure/test_portable.py": 18,
+    "tests/infrastructure/test_install_cell.py": 12,
 }
 
 
@@ -146,6 +152,124 @@ def student_edition(tmp_path_factory):
     out = tmp_path_factory.mktemp("student-edition")
     editions.build_student(root / "notebooks", out)
     return out
+
+
+# --- built once per test run, shared by the xdist workers
+
+
+def built_once(tmp_path_factory, name, build, budget_seconds=900):
+    """The folder ``build(folder)`` filled, built by the first worker that asks, once per run.
+
+    The other workers wait for it (a file lock in the run's temporary folder, above
+    each worker's own, as pytest-xdist's documentation shows) and then share it:
+    what is in it is read-only for them.  A build that fails leaves nothing, so the
+    next worker that asks tries again.  A wait longer than ``budget_seconds`` fails.
+    """
+    base = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        base = base.parent  # the run's folder, which holds each worker's
+    done = base / name
+    deadline = time.monotonic() + budget_seconds
+    with open(base / f"{name}.lock", "w") as lock:
+        while True:
+            try:
+                fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.monotonic() > deadline:
+                    raise TimeoutError(
+                        f"{name}: another worker has built it for {budget_seconds} s"
+                    ) from None
+                time.sleep(0.2)
+        try:
+            if not done.is_dir():
+                partial = base / f"{name}.partial"
+                shutil.rmtree(partial, ignore_errors=True)
+                partial.mkdir()
+                build(partial)
+                partial.rename(done)
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+    return done
+
+
+@pytest.fixture(scope="session")
+def student_edition_bundle(tmp_path_factory):
+    """``make student``'s files (``editions.build_student_edition``: the notebooks, the
+    twolink wheel, constraints.txt, README.md, then the zip), built once per test run.
+
+    Read-only: a test unzips the zip into a folder of its own.
+    """
+    root = pathlib.Path(__file__).resolve().parent.parent
+    sys.path.insert(0, str(root / "tools"))
+    import editions
+
+    def build(folder):
+        written = editions.build_student_edition(
+            root / "notebooks", folder / "build" / "student"
+        )
+        (folder / "written.json").write_text(
+            json.dumps([str(path.relative_to(folder)) for path in written])
+        )
+
+    folder = built_once(tmp_path_factory, "student-edition-bundle", build)
+    return [folder / name for name in json.loads((folder / "written.json").read_text())]
+
+
+@pytest.fixture(scope="session")
+def edition_wheel(student_edition_bundle):
+    """The twolink wheel of the student edition (``editions.build_wheel``), built once per run."""
+    (wheel,) = [path for path in student_edition_bundle if path.suffix == ".whl"]
+    return wheel
+
+
+@dataclasses.dataclass(frozen=True)
+class Wheelhouse:
+    """Wheels pip installs offline: ``pip_environment()`` points pip at ``folder`` alone
+    (no index, no configuration file)."""
+
+    folder: pathlib.Path
+    names: tuple[str, ...]
+    decoys: dict[str, str]
+
+    def pip_environment(self):
+        return {
+            "PIP_CONFIG_FILE": os.devnull,  # no index or wheels of this machine's pip.conf
+            "PIP_NO_INDEX": "1",
+            "PIP_FIND_LINKS": str(self.folder),
+            "PIP_DISABLE_PIP_VERSION_CHECK": "1",
+        }
+
+
+#: The packages a student's first run must itself install with twolink: the widgets,
+#: whose JupyterLab extensions pip writes into the environment (why the page needs a
+#: reload), and ipympl, the explorers' figures (its extension too).
+WIDGETS = ("ipywidgets", "jupyterlab_widgets", "widgetsnbextension", "ipympl")
+#: Offered beside the installed (pinned) version of each: a higher one, which pip
+#: takes unless the edition's constraints.txt keeps it to the pin.
+DECOYED = ("ipympl",)
+
+
+@pytest.fixture(scope="session")
+def widget_wheels(tmp_path_factory):
+    """Wheels of this environment's widget packages (``WIDGETS``) and a newer decoy of
+    each of ``DECOYED``, for the student edition's install cell to install offline."""
+    import importlib.metadata
+
+    from packaging.version import Version
+
+    sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+    import _venvs
+
+    decoys = {name: importlib.metadata.version(name) + ".post999" for name in DECOYED}
+    for name, decoy in decoys.items():
+        assert Version(decoy) > Version(importlib.metadata.version(name)), decoy
+    folder = built_once(
+        tmp_path_factory,
+        "widget-wheels",
+        lambda folder: _venvs.wheelhouse(folder, WIDGETS, decoys),
+    )
+    return Wheelhouse(folder, WIDGETS, decoys)
 
 
 # --- the environment nbval's kernels inherit

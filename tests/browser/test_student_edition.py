@@ -1,16 +1,18 @@
 """The student edition's first run, as a student meets it: a Jupyter without twolink.
 
-A JupyterLab whose environment has neither twolink nor the widgets (only
-JupyterLab, its kernel and pip, linked from this environment by
-``tests/_venvs.py``) opens chapter 1 of the unzipped edition; Run All runs the
-install cell, which installs the wheel beside it at the course's versions and
-prints the one line that says to reload; after the reload, Run All shows the
-chapter's explorer.  Minutes: pip installs the course's packages from the
-package index (or the machine's local wheel sources).
+A JupyterLab whose environment has neither twolink nor the widgets (JupyterLab,
+its kernel, pip and the course's other packages, linked from this environment
+by ``tests/_venvs.py``) opens chapter 1 of the unzipped edition (built once per
+test run: ``student_edition_bundle`` in ``tests/conftest.py``); Run All runs the
+install cell, which installs the wheel beside it and the widgets (offline, from
+``widget_wheels``: real wheels, whose JupyterLab extensions pip writes into the
+environment) and prints the one line that says to reload; after the reload, Run
+All shows the chapter's explorer.
 """
 
 import os
 import pathlib
+import re
 import secrets
 import subprocess
 import sys
@@ -30,19 +32,24 @@ from .test_chapters_in_jupyterlab import (
 
 sys.path.insert(0, str(ROOT / "tests"))
 import _venvs  # noqa: E402
-import editions  # noqa: E402  (tools/ is on the path: tests/browser/conftest.py)
 import install_cell  # noqa: E402
 
 CHAPTER = "01_dh_forward_kinematics.ipynb"
 
 
-def _serve(python, folder, home):
-    """JupyterLab from ``python``'s environment on ``folder``; yields (url, token)."""
+def _serve(python, folder, home, pip_environment):
+    """JupyterLab from ``python``'s environment on ``folder``, its kernels' pip offline
+    (``pip_environment``); returns (server, url, token)."""
     import jupyterlab
 
     token = secrets.token_hex(16)
     port = lab_browser.free_port()
-    env = {key: value for key, value in os.environ.items() if key != "MPLBACKEND"}
+    env = {
+        key: value
+        for key, value in os.environ.items()
+        if key != "MPLBACKEND" and not key.startswith("PIP_")
+    }
+    env.update(pip_environment)
     for name in (
         "JUPYTER_CONFIG_DIR",
         "JUPYTER_RUNTIME_DIR",
@@ -95,19 +102,23 @@ def _serve(python, folder, home):
 @pytest.mark.infrastructure
 @pytest.mark.browser
 def test_the_editions_first_run_installs_then_says_to_reload_and_then_shows_sliders(
-    tmp_path, page
+    tmp_path, page, student_edition_bundle, widget_wheels
 ):
-    written = editions.build_student_edition(ROOT / "notebooks", tmp_path / "student")
-    with zipfile.ZipFile(written[-1]) as bundle:
+    with zipfile.ZipFile(student_edition_bundle[-1]) as bundle:
         bundle.extractall(tmp_path / "away")
     edition = tmp_path / "away" / "student"
-    python = _venvs.bare_venv(tmp_path, ["jupyterlab", "pip"])
+    python = _venvs.bare_venv(
+        tmp_path,
+        [*_venvs.requirements("twolink", "course"), "pip"],
+        without=["twolink", *widget_wheels.names],
+    )
     # away from the repository, whose folder would put its twolink on sys.path
     probe = subprocess.run(
         [str(python), "-c", "import twolink"],
         capture_output=True,
         text=True,
         cwd=tmp_path,
+        timeout=120,
     )
     assert "No module named 'twolink'" in probe.stderr
     widgets = subprocess.run(
@@ -115,12 +126,13 @@ def test_the_editions_first_run_installs_then_says_to_reload_and_then_shows_slid
         capture_output=True,
         text=True,
         cwd=tmp_path,
+        timeout=120,
     )
     assert widgets.returncode != 0, "the student's Jupyter must lack the widgets"
 
     home = tmp_path / "home"
     home.mkdir()
-    server, url, token = _serve(python, edition, home)
+    server, url, token = _serve(python, edition, home, widget_wheels.pip_environment())
     try:
         page.goto(f"{url}/lab/tree/{CHAPTER}?token={token}")
         panel = page.locator(".jp-NotebookPanel:not(.lm-mod-hidden)")
@@ -128,7 +140,7 @@ def test_the_editions_first_run_installs_then_says_to_reload_and_then_shows_slid
         accept_kernel_dialog(page)
         wait_until_idle(page, 120_000)
         run_all_cells(page)
-        wait_for_all_cells(page, 1_200_000)  # the install: minutes
+        wait_for_all_cells(page, 300_000)  # the install (offline) and the chapter
         wait_until_idle(page, 300_000)
         first_output = panel.locator(".jp-CodeCell").first.locator(".jp-OutputArea")
         said = first_output.inner_text()
@@ -137,17 +149,23 @@ def test_the_editions_first_run_installs_then_says_to_reload_and_then_shows_slid
             panel.locator(".twolink-explorer").count() == 0
         )  # no sliders before the reload
 
+        # as the line says: reload, then Run All in the same kernel (outputs cleared
+        # first, so that the wait below is for this run's prompts)
         page.reload()
         panel.locator(".jp-Cell").first.wait_for(timeout=120_000)
         accept_kernel_dialog(page)
         wait_until_idle(page, 120_000)
-        page.locator(".lm-MenuBar-itemLabel", has_text="Kernel").click()
+        page.locator(".lm-MenuBar-itemLabel", has_text=re.compile(r"^Edit$")).click()
         page.locator(
-            ".lm-Menu-itemLabel",
-            has_text="Restart Kernel and Clear Outputs of All Cells",
+            ".lm-Menu-itemLabel", has_text=re.compile(r"^Clear Outputs of All Cells$")
         ).click()
-        accept_kernel_dialog(page)
-        wait_until_idle(page, 120_000)
+        page.wait_for_function(
+            """() => [...document.querySelectorAll(
+                '.jp-NotebookPanel:not(.lm-mod-hidden) .jp-CodeCell .jp-InputPrompt')]
+                .every(p => !/\\[\\d+\\]/.test(p.innerText))""",
+            timeout=60_000,
+        )
+        assert panel.locator(".twolink-explorer").count() == 0
         run_all_cells(page)
         wait_for_all_cells(page, 300_000)
         wait_until_idle(page, 300_000)

@@ -6,7 +6,7 @@ the cell's own code with ``import twolink`` made to fail and ``%pip``
 replaced, so nothing is installed; then in real kernels: one in the project's
 environment (it must not call pip) and one in a throwaway venv that has every
 course package but not twolink (it must install twolink from the source named
-by TWOLINK_SOURCE, here a copy of this checkout).  The student edition's run
+by TWOLINK_SOURCE, here the wheel of this checkout the student edition holds).  The student edition's run
 from its own wheel, in a fresh venv, is in ``tests/infrastructure/test_student_edition.py``.
 """
 
@@ -15,7 +15,6 @@ import copy
 import io
 import json
 import pathlib
-import shutil
 import subprocess
 import sys
 
@@ -69,7 +68,7 @@ def test_apply_updates_an_outdated_install_cell_in_place():
     assert install_cell.is_up_to_date(notebook)
 
 
-def test_check_mode_fails_on_a_stale_notebook_and_passes_once_applied(tmp_path):
+def test_check_mode_fails_on_a_stale_notebook_and_passes_once_applied(tmp_path, capsys):
     notebook = nbformat.read(CHAPTER_1, as_version=4)
     notebook.cells = [
         cell
@@ -78,26 +77,23 @@ def test_check_mode_fails_on_a_stale_notebook_and_passes_once_applied(tmp_path):
     ]
     path = tmp_path / "chapter.ipynb"
     nbformat.write(notebook, path)
-    tool = [sys.executable, str(ROOT / "tools" / "install_cell.py")]
+    # the command line once (its exit status); then the same main() in this process
     stale = subprocess.run(
-        [*tool, "--check", str(path)], capture_output=True, text=True
-    )
-    assert stale.returncode == 1 and "not the install cell" in stale.stderr
-    subprocess.run([*tool, str(path)], check=True, capture_output=True)
-    fresh = subprocess.run(
-        [*tool, "--check", str(path)], capture_output=True, text=True
-    )
-    assert fresh.returncode == 0, fresh.stderr
-
-
-def test_every_chapter_starts_with_the_install_cell():
-    """Fails until `python tools/install_cell.py` has been run on the notebooks (and they re-executed)."""
-    result = subprocess.run(
-        [sys.executable, str(ROOT / "tools" / "install_cell.py"), "--check"],
+        [sys.executable, str(ROOT / "tools" / "install_cell.py"), "--check", str(path)],
         capture_output=True,
         text=True,
+        timeout=120,
     )
-    assert result.returncode == 0, result.stderr
+    assert stale.returncode == 1 and "not the install cell" in stale.stderr
+    assert install_cell.main(["--check", str(path)]) == 1
+    assert install_cell.main([str(path)]) == 0
+    assert "install cell written" in capsys.readouterr().out
+    assert install_cell.main(["--check", str(path)]) == 0, capsys.readouterr().err
+
+
+def test_every_chapter_starts_with_the_install_cell(capsys):
+    """Fails until `python tools/install_cell.py` has been run on the notebooks (and they re-executed)."""
+    assert install_cell.main(["--check"]) == 0, capsys.readouterr().err
 
 
 def test_the_cell_names_the_source_variable_and_the_course_extra():
@@ -106,16 +102,14 @@ def test_the_cell_names_the_source_variable_and_the_course_extra():
     assert source.count("%pip install") == 1
 
 
-def test_the_start_page_gets_no_install_cell():
-    """Without arguments the tool treats the chapters only: the start page has no code to set up."""
-    result = subprocess.run(
-        [sys.executable, str(ROOT / "tools" / "install_cell.py"), "--check"],
-        capture_output=True,
-        text=True,
-    )
-    assert result.returncode == 0, result.stderr
-    start = nbformat.read(ROOT / "notebooks" / "00_start_here.ipynb", as_version=4)
+def test_the_start_page_gets_no_install_cell(capsys):
+    """Without arguments the tool treats the chapters only: the start page has no code to set up
+    (a notebook without code cells fails ``--check`` when it is named)."""
+    start_page = ROOT / "notebooks" / "00_start_here.ipynb"
+    assert install_cell.main(["--check"]) == 0, capsys.readouterr().err
+    start = nbformat.read(start_page, as_version=4)
     assert not code_sources(start)
+    assert install_cell.main(["--check", str(start_page)]) == 1
 
 
 # --- the cell's choice of source, with pip replaced -----------------------------------------------------------
@@ -272,25 +266,12 @@ def test_in_a_clone_the_cell_installs_nothing(tmp_path, monkeypatch):
 
 @pytest.mark.infrastructure
 def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(
-    tmp_path, monkeypatch
+    tmp_path, monkeypatch, edition_wheel
 ):
-    """A kernel in a venv with every course package except twolink: the cell installs twolink from a copy of
-    this checkout (TWOLINK_SOURCE), then `import twolink` works there and finds the installed copy."""
-    source = tmp_path / "twolink-source"
-    shutil.copytree(
-        ROOT,
-        source,
-        ignore=shutil.ignore_patterns(
-            ".*",
-            "build",
-            "notebooks",
-            "tests",
-            "benchmarks",
-            "tools",
-            "*.egg-info",
-            "__pycache__",
-        ),
-    )
+    """A kernel in a venv with every course package except twolink: the cell installs twolink from the
+    source TWOLINK_SOURCE names (here the wheel of this checkout the student edition holds, in a folder
+    that is not the kernel's), then `import twolink` works there and finds the installed copy.
+    (That pip builds twolink from a source folder: ``editions.build_wheel``, ``make dist``.)"""
     try:
         python = _venvs.bare_venv(
             tmp_path, _venvs.installed_except(["twolink"]), with_dependencies=False
@@ -305,10 +286,13 @@ def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(
         capture_output=True,
         text=True,
         cwd=tmp_path,
+        timeout=120,
     )
     assert probe.returncode != 0 and "No module named 'twolink'" in probe.stderr, (
         "the venv must lack twolink"
     )
+    assert not list(tmp_path.glob(install_cell.WHEEL_PATTERN))
+    source = f"{edition_wheel}[course]"
 
     from jupyter_client.kernelspec import KernelSpecManager
 
@@ -330,7 +314,8 @@ def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(
         )
     )
     monkeypatch.delenv("PYTHONPATH", raising=False)
-    monkeypatch.setenv("TWOLINK_SOURCE", f"{source}[course]")
+    monkeypatch.setenv("TWOLINK_SOURCE", source)
+    monkeypatch.setenv("PIP_NO_INDEX", "1")  # everything twolink needs is there
     outputs = run_cells(
         [
             "import importlib.util, sys\nprint(importlib.util.find_spec('twolink') is None, sys.prefix)",
@@ -342,7 +327,9 @@ def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(
         cwd=tmp_path,
     )
     assert outputs[0].split() == ["True", str(tmp_path / "venv")], outputs[0]
-    assert f"installing {source}[course]" in outputs[1], outputs[1]
+    assert f"installing {source} from {install_cell.FROM_VARIABLE}" in outputs[1], (
+        outputs[1]
+    )
     location, fk = outputs[2].strip().splitlines()
     assert location.startswith(str(tmp_path / "venv")), (
         f"twolink imported from {location}, not the venv"

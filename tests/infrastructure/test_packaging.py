@@ -1,7 +1,8 @@
 """Every ordinary way of getting the course works: licence, Binder, conda, the lock file, the bare library.
 
-The slow test here builds the wheel and imports it in a venv that has only the
-library's three dependencies (numpy, scipy, sympy).
+The slow test here installs the wheel (the student edition's, built once per
+test run) and imports it in a venv that has only the library's three
+dependencies (numpy, scipy, sympy).
 """
 
 import ast
@@ -22,9 +23,6 @@ from packaging.specifiers import SpecifierSet
 from packaging.utils import canonicalize_name
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(ROOT / "tools"))
-import editions  # noqa: E402  (tools/editions.py: the wheel as the student edition builds it)
-
 PYPROJECT = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
 README = (ROOT / "README.md").read_text(encoding="utf-8")
 #: Import names of the optional dependencies: the library's two (mujoco, control: extras of
@@ -477,6 +475,7 @@ def _make(clone, *args):
         capture_output=True,
         text=True,
         check=False,
+        timeout=300,
     )
 
 
@@ -560,11 +559,36 @@ def test_a_venv_made_by_an_old_python_is_reported_not_reused(tmp_path):
     assert f"rm -rf {venv} && make lab PYTHON=python3.11" in done.stdout, done.stdout
 
 
+def _python_whose_venvs_share_its_pip(tmp_path):
+    """This Python, whose ``-m venv`` makes a venv that uses the base Python's pip (and
+    packages) instead of installing its own: a second, where ensurepip takes several."""
+    python = tmp_path / "python-quick-venv"
+    python.write_text(
+        "#!/bin/sh\n"
+        'if [ "$1" = -m ] && [ "$2" = venv ]; then shift 2; '
+        f'exec "{sys._base_executable}" -m venv --without-pip --system-site-packages "$@"; fi\n'
+        f'exec "{sys._base_executable}" "$@"\n'
+    )
+    python.chmod(0o755)
+    return python
+
+
 @pytest.mark.infrastructure
-def test_a_failed_install_removes_the_venv_it_made(tmp_path):
+def test_a_failed_install_removes_the_venv_it_made(tmp_path, monkeypatch):
+    # pip's upgrade of itself in the new venv finds no index and keeps the pip it has
+    monkeypatch.setenv("PIP_CONFIG_FILE", os.devnull)
+    monkeypatch.setenv("PIP_NO_INDEX", "1")
     venv = tmp_path / "venv"
-    done = _make(ROOT, "install", f"VENV={venv}", "INSTALL=false")
+    done = _make(
+        ROOT,
+        "install",
+        f"PYTHON={_python_whose_venvs_share_its_pip(tmp_path)}",
+        f"VENV={venv}",
+        "INSTALL=false",
+    )
     assert done.returncode != 0
+    # the venv was made and pip upgraded: the install itself failed
+    assert "false -r requirements.txt -c constraints.txt" in done.stdout, done.stdout
     assert "the install failed, so the new" in done.stdout, done.stdout
     assert not venv.exists()
 
@@ -713,13 +737,16 @@ BARE_SCRIPT = textwrap.dedent("""
 
 
 @pytest.mark.infrastructure
-def test_the_wheel_works_with_only_the_librarys_three_dependencies(tmp_path):
-    """pip wheel, then install it (dependencies checked, nothing downloaded) in a venv with numpy, scipy
+def test_the_wheel_works_with_only_the_librarys_three_dependencies(
+    tmp_path, edition_wheel
+):
+    """The wheel, installed (dependencies checked, nothing downloaded) in a venv with numpy, scipy
     and sympy only; every library module imports, the optional functions and the course kit explain
     what to install."""
-    # built as the student edition builds it: from the files git tracks, so a module
-    # deleted since setuptools last filled build/lib cannot slip in
-    wheel = editions.build_wheel(tmp_path / "dist")
+    # the student edition's (editions.build_wheel, once per test run): built from the
+    # files git tracks, so a module deleted since setuptools last filled build/lib
+    # cannot slip in
+    wheel = edition_wheel
     try:
         python = _venvs.bare_venv(tmp_path, CORE)
     except (

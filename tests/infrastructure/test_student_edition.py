@@ -1,9 +1,11 @@
 """The student edition: solutions stubbed, nothing shown in advance, notebooks still run, self-checks flip.
 
 The whole edition (``tools/editions.py student``: the notebooks, the start
-page, a twolink wheel and a zip of them) is unpacked away from the repository
-and chapter 1 run in a fresh virtual environment that has only ipykernel and
-nbclient: its first cell installs twolink from the wheel beside it.
+page, a twolink wheel and a zip of them, built once per test run and shared
+with the browser's first-run test: ``student_edition_bundle`` in
+``tests/conftest.py``) is unpacked away from the repository and chapter 1 run
+in a fresh virtual environment without twolink and the widgets: its first cell
+installs twolink from the wheel beside it, at the pinned versions.
 
 Builds ``build/student``-style notebooks in a temporary folder and checks that
 they store no self-check verdict ("correct" or otherwise), do not say that the
@@ -20,12 +22,15 @@ import pathlib
 import re
 import subprocess
 import sys
-import venv
 import zipfile
 
+import _venvs
 import nbformat
 import pytest
 from IPython.core.inputtransformer2 import TransformerManager
+from jupyter_client import KernelManager
+from jupyter_client.kernelspec import KernelSpecManager
+from nbclient import NotebookClient
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
@@ -283,35 +288,46 @@ def test_the_start_page_is_in_the_edition_and_speaks_to_the_student(student_edit
 
 # --- the edition away from the repository, in a fresh environment ------------------------------------------------
 
-#: Run in the fresh venv: execute a notebook in its own folder with a kernel of that venv.
-RUN_IN_VENV = """\
-import json, pathlib, sys
-
-import nbformat
-from jupyter_client import KernelManager
-from jupyter_client.kernelspec import KernelSpecManager
-from nbclient import NotebookClient
-
-notebook_path, executed_path, kernels = map(pathlib.Path, sys.argv[1:4])
-(kernels / "fresh").mkdir(parents=True)
-(kernels / "fresh" / "kernel.json").write_text(json.dumps({
-    "argv": [sys.executable, "-m", "ipykernel_launcher", "-f", "{connection_file}"],
-    "display_name": "fresh venv", "language": "python"}))
-
 
 class Headless(NotebookClient):
-    def handle_comm_msg(self, outs, msg, cell_index):  # as tests/infrastructure/test_student_edition.py
+    """Runs a notebook without a page: the widgets' messages go unanswered."""
+
+    def handle_comm_msg(self, outs, msg, cell_index):
         return None
 
 
-notebook = nbformat.read(notebook_path, as_version=4)
-manager = KernelManager(
-    kernel_name="fresh", kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(kernels)])
-)
-Headless(notebook, km=manager, kernel_name="fresh", timeout=900, allow_errors=True,
-         resources={"metadata": {"path": str(notebook_path.parent)}}).execute()
-nbformat.write(notebook, executed_path)
-"""
+def run_in_venv(python, notebook_path, kernels, env, timeout=600):
+    """``notebook_path`` executed in its own folder by a kernel of ``python``'s venv, started with ``env``."""
+    (kernels / "fresh").mkdir(parents=True)
+    (kernels / "fresh" / "kernel.json").write_text(
+        json.dumps(
+            {
+                "argv": [
+                    str(python),
+                    "-m",
+                    "ipykernel_launcher",
+                    "-f",
+                    "{connection_file}",
+                ],
+                "display_name": "fresh venv",
+                "language": "python",
+            }
+        )
+    )
+    notebook = nbformat.read(notebook_path, as_version=4)
+    manager = KernelManager(
+        kernel_name="fresh",
+        kernel_spec_manager=KernelSpecManager(kernel_dirs=[str(kernels)]),
+    )
+    Headless(
+        notebook,
+        km=manager,
+        kernel_name="fresh",
+        timeout=timeout,
+        allow_errors=True,
+        resources={"metadata": {"path": str(notebook_path.parent)}},
+    ).execute(env=env)
+    return notebook
 
 
 def fresh_environment(tmp_path, venv_dir):
@@ -328,12 +344,23 @@ def fresh_environment(tmp_path, venv_dir):
 
 
 @pytest.mark.infrastructure
-def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
-    written = editions.build_student_edition(
-        ROOT / "notebooks", tmp_path / "build" / "student"
-    )
+def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(
+    tmp_path, student_edition_bundle, widget_wheels
+):
+    """Chapter 1 of the unzipped edition, run whole in a kernel of a venv that lacks
+    twolink and the widgets: its first cell installs them, from the wheel beside it
+    and (offline) from ``widget_wheels``, at the versions of constraints.txt beside it.
+
+    The one chapter run here, in a fresh kernel away from the repository: what the
+    stubs change must leave the rest of the chapter running (nbval runs the
+    instructor's chapters in the project's kernels).  The venv's other packages are
+    this environment's, linked (``_venvs.bare_venv``): that pip resolves the course
+    from the package index at these pins is what ``make install`` does before any test.
+    """
+    written = student_edition_bundle
     archive = written[-1]
-    assert archive == tmp_path / "build" / "student.zip"
+    out_dir = written[0].parent  # make student's build/student
+    assert archive == out_dir.with_name("student.zip")
     away = tmp_path / "away"
     with zipfile.ZipFile(archive) as bundle:
         bundle.extractall(away)
@@ -356,50 +383,32 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
         ROOT / "constraints.txt"
     ).read_text()
 
-    venv_dir = tmp_path / "venv"
     try:
-        venv.EnvBuilder(with_pip=True, symlinks=True).create(venv_dir)
+        python = _venvs.bare_venv(
+            tmp_path,
+            [*_venvs.requirements("twolink", "course"), "pip"],
+            without=["twolink", *widget_wheels.names],
+        )
     except (OSError, subprocess.CalledProcessError) as error:  # pragma: no cover
         pytest.skip(f"cannot create a virtual environment here: {error}")
-    python = venv_dir / "bin" / "python"
-    env = fresh_environment(tmp_path, venv_dir)
-    installed = subprocess.run(
-        [str(python), "-m", "pip", "install", "--quiet", "ipykernel", "nbclient"],
-        capture_output=True,
-        text=True,
-        env=env,
-        cwd=tmp_path,
-        timeout=600,
-    )
-    assert installed.returncode == 0, installed.stderr[-3000:]
-    probe = subprocess.run(
-        [str(python), "-c", "import twolink"],
-        capture_output=True,
-        text=True,
-        env=env,
-        cwd=tmp_path,
-    )
-    assert "No module named 'twolink'" in probe.stderr, "the venv must lack twolink"
+    venv_dir = tmp_path / "venv"
+    env = {**fresh_environment(tmp_path, venv_dir), **widget_wheels.pip_environment()}
+    for module in ("twolink", "jupyterlab_widgets", "ipympl"):
+        probe = subprocess.run(
+            [str(python), "-c", f"import {module}"],
+            capture_output=True,
+            text=True,
+            env=env,
+            cwd=tmp_path,
+            timeout=120,
+        )
+        assert f"No module named '{module}'" in probe.stderr, (
+            f"the venv must lack {module}"
+        )
 
-    chapter = edition / NOTEBOOKS[0].name
-    executed = tmp_path / "executed.ipynb"
-    run = subprocess.run(
-        [
-            str(python),
-            "-c",
-            RUN_IN_VENV,
-            str(chapter),
-            str(executed),
-            str(tmp_path / "kernels"),
-        ],
-        capture_output=True,
-        text=True,
-        env=env,
-        cwd=tmp_path,
-        timeout=1800,
+    notebook = run_in_venv(
+        python, edition / NOTEBOOKS[0].name, tmp_path / "kernels", env
     )
-    assert run.returncode == 0, run.stderr[-3000:]
-    notebook = nbformat.read(executed, as_version=4)
     errors = [
         output
         for cell in notebook.cells
@@ -419,20 +428,31 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
     for cell in checks:
         text = output_text(cell)
         assert "not solved yet" in text and "correct." not in text, text
-    site_packages = subprocess.run(
-        [str(python), "-c", "import twolink; print(twolink.__file__)"],
+    # the cell installed twolink and ipympl into the venv (not linked to this environment's)
+    located = subprocess.run(
+        [
+            str(python),
+            "-c",
+            "import twolink, ipympl; print(twolink.__file__, ipympl.__file__)",
+        ],
         capture_output=True,
         text=True,
         env=env,
         cwd=tmp_path,
-    ).stdout
-    assert site_packages.startswith(str(venv_dir)), site_packages
-    # the course's pinned versions, not the newest
+        timeout=120,
+    ).stdout.split()
+    assert len(located) == 2 and all(
+        path.startswith(str(venv_dir / "lib")) for path in located
+    ), located
+    # the course's pinned versions, not the newest: pip was offered a higher ipympl
     pins = dict(
         line.split("==")
         for line in (ROOT / "constraints.txt").read_text().splitlines()
         if "==" in line and not line.startswith("#")
     )
+    offered = {path.name for path in widget_wheels.folder.glob("ipympl-*.whl")}
+    assert f"ipympl-{widget_wheels.decoys['ipympl']}-py3-none-any.whl" in offered
+    assert f"ipympl-{pins['ipympl']}-py3-none-any.whl" in offered
     versions = subprocess.run(
         [
             str(python),
@@ -444,6 +464,7 @@ def test_the_edition_runs_away_from_the_repository_from_its_own_wheel(tmp_path):
         text=True,
         env=env,
         cwd=tmp_path,
+        timeout=120,
     ).stdout.split()
     assert versions == [
         pins[name] for name in ("matplotlib", "mujoco", "numpy", "ipympl")

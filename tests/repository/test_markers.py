@@ -6,11 +6,12 @@ The root ``conftest.py`` marks each collected test by its folder
 selects the library's tests and ``pytest -m "not infrastructure"`` is the
 quick part; nobody keeps a list of tests.  The slow work is infrastructure:
 a test that (itself, or through a helper function or fixture of its own
-module, transitively) builds a virtual environment (``_venvs.bare_venv``,
-``_venvs.pip``) or a wheel (``pip wheel``, ``editions.build_wheel``), runs a
-nested pytest (``python -m pytest``, pytester's ``runpytest_inprocess`` and the
-like, ``portable.main``), drives the browser
-(the ``page``, ``browser`` or ``jupyterlab`` fixtures) or runs a whole edition
+module or of ``tests/conftest.py``, transitively) builds a virtual
+environment (``_venvs.bare_venv``, ``_venvs.pip``) or a wheel (``pip wheel``,
+``editions.build_wheel``, ``editions.build_student_edition``), runs a nested
+pytest (``python -m pytest``, pytester's ``runpytest_inprocess`` and the like,
+``portable.main``), drives the browser (the ``page``, ``browser`` or
+``jupyterlab`` fixtures) or runs a whole edition
 (``grade.grade_folder``, ``editions.build_site``, a ``HeadlessClient``) lives
 in an infrastructure folder (``tests/infrastructure``, ``tests/browser``).
 The source of every test file is read; nothing is run.
@@ -50,6 +51,7 @@ VENV_OR_EDITION_CALLS = {
     "grade.grade_notebook": "runs a whole edition (grading)",
     "editions.build_site": "renders the whole static edition",
     "editions.build_wheel": "builds a wheel",
+    "editions.build_student_edition": "builds a wheel",
     "HeadlessClient": "executes a whole edition",
 }
 BROWSER_FIXTURES = {"page", "browser", "jupyterlab"}
@@ -111,14 +113,24 @@ def _module_marks(tree):
     return set()
 
 
-def infrastructure_tests(path):
-    """``{test name: (reasons, marks)}`` for the tests of one file that do infrastructure work."""
-    tree = ast.parse(path.read_text(encoding="utf-8"))
-    functions = {
+def _functions(tree):
+    return {
         node.name: node
         for node in tree.body
         if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef))
     }
+
+
+#: The fixtures every test can ask for (tests/conftest.py: the student edition, built once per run).
+SHARED_FIXTURES = _functions(
+    ast.parse((ROOT / "tests" / "conftest.py").read_text(encoding="utf-8"))
+)
+
+
+def infrastructure_tests(path):
+    """``{test name: (reasons, marks)}`` for the tests of one file that do infrastructure work."""
+    tree = ast.parse(path.read_text(encoding="utf-8"))
+    functions = {**SHARED_FIXTURES, **_functions(tree)}
     own = {name: _own_reasons(function) for name, function in functions.items()}
 
     def reasons_of(name, seen):
@@ -195,6 +207,13 @@ def test_the_check_finds_each_kind_of_infrastructure():
         "runs nested pytest"
         in found[
             "tests/infrastructure/test_pytest_anywhere.py::test_without_the_root_conftest_the_run_from_notebooks_fails"
+        ]
+    )
+    # through a fixture of tests/conftest.py (the wheel of the edition built once per run)
+    assert (
+        "builds a wheel"
+        in found[
+            "tests/infrastructure/test_packaging.py::test_the_wheel_works_with_only_the_librarys_three_dependencies"
         ]
     )
 
