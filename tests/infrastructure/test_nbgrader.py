@@ -430,20 +430,26 @@ def test_nbgrader_s_workflow_from_the_readme_recipe_scores_as_make_grade_does(tm
     if shutil.which("bwrap") is None:
         grade.append("--unsafe")
     grading = start(grade, ROOT)  # both graders at once: one core each
-    autograde = start(
-        [*nbgrader, "autograde", "ps1"], course
-    )  # the switch: from the course's config
+    started = [grading]
     try:
+        autograde = start(
+            [*nbgrader, "autograde", "ps1"], course
+        )  # the switch: from the course's config
+        started.append(autograde)
         autograded = finish(autograde)
-    except BaseException:
-        stop(grading)
-        raise
-    finish(grading)
+        # both read the gradebook autograde wrote, while make grade may still run
+        feedback = start([*nbgrader, "generate_feedback", "ps1"], course)
+        started.append(feedback)
+        export = start([*nbgrader, "export"], course)
+        started.append(export)
+        for command in (feedback, export, grading):
+            finish(command)
+    finally:
+        for command in started:
+            stop(command)
     assert "checksum" not in autograded.lower(), [
         line for line in autograded.splitlines() if "checksum" in line.lower()
     ]
-    finish(start([*nbgrader, "generate_feedback", "ps1"], course))
-    finish(start([*nbgrader, "export"], course))
 
     points = nbgrader_points(course)
     results = grader_results(tmp_path / "grades" / "grades.csv")
