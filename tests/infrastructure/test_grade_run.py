@@ -1,10 +1,13 @@
 """One graded notebook, run isolated (tools/grade_run.py): what a kernel that misbehaves gets.
 
 Tiny notebooks (no chapter), so each case costs a kernel's start: a kernel
-that kills itself, stops itself, loops, floods its output, or runs well; the
-scratch folder (the grader's alone) removed after each.
+that kills itself, stops itself, loops, floods its output, or runs well,
+each run by the same grader's worker (started once, as ``make grade`` starts
+its workers), which leaves nothing in the scratch folder (the grader's
+alone) after each notebook; the scratch folder removed at the end.
 """
 
+import dataclasses
 import pathlib
 import sys
 
@@ -18,23 +21,39 @@ import sandbox  # noqa: E402
 
 UNSAFE = sandbox.unavailable() is not None
 LIMITS = grade_run.Limits(cell_seconds=3, notebook_seconds=15)
+#: The notebook limit a stopped kernel waits for: well longer than a kernel takes to start (the
+#: watchdog kills the kernel it started; one still starting is stopped a minute later).
+STOPPED_LIMITS = grade_run.Limits(cell_seconds=3, notebook_seconds=8)
 
 
-@pytest.fixture
-def setting():
+@pytest.fixture(scope="module")
+def runner():
+    """A runner of the grader's with one worker, shared by the tests (``runner.setting`` is each test's)."""
     scratch = grade_run.make_scratch()
     isolation = None if UNSAFE else sandbox.Isolation.detect(scratch)
-    found = grade_run.Setting(scratch, isolation, LIMITS)
+    base = grade_run.Setting(scratch, isolation, LIMITS)
+    found = grade_run.Runner(base)
     yield found
-    grade_run.remove_scratch(found)
+    found.close()
+    grade_run.remove_scratch(base)
     assert not scratch.exists()
 
 
-def ran(setting, *sources):
+@pytest.fixture
+def setting(runner):
+    """The runner's setting with :data:`LIMITS`; after the test, nothing of a notebook left in the scratch folder."""
+    runner.setting = dataclasses.replace(runner.setting, limits=LIMITS)
+    yield runner.setting
+    left = {path.name for path in runner.setting.scratch.iterdir()}
+    # at most the one-process filter, written where there are no control groups
+    assert left <= {"one-process.bpf"}, left
+
+
+def ran(runner, *sources):
     notebook = nbformat.v4.new_notebook(
         cells=[nbformat.v4.new_code_cell(source) for source in sources]
     )
-    return grade_run.run_isolated(notebook, setting)
+    return runner.run(notebook)
 
 
 def probe(number="1.1", draw=None):
@@ -50,7 +69,7 @@ def probe(number="1.1", draw=None):
 
 
 @pytest.mark.infrastructure
-def test_a_kernel_that_runs_well_reports_its_probes_and_errors(setting):
+def test_a_kernel_that_runs_well_reports_its_probes_and_errors(runner, setting):
     notebook = nbformat.v4.new_notebook(
         cells=[
             nbformat.v4.new_code_cell("x = 1"),
@@ -60,7 +79,7 @@ def test_a_kernel_that_runs_well_reports_its_probes_and_errors(setting):
         ]
     )
     notebook.cells[3].source += "\n" + probe("1.2", draw=0).source.splitlines()[-1]
-    result = grade_run.Runner(setting).run(notebook, [1, None, 5, None])
+    result = runner.run(notebook, [1, None, 5, None])
     assert result["failure"] is None
     assert result["reports"]["1.1"] == {
         "visible": {"exercise": "1.1", "answers": {}},
@@ -81,9 +100,9 @@ def test_a_kernel_that_runs_well_reports_its_probes_and_errors(setting):
     UNSAFE,
     reason="without a sandbox a kernel that kills its process group kills the test",
 )
-def test_a_kernel_that_kills_itself_is_reported_dead(setting):
+def test_a_kernel_that_kills_itself_is_reported_dead(runner, setting):
     assert (
-        ran(setting, "import os, signal\nos.killpg(0, signal.SIGKILL)", "print(2)")[
+        ran(runner, "import os, signal\nos.killpg(0, signal.SIGKILL)", "print(2)")[
             "failure"
         ]
         == "the kernel died"
@@ -95,27 +114,28 @@ def test_a_kernel_that_kills_itself_is_reported_dead(setting):
     UNSAFE,
     reason="a stopped kernel outside a sandbox would stop the test's process group",
 )
-def test_a_stopped_kernel_is_stopped_at_the_notebook_limit(setting):
+def test_a_stopped_kernel_is_stopped_at_the_notebook_limit(runner, setting):
+    runner.setting = dataclasses.replace(setting, limits=STOPPED_LIMITS)
     result = ran(
-        setting, "import os, signal\nos.kill(os.getpid(), signal.SIGSTOP)", "print(2)"
+        runner, "import os, signal\nos.kill(os.getpid(), signal.SIGSTOP)", "print(2)"
     )
-    assert result["failure"] == "stopped after 15 s (the notebook's time limit)"
+    assert result["failure"] == "stopped after 8 s (the notebook's time limit)"
 
 
 @pytest.mark.infrastructure
-def test_a_loop_is_interrupted_at_the_cell_limit_and_the_run_goes_on(setting):
+def test_a_loop_is_interrupted_at_the_cell_limit_and_the_run_goes_on(runner, setting):
     notebook = nbformat.v4.new_notebook(
         cells=[nbformat.v4.new_code_cell("while True:\n    pass"), probe("1.1")]
     )
-    result = grade_run.run_isolated(notebook, setting)
+    result = runner.run(notebook)
     assert result["failure"] is None
     assert result["reports"]["1.1"]["visible"]["exercise"] == "1.1"
     assert result["errors"][0].startswith("cell 1: KeyboardInterrupt")
 
 
 @pytest.mark.infrastructure
-def test_an_output_flood_is_stopped_at_the_output_limit(setting):
-    result = ran(setting, "for _ in range(60):\n    print('x' * 1_000_000)")
+def test_an_output_flood_is_stopped_at_the_output_limit(runner, setting):
+    result = ran(runner, "for _ in range(60):\n    print('x' * 1_000_000)")
     assert (
         result["failure"]
         == f"its outputs passed {grade_run.HeadlessClient.max_output_bytes} bytes (the output limit)"

@@ -22,6 +22,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import threading
 
 import nbformat
 import pytest
@@ -31,6 +32,7 @@ from twolink_course import exercises
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tools"))
 sys.path.insert(0, str(ROOT))
+import grade  # noqa: E402
 import nbgrader_cells  # noqa: E402
 
 import answers  # noqa: E402
@@ -339,6 +341,32 @@ def finish(started):
     return output
 
 
+def in_thread(function, *args):
+    """Start ``function(*args)`` in a thread; :func:`joined` waits for it."""
+    outcome = {}
+
+    def run():
+        try:
+            outcome["value"] = function(*args)
+        except BaseException as error:  # SystemExit too: a refusal of the grader's
+            outcome["error"] = error
+
+    thread = threading.Thread(target=run, daemon=True)
+    thread.start()
+    return thread, outcome
+
+
+def joined(started, timeout=COMMAND_BUDGET):
+    """Wait for an :func:`in_thread` call (``timeout`` s at most); what it returned, or raise what it raised."""
+    thread, outcome = started
+    thread.join(timeout)
+    if thread.is_alive():
+        pytest.fail(f"make grade ran longer than {timeout} s")
+    if "error" in outcome:
+        raise outcome["error"]
+    return outcome.get("value")
+
+
 def submitted(release, source, student):
     """A student's copy of a released notebook: the worked solutions typed in but for ``UNSOLVED_EXERCISE``, ``MIXED_EXERCISE`` with its last answer wrong."""
     notebook = copy.deepcopy(release)
@@ -420,30 +448,32 @@ def test_nbgrader_s_workflow_from_the_readme_recipe_scores_as_make_grade_does(tm
                 folder.mkdir(parents=True, exist_ok=True)
                 nbformat.write(notebook, folder / f"{chapter}.ipynb")
 
-    grade = [
-        sys.executable,
-        str(ROOT / "tools" / "grade.py"),
-        str(returned),
-        "--out",
-        str(tmp_path / "grades" / "grades.csv"),
-    ]
+    # make grade's command line, run here (its imports are this process's) beside nbgrader
+    grade_args = [str(returned), "--out", str(tmp_path / "grades" / "grades.csv")]
     if shutil.which("bwrap") is None:
-        grade.append("--unsafe")
-    grading = start(grade, ROOT)  # both graders at once: one core each
-    autograde = start(
-        [*nbgrader, "autograde", "ps1"], course
-    )  # the switch: from the course's config
+        grade_args.append("--unsafe")
+    grading = in_thread(grade.main, grade_args)  # both graders at once: one core each
+    started = []
     try:
+        autograde = start(
+            [*nbgrader, "autograde", "ps1"], course
+        )  # the switch: from the course's config
+        started.append(autograde)
         autograded = finish(autograde)
-    except BaseException:
-        stop(grading)
-        raise
-    finish(grading)
+        # both read the gradebook autograde wrote, while make grade may still run
+        feedback = start([*nbgrader, "generate_feedback", "ps1"], course)
+        started.append(feedback)
+        export = start([*nbgrader, "export"], course)
+        started.append(export)
+        for command in (feedback, export):
+            finish(command)
+    finally:
+        for command in started:
+            stop(command)
+        joined(grading)
     assert "checksum" not in autograded.lower(), [
         line for line in autograded.splitlines() if "checksum" in line.lower()
     ]
-    finish(start([*nbgrader, "generate_feedback", "ps1"], course))
-    finish(start([*nbgrader, "export"], course))
 
     points = nbgrader_points(course)
     results = grader_results(tmp_path / "grades" / "grades.csv")

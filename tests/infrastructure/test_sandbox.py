@@ -338,9 +338,22 @@ def test_the_grader_home_and_environment_are_out_of_reach(printed):
     }
 
 
-def graded_alone(sources, limits, cgroups=True):
-    """Run ``sources`` as a notebook through the grader's worker, with ``limits`` and with or without control groups."""
+@pytest.fixture(scope="module")
+def runner():
+    """A runner of the grader's, its worker shared by the tests that run a notebook through it."""
+    if REASON is not None:
+        pytest.skip(f"no sandbox on this machine: {REASON}")
     scratch = grade_run.make_scratch()
+    setting = grade_run.Setting(scratch, sandbox.Isolation.detect(scratch))
+    found = grade_run.Runner(setting)
+    yield found
+    found.close()
+    grade_run.remove_scratch(setting)
+
+
+def graded_alone(runner, sources, limits, cgroups=True):
+    """Run ``sources`` as a notebook through the grader's worker, with ``limits`` and with or without control groups."""
+    scratch = runner.setting.scratch
     found = sandbox.Isolation.detect(scratch)
     if not cgroups:
         path = scratch / "one-process.bpf"
@@ -348,21 +361,22 @@ def graded_alone(sources, limits, cgroups=True):
         found = sandbox.Isolation(
             found.bwrap, found.setpriv, found.prlimit, None, str(path)
         )
-    setting = grade_run.Setting(scratch, found, grade_run.Limits(30, 90, limits))
-    try:
-        notebook = nbformat.v4.new_notebook(
-            cells=[nbformat.v4.new_code_cell(source) for source in sources]
-        )
-        return grade_run.run_isolated(notebook, setting)
-    finally:
-        grade_run.remove_scratch(setting)
+    runner.setting = grade_run.Setting(scratch, found, grade_run.Limits(30, 90, limits))
+    notebook = nbformat.v4.new_notebook(
+        cells=[nbformat.v4.new_code_cell(source) for source in sources]
+    )
+    return runner.run(notebook)
 
 
+#: Three processes of 300 MiB each: each holds its block until all three have one or were killed.
 MEMORY_FLOOD = (
     "import subprocess, sys\n"
-    "code = 'import time; block = bytearray(300 * 2**20); time.sleep(20)'\n"
-    "started = [subprocess.Popen([sys.executable, '-c', code]) for _ in range(3)]\n"
-    "print([process.wait() for process in started])"
+    "code = 'import sys; block = bytearray(300 * 2**20); print(1, flush=True); sys.stdin.read()'\n"
+    "started = [subprocess.Popen([sys.executable, '-c', code], stdin=subprocess.PIPE, stdout=subprocess.PIPE)"
+    " for _ in range(3)]\n"
+    "held = [process.stdout.readline() == b'1\\n' for process in started]\n"
+    "for process in started:\n    process.stdin.close()\n"
+    "print(held, [process.wait() for process in started])"
 )
 
 
@@ -372,9 +386,9 @@ MEMORY_FLOOD = (
     sandbox.Cgroups.detect() is None,
     reason="no control groups the grader may make here",
 )
-def test_memory_taken_by_several_processes_is_limited_as_a_whole():
+def test_memory_taken_by_several_processes_is_limited_as_a_whole(runner):
     limits = sandbox.Limits(memory_bytes=512 * MIB, address_space_bytes=6 * 2**30)
-    ran = graded_alone([MEMORY_FLOOD], limits)
+    ran = graded_alone(runner, [MEMORY_FLOOD], limits)
     assert (
         "used more than 512 MiB of memory (the limit per notebook): a process was killed"
         in ran["limits"]
@@ -384,14 +398,16 @@ def test_memory_taken_by_several_processes_is_limited_as_a_whole():
 
 @pytest.mark.infrastructure
 @needs_sandbox
-def test_without_control_groups_a_kernel_is_one_process_with_its_address_space_limited():
+def test_without_control_groups_a_kernel_is_one_process_with_its_address_space_limited(
+    runner,
+):
     sources = [
         "import threading\nthread = threading.Thread(target=print, args=('a thread runs',))\nthread.start()\nthread.join()",
         MEMORY_FLOOD,
         "try:\n    block = bytearray(2 * 2**30)\n    print('took 2 GiB')\nexcept MemoryError:\n    print('refused MemoryError')",
     ]
     limits = sandbox.Limits(address_space_bytes=1536 * MIB)
-    ran = graded_alone(sources, limits, cgroups=False)
+    ran = graded_alone(runner, sources, limits, cgroups=False)
     assert ran["failure"] is None
     assert ran["errors"][0].startswith(
         "cell 2: PermissionError: [Errno 1] Operation not permitted"
