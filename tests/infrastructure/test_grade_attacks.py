@@ -251,8 +251,9 @@ COURSE_ATTACKS = {
 ATTACKS = [*ATTACK_CELLS, *CHECK_CELL_ATTACKS, *COURSE_ATTACKS]
 CLASSMATES = ("aa_classmate_solved", "ab_classmate_untouched")
 #: Each cell's and each notebook's time limit: an honest notebook of the small course takes a
-#: second or two; stop_itself waits for the notebook's, loop_forever for the cell's.
-CELL_SECONDS, NOTEBOOK_SECONDS = 5.0, 15.0
+#: second or two; stop_itself waits for the notebook's, loop_forever for the cell's twice (its
+#: answer cell, then the probe's run of it on hidden inputs), well within the notebook's.
+CELL_SECONDS, NOTEBOOK_SECONDS = 4.0, 20.0
 #: Notebooks graded at a time: more than the cores, as the attacks that wait for a limit use none.
 JOBS = 3
 LIMITS = grade.Limits(
