@@ -374,7 +374,16 @@ def ours(pattern):
 
 @pytest.fixture(scope="module")
 def attacked(tmp_path_factory):
-    tmp_path = tmp_path_factory.mktemp("attacks")
+    # this run's own, with a short path (the kernels' sockets are made in it)
+    scratch = pathlib.Path(tempfile.mkdtemp(prefix="twolink-test-"))
+    try:
+        yield graded_class(tmp_path_factory.mktemp("attacks"), scratch)
+    finally:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
+def graded_class(tmp_path, scratch):
+    """The class graded, with what it showed and left, and what was there before and after."""
     course_9.write_course(tmp_path / "course")
     course = grade_release.Course.read(tmp_path / "course", course_9.REFERENCES)
     submissions = tmp_path / "submissions"
@@ -384,8 +393,6 @@ def attacked(tmp_path_factory):
     victim = course_9.returned(submissions, file_of(CLASSMATES[1]))
     # a classmate's folder beside the graded one: the teacher grades one folder at a time
     beside = course_9.returned(tmp_path / "amy", NAME, course_9.RIGHT)
-    # this run's own, with a short path (the kernels' sockets are made in it)
-    scratch = pathlib.Path(tempfile.mkdtemp(prefix="twolink-test-"))
     paths = {
         "instructor": str(tmp_path / "course" / NAME),
         "answers": str(ROOT / "tests" / "_grading_course.py"),
@@ -411,9 +418,8 @@ def attacked(tmp_path_factory):
     }
     graded = []
     started = time.monotonic()
-    os.environ["TWOLINK_TEST_SECRET"] = (
-        "1"  # the teacher's environment, never the kernel's
-    )
+    # the teacher's environment, never the kernel's
+    os.environ["TWOLINK_TEST_SECRET"] = "1"
     with tempfile.TemporaryFile() as terminal:  # what the grader's terminal would show
         saved = os.dup(1), os.dup(2)
         os.dup2(terminal.fileno(), 1)
@@ -450,7 +456,6 @@ def attacked(tmp_path_factory):
         "scratch": sorted(scratch.iterdir()),
         "processes": ours(f"{scratch}|sleep {paths['sleeper_seconds']}"),
     }
-    shutil.rmtree(scratch, ignore_errors=True)
     return {
         "lines": lines,
         "terminal": shown,
