@@ -148,6 +148,52 @@ def student_edition(tmp_path_factory):
     return out
 
 
+# --- the static site, built once per run
+
+
+#: How long a worker waits for another worker's build of the site, seconds.
+SITE_BUILD_BUDGET = 600
+
+
+@pytest.fixture(scope="session")
+def course_site(tmp_path_factory):
+    """A folder with the static site of every chapter (``make site``), built once per run.
+
+    The xdist workers share one build (a file lock in the run's temporary
+    folder, as pytest-xdist's documentation shows); read-only for its tests.
+    """
+    import fcntl
+    import time
+
+    root = pathlib.Path(__file__).resolve().parent.parent
+    sys.path.insert(0, str(root / "tools"))
+    import editions
+
+    shared = tmp_path_factory.getbasetemp()
+    if os.environ.get("PYTEST_XDIST_WORKER"):
+        shared = shared.parent  # the run's folder, above the workers' own
+    site, built = shared / "course-site", shared / "course-site.built"
+    with open(shared / "course-site.lock", "w") as lock:
+        deadline = time.monotonic() + SITE_BUILD_BUDGET
+        while True:
+            try:
+                fcntl.flock(lock, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                break
+            except BlockingIOError:
+                if time.monotonic() > deadline:
+                    raise TimeoutError(
+                        f"another worker built the site for {SITE_BUILD_BUDGET} s"
+                    ) from None
+                time.sleep(0.2)
+        try:
+            if not built.exists():
+                editions.build_site(root / "notebooks", site)
+                built.touch()
+        finally:
+            fcntl.flock(lock, fcntl.LOCK_UN)
+    return site
+
+
 # --- the environment nbval's kernels inherit
 
 
