@@ -194,6 +194,22 @@ def built_once(tmp_path_factory, name, build, budget_seconds=900):
 
 
 @pytest.fixture(scope="session")
+def course_site(tmp_path_factory):
+    """A folder with the static site of every chapter (``make site``), built once per run
+    and shared by the xdist workers (:func:`built_once`); read-only for its tests."""
+    root = pathlib.Path(__file__).resolve().parent.parent
+    sys.path.insert(0, str(root / "tools"))
+    import editions
+
+    return built_once(
+        tmp_path_factory,
+        "course-site",
+        lambda folder: editions.build_site(root / "notebooks", folder),
+        budget_seconds=600,
+    )
+
+
+@pytest.fixture(scope="session")
 def student_edition_bundle(tmp_path_factory):
     """``make student``'s files (``editions.build_student_edition``: the notebooks, the
     twolink wheel, constraints.txt, README.md, then the zip), built once per test run.

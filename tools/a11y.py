@@ -44,6 +44,10 @@ def axe_source() -> str:
     ).read_text(encoding="utf-8")
 
 
+#: How long axe-core may take on one page, milliseconds.
+AXE_BUDGET_MS = 300_000
+
+
 def violations(page: Any, include: Sequence[str] | None = None) -> list[dict[str, Any]]:
     """axe-core's violations on the page as it is now (axe's default rules: WCAG 2.x A and AA, best practices).
 
@@ -53,6 +57,16 @@ def violations(page: Any, include: Sequence[str] | None = None) -> list[dict[str
     ``help`` and ``nodes`` (the elements: ``target`` selectors and the
     start of their ``html``).
     """
+    start_violations(page, include)
+    return finish_violations(page)
+
+
+def start_violations(page: Any, include: Sequence[str] | None = None) -> None:
+    """Start axe-core on the page as it is now and return at once (as :func:`violations`).
+
+    :func:`finish_violations` waits for the result: meanwhile another page of
+    the browser can work (a page of its own runs in a process of its own).
+    """
     if not page.evaluate("() => typeof window.axe !== 'undefined'"):
         page.add_script_tag(content=axe_source())
     context = (
@@ -60,15 +74,30 @@ def violations(page: Any, include: Sequence[str] | None = None) -> list[dict[str
         if include is None
         else json.dumps({"include": [[selector] for selector in include]})
     )
-    return page.evaluate(
-        f"""async () => {{
-            const result = await axe.run({context}, {{resultTypes: ['violations']}});
-            return result.violations.map(v => ({{
-                id: v.id, impact: v.impact, help: v.help,
-                nodes: v.nodes.map(n => ({{target: n.target, html: n.html.slice(0, 200)}})),
-            }}));
+    page.evaluate(
+        f"""() => {{
+            window.twolinkAxe = {{done: false}};
+            axe.run({context}, {{resultTypes: ['violations']}}).then(result => {{
+                window.twolinkAxe = {{done: true, violations: result.violations.map(v => ({{
+                    id: v.id, impact: v.impact, help: v.help,
+                    nodes: v.nodes.map(n => ({{target: n.target, html: n.html.slice(0, 200)}})),
+                }}))}};
+            }}, error => {{ window.twolinkAxe = {{done: true, error: String(error)}}; }});
         }}"""
     )
+
+
+def finish_violations(
+    page: Any, budget_ms: float = AXE_BUDGET_MS
+) -> list[dict[str, Any]]:
+    """The violations :func:`start_violations` found on the page, within ``budget_ms``."""
+    page.wait_for_function(
+        "() => window.twolinkAxe.done", polling=100, timeout=budget_ms
+    )
+    found = page.evaluate("() => window.twolinkAxe")
+    if "error" in found:
+        raise RuntimeError(f"axe-core failed: {found['error']}")
+    return found["violations"]
 
 
 def blocking(found: list[dict[str, Any]]) -> list[str]:
@@ -117,12 +146,22 @@ def served(folder: pathlib.Path) -> Iterator[str]:
         server.server_close()
 
 
-def settle(page: Any) -> None:
-    """Wait until the page has loaded and MathJax (if any) has typeset it."""
-    page.wait_for_load_state("load")
+#: How long a page may take to load and typeset its formulas, milliseconds.
+SETTLE_BUDGET_MS = 60_000
+
+
+def settle(page: Any, budget_ms: float = SETTLE_BUDGET_MS) -> None:
+    """Wait until the page has loaded and MathJax (if any) has typeset it, each within ``budget_ms``."""
+    page.wait_for_load_state("load", timeout=budget_ms)
     if page.evaluate("() => Boolean(window.MathJax && window.MathJax.Hub)"):
-        page.evaluate("() => new Promise(resolve => MathJax.Hub.Queue(resolve))")
-    page.wait_for_load_state("networkidle")
+        # a flag MathJax's queue sets once it has typeset the page (and loaded its fonts)
+        page.evaluate(
+            "() => { window.twolinkTypeset = false; MathJax.Hub.Queue(() => { window.twolinkTypeset = true; }); }"
+        )
+        page.wait_for_function(
+            "() => window.twolinkTypeset === true", timeout=budget_ms
+        )
+    page.wait_for_load_state("networkidle", timeout=budget_ms)
 
 
 def site_violations(site: pathlib.Path) -> dict[str, list[dict[str, Any]]]:

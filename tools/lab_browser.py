@@ -121,6 +121,10 @@ class ProcessGroups:
                 todo.append(child)
         return found
 
+    #: After the process has exited, how long its descendants' groups have to follow
+    #: a signal before the next one, seconds.
+    GRACE = 0.5
+
     def stop(self, process, timeout=20.0):
         """SIGTERM the process's group and its descendants' groups, SIGKILL what is left after ``timeout``."""
         groups = {process.pid}
@@ -139,21 +143,29 @@ class ProcessGroups:
                 process.wait(timeout=timeout if sig == signal.SIGTERM else 5.0)
             except subprocess.TimeoutExpired:
                 continue
-            alive = [group for group in groups if self._group_alive(group)]
+            deadline = time.monotonic() + self.GRACE
+            while True:
+                alive = [group for group in groups if self._group_alive(group)]
+                if not alive or time.monotonic() > deadline:
+                    break
+                time.sleep(0.02)
             if not alive:
                 break
             groups = set(alive)
-            time.sleep(0.5)
         if process in self.processes:
             self.processes.remove(process)
 
     @staticmethod
     def _group_alive(group):
-        try:
-            os.killpg(group, 0)
-        except (ProcessLookupError, PermissionError):
-            return False
-        return True
+        """Whether a process of the group still runs (a zombie, dead but not yet reaped, does not)."""
+        for stat in pathlib.Path("/proc").glob("[0-9]*/stat"):
+            try:
+                fields = stat.read_text().rsplit(")", 1)[1].split()
+            except (OSError, IndexError):
+                continue
+            if int(fields[2]) == group and fields[0] != "Z":
+                return True
+        return False
 
     def stop_all(self):
         for process in list(self.processes):
@@ -258,19 +270,21 @@ def jupyterlab(home: pathlib.Path, *, nodelay: bool = True) -> Iterator[dict[str
                         raise RuntimeError(
                             "JupyterLab did not answer within 60 s"
                         ) from None
-                    time.sleep(0.5)
+                    time.sleep(0.1)
             yield {"url": base_url, "token": token, "notebooks": notebooks}
         finally:
             PROCESS_GROUPS.stop(server)
 
 
-def shut_down_kernels(lab: dict[str, Any], budget: float = 30.0) -> None:
+def shut_down_kernels(
+    lab: dict[str, Any], budget: float = 30.0, retry_every: float = 0.5
+) -> None:
     """Stop every kernel the server runs, so chapters do not pile up kernels.
 
     A kernel that the page is starting or stopping at that moment can make the
     server answer 500 to the list, or 404 to a kernel gone meanwhile: the list
-    is asked again until ``budget`` seconds have passed, and a kernel already
-    gone counts as stopped.
+    is asked again every ``retry_every`` seconds until ``budget`` seconds have
+    passed, and a kernel already gone counts as stopped.
     """
     base = f"{lab['url']}/api/kernels"
     headers = {"Authorization": f"token {lab['token']}"}
@@ -296,4 +310,4 @@ def shut_down_kernels(lab: dict[str, Any], budget: float = 30.0) -> None:
                     f"JupyterLab answered {error.code} to stopping its kernels "
                     f"for {budget:g} s ({error.reason})"
                 ) from error
-            time.sleep(0.5)
+            time.sleep(retry_every)

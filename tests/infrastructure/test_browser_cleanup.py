@@ -19,7 +19,7 @@ import pytest
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 
 RUNNER = textwrap.dedent(f"""
-    import importlib.util, sys, time
+    import importlib.util, subprocess, sys, time
     spec = importlib.util.spec_from_file_location("browser_conftest", {str(ROOT / "tests" / "browser" / "conftest.py")!r})
     suite = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(suite)
@@ -29,10 +29,13 @@ RUNNER = textwrap.dedent(f"""
         "print(kernel.pid, flush=True)\\n"
         "time.sleep(600)\\n"
     )
-    server = suite.PROCESS_GROUPS.start([sys.executable, "-c", fake_server])
+    server = suite.PROCESS_GROUPS.start(
+        [sys.executable, "-c", fake_server], stdout=subprocess.PIPE, text=True
+    )
+    kernel = int(server.stdout.readline())  # the kernel runs
     print(server.pid, flush=True)
+    print(kernel, flush=True)
     if sys.argv[1] == "exit":
-        time.sleep(1.0)
         sys.exit(0)
     time.sleep(600)
 """)
@@ -112,7 +115,12 @@ class _KernelsAPI:
                 self.end_headers()
 
         self.server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Handler)
-        threading.Thread(target=self.server.serve_forever, daemon=True).start()
+        # a short poll, so that shutdown() returns at once
+        threading.Thread(
+            target=self.server.serve_forever,
+            kwargs={"poll_interval": 0.05},
+            daemon=True,
+        ).start()
         self.lab = {"url": f"http://127.0.0.1:{self.server.server_port}", "token": "t"}
 
 
@@ -122,7 +130,7 @@ def test_shutting_down_kernels_outlasts_a_server_error_and_a_kernel_gone_meanwhi
 
     api = _KernelsAPI(errors=2)
     try:
-        lab_browser.shut_down_kernels(api.lab, budget=10.0)
+        lab_browser.shut_down_kernels(api.lab, budget=10.0, retry_every=0.05)
         assert api.deleted == ["a", "b"] and api.errors == 0
     finally:
         api.server.shutdown()
@@ -135,9 +143,9 @@ def test_shutting_down_kernels_gives_up_with_a_clear_error_after_its_budget():
     api = _KernelsAPI(errors=10**6)
     try:
         with pytest.raises(
-            RuntimeError, match="answered 500 to stopping its kernels for 1 s"
+            RuntimeError, match="answered 500 to stopping its kernels for 0.2 s"
         ):
-            lab_browser.shut_down_kernels(api.lab, budget=1.0)
+            lab_browser.shut_down_kernels(api.lab, budget=0.2, retry_every=0.05)
         assert api.deleted == []
     finally:
         api.server.shutdown()

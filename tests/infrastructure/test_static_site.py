@@ -8,7 +8,8 @@ no ``tabindex="-1"``): every page is reachable from the index and leads back
 to it, next and previous walk the chapters in order, the first chapter has no
 previous one and the last no next one.  The quick tests check the titles and
 the links the builder computes; the infrastructure ones build a site (a small
-course made here, and the real chapters) and parse the pages.
+course made here; the real chapters' site is built once per run and shared with
+the browser suite) and parse the pages.
 ``tests/browser/test_static_site.py`` follows the same links in Chromium, by
 keyboard, and runs axe-core on every page.  The start page is the site's first
 page, and the links the notebooks' Markdown makes between notebooks
@@ -372,9 +373,10 @@ def test_a_small_course_gets_titled_pages_linked_both_ways(tmp_path):
 
 
 @pytest.mark.infrastructure
-def test_the_course_site_is_titled_and_linked_in_chapter_order(tmp_path):
-    site = tmp_path / "site"
-    editions.build_site(ROOT / "notebooks", site)
+def test_the_course_site_is_titled_and_linked_in_chapter_order(course_site):
+    """The site of the real chapters (tests/conftest.py's ``course_site``: one build per run,
+    shared with tests/browser/test_static_site.py)."""
+    site = course_site
     check_site(site, NOTEBOOKS)
     for path in NOTEBOOKS:
         title = read_page(site, editions.page_name(path)).title
