@@ -141,3 +141,33 @@ def test_a_mismatch_is_never_run_again(monkeypatch, tmp_path):
     )
     assert portable.main([good, "--variant", "as-installed"]) == 1
     assert calls == ["as-installed"]
+
+
+def test_except_runs_every_variant_but_those_named(monkeypatch, tmp_path, capsys):
+    """What .ci/run does after make test: every variant but as-installed, in their order."""
+    good = _notebook(tmp_path / "good.ipynb", "0.3\n")
+    others = [name for name in VARIANTS if name != "as-installed"]
+    monkeypatch.setattr(
+        portable,
+        "VARIANTS",
+        tuple(
+            portable.Variant(v.name, v.why, v.env) for v in VARIANTS.values()
+        ),  # no CPU requirement: every variant runs here
+    )
+    calls = _scripted_runs(monkeypatch, [(0, "")] * len(others))
+    assert portable.main([good, "--except", "as-installed"]) == 0
+    assert calls == others
+    with pytest.raises(SystemExit):
+        portable.main([good, "--variant", "sse-1-thread", "--except", "sse-1-thread"])
+    assert "leave no variant to run" in capsys.readouterr().err
+
+
+def test_ci_leaves_out_the_variant_make_test_ran():
+    ci_run = (Path(__file__).resolve().parents[2] / ".ci" / "run").read_text(
+        encoding="utf-8"
+    )
+    assert "make portable EXCEPT=as-installed" in ci_run
+    makefile = (Path(__file__).resolve().parents[2] / "Makefile").read_text(
+        encoding="utf-8"
+    )
+    assert "$(addprefix --except ,$(EXCEPT))" in makefile
