@@ -113,21 +113,22 @@ def acceleration_scale(arm, q, qd, tau):
 #: so no long file starts last and leaves the other core idle.  Files not named
 #: here follow in their usual order.
 SLOW_FILES_SECONDS = {
-    "tests/browser/test_chapters_in_jupyterlab.py": 280,
-    "tests/browser/test_static_site.py": 80,
-    "tests/infrastructure/test_pytest_anywhere.py": 70,
-    "tests/infrastructure/test_grade_attacks.py": 35,
-    "tests/infrastructure/test_nbgrader.py": 35,
-    "tests/infrastructure/test_grade.py": 40,
-    "tests/browser/test_student_edition.py": 45,
-    "tests/library/test_import.py": 38,
-    "tests/notebooks/test_figures.py": 34,
-    "tests/infrastructure/test_student_edition.py": 30,
-    "tests/course/test_exercises.py": 25,
-    "tests/infrastructure/test_benchmarks_run.py": 21,
-    "tests/library/test_trajectory.py": 18,
-    "tests/infrastructure/test_portable.py": 18,
-    "tests/infrastructure/test_install_cell.py": 12,
+    "tests/browser/test_static_site.py": 81,
+    "tests/browser/test_chapters_in_jupyterlab.py": 26,
+    "tests/library/test_workspace.py": 24,
+    "tests/browser/test_student_edition.py": 23,
+    "tests/infrastructure/test_grade_attacks.py": 15,
+    "tests/infrastructure/test_grade.py": 15,
+    "tests/library/test_trajectory.py": 11,
+    "tests/library/test_public_api.py": 10,
+    "tests/library/test_dynamics.py": 10,
+    "tests/infrastructure/test_nbgrader.py": 9,
+    "tests/infrastructure/test_grade_run.py": 9,
+    "tests/library/test_velocity.py": 6,
+    "tests/course/test_exercises.py": 6,
+    "tests/library/test_ik.py": 5,
+    "tests/course/test_exercises_rerun.py": 5,
+    "tests/library/test_kinematics.py": 5,
 }
 
 
