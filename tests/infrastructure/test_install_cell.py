@@ -6,14 +6,16 @@ the cell's own code with ``import twolink`` made to fail and ``%pip``
 replaced, so nothing is installed; then in real kernels: one in the project's
 environment (it must not call pip) and one in a throwaway venv that has every
 course package but not twolink (it must install twolink from the source named
-by TWOLINK_SOURCE, here the wheel of this checkout the student edition holds).  The student edition's run
-from its own wheel, in a fresh venv, is in ``tests/infrastructure/test_student_edition.py``.
+by TWOLINK_SOURCE, here the student edition's wheel of this checkout).  The
+student edition's run from its own wheel, in a fresh venv, is in
+``tests/infrastructure/test_student_edition.py``.
 """
 
 import contextlib
 import copy
 import io
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -315,7 +317,9 @@ def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(
     )
     monkeypatch.delenv("PYTHONPATH", raising=False)
     monkeypatch.setenv("TWOLINK_SOURCE", source)
-    monkeypatch.setenv("PIP_NO_INDEX", "1")  # everything twolink needs is there
+    # offline: everything twolink needs is there
+    monkeypatch.setenv("PIP_CONFIG_FILE", os.devnull)
+    monkeypatch.setenv("PIP_NO_INDEX", "1")
     outputs = run_cells(
         [
             "import importlib.util, sys\nprint(importlib.util.find_spec('twolink') is None, sys.prefix)",
