@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import ast
 import symtable
+import threading
 from collections.abc import Collection, Sequence
 
 from IPython.core.inputtransformer2 import TransformerManager
@@ -285,6 +286,13 @@ def units(source: str, modules: Collection[str], strict: bool) -> list[Unit] | N
     return found
 
 
+#: make grade prunes notebooks in several threads (JOBS); CPython 3.11's AST conversion is
+#: not safe across threads ("SystemError: AST constructor recursion depth mismatch",
+#: CPython issue gh-106905), so one notebook is pruned at a time: milliseconds beside
+#: the seconds its kernel runs.
+_AST_LOCK = threading.Lock()
+
+
 def needed(
     cells: Sequence[str],
     roots: Collection[int],
@@ -294,7 +302,18 @@ def needed(
     """Each cell's source cut to what ``roots`` (cell indices, kept whole) and ``names`` (read by
     the grader at the end) depend on; ``release``: the sources of the course's own cells and
     the grader's (their reads of the namespace are known).  A cell with nothing needed
-    becomes ``""``."""
+    becomes ``""``.  One call at a time (``_AST_LOCK``)."""
+    with _AST_LOCK:
+        return _needed(cells, roots, names, release)
+
+
+def _needed(
+    cells: Sequence[str],
+    roots: Collection[int],
+    names: Collection[str],
+    release: Collection[str],
+) -> list[str]:
+    """:func:`needed`, under the lock."""
     modules = imported(cells)
     split = [units(source, modules, strict=source not in release) for source in cells]
     late: set[str] = set()  # read by a needed function's body: whenever it is called
