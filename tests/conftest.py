@@ -108,9 +108,9 @@ def acceleration_scale(arm, q, qd, tau):
 #: so no long file starts last and leaves the other core idle.  Files not named
 #: here follow in their usual order.
 SLOW_FILES_SECONDS = {
-    "tests/browser/test_chapters_in_jupyterlab.py": 280,
+    "tests/browser/test_chapters_in_jupyterlab.py": 60,
     "tests/infrastructure/test_student_edition.py": 110,
-    "tests/browser/test_static_site.py": 80,
+    "tests/browser/test_static_site.py": 120,
     "tests/infrastructure/test_pytest_anywhere.py": 70,
     "tests/infrastructure/test_grade_attacks.py": 150,
     "tests/infrastructure/test_nbgrader.py": 50,
