@@ -535,6 +535,7 @@ def probe(jupyterlab, browser):
     context = browser.new_context(
         viewport={"width": 1400, "height": 1000}, reduced_motion="no-preference"
     )
+    context.add_init_script(MARK_PLAYED)
     try:
         page = context.new_page()
         panel = open_notebook(jupyterlab, page, PROBE, "probe")
@@ -649,8 +650,15 @@ def test_slider_handles_are_named_by_their_description_in_jupyterlab(probe):
 #: timeupdate event fires at least every 250 ms.
 HOLD_STILL_MS = 500
 
+#: Marks each video that was ever asked to play (its play event), from the page's
+#: first script on: media events do not bubble, but the document sees them captured.
+MARK_PLAYED = """document.addEventListener('play', event => {
+    event.target.dataset.twolinkPlayed = '1';
+}, true);"""
+
 VIDEO_STATE = """video => ({
     paused: video.paused, time: video.currentTime, autoplay: video.autoplay,
+    played: video.dataset.twolinkPlayed === '1',
     label: video.closest('[role=figure]') && video.closest('[role=figure]').getAttribute('aria-label'),
 })"""
 
@@ -692,8 +700,9 @@ def test_videos_are_described_and_hold_still_for_reduced_motion_in_jupyterlab(
     assert state["label"] and "An animation of the arm in 8 frames" in state["label"]
     if reduced_motion == "reduce":
         assert state["paused"] and state["time"] == 0 and not state["autoplay"], state
+        assert not state["played"], state  # not even for a moment
     else:
-        assert state["autoplay"], state
+        assert state["autoplay"] and state["played"], state
 
 
 # --- choices: their labels in the label column, their buttons on the same row ------------

@@ -423,8 +423,15 @@ def check_descriptions(page, name):
         assert details.nth(index).locator("p").inner_text().strip()
 
 
+#: Marks each video that was ever asked to play (its play event), from the page's
+#: first script on: media events do not bubble, but the document sees them captured.
+MARK_PLAYED = """document.addEventListener('play', event => {
+    event.target.dataset.twolinkPlayed = '1';
+}, true);"""
+
 VIDEO_STATES = """() => [...document.querySelectorAll('video')].map(video => ({
     paused: video.paused, time: video.currentTime, autoplay: video.autoplay,
+    played: video.dataset.twolinkPlayed === '1',
     label: video.closest('[role=figure]') && video.closest('[role=figure]').getAttribute('aria-label'),
     described: Boolean(video.closest('.jp-OutputArea-output').querySelector('details.twolink-description p')),
 }))"""
@@ -442,6 +449,7 @@ def check_motion(page, browser, url, name):
             name,
             video,
         )
+        assert not video["played"], (name, video)
     for video in moving:  # a short label, the whole description one step away
         assert video["autoplay"], (name, video)
         assert video["label"] and len(video["label"]) <= editions.SHORT_ALT_MAX
@@ -450,10 +458,12 @@ def check_motion(page, browser, url, name):
 
 def still_videos(browser, url, count):
     """The video states of the page at ``url`` under reduced motion, once each video
-    has its first frame and :data:`HOLD_STILL_MS` more have passed."""
+    has its first frame and :data:`HOLD_STILL_MS` more have passed; ``played``: a
+    play event, however early or late the video would have moved."""
     context = browser.new_context(
         viewport={"width": 1400, "height": 1000}, reduced_motion="reduce"
     )
+    context.add_init_script(MARK_PLAYED)
     try:
         page = context.new_page()
         page.goto(url)

@@ -17,6 +17,7 @@ page, and the links the notebooks' Markdown makes between notebooks
 the pages (``02_inverse_kinematics.html``).
 """
 
+import functools
 import html.parser
 import json
 import pathlib
@@ -230,7 +231,9 @@ class Page(html.parser.HTMLParser):
             self.navs[-1]["links"][-1]["text"] += data
 
 
+@functools.cache
 def read_page(site, name):
+    """The page ``name`` of a built ``site``, parsed once (the sites are not changed once built)."""
     return Page((site / name).read_text(encoding="utf-8"))
 
 
