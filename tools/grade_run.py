@@ -310,6 +310,9 @@ class Worker:
         self.process = CONTEXT.Process(target=_serve, args=(child_end,), daemon=True)
         self.process.start()
         child_end.close()
+        # stop() is called from two threads on Ctrl-C (the grader's, and the one waiting on
+        # this worker, which then sees the pipe end): its connection is closed once
+        self._stopping = threading.Lock()
 
     def run(
         self,
@@ -342,12 +345,13 @@ class Worker:
         return self.process.is_alive() and not self.connection.closed
 
     def stop(self) -> None:
-        """End the process (and so any sandbox it still holds)."""
-        if self.process.is_alive():
-            self.process.kill()
-        self.process.join(30)
-        if not self.connection.closed:
-            self.connection.close()
+        """End the process (and so any sandbox it still holds); safe from several threads at once."""
+        with self._stopping:
+            if self.process.is_alive():
+                self.process.kill()
+            self.process.join(30)
+            if not self.connection.closed:
+                self.connection.close()
 
 
 class Runner:

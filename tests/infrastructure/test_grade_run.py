@@ -10,6 +10,8 @@ alone) after each notebook; the scratch folder removed at the end.
 import dataclasses
 import pathlib
 import sys
+import threading
+import time
 
 import nbformat
 import pytest
@@ -181,6 +183,57 @@ def test_a_process_that_answers_nothing_is_reported(monkeypatch):
         grade_run.Setting(pathlib.Path("/nonexistent"), None, LIMITS),
     )
     assert result == {"failure": "the grader's process for it ended with code -11"}
+
+
+def test_a_worker_stopped_by_two_threads_at_once_closes_its_connection_once(
+    monkeypatch,
+):
+    # Ctrl-C: the grader's main thread stops every worker while the thread that sent a worker
+    # its notebook sees the pipe end and stops it too; closing one descriptor twice raised
+    # "OSError: [Errno 9] Bad file descriptor" and the grader ended with 1, not 130
+    closes = []
+
+    class SlowToClose:  # as multiprocessing's Connection: closed only once close() returns
+        closed = False
+
+        def close(self):
+            closes.append(threading.current_thread().name)
+            time.sleep(0.2)
+            self.closed = True
+
+    class Ended:
+        exitcode = -9
+
+        def __init__(self, **kwargs):
+            pass
+
+        def start(self):
+            pass
+
+        def is_alive(self):
+            return False
+
+        def join(self, timeout):
+            pass
+
+    monkeypatch.setattr(
+        grade_run.CONTEXT, "Pipe", lambda: (SlowToClose(), SlowToClose())
+    )
+    monkeypatch.setattr(grade_run.CONTEXT, "Process", Ended)
+    worker = grade_run.Worker()
+    closes.clear()  # the child's end, closed in the parent
+    start = threading.Barrier(2)
+
+    def stop():
+        start.wait()
+        worker.stop()
+
+    threads = [threading.Thread(target=stop, name=f"stopper-{i}") for i in range(2)]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join(10)
+    assert len(closes) == 1, closes
 
 
 @pytest.mark.infrastructure
