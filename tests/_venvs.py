@@ -16,6 +16,7 @@ sees pip keep to a constraint rather than take the newest.
 import base64
 import hashlib
 import importlib.metadata
+import json
 import os
 import pathlib
 import re
@@ -129,6 +130,19 @@ def bare_venv(root, distributions, with_dependencies=True, without=()):
     )
     (pathlib.Path(site) / "twolink_test_shared.pth").write_text(f"{shared}\n")
     return python
+
+
+def kernel_spec(kernels, name, python, display_name):
+    """Write a kernel spec ``kernels/name/kernel.json`` whose kernel is ``python``'s ipykernel.
+
+    A ``KernelSpecManager(kernel_dirs=[str(kernels)])`` then starts it as ``name``: a
+    kernel of a throwaway venv, not of the project's environment.
+    """
+    folder = pathlib.Path(kernels) / name
+    folder.mkdir(parents=True)
+    argv = [str(python), "-m", "ipykernel_launcher", "-f", "{connection_file}"]
+    spec = {"argv": argv, "display_name": display_name, "language": "python"}
+    (folder / "kernel.json").write_text(json.dumps(spec), encoding="utf-8")
 
 
 def pip(python, *args, **kwargs):

@@ -14,7 +14,6 @@ student edition's run from its own wheel, in a fresh venv, is in
 import contextlib
 import copy
 import io
-import json
 import os
 import pathlib
 import subprocess
@@ -298,22 +297,8 @@ def test_without_twolink_the_cell_installs_it_from_TWOLINK_SOURCE(
 
     from jupyter_client.kernelspec import KernelSpecManager
 
-    kernel_dir = tmp_path / "kernels" / "without-twolink"
-    kernel_dir.mkdir(parents=True)
-    (kernel_dir / "kernel.json").write_text(
-        json.dumps(
-            {
-                "argv": [
-                    str(python),
-                    "-m",
-                    "ipykernel_launcher",
-                    "-f",
-                    "{connection_file}",
-                ],
-                "display_name": "without twolink",
-                "language": "python",
-            }
-        )
+    _venvs.kernel_spec(
+        tmp_path / "kernels", "without-twolink", python, "without twolink"
     )
     monkeypatch.delenv("PYTHONPATH", raising=False)
     monkeypatch.setenv("TWOLINK_SOURCE", source)

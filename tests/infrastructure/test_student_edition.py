@@ -298,22 +298,7 @@ class Headless(NotebookClient):
 
 def run_in_venv(python, notebook_path, kernels, env, timeout=600):
     """``notebook_path`` executed in its own folder by a kernel of ``python``'s venv, started with ``env``."""
-    (kernels / "fresh").mkdir(parents=True)
-    (kernels / "fresh" / "kernel.json").write_text(
-        json.dumps(
-            {
-                "argv": [
-                    str(python),
-                    "-m",
-                    "ipykernel_launcher",
-                    "-f",
-                    "{connection_file}",
-                ],
-                "display_name": "fresh venv",
-                "language": "python",
-            }
-        )
-    )
+    _venvs.kernel_spec(kernels, "fresh", python, "fresh venv")
     notebook = nbformat.read(notebook_path, as_version=4)
     manager = KernelManager(
         kernel_name="fresh",

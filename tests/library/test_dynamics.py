@@ -486,8 +486,10 @@ def test_lambdify_takes_a_derivation_or_a_model_name():
 
 
 # ----------------------------------------------------------------- derivatives of M and g
-def _symbolic_derivatives():
-    """dM/dq (index k last) and dg/dq from the Euler-Lagrange derivation, as functions of (q, parameters)."""
+@functools.cache
+def symbolic_derivatives():
+    """dM/dq (index k last) and dg/dq from the Euler-Lagrange derivation, as functions of (q, parameters);
+    derived when a test first asks, not when each worker imports this file."""
     eom = equations_of_motion("relative")
     q = list(eom.q)
     dM = [
@@ -499,9 +501,6 @@ def _symbolic_derivatives():
     return sp.lambdify(arguments, dM, "numpy"), sp.lambdify(arguments, dg, "numpy")
 
 
-SYMBOLIC_DM, SYMBOLIC_DG = _symbolic_derivatives()
-
-
 def parameters(arm):
     """The arm's values of EquationsOfMotion.parameters: (l1, l2, m1, m2, I1, I2, g)."""
     return (arm.l1, arm.l2, arm.m1, arm.m2, *arm.inertias, arm.g)
@@ -509,7 +508,7 @@ def parameters(arm):
 
 @given(dynamic_arms(), configurations())
 def test_mass_matrix_derivative_is_sympys_derivative_of_M(arm, q):
-    expected = np.array(SYMBOLIC_DM(*q, *parameters(arm)), dtype=float)
+    expected = np.array(symbolic_derivatives()[0](*q, *parameters(arm)), dtype=float)
     assert_within(
         dynamics.mass_matrix_derivative(arm, q), expected, 1e-12 * mass_scale(arm)
     )
@@ -517,7 +516,7 @@ def test_mass_matrix_derivative_is_sympys_derivative_of_M(arm, q):
 
 @given(dynamic_arms(), configurations())
 def test_gravity_jacobian_is_sympys_derivative_of_g(arm, q):
-    expected = np.array(SYMBOLIC_DG(*q, *parameters(arm)), dtype=float)
+    expected = np.array(symbolic_derivatives()[1](*q, *parameters(arm)), dtype=float)
     assert_within(
         dynamics.gravity_jacobian(arm, q), expected, 1e-12 * gravity_scale(arm)
     )

@@ -1,5 +1,7 @@
 """Forward kinematics, DH transforms, Jacobians, statics and conventions."""
 
+import functools
+
 import numpy as np
 import pytest
 from _cases import BAD_PAIRS
@@ -91,8 +93,10 @@ def test_bad_force_raises():
 
 
 # ----------------------------------------------------------------- J^T F and the derivatives of J
-def _symbolic_jacobian_derivative():
-    """dJ/dq from sympy (planar_fk's tip differentiated twice), as a function of (q1, q2, l1, l2)."""
+@functools.cache
+def symbolic_jacobian_derivative():
+    """dJ/dq from sympy (planar_fk's tip differentiated twice), as a function of (q1, q2, l1, l2);
+    derived when a test first asks, not when each worker imports this file."""
     import sympy as sp
 
     from twolink.symbolic import planar_fk, planar_symbols
@@ -106,12 +110,11 @@ def _symbolic_jacobian_derivative():
     return sp.lambdify((s["q1"], s["q2"], s["l1"], s["l2"]), dJ, "numpy")
 
 
-SYMBOLIC_DJ = _symbolic_jacobian_derivative()
-
-
 @given(arm=arm_strategy(), q=configurations())
 def test_jacobian_derivative_is_sympys_derivative_of_the_jacobian(arm, q):
-    expected = np.array(SYMBOLIC_DJ(q[0], q[1], arm.l1, arm.l2), dtype=float)
+    expected = np.array(
+        symbolic_jacobian_derivative()(q[0], q[1], arm.l1, arm.l2), dtype=float
+    )
     assert np.allclose(
         kinematics.jacobian_derivative(arm, q),
         expected,
@@ -139,7 +142,11 @@ def test_jacobian_derivative_matches_finite_differences_of_the_jacobian(arm, q):
 def test_jacobian_rate_is_the_derivative_along_the_motion(arm, q, qd):
     Jdot = kinematics.jacobian_rate(arm, q, qd)
     expected = np.einsum(
-        "ijk,k->ij", np.array(SYMBOLIC_DJ(q[0], q[1], arm.l1, arm.l2), dtype=float), qd
+        "ijk,k->ij",
+        np.array(
+            symbolic_jacobian_derivative()(q[0], q[1], arm.l1, arm.l2), dtype=float
+        ),
+        qd,
     )
     scale = (arm.l1 + arm.l2) * (1 + np.abs(qd).sum())
     assert np.allclose(Jdot, expected, rtol=0.0, atol=1e-12 * scale)
