@@ -144,6 +144,24 @@ def test_an_output_flood_is_stopped_at_the_output_limit(runner, setting):
     )
 
 
+class EndedProcess:
+    """A worker's process (in place of multiprocessing's) that has already ended, killed."""
+
+    exitcode = -11
+
+    def __init__(self, **kwargs):
+        pass
+
+    def start(self):
+        pass
+
+    def is_alive(self):
+        return False
+
+    def join(self, timeout):
+        pass
+
+
 def test_a_process_that_answers_nothing_is_reported(monkeypatch):
     class Silent:
         closed = False
@@ -162,22 +180,7 @@ def test_a_process_that_answers_nothing_is_reported(monkeypatch):
 
     monkeypatch.setattr(grade_run.CONTEXT, "Pipe", lambda: (Silent(), Silent()))
 
-    class Died:
-        exitcode = -11
-
-        def __init__(self, **kwargs):
-            pass
-
-        def start(self):
-            pass
-
-        def is_alive(self):
-            return False
-
-        def join(self, timeout):
-            pass
-
-    monkeypatch.setattr(grade_run.CONTEXT, "Process", Died)
+    monkeypatch.setattr(grade_run.CONTEXT, "Process", EndedProcess)
     result = grade_run.run_isolated(
         nbformat.v4.new_notebook(),
         grade_run.Setting(pathlib.Path("/nonexistent"), None, LIMITS),
@@ -201,25 +204,10 @@ def test_a_worker_stopped_by_two_threads_at_once_closes_its_connection_once(
             time.sleep(0.2)
             self.closed = True
 
-    class Ended:
-        exitcode = -9
-
-        def __init__(self, **kwargs):
-            pass
-
-        def start(self):
-            pass
-
-        def is_alive(self):
-            return False
-
-        def join(self, timeout):
-            pass
-
     monkeypatch.setattr(
         grade_run.CONTEXT, "Pipe", lambda: (SlowToClose(), SlowToClose())
     )
-    monkeypatch.setattr(grade_run.CONTEXT, "Process", Ended)
+    monkeypatch.setattr(grade_run.CONTEXT, "Process", EndedProcess)
     worker = grade_run.Worker()
     closes.clear()  # the child's end, closed in the parent
     start = threading.Barrier(2)
