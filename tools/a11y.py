@@ -61,23 +61,19 @@ def violations(page: Any, include: Sequence[str] | None = None) -> list[dict[str
     return finish_violations(page)
 
 
-def start_violations(
-    page: Any, include: Sequence[str] | None = None, exclude: Sequence[str] = ()
-) -> None:
+def start_violations(page: Any, include: Sequence[str] | None = None) -> None:
     """Start axe-core on the page as it is now and return at once (as :func:`violations`).
 
     :func:`finish_violations` waits for the result: meanwhile another page of
     the browser can work (a page of its own runs in a process of its own).
-    ``exclude``: CSS selectors of parts left out of the check (inside ``include``).
     """
     if not page.evaluate("() => typeof window.axe !== 'undefined'"):
         page.add_script_tag(content=axe_source())
-    parts: dict[str, list[list[str]]] = {}
-    if include is not None:
-        parts["include"] = [[selector] for selector in include]
-    if exclude:
-        parts["exclude"] = [[selector] for selector in exclude]
-    context = json.dumps(parts) if parts else "document"
+    context = (
+        "document"
+        if include is None
+        else json.dumps({"include": [[selector] for selector in include]})
+    )
     page.evaluate(
         f"""() => {{
             window.twolinkAxe = {{done: false}};

@@ -8,7 +8,10 @@ for readers who ask for reduced motion and move for the others.
 One walk (the ``walk`` fixture) loads each page once, as a reader walks them by
 keyboard: the index, its first link, each chapter's "next" link, the last chapter's
 link back to the index.  It checks everything about a page while it is there, and
-opens a page with videos once more, under reduced motion.  The walk goes in two
+opens each chapter once more in a plain tab (``plain_context``): under reduced motion,
+where its videos must hold still, and without MathJax, where axe-core checks the
+chapter's prose and outputs (typeset maths more than triples a chapter page's elements
+and doubles axe's time; axe checks it on the pages it checks whole).  The walk goes in two
 lanes, two tabs side by side (``SECOND_LANE``): while one tab loads, typesets or
 runs axe-core, the other works.  Each test below asserts one property over every
 page from what the walk found: a failure on one page does not stop the walk, and a
@@ -51,10 +54,12 @@ PROPERTIES = (
 #: elements, and most of axe's time).
 WHOLE_PAGES = 3
 CHAPTER_PARTS = (".jp-RenderedMarkdown", ".jp-OutputArea")
-#: Typeset maths, left out of axe's run on a chapter's parts (thousands of elements, a
-#: third of axe's time there): :data:`MATHS_IN_THE_TEXT_S_COLOURS` holds each formula to
-#: the colour of the text around it, whose contrast axe checks.
-MATHS = (".MathJax", ".MathJax_Display")
+#: axe checks a chapter's parts in the plain tab, where MathJax does not run (its
+#: formulas are text there, in the colour of the text around them): typeset, they are
+#: about three quarters of a chapter page's elements, and axe takes twice as long.
+#: :data:`MATHS_IN_THE_TEXT_S_COLOURS` holds each typeset formula to the colour of the
+#: text around it, whose contrast axe checks; axe checks typeset maths on the pages it
+#: checks whole.
 
 #: The site's own copy of MathJax (``make site`` ships it beside the pages).
 MATHJAX_FOLDER = "mathjax"
@@ -112,16 +117,32 @@ def walk(course_site, browser):
         context = browser.new_context(
             viewport={"width": 1400, "height": 1000}, reduced_motion="no-preference"
         )
+        plain = plain_context(browser)
         try:
             side_by_side(
                 [
-                    first_lane(context.new_page(), browser, site, found),
-                    second_lane(context.new_page(), browser, site, found),
+                    first_lane(context.new_page(), plain.new_page(), site, found),
+                    second_lane(context.new_page(), plain.new_page(), site, found),
                 ]
             )
         finally:
+            plain.close()
             context.close()
     return found
+
+
+def plain_context(browser):
+    """Tabs for a reader who asks for reduced motion, whose pages MathJax does not typeset.
+
+    Each video asked to play is marked (:data:`MARK_PLAYED`).  The videos are the
+    page's own script's, which never waits for MathJax.
+    """
+    context = browser.new_context(
+        viewport={"width": 1400, "height": 1000}, reduced_motion="reduce"
+    )
+    context.add_init_script(MARK_PLAYED)
+    context.route(f"**/{MATHJAX_FOLDER}/**", lambda route: route.abort())
+    return context
 
 
 def side_by_side(lanes):
@@ -136,7 +157,7 @@ def side_by_side(lanes):
                 lanes.remove(lane)
 
 
-def first_lane(page, browser, site, walk):
+def first_lane(page, plain, site, walk):
     stop_watching = watch_the_network(page, walk)
     page.goto(f"{site}/{editions.INDEX_PAGE}", wait_until="commit")
     yield  # the page loads
@@ -144,17 +165,17 @@ def first_lane(page, browser, site, walk):
     yield from index_steps(page, walk)
     leave(page, walk, editions.INDEX_PAGE, [CHAPTERS[0]], f"{site}/{CHAPTERS[0]}")
     for number in range(SECOND_LANE):
-        yield from chapter_steps(page, browser, site, walk, number)
+        yield from chapter_steps(page, plain, site, walk, number)
     # the second lane's first page is there: it is checked in the second lane
     stop_watching()
     page.goto("about:blank")
 
 
-def second_lane(page, browser, site, walk):
+def second_lane(page, plain, site, walk):
     watch_the_network(page, walk)
     page.goto(f"{site}/{CHAPTERS[SECOND_LANE]}", wait_until="commit")
     for number in range(SECOND_LANE, len(CHAPTERS)):
-        yield from chapter_steps(page, browser, site, walk, number)
+        yield from chapter_steps(page, plain, site, walk, number)
     with walk.check("keyboard", BACK_TO_THE_INDEX):
         page.wait_for_load_state("load")
         assert page.title() == f"{editions.SITE_TITLE}: the planar two-link arm"
@@ -208,11 +229,13 @@ def index_steps(page, walk):
         assert stops == [CHAPTERS[0]], f"Tab reaches {stops}, not {CHAPTERS[0]}"
 
 
-def chapter_steps(page, browser, site, walk, number):
-    """Everything about chapter ``number``'s page, reached a moment ago; then on to the next."""
+def chapter_steps(page, plain, site, walk, number):
+    """Everything about chapter ``number``'s page, reached a moment ago, and its plain
+    visit in the plain tab (:func:`plain_context`); then on to the next."""
     name, path = CHAPTERS[number], NOTEBOOKS[number]
     expected = ["#content", *neighbours(number)]
-    yield  # the page loads and typesets
+    plain.goto(f"{site}/{name}", wait_until="commit")
+    yield  # the page loads and typesets; the plain tab loads
     try:
         a11y.settle(page)
     except Exception as error:  # the checks below tell what is missing
@@ -226,22 +249,21 @@ def chapter_steps(page, browser, site, walk, number):
         check_complete(page, name, cells, source)
     with walk.check("accessible", name):
         whole = number + 1 < WHOLE_PAGES
-        if whole:
-            a11y.start_violations(page)
-        else:
-            a11y.start_violations(page, CHAPTER_PARTS, exclude=MATHS)
+        # the whole page as it is, maths typeset; or the chapter's parts in the plain tab
+        checked = page if whole else plain
+        checked.wait_for_load_state("load", timeout=a11y.SETTLE_BUDGET_MS)
+        a11y.start_violations(checked, None if whole else CHAPTER_PARTS)
         yield  # axe-core works
-        check_accessible(page, number, path, a11y.finish_violations(page))
-        if not whole:
-            drawn_otherwise = page.evaluate(MATHS_IN_THE_TEXT_S_COLOURS)
-            assert drawn_otherwise == [], (name, drawn_otherwise[:3])
+        check_accessible(page, number, path, a11y.finish_violations(checked))
+        drawn_otherwise = page.evaluate(MATHS_IN_THE_TEXT_S_COLOURS)
+        assert drawn_otherwise == [], (name, drawn_otherwise[:3])
     with walk.check("tab_stops", name):
         check_tab_stops(page, name)
     with walk.check("descriptions", name):
         check_descriptions(page, name)
     if "animation_html(" in source or page.locator("video").count():
         with walk.check("motion", name):
-            check_motion(page, browser, f"{site}/{name}", name)
+            check_motion(page, plain, name)
     leave(page, walk, name, expected, f"{site}/{expected[-1]}")
 
 
@@ -431,8 +453,23 @@ def check_tab_stops(page, name):
     )
 
 
+#: Each figure's description: a ``details`` whose ``summary`` is shown and is a Tab stop
+#: (what Enter opens in every browser), with its text in a ``p``.
+DESCRIPTIONS = """() => [...document.querySelectorAll('.twolink-description')].map(d => {
+    const summary = d.querySelector(':scope > summary');
+    const text = d.querySelector('p');
+    return {
+        details: d.tagName === 'DETAILS',
+        summary: Boolean(summary) && summary.tabIndex >= 0 && summary.getClientRects().length > 0,
+        text: text ? text.textContent.trim() : '',
+    };
+})"""
+
+
 def check_descriptions(page, name):
-    """A figure's alt is short; the whole description is one step (Enter) away."""
+    """A figure's alt is short; the whole description is one step (Enter) away: each is
+    a details with a summary shown in the Tab order and its text; the first opens on
+    Enter, as a browser opens any of them."""
     alts = page.evaluate(
         "() => [...document.querySelectorAll('.jp-OutputArea-output img[alt]')].map(i => i.alt)"
     )
@@ -440,13 +477,20 @@ def check_descriptions(page, name):
         name,
         max(map(len, alts), default=0),
     )
-    details = page.locator(".twolink-description")
-    for index in range(details.count()):
-        summary = details.nth(index).locator("summary")
-        summary.focus()
+    found = page.evaluate(DESCRIPTIONS)
+    unreachable = [
+        index
+        for index, one in enumerate(found)
+        if not (one["details"] and one["summary"] and one["text"])
+    ]
+    assert not unreachable, (name, [found[index] for index in unreachable])
+    if found:
+        first = page.locator(".twolink-description").first
+        first.locator("summary").focus()
         page.keyboard.press("Enter")  # one step: the full description opens
-        assert details.nth(index).evaluate("d => d.open")
-        assert details.nth(index).locator("p").inner_text().strip()
+        assert first.evaluate("d => d.open"), (
+            f"{name}: Enter did not open a description"
+        )
 
 
 #: Marks each video that was ever asked to play (its play event), from the page's
@@ -463,12 +507,12 @@ VIDEO_STATES = """() => [...document.querySelectorAll('video')].map(video => ({
 }))"""
 
 
-def check_motion(page, browser, url, name):
-    """Videos move by themselves here; opened again for a reader who asks for reduced
-    motion, they hold still; each has a short label and its whole description."""
+def check_motion(page, plain, name):
+    """Videos move by themselves here; in the plain tab, for a reader who asks for
+    reduced motion, they hold still; each has a short label and its whole description."""
     wait_until_every_video_moved(page)
     moving = page.evaluate(VIDEO_STATES)
-    still = still_videos(browser, url, len(moving))
+    still = still_videos(plain, len(moving))
     assert still and len(still) == len(moving), (name, moving, still)
     for video in still:
         assert video["paused"] and video["time"] == 0 and not video["autoplay"], (
@@ -482,32 +526,21 @@ def check_motion(page, browser, url, name):
         assert video["described"], (name, video)
 
 
-def still_videos(browser, url, count):
-    """The video states of the page at ``url`` under reduced motion, once each video
-    has its first frame and :data:`HOLD_STILL_MS` more have passed; ``played``: a
-    play event, however early or late the video would have moved."""
-    context = browser.new_context(
-        viewport={"width": 1400, "height": 1000}, reduced_motion="reduce"
+def still_videos(plain, count):
+    """The video states of the plain tab's page (reduced motion), once each of its
+    ``count`` videos has its first frame and :data:`HOLD_STILL_MS` more have passed;
+    ``played``: a play event since the page loaded, however early or late the video
+    would have moved."""
+    plain.wait_for_function(
+        """count => {
+            const videos = [...document.querySelectorAll('video')];
+            return videos.length === count && videos.every(video => video.readyState >= 2);
+        }""",
+        arg=count,
+        timeout=VIDEO_START_BUDGET_MS,
     )
-    context.add_init_script(MARK_PLAYED)
-    # the videos are the page's own script's (it never waits for MathJax): the maths,
-    # typeset and checked on the first visit, is not typeset again
-    context.route(f"**/{MATHJAX_FOLDER}/**", lambda route: route.abort())
-    try:
-        page = context.new_page()
-        page.goto(url)
-        page.wait_for_function(
-            """count => {
-                const videos = [...document.querySelectorAll('video')];
-                return videos.length === count && videos.every(video => video.readyState >= 2);
-            }""",
-            arg=count,
-            timeout=VIDEO_START_BUDGET_MS,
-        )
-        page.wait_for_timeout(HOLD_STILL_MS)
-        return page.evaluate(VIDEO_STATES)
-    finally:
-        context.close()
+    plain.wait_for_timeout(HOLD_STILL_MS)
+    return plain.evaluate(VIDEO_STATES)
 
 
 @pytest.mark.infrastructure
