@@ -129,6 +129,15 @@ SLOW_FILES_SECONDS = {
     "tests/library/test_ik.py": 5,
     "tests/course/test_exercises_rerun.py": 5,
     "tests/library/test_kinematics.py": 5,
+    # each chapter, executed by nbval: started before the many small files, which then
+    # end the run on both workers together
+    "notebooks/06_spring_impedance_control.ipynb": 10,
+    "notebooks/07_workspace_trajectories.ipynb": 10,
+    "notebooks/05_lagrangian_dynamics.ipynb": 9,
+    "notebooks/03_jacobian_velocity.ipynb": 8,
+    "notebooks/04_statics_wall.ipynb": 7,
+    "notebooks/02_inverse_kinematics.ipynb": 6,
+    "notebooks/01_dh_forward_kinematics.ipynb": 5,
 }
 
 
