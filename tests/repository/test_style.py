@@ -39,9 +39,12 @@ def test_make_test_runs_each_static_check_once_leaving_no_cache():
         "$(BIN)/lint-imports --no-cache",
         "$(BIN)/ruff check --no-cache",
         "$(BIN)/ruff format --check --no-cache",
-        "$(BIN)/mypy --cache-dir=/dev/null",
+        '$(BIN)/mypy --num-workers=auto --cache-dir="$$cache"',
     ):
         assert recipe.count(command) == 1, (command, recipe)
+    # mypy's workers need a cache: a temporary folder, removed whether mypy passed or not
+    assert "cache=$$(mktemp -d)" in recipe, recipe
+    assert '; typed=$$?; rm -rf "$$cache"; exit $$typed' in recipe, recipe
     assert recipe.splitlines()[-1] == "$(BIN)/python -m pytest", "pytest last"
 
 
