@@ -252,6 +252,7 @@ def chapter_steps(page, plain, site, walk, number):
         # the whole page as it is, maths typeset; or the chapter's parts in the plain tab
         checked = page if whole else plain
         checked.wait_for_load_state("load", timeout=a11y.SETTLE_BUDGET_MS)
+        assert checked.title() == page.title(), (name, checked.url, checked.title())
         a11y.start_violations(checked, None if whole else CHAPTER_PARTS)
         yield  # axe-core works
         check_accessible(page, number, path, a11y.finish_violations(checked))
