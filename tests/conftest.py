@@ -114,9 +114,8 @@ def acceleration_scale(arm, q, qd, tau):
 #: here follow in their usual order.
 SLOW_FILES_SECONDS = {
     "tests/browser/test_static_site.py": 81,
-    "tests/browser/test_chapters_in_jupyterlab.py": 26,
+    "tests/browser/test_student_edition.py": 28,
     "tests/library/test_workspace.py": 24,
-    "tests/browser/test_student_edition.py": 23,
     "tests/infrastructure/test_grade_attacks.py": 15,
     "tests/infrastructure/test_grade.py": 15,
     "tests/library/test_trajectory.py": 11,
@@ -124,6 +123,7 @@ SLOW_FILES_SECONDS = {
     "tests/library/test_dynamics.py": 10,
     "tests/infrastructure/test_nbgrader.py": 9,
     "tests/infrastructure/test_grade_run.py": 9,
+    "tests/browser/test_chapters_in_jupyterlab.py": 9,
     "tests/library/test_velocity.py": 6,
     "tests/course/test_exercises.py": 6,
     "tests/library/test_ik.py": 5,

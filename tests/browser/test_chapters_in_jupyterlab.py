@@ -1,14 +1,17 @@
 """A chapter, used as a student uses it: JupyterLab in Chromium, Run All, play;
 and the course's JupyterLab extension on a probe notebook.
 
-For the chapter (``RUN_IN_JUPYTERLAB``): open it and check that its stored figures
-carry their alt text, Run All Cells from the menu, wait for the kernel to go idle,
-then assert there is no error or stderr output, every interactive explorer the
-notebook builds (``twolink_course.explorer.Explorer``) is rendered, moving each of
-its sliders with the keyboard changes its readout and the pixels of its figure,
-each explorer is drawn complete after its moves, every animation is present and
-plays, and axe-core finds nothing critical or serious in what the course puts in
-the notebook.  Screenshots go to build/screenshots/.
+For a chapter: open it and check that its stored figures carry their alt text,
+Run All Cells from the menu, wait for the kernel to go idle, then assert there is
+no error or stderr output and (:func:`check_the_chapter_as_run`) every interactive
+explorer the notebook builds (``twolink_course.explorer.Explorer``) is rendered,
+moving each of its sliders with the keyboard changes its readout and the pixels of
+its figure, each explorer is drawn complete after its moves, every animation is
+present and plays, and axe-core finds nothing critical or serious in what the
+course puts in the notebook.  Screenshots go to build/screenshots/.  ``make test``
+runs chapter 1 so, as a student first meets it: in the student edition's first
+run, after the reload (tests/browser/test_student_edition.py);
+``TWOLINK_BROWSER_EVERY_CHAPTER=1`` runs every chapter so here (a release check).
 
 The generic checks (figures' alt text, slider handles named by their description,
 videos still for reduced motion, a choice's label in the label column) share one
@@ -26,20 +29,19 @@ import pytest
 
 from .conftest import ROOT, SCREENSHOTS
 
-#: The one chapter run whole in JupyterLab: chapter 5, with an explorer and a video,
-#: whose explorer was the one that stayed blank after Run All and a move (the
-#: page's draw request ran while a move changed the canvas; its curves move the
-#: most).  What JupyterLab adds (widgets that render and follow a hand, videos
-#: that play, axe on the notebook) is the kit's, the same in every chapter; each
-#: chapter's own prose and outputs are checked by axe on its static page
+#: Every chapter, run whole in JupyterLab here when ``TWOLINK_BROWSER_EVERY_CHAPTER=1``
+#: (a release check: about a minute a chapter).  ``make test`` runs one chapter whole
+#: in JupyterLab, chapter 1 in the student edition's first run (its checks:
+#: :func:`check_the_chapter_as_run`).  What JupyterLab adds (widgets that render and
+#: follow a hand, videos that play, axe on the notebook) is the kit's, the same in
+#: every chapter, and the probe notebook below checks it too; each chapter's own
+#: prose and outputs are checked by axe on its static page
 #: (tests/browser/test_static_site.py), its explorers moved to their ends in its
-#: kernel (notebooks/NN_x.ipynb::figures).  ``TWOLINK_BROWSER_EVERY_CHAPTER=1``
-#: runs every chapter so (a release check: about a minute a chapter).
-RUN_IN_JUPYTERLAB = (
-    sorted((ROOT / "notebooks").glob("0[1-9]_*.ipynb"))
-    if os.environ.get("TWOLINK_BROWSER_EVERY_CHAPTER") == "1"
-    else [ROOT / "notebooks" / "05_lagrangian_dynamics.ipynb"]
-)
+#: kernel (notebooks/NN_x.ipynb::figures), and a draw the page asks for waits for a
+#: move (tests/course/test_explorer.py: chapter 5's explorer once stayed blank after
+#: Run All and a move).
+EVERY_CHAPTER = sorted((ROOT / "notebooks").glob("0[1-9]_*.ipynb"))
+RELEASE_CHECK = os.environ.get("TWOLINK_BROWSER_EVERY_CHAPTER") == "1"
 
 
 def expected_widgets(path):
@@ -158,8 +160,13 @@ def kept_ink(stored_png_base64, canvas_data_url):
 
 @pytest.mark.infrastructure
 @pytest.mark.browser
+@pytest.mark.skipif(
+    not RELEASE_CHECK,
+    reason="a release check (TWOLINK_BROWSER_EVERY_CHAPTER=1); make test runs chapter 1 "
+    "so in the student edition (tests/browser/test_student_edition.py)",
+)
 @pytest.mark.parametrize(
-    "path", RUN_IN_JUPYTERLAB, ids=[path.name for path in RUN_IN_JUPYTERLAB]
+    "path", EVERY_CHAPTER, ids=[path.name for path in EVERY_CHAPTER]
 )
 def test_chapter_runs_and_plays_in_jupyterlab(jupyterlab, page, path, request):
     # what axe finds in JupyterLab's own interface is only printed: looked for when
@@ -306,6 +313,20 @@ def run_chapter(jupyterlab, page, path, axe_jupyterlab=True):
     assert [(mime, alt) for mime, alt, _ in rendered] == expected
 
     run_all(page, panel, path.name, 300_000)
+    check_the_chapter_as_run(page, panel, path, axe_jupyterlab)
+
+
+def check_the_chapter_as_run(page, panel, path, axe_jupyterlab=False):
+    """Chapter ``path`` in ``panel`` after Run All: no error or stderr output; its explorers
+    rendered, each slider moved by a key changes its readout, picture and sentence, each
+    drawn complete after its moves; its animations play; axe-core finds nothing critical
+    or serious in what the course puts in the notebook (``axe_jupyterlab``: what it finds
+    in JupyterLab's own interface is printed)."""
+    for kind in ("error", "stderr"):
+        found = panel.locator(f"[data-mime-type='application/vnd.jupyter.{kind}']")
+        assert found.count() == 0, (
+            f"{path.name}: {kind} output: {found.first.inner_text()[:500]}"
+        )
     containers, moved = move_every_slider(page, panel, path)
     assert_drawn_complete(path, containers)
     _, animation_count = expected_widgets(path)
