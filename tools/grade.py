@@ -172,10 +172,11 @@ def check_folders(folder: pathlib.Path, out: pathlib.Path, unsafe: bool) -> None
         ) from None
 
 
-def check_kernel(setting: Setting) -> dict[str, str]:
-    """Start one kernel as the notebooks' will be: refuse if it cannot start or imports another
-    copy of the course than the grader's; its fingerprints, the genuine ones."""
-    found = genuine_kernel(setting, PROBE_SOURCE)
+def check_kernel(runner: Runner) -> dict[str, str]:
+    """Start one kernel as the notebooks' will be (in one of ``runner``'s workers): refuse if it
+    cannot start or imports another copy of the course than the grader's; its fingerprints,
+    the genuine ones."""
+    found = genuine_kernel(runner, PROBE_SOURCE)
     if "failure" in found:
         raise SetupError(
             f"a kernel could not start in the sandbox ({text(str(found['failure']))[:300]}): "
@@ -412,7 +413,7 @@ def grade_folder(
     try:
         prepared = [prepare(path, folder, course) for path in paths]
         runnable = [item for item in prepared if item.graded is None]
-        genuine = check_kernel(setting) if runnable else {}
+        genuine = check_kernel(runner) if runnable else {}
         how = (
             "UNSAFE: no sandbox"
             if setting.isolation is None

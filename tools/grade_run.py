@@ -418,12 +418,12 @@ def run_isolated(notebook: Any, setting: Setting) -> dict[str, Any]:
         runner.close()
 
 
-def genuine_kernel(setting: Setting, probe_source: str) -> dict[str, Any]:
+def genuine_kernel(runner: Runner, probe_source: str) -> dict[str, Any]:
     """What a kernel started as the notebooks' are sees: the probe's fingerprints, the packages' files.
 
-    Runs one cell in a worker, as a notebook runs, with ``probe_source`` (the
-    probe as the notebooks run it); a kernel that cannot start gives
-    ``{"failure": why}``.
+    Runs one cell in one of ``runner``'s workers (which goes on to grade notebooks),
+    as a notebook runs, with ``probe_source`` (the probe as the notebooks run it); a
+    kernel that cannot start gives ``{"failure": why}``.
     """
     code = (
         "import json, sys, twolink, twolink_course.selfcheck\n"
@@ -438,7 +438,7 @@ def genuine_kernel(setting: Setting, probe_source: str) -> dict[str, Any]:
     notebook = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(code)])
     notebook.cells[0].metadata["tags"] = [PROBE_TAG]
     notebook.cells[0].metadata["twolink_probe"] = "setup"
-    ran = run_isolated(notebook, setting)
+    ran = runner.run(notebook)
     report = ran.get("reports", {}).get("setup", {}).get("visible")
     if not isinstance(report, dict):
         why = (

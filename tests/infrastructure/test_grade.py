@@ -534,22 +534,22 @@ def test_the_csv_may_be_written_in_the_repository_the_kernels_do_not_see_it(tmp_
 def test_a_kernel_that_cannot_start_or_imports_another_copy_is_refused(
     monkeypatch, tmp_path
 ):
-    setting = grade.Setting(tmp_path, None)
+    runner = grade.Runner(grade.Setting(tmp_path, None))  # no worker until a run
     monkeypatch.setattr(
-        grade, "genuine_kernel", lambda setting, source: {"failure": "the kernel died"}
+        grade, "genuine_kernel", lambda runner, source: {"failure": "the kernel died"}
     )
     with pytest.raises(
         grade.SetupError,
         match=r"^a kernel could not start in the sandbox \(the kernel died\)",
     ):
-        grade.check_kernel(setting)
+        grade.check_kernel(runner)
     other = {"files": {"twolink": "/elsewhere/twolink/__init__.py"}, "fingerprints": {}}
-    monkeypatch.setattr(grade, "genuine_kernel", lambda setting, source: other)
+    monkeypatch.setattr(grade, "genuine_kernel", lambda runner, source: other)
     with pytest.raises(
         grade.SetupError,
         match="the kernels import twolink from /elsewhere.*run the grader with the Python of the venv",
     ):
-        grade.check_kernel(setting)
+        grade.check_kernel(runner)
 
 
 def test_an_exercise_graded_on_hidden_inputs_needs_its_inputs_cell(tmp_path):
