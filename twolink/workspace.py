@@ -937,7 +937,20 @@ def clearance(
         _require_arcs(arcs)
     if not arcs:  # nothing is reachable (one branch may be entirely outside the limits)
         return np.full(points.shape[:-1], -np.inf)
-    distance = distance_to_arcs(points, arcs)
+    return _signed_clearance(arm, points, _arc_arrays(arcs), elbow)
+
+
+def _signed_clearance(
+    arm: TwoLinkArm,
+    points: NDArray[np.float64],
+    arrays: tuple[NDArray[np.float64], ...],
+    elbow: str,
+) -> NDArray[np.float64]:
+    """:func:`clearance` of checked points ``(..., 2)``, measured to the arcs of
+    :func:`_arc_arrays` (built once by a caller that measures many times)."""
+    distance = _nearest_arc_distance(points.reshape(-1, 2), arrays).reshape(
+        points.shape[:-1]
+    )
     return np.where(is_reachable(arm, points, elbow=elbow), distance, -distance)
 
 
@@ -1026,8 +1039,9 @@ def largest_inscribed_circle(
             f"no circle fits: no configuration within the joint limits ({describe_limits(arm)}) {reached}"
         )
     scale = arm.reach[1]
+    arrays = _arc_arrays(arcs)  # once: the optimisers measure thousands of times
     samples, _ = sample_reachable(arm, n=START_CANDIDATES, seed=seed)
-    room = clearance(arm, samples, arcs, elbow=elbow)
+    room = _signed_clearance(arm, samples, arrays, elbow)
     chosen: list[int] = []
     for index in np.argsort(room)[::-1]:
         if all(
@@ -1041,7 +1055,7 @@ def largest_inscribed_circle(
     def negative_clearance(centre: NDArray[np.float64]) -> float:
         if time.monotonic() > deadline:
             raise _OutOfTime
-        return -float(clearance(arm, centre, arcs, elbow=elbow))
+        return -float(_signed_clearance(arm, centre, arrays, elbow))
 
     import scipy.optimize  # here, not at the top: import twolink stays light
 
@@ -1065,7 +1079,7 @@ def largest_inscribed_circle(
                 f"{done} of {len(chosen)} starts (best radius so far {best_radius:.6g} m): pass fewer starts "
                 f"(the default is 6) or a larger max_wall_time"
             ) from None
-        radius = float(clearance(arm, outcome.x, arcs, elbow=elbow))
+        radius = float(_signed_clearance(arm, outcome.x, arrays, elbow))
         if radius > best_radius:
             best_centre, best_radius = np.asarray(outcome.x, dtype=float), radius
     return best_centre, best_radius
