@@ -111,13 +111,10 @@ def acceleration_scale(arm, q, qd, tau):
 #: files to the workers (``--dist loadfile``) in collection order
 #: (``--no-loadscope-reorder``); these files are collected first, slowest first,
 #: so no long file starts last and leaves the other core idle.  Files not named
-#: here follow in their usual order.  test_grade_run mostly waits for its time
-#: limits: it goes early, beside the static site's walk, whose browser keeps more
-#: than one core busy.
+#: here follow in their usual order.
 SLOW_FILES_SECONDS = {
     "tests/browser/test_static_site.py": 81,
     "tests/browser/test_student_edition.py": 28,
-    "tests/infrastructure/test_grade_run.py": 26,
     "tests/library/test_workspace.py": 24,
     "tests/infrastructure/test_grade_attacks.py": 15,
     "tests/infrastructure/test_grade.py": 15,
@@ -125,6 +122,7 @@ SLOW_FILES_SECONDS = {
     "tests/library/test_public_api.py": 10,
     "tests/library/test_dynamics.py": 10,
     "tests/infrastructure/test_nbgrader.py": 9,
+    "tests/infrastructure/test_grade_run.py": 9,
     "tests/browser/test_chapters_in_jupyterlab.py": 9,
     "tests/library/test_velocity.py": 6,
     "tests/course/test_exercises.py": 6,
