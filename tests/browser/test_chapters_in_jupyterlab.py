@@ -211,14 +211,16 @@ def run_all(page, panel, name, timeout_ms):
     run_all_cells(page)
     wait_for_all_cells(page, timeout_ms)
     wait_until_idle(page, timeout_ms)
-    errors = panel.locator("[data-mime-type='application/vnd.jupyter.error']")
-    assert errors.count() == 0, (
-        f"{name}: error output: {errors.first.inner_text()[:500]}"
-    )
-    stderr = panel.locator("[data-mime-type='application/vnd.jupyter.stderr']")
-    assert stderr.count() == 0, (
-        f"{name}: stderr output: {stderr.first.inner_text()[:500]}"
-    )
+    assert_no_error_output(panel, name)
+
+
+def assert_no_error_output(panel, name):
+    """No cell of the notebook in ``panel`` shows an error or writes to stderr."""
+    for kind in ("error", "stderr"):
+        found = panel.locator(f"[data-mime-type='application/vnd.jupyter.{kind}']")
+        assert found.count() == 0, (
+            f"{name}: {kind} output: {found.first.inner_text()[:500]}"
+        )
 
 
 def move_every_slider(page, panel, path):
@@ -317,16 +319,11 @@ def run_chapter(jupyterlab, page, path, axe_jupyterlab=True):
 
 
 def check_the_chapter_as_run(page, panel, path, axe_jupyterlab=False):
-    """Chapter ``path`` in ``panel`` after Run All: no error or stderr output; its explorers
-    rendered, each slider moved by a key changes its readout, picture and sentence, each
-    drawn complete after its moves; its animations play; axe-core finds nothing critical
-    or serious in what the course puts in the notebook (``axe_jupyterlab``: what it finds
-    in JupyterLab's own interface is printed)."""
-    for kind in ("error", "stderr"):
-        found = panel.locator(f"[data-mime-type='application/vnd.jupyter.{kind}']")
-        assert found.count() == 0, (
-            f"{path.name}: {kind} output: {found.first.inner_text()[:500]}"
-        )
+    """Chapter ``path`` in ``panel`` after Run All (and :func:`assert_no_error_output`): its
+    explorers rendered, each slider moved by a key changes its readout, picture and
+    sentence, each drawn complete after its moves; its animations play; axe-core finds
+    nothing critical or serious in what the course puts in the notebook
+    (``axe_jupyterlab``: what it finds in JupyterLab's own interface is printed)."""
     containers, moved = move_every_slider(page, panel, path)
     assert_drawn_complete(path, containers)
     _, animation_count = expected_widgets(path)

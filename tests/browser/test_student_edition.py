@@ -28,6 +28,7 @@ import pytest
 from .conftest import ROOT, lab_browser
 from .test_chapters_in_jupyterlab import (
     accept_kernel_dialog,
+    assert_no_error_output,
     check_the_chapter_as_run,
     run_all_cells,
     wait_for_all_cells,
@@ -176,6 +177,7 @@ def test_the_editions_first_run_installs_then_says_to_reload_and_then_shows_slid
         explorers = panel.locator(".twolink-explorer")
         explorers.first.locator("canvas").first.wait_for(timeout=60_000)
         assert explorers.first.locator(".widget-slider").count() >= 1
+        assert_no_error_output(panel, CHAPTER)
         # the repository's chapter: its code and its explorers' stored first states
         check_the_chapter_as_run(page, panel, ROOT / "notebooks" / CHAPTER)
     finally:
