@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import difflib
 import math
+from collections import deque
 from collections.abc import Callable, Mapping, Sequence
 from typing import Any
 
@@ -79,6 +80,9 @@ _METHOD_OPTIONS = {
 #: stages; an implicit step costs at least one): how a ``max_step`` is weighed against a budget.
 EVALUATIONS_PER_STEP = {"RK23": 3, "RK45": 6, "DOP853": 12}
 
+#: States of the latest evaluations a :class:`BudgetSpent` carries (two steps of DOP853).
+RECENT_EVALUATIONS = 24
+
 
 class _Raised(Exception):
     """Carries an error of the right-hand side through the solver, so that it reaches the caller unchanged."""
@@ -89,11 +93,24 @@ class _Raised(Exception):
 
 
 class BudgetSpent(Exception):
-    """The budget ran out at time ``t`` in ``state``; ``which`` names it (never reaches users)."""
+    """The budget ran out at time ``t`` in ``state``; ``which`` names it (never reaches users).
 
-    def __init__(self, t: float, state: ArrayLike, which: str) -> None:
+    ``recent`` holds the states of the evaluations just before, newest last
+    (at most :data:`RECENT_EVALUATIONS`): where the motion was as the budget
+    ran out, for the advice (a contact that is stiff only while the tip is in
+    the wall may be out of it at the very last evaluation).
+    """
+
+    def __init__(
+        self,
+        t: float,
+        state: ArrayLike,
+        which: str,
+        recent: Sequence[ArrayLike] = (),
+    ) -> None:
         super().__init__(which)
         self.t, self.state, self.which = float(t), np.array(state, dtype=float), which
+        self.recent = [np.array(past, dtype=float) for past in recent]
 
 
 def _options_of(method: str) -> tuple[str, ...]:
@@ -189,12 +206,20 @@ def solver_options(
 def budgeted(
     function: Callable[[float, Any], Any], budget: EvaluationBudget
 ) -> Callable[[float, Any], Any]:
-    """``function(t, state)`` that first spends one evaluation of ``budget``, raising :class:`BudgetSpent` when it is spent."""
+    """``function(t, state)`` that first spends one evaluation of ``budget``, raising :class:`BudgetSpent` when it is spent.
+
+    The :class:`BudgetSpent` carries the states of the latest evaluations too,
+    kept as the solver passed them, uncopied (a copy would cost as much as a
+    tenth of the cheapest right-hand side): a solver that reuses its array
+    (odeint, LSODA, BDF) leaves its latest state in several of them.
+    """
+    recent: deque[Any] = deque(maxlen=RECENT_EVALUATIONS)
 
     def spending(t: float, state: Any) -> Any:
         spent = budget.spend()
         if spent is not None:
-            raise BudgetSpent(t, state, spent)
+            raise BudgetSpent(t, state, spent, recent)
+        recent.append(state)
         return function(t, state)
 
     return spending

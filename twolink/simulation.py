@@ -152,13 +152,14 @@ def _budget_advice(inner, stop, budget, method, t_end, torque, max_step):
             f"max_step = {max_step:.3g} s limited the steps ({mean_step:.3g} s on average, "
             f"{t_end / max_step:.3g} steps for {t_end:.6g} s): give a larger max_step or raise the budget"
         )
-    rate = _stiffness(inner, stop.t, stop.state)
-    if explicit and rate is not None:
-        # stiff: the steps taken were no longer than the explicit method's stability limit allows
-        interval = _EXPLICIT_COST[method][1]
-        stiff = mean_step < 3.0 * interval / rate and rate * t_end > STIFF_SPAN
-    else:
-        stiff = rate is not None and rate * t_end > STIFF_SPAN
+    # the fastest rate where the budget ran out: at its last evaluation and the few before
+    # (a tip bouncing on a stiff wall may be off it at the very last one); 0 where none is known
+    rates = [_stiffness(inner, stop.t, state) for state in (*stop.recent, stop.state)]
+    rate = max((rate for rate in rates if rate is not None), default=0.0)
+    stiff = rate * t_end > STIFF_SPAN
+    if explicit:
+        # and the steps taken were no longer than the explicit method's stability limit allows
+        stiff = stiff and mean_step * rate < 3.0 * _EXPLICIT_COST[method][1]
     if stiff:
         advice = (
             f"the closed loop is stiff there (fastest rate {rate:.3g} 1/s, time constant {1.0 / rate:.2g} s, "

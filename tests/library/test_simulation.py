@@ -3,6 +3,7 @@
 import dataclasses
 import importlib.util
 import inspect
+import re
 import time
 
 import matplotlib.pyplot as plt
@@ -20,11 +21,15 @@ from twolink import (
     arms,
     contact,
     controllers,
+    dynamics,
     ik,
     simulate,
+    simulation,
     statics,
     trajectory,
 )
+from twolink._integration import BudgetSpent
+from twolink.budgets import EvaluationBudget
 from twolink.errors import InputTypeError
 from twolink.simulation import simulate_quick
 from twolink_course import plot
@@ -632,6 +637,38 @@ def test_a_loop_that_becomes_stiff_on_contact_stops_within_the_evaluation_budget
         )
     assert error.value.seconds < 10.0
     assert "at t = " in str(error.value) and "state q = " in str(error.value)
+
+
+def test_the_advice_judges_stiffness_over_the_last_evaluations_not_only_the_very_last():
+    """A tip bouncing on a stiff wall can be off it at the last evaluation: the few before decide too.
+
+    Which evaluation is the last depends on the machine's rounding (the test
+    above stopped off the wall with OpenBLAS's SkylakeX kernels), so the advice
+    is checked here on states given by hand.
+    """
+    wall = contact.SpringWall(
+        statics.Wall.through([3.0, 0.0], [3.0, 1.0]), stiffness=1e8
+    )
+    pressed = contact.TipForce(
+        ARM, controllers.Impedance(ARM, 600.0, 50.0, [3.5, 1.0]), wall
+    )
+    inner = dynamics.state_derivative(ARM, pressed)
+    off_the_wall = np.concatenate([ik.closed_form(ARM, [2.999, 1.0]).q, [0.0, 0.0]])
+    in_the_wall = np.concatenate([ik.closed_form(ARM, [3.0001, 1.0]).q, [0.0, 0.0]])
+    budget = EvaluationBudget(3000, 30.0)
+    budget.evaluations = 3001
+
+    def advice(recent):
+        stop = BudgetSpent(0.09, off_the_wall, "max_evaluations", recent)
+        return simulation._budget_advice(
+            inner, stop, budget, "DOP853", 0.5, pressed, np.inf
+        )
+
+    assert "if the loop is stiff" in advice([off_the_wall] * 3)
+    assert re.search(
+        r"stiff there \(fastest rate [0-9.]+e\+04 1/s.*method='Radau'",
+        advice([in_the_wall, off_the_wall, off_the_wall]),
+    )
 
 
 def test_the_wall_time_budget_stops_a_slow_loop():
