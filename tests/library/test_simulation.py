@@ -28,7 +28,7 @@ from twolink import (
     statics,
     trajectory,
 )
-from twolink._integration import BudgetSpent
+from twolink._integration import RECENT_EVALUATIONS, BudgetSpent, budgeted
 from twolink.budgets import EvaluationBudget
 from twolink.errors import InputTypeError
 from twolink.simulation import simulate_quick
@@ -637,6 +637,19 @@ def test_a_loop_that_becomes_stiff_on_contact_stops_within_the_evaluation_budget
         )
     assert error.value.seconds < 10.0
     assert "at t = " in str(error.value) and "state q = " in str(error.value)
+
+
+def test_a_spent_budget_carries_the_states_of_the_evaluations_just_before_it():
+    budget = EvaluationBudget(30, 30.0)
+    spending = budgeted(lambda t, state: state, budget)
+    for k in range(30):
+        spending(float(k), np.array([float(k), 0.0, 0.0, 0.0]))
+    with pytest.raises(BudgetSpent) as stop:
+        spending(30.0, np.array([30.0, 0.0, 0.0, 0.0]))
+    assert stop.value.which == "max_evaluations" and stop.value.state[0] == 30.0
+    assert [state[0] for state in stop.value.recent] == list(
+        range(30 - RECENT_EVALUATIONS, 30)
+    )
 
 
 def test_the_advice_judges_stiffness_over_the_last_evaluations_not_only_the_very_last():
