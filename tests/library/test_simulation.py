@@ -655,9 +655,10 @@ def test_a_spent_budget_carries_the_states_of_the_evaluations_just_before_it():
 def test_the_advice_judges_stiffness_over_the_last_evaluations_not_only_the_very_last():
     """A tip bouncing on a stiff wall can be off it at the last evaluation: the few before decide too.
 
-    Which evaluation is the last depends on the machine's rounding (the test
-    above stopped off the wall with OpenBLAS's SkylakeX kernels), so the advice
-    is checked here on states given by hand.
+    Which evaluation is the last depends on the machine's rounding (the
+    contact loop of ``test_a_loop_that_becomes_stiff_on_contact_...`` stopped
+    off the wall with OpenBLAS's SkylakeX kernels, on the wall with Haswell's),
+    so the advice is checked here on states given by hand.
     """
     wall = contact.SpringWall(
         statics.Wall.through([3.0, 0.0], [3.0, 1.0]), stiffness=1e8
