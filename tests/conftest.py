@@ -104,6 +104,16 @@ def acceleration_scale(arm, q, qd, tau):
     return max(float(np.max(np.abs(part))) for part in parts)
 
 
+@pytest.fixture(scope="module")
+def mujoco_log_in_tmp(tmp_path_factory):
+    """A module's tests run in a folder of their own: MuJoCo appends its warnings (a
+    massless link's singular inertia, ...) to MUJOCO_LOG.TXT in the working folder,
+    which must stay out of the checkout."""
+    with pytest.MonkeyPatch.context() as patch:
+        patch.chdir(tmp_path_factory.mktemp("mujoco-log"))
+        yield
+
+
 # --- the order the files start in, so that both xdist workers stay busy to the end
 
 #: The slowest files, with their rough cost in seconds of one core (the sums of

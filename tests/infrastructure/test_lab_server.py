@@ -126,6 +126,7 @@ def test_make_lab_sends_the_browser_to_the_start_page(tmp_path):
                 "--no-print-directory",
                 "lab",
                 f"VENV={venv}",
+                f"WORK={tmp_path / 'work'}",  # the learner's copies, out of the checkout
                 *("-o", f"{venv}/.course-stamp", "-o", f"{venv}/.installed-stamp"),
                 f"LAB_ARGS=--no-browser --port {port} --IdentityProvider.token={token}",
             ],

@@ -19,10 +19,7 @@ from twolink import engine  # noqa: E402
 WALL = Wall.through([4.0, 0.0], [0.0, 4.0])
 
 
-@pytest.fixture(autouse=True)
-def mujoco_log_in_tmp(tmp_path, monkeypatch):
-    """MuJoCo appends its warnings to MUJOCO_LOG.TXT in the working folder: keep that out of the checkout."""
-    monkeypatch.chdir(tmp_path)
+pytestmark = pytest.mark.usefixtures("mujoco_log_in_tmp")
 
 
 @settings(max_examples=30, deadline=None)

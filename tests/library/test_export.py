@@ -15,6 +15,8 @@ from twolink.statics import Wall
 
 mujoco = pytest.importorskip("mujoco")
 
+pytestmark = pytest.mark.usefixtures("mujoco_log_in_tmp")
+
 states = st.tuples(
     *[st.floats(min_value=-np.pi, max_value=np.pi) for _ in range(2)],
     *[st.floats(min_value=-5.0, max_value=5.0) for _ in range(2)],
